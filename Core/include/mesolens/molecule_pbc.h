@@ -1,0 +1,52 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Making molecules whole across periodic boundaries, and keeping them continuous in time.
+#pragma once
+
+#include "mesolens/periodic_box.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace mesolens
+{
+
+/// Moves atoms by box vectors so that every molecule is whole: each atom is placed at the
+/// minimum image of its displacement from the previous atom of the same molecule (atoms of a
+/// molecule are contiguous or not; order within the molecule is file order). Correct whenever
+/// consecutive atoms of a molecule are closer than half the shortest box height, which holds for
+/// lipids, proteins and nucleic acids in any sensible box. No-op when the box is not set.
+/// positions: 3 per atom, same length unit as the box. molecule_ids: per atom, >= 0.
+void make_molecules_whole(float* positions, const int* molecule_ids, std::size_t atom_count,
+  const PeriodicBox& box);
+
+/// Keeps molecules from jumping across the box between frames: the centroid of each molecule
+/// in frame k is moved to the periodic image closest to its centroid in frame k-1. Shifts are
+/// remembered per frame, so frames can be requested in any order (frames before the requested
+/// one are visited once, in order, the first time).
+class MoleculeContinuity
+{
+public:
+  /// molecule_ids: per atom, >= 0; the tracker is valid while they stay the same.
+  explicit MoleculeContinuity(std::vector<int> molecule_ids);
+
+  /// Number of frames whose shifts are known.
+  std::size_t known_frames() const { return this->Shifts.size(); }
+
+  /// Records frame `frame` (must equal known_frames()), whose molecules are already whole, and
+  /// applies its shifts to `positions` in place.
+  void add_frame(std::size_t frame, float* positions, const PeriodicBox& box);
+
+  /// Applies the remembered shifts of a known frame to whole positions in place.
+  void apply(std::size_t frame, float* positions, const PeriodicBox& box) const;
+
+private:
+  std::vector<double> centroids(const float* positions) const;
+  std::vector<int> MoleculeIds;
+  int MoleculeCount = 0;
+  /// Per frame, per molecule: integer multiples of a, b, c added to the molecule.
+  std::vector<std::vector<std::int32_t>> Shifts;
+  std::vector<double> PreviousCentroids;
+};
+
+} // namespace mesolens

@@ -1,0 +1,24 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Reading Object File Format (.off) polygon soups with CGAL, defects and all.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace mesolens
+{
+
+/// A polygon soup: no orientation or manifoldness is assumed.
+struct PolygonSoup
+{
+  std::vector<double> points;                     ///< 3 per vertex
+  std::vector<std::vector<std::int64_t>> polygons; ///< vertex indices per face
+};
+
+/// Reads an OFF file as a polygon soup with CGAL::IO::read_OFF (non-manifold, inconsistently
+/// oriented and degenerate faces are kept, so mesh_report() can describe them).
+/// Throws FileError for a missing, empty or malformed file.
+PolygonSoup read_off(const std::string& path);
+
+} // namespace mesolens

@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Reading PDB and PDBx/mmCIF files (plain or gzipped) with gemmi, losing no atom.
+#pragma once
+
+#include "mesolens/atom_table.h"
+#include "mesolens/bond_perception.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace mesolens
+{
+
+/// How alternate locations (altlocs) are resolved.
+enum class AltLocPolicy
+{
+  /// Per residue, keep the conformer with the highest summed occupancy (ties: first letter);
+  /// atoms without an altloc are always kept.
+  HighestOccupancy,
+  /// Keep every alternate atom (the `AltLoc` array tells them apart).
+  KeepAll,
+};
+
+/// Parameters of read_structure().
+struct StructureReadParams
+{
+  AltLocPolicy alt_locs = AltLocPolicy::HighestOccupancy;
+  /// Drop water residues (is_water_residue()), as the membrane-mapping paper does on import.
+  bool remove_waters = false;
+  /// Drop hydrogen and deuterium atoms.
+  bool remove_hydrogens = false;
+  /// Perceive covalent bonds from distances (explicit CONECT/LINK/SSBOND/struct_conn bonds are
+  /// always added).
+  bool perceive_bonds = true;
+  /// Bond perception; coarse_grained is decided per file by looks_coarse_grained() unless
+  /// force_coarse_grained is set.
+  BondPerceptionParams bonds;
+  bool force_coarse_grained = false;
+};
+
+/// A structure file: one AtomTable per model (NMR ensembles have several).
+struct StructureFile
+{
+  std::vector<AtomTable> models;
+  std::string title;            ///< TITLE / _struct.title, may be empty
+  bool coarse_grained = false;  ///< bonds were perceived with the bead cutoff
+  std::vector<std::string> warnings; ///< things a user should know (ignored CONECT serials...)
+};
+
+/// Progress callback: fraction in [0, 1]. Return false to abort (read_structure then throws
+/// FileError("aborted")).
+using ProgressCallback = std::function<bool(double)>;
+
+/// Reads a PDB or mmCIF file (format from the extension, else from the content; `.gz` is
+/// decompressed). Every atom of every model is kept (hydrogens included) unless the params
+/// drop some; HELIX/SHEET records become per-atom secondary structure; CONECT records (which
+/// gemmi does not read) and LINK/SSBOND/struct_conn covalent and disulfide links become bonds.
+/// Throws FileError for a missing, empty, truncated or unparsable file, or one without atoms;
+/// InvalidInput for non-finite coordinates.
+StructureFile read_structure(const std::string& path, const StructureReadParams& params = {},
+  const ProgressCallback& progress = {});
+
+/// Bonds and molecules for a table that has names and positions (used by every reader):
+/// assigns residues and molecules, perceives bonds and merges `explicit_bonds`.
+/// Returns true when the atoms were treated as coarse-grained beads.
+bool build_connectivity(AtomTable& table, const std::vector<Bond>& explicit_bonds,
+  const StructureReadParams& params);
+
+} // namespace mesolens

@@ -1,0 +1,164 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "mesolens/molecule_pbc.h"
+
+#include "mesolens/errors.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <unordered_map>
+
+namespace mesolens
+{
+
+namespace
+{
+Eigen::Matrix3d box_columns(const PeriodicBox& box)
+{
+  Eigen::Matrix3d m;
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      m(c, r) = box.vectors[std::size_t(r)][std::size_t(c)];
+    }
+  }
+  return m;
+}
+
+int molecule_count(const std::vector<int>& molecule_ids)
+{
+  int count = 0;
+  for (const int id : molecule_ids)
+  {
+    if (id < 0)
+    {
+      throw InvalidInput("molecule ids must be >= 0");
+    }
+    count = std::max(count, id + 1);
+  }
+  return count;
+}
+} // namespace
+
+void make_molecules_whole(
+  float* positions, const int* molecule_ids, std::size_t atom_count, const PeriodicBox& box)
+{
+  if (!box.is_set() || atom_count == 0)
+  {
+    return;
+  }
+  std::unordered_map<int, std::size_t> previous_atom;
+  previous_atom.reserve(atom_count / 4 + 1);
+  for (std::size_t i = 0; i < atom_count; ++i)
+  {
+    const auto found = previous_atom.find(molecule_ids[i]);
+    if (found != previous_atom.end())
+    {
+      const std::size_t j = found->second;
+      float* p = positions + 3 * i;
+      const float* q = positions + 3 * j;
+      const std::array<double, 3> d = box.minimum_image(
+        { double(p[0]) - q[0], double(p[1]) - q[1], double(p[2]) - q[2] });
+      for (int k = 0; k < 3; ++k)
+      {
+        p[k] = float(double(q[k]) + d[std::size_t(k)]);
+      }
+      found->second = i;
+    }
+    else
+    {
+      previous_atom.emplace(molecule_ids[i], i);
+    }
+  }
+}
+
+MoleculeContinuity::MoleculeContinuity(std::vector<int> molecule_ids)
+  : MoleculeIds(std::move(molecule_ids))
+{
+  this->MoleculeCount = molecule_count(this->MoleculeIds);
+}
+
+std::vector<double> MoleculeContinuity::centroids(const float* positions) const
+{
+  std::vector<double> sums(3 * std::size_t(this->MoleculeCount), 0.0);
+  std::vector<double> counts(std::size_t(this->MoleculeCount), 0.0);
+  for (std::size_t i = 0; i < this->MoleculeIds.size(); ++i)
+  {
+    const std::size_t m = std::size_t(this->MoleculeIds[i]);
+    for (int k = 0; k < 3; ++k)
+    {
+      sums[3 * m + std::size_t(k)] += positions[3 * i + std::size_t(k)];
+    }
+    counts[m] += 1.0;
+  }
+  for (std::size_t m = 0; m < counts.size(); ++m)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      sums[3 * m + std::size_t(k)] /= std::max(counts[m], 1.0);
+    }
+  }
+  return sums;
+}
+
+void MoleculeContinuity::add_frame(std::size_t frame, float* positions, const PeriodicBox& box)
+{
+  if (frame != this->Shifts.size())
+  {
+    throw InvalidInput("MoleculeContinuity::add_frame: frames must be added in order (expected " +
+      std::to_string(this->Shifts.size()) + ", got " + std::to_string(frame) + ")");
+  }
+  std::vector<std::int32_t> shifts(3 * std::size_t(this->MoleculeCount), 0);
+  if (frame > 0 && box.is_set())
+  {
+    const std::vector<double> current = this->centroids(positions);
+    const Eigen::Matrix3d m = box_columns(box);
+    const Eigen::PartialPivLU<Eigen::Matrix3d> lu(m);
+    for (std::size_t mol = 0; mol < std::size_t(this->MoleculeCount); ++mol)
+    {
+      const Eigen::Vector3d drift(
+        this->PreviousCentroids[3 * mol] - current[3 * mol],
+        this->PreviousCentroids[3 * mol + 1] - current[3 * mol + 1],
+        this->PreviousCentroids[3 * mol + 2] - current[3 * mol + 2]);
+      const Eigen::Vector3d fractional = lu.solve(drift);
+      for (int k = 0; k < 3; ++k)
+      {
+        shifts[3 * mol + std::size_t(k)] = std::int32_t(std::lround(fractional[k]));
+      }
+    }
+  }
+  this->Shifts.push_back(std::move(shifts));
+  this->apply(frame, positions, box);
+  this->PreviousCentroids = this->centroids(positions);
+}
+
+void MoleculeContinuity::apply(std::size_t frame, float* positions, const PeriodicBox& box) const
+{
+  if (frame >= this->Shifts.size())
+  {
+    throw InvalidInput("MoleculeContinuity::apply: frame " + std::to_string(frame) +
+      " has not been added");
+  }
+  if (!box.is_set())
+  {
+    return;
+  }
+  const std::vector<std::int32_t>& shifts = this->Shifts[frame];
+  for (std::size_t i = 0; i < this->MoleculeIds.size(); ++i)
+  {
+    const std::size_t mol = std::size_t(this->MoleculeIds[i]);
+    for (int k = 0; k < 3; ++k)
+    {
+      double offset = 0;
+      for (int v = 0; v < 3; ++v)
+      {
+        offset += double(shifts[3 * mol + std::size_t(v)]) * box.vectors[std::size_t(v)][std::size_t(k)];
+      }
+      positions[3 * i + std::size_t(k)] = float(positions[3 * i + std::size_t(k)] + offset);
+    }
+  }
+}
+
+} // namespace mesolens

@@ -1,0 +1,500 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "mesolens/structure_file.h"
+
+#include "file_checks.h"
+#include "mesolens/elements.h"
+#include "mesolens/errors.h"
+#include "mesolens/molecule_assignment.h"
+
+#include <gemmi/cif.hpp>
+#include <gemmi/gz.hpp>
+#include <gemmi/mmcif.hpp>
+#include <gemmi/mmread.hpp>
+#include <gemmi/pdb.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <unordered_map>
+
+namespace mesolens
+{
+
+namespace
+{
+
+bool ends_with(const std::string& text, const std::string& suffix)
+{
+  return text.size() >= suffix.size() &&
+    std::equal(suffix.rbegin(), suffix.rend(), text.rbegin(),
+      [](char a, char b) { return std::tolower(a) == std::tolower(b); });
+}
+
+/// CONECT records of a PDB file: (serial, bonded serial) pairs, and whether a record was cut.
+struct ConectRecords
+{
+  std::vector<std::pair<int, int>> pairs;
+  std::size_t unreadable_fields = 0;
+};
+
+/// Scans the raw PDB text once: collects CONECT pairs (gemmi 0.5 ignores CONECT) and rejects
+/// ATOM/HETATM records too short to hold coordinates, the mark of a truncated file.
+ConectRecords scan_pdb_text(const char* data, std::size_t size, const std::string& path)
+{
+  ConectRecords records;
+  std::size_t line_number = 0;
+  const char* line = data;
+  const char* end = data + size;
+  while (line < end)
+  {
+    const char* newline = static_cast<const char*>(std::memchr(line, '\n', std::size_t(end - line)));
+    const char* line_end = newline ? newline : end;
+    std::size_t length = std::size_t(line_end - line);
+    if (length > 0 && line[length - 1] == '\r')
+    {
+      --length;
+    }
+    ++line_number;
+    const bool atom = length >= 6 &&
+      (std::strncmp(line, "ATOM  ", 6) == 0 || std::strncmp(line, "HETATM", 6) == 0);
+    if (atom && length < 54)
+    {
+      throw FileError(path + ": line " + std::to_string(line_number) + " is an " +
+        std::string(line, 6) + " record of " + std::to_string(length) +
+        " columns, too short to hold coordinates (54); the file looks truncated");
+    }
+    if (length >= 11 && std::strncmp(line, "CONECT", 6) == 0)
+    {
+      auto field = [&](std::size_t column) -> int {
+        if (column + 5 > length)
+        {
+          return 0;
+        }
+        const std::string text(line + column, 5);
+        char* parse_end = nullptr;
+        const long value = std::strtol(text.c_str(), &parse_end, 10);
+        if (parse_end == text.c_str() ||
+          std::any_of(static_cast<const char*>(parse_end), text.c_str() + text.size(),
+            [](char c) { return c != ' '; }))
+        {
+          if (text.find_first_not_of(' ') != std::string::npos)
+          {
+            ++records.unreadable_fields;
+          }
+          return 0;
+        }
+        return int(value);
+      };
+      const int from = field(6);
+      for (std::size_t column = 11; column <= 26 && from > 0; column += 5)
+      {
+        const int to = field(column);
+        if (to > 0)
+        {
+          records.pairs.emplace_back(from, to);
+        }
+      }
+    }
+    line = newline ? newline + 1 : end;
+  }
+  return records;
+}
+
+SecondaryStructure helix_kind(gemmi::Helix::HelixClass helix_class)
+{
+  switch (helix_class)
+  {
+    case gemmi::Helix::RAlpha:
+    case gemmi::Helix::UnknownHelix:
+      return SecondaryStructure::AlphaHelix;
+    case gemmi::Helix::RPi:
+      return SecondaryStructure::PiHelix;
+    case gemmi::Helix::R310:
+      return SecondaryStructure::Helix310;
+    default:
+      return SecondaryStructure::OtherHelix;
+  }
+}
+
+/// Where a residue's atoms start and end in the table, per chain in file order.
+struct ResidueRange
+{
+  const gemmi::Residue* residue;
+  std::size_t begin;
+  std::size_t end;
+};
+
+struct ChainResidues
+{
+  std::string name;
+  std::vector<ResidueRange> residues;
+};
+
+/// Marks residues from `start` to `end` (inclusive, in chain order) with a secondary structure.
+void mark_span(AtomTable& table, const std::vector<ChainResidues>& chains,
+  const gemmi::AtomAddress& start, const gemmi::AtomAddress& end, SecondaryStructure kind,
+  int span_id)
+{
+  for (const ChainResidues& chain : chains)
+  {
+    if (chain.name != start.chain_name)
+    {
+      continue;
+    }
+    std::size_t first = chain.residues.size();
+    for (std::size_t r = 0; r < chain.residues.size(); ++r)
+    {
+      const gemmi::Residue& residue = *chain.residues[r].residue;
+      if (first == chain.residues.size() && residue.seqid == start.res_id.seqid)
+      {
+        first = r;
+      }
+      if (first < chain.residues.size())
+      {
+        for (std::size_t i = chain.residues[r].begin; i < chain.residues[r].end; ++i)
+        {
+          table.secondary_structure[i] = static_cast<std::uint8_t>(kind);
+          table.secondary_structure_ids[i] = span_id;
+        }
+        if (residue.seqid == end.res_id.seqid)
+        {
+          return;
+        }
+      }
+    }
+  }
+}
+
+/// Alternate-location mask: per residue the conformer with the highest summed occupancy; per
+/// atom name, that conformer's atom, or the best atom of the group when the conformer lacks it.
+void mark_alternate_locations(const AtomTable& table, const ResidueRange& range,
+  std::vector<bool>& keep)
+{
+  std::map<char, double> occupancy_by_conformer;
+  for (std::size_t i = range.begin; i < range.end; ++i)
+  {
+    if (table.alt_locs[i] != ' ')
+    {
+      occupancy_by_conformer[table.alt_locs[i]] += table.occupancies[i];
+    }
+  }
+  if (occupancy_by_conformer.empty())
+  {
+    return;
+  }
+  char chosen = occupancy_by_conformer.begin()->first;
+  for (const auto& entry : occupancy_by_conformer)
+  {
+    if (entry.second > occupancy_by_conformer[chosen] + 1e-6)
+    {
+      chosen = entry.first;
+    }
+  }
+  std::map<std::string, std::vector<std::size_t>> groups;
+  for (std::size_t i = range.begin; i < range.end; ++i)
+  {
+    if (table.alt_locs[i] != ' ')
+    {
+      groups[table.atom_names[i]].push_back(i);
+    }
+  }
+  for (const auto& group : groups)
+  {
+    std::size_t best = group.second.front();
+    for (const std::size_t i : group.second)
+    {
+      keep[i] = false;
+      if (table.alt_locs[i] == chosen)
+      {
+        best = i;
+      }
+    }
+    if (table.alt_locs[best] != chosen)
+    {
+      for (const std::size_t i : group.second)
+      {
+        best = table.occupancies[i] > table.occupancies[best] ? i : best;
+      }
+    }
+    keep[best] = true;
+  }
+}
+
+/// Converts one gemmi model; fills `ranges` with the residue layout for secondary structure.
+AtomTable convert_model(const gemmi::Model& model, std::vector<ChainResidues>& chains,
+  std::unordered_map<const gemmi::Atom*, std::size_t>& atom_index)
+{
+  AtomTable table;
+  for (const gemmi::Chain& chain : model.chains)
+  {
+    chains.push_back({ chain.name, {} });
+    for (const gemmi::Residue& residue : chain.residues)
+    {
+      const std::size_t begin = table.size();
+      for (const gemmi::Atom& atom : residue.atoms)
+      {
+        atom_index[&atom] = table.size();
+        table.append_atom(
+          atom.name, float(atom.pos.x), float(atom.pos.y), float(atom.pos.z));
+        std::uint8_t z = static_cast<std::uint8_t>(atom.element.elem);
+        if (atom.element.elem == gemmi::El::D)
+        {
+          z = 1;
+        }
+        table.atomic_numbers.back() = z;
+        table.residue_names.back() = residue.name;
+        table.residue_numbers.back() = residue.seqid.num.has_value() ? int(residue.seqid.num) : 0;
+        table.insertion_codes.back() = residue.seqid.icode == '\0' ? ' ' : residue.seqid.icode;
+        table.chain_ids.back() = chain.name;
+        table.alt_locs.back() = atom.altloc == '\0' ? ' ' : atom.altloc;
+        table.occupancies.back() = atom.occ;
+        table.b_factors.back() = atom.b_iso;
+        table.is_hetero.back() = residue.het_flag == 'H' ? 1 : 0;
+        table.serials.back() = atom.serial;
+        table.formal_charges.back() = atom.charge;
+      }
+      chains.back().residues.push_back({ &residue, begin, table.size() });
+    }
+  }
+  return table;
+}
+
+std::vector<Bond> explicit_bonds(const gemmi::Structure& structure, const gemmi::Model& model,
+  const std::unordered_map<const gemmi::Atom*, std::size_t>& atom_index,
+  const AtomTable& table, const ConectRecords& conect, std::vector<std::string>& warnings)
+{
+  std::vector<Bond> bonds;
+  auto add = [&bonds](std::size_t a, std::size_t b) {
+    if (a != b)
+    {
+      bonds.push_back({ std::uint32_t(std::min(a, b)), std::uint32_t(std::max(a, b)) });
+    }
+  };
+  if (!conect.pairs.empty())
+  {
+    std::unordered_map<int, std::size_t> by_serial;
+    for (std::size_t i = 0; i < table.size(); ++i)
+    {
+      by_serial.emplace(table.serials[i], i);
+    }
+    std::size_t unresolved = 0;
+    for (const auto& pair : conect.pairs)
+    {
+      const auto a = by_serial.find(pair.first);
+      const auto b = by_serial.find(pair.second);
+      if (a == by_serial.end() || b == by_serial.end())
+      {
+        ++unresolved;
+        continue;
+      }
+      add(a->second, b->second);
+    }
+    if (unresolved > 0)
+    {
+      warnings.push_back(std::to_string(unresolved) +
+        " CONECT entries name atom serials that are not in the file; they were ignored");
+    }
+  }
+  if (conect.unreadable_fields > 0)
+  {
+    warnings.push_back(std::to_string(conect.unreadable_fields) +
+      " CONECT fields are not numbers (e.g. ***** serials); they were ignored");
+  }
+  for (const gemmi::Connection& connection : structure.connections)
+  {
+    if (connection.type == gemmi::Connection::Hydrog ||
+      connection.type == gemmi::Connection::MetalC)
+    {
+      continue;
+    }
+    const gemmi::const_CRA a = model.find_cra(connection.partner1, true);
+    const gemmi::const_CRA b = model.find_cra(connection.partner2, true);
+    if (!a.atom || !b.atom)
+    {
+      continue;
+    }
+    const auto ia = atom_index.find(a.atom);
+    const auto ib = atom_index.find(b.atom);
+    if (ia != atom_index.end() && ib != atom_index.end())
+    {
+      add(ia->second, ib->second);
+    }
+  }
+  std::sort(bonds.begin(), bonds.end());
+  bonds.erase(std::unique(bonds.begin(), bonds.end()), bonds.end());
+  return bonds;
+}
+
+void check_finite(const AtomTable& table, const std::string& path)
+{
+  for (std::size_t i = 0; i < table.size(); ++i)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      if (!std::isfinite(table.positions[3 * i + std::size_t(d)]))
+      {
+        throw InvalidInput(path + ": atom " + std::to_string(table.serials[i]) + " (" +
+          table.atom_names[i] + " of " + table.residue_names[i] + " " +
+          std::to_string(table.residue_numbers[i]) + ") has a non-finite coordinate");
+      }
+    }
+  }
+}
+
+gemmi::Structure parse_with_gemmi(const std::string& path, ConectRecords& conect)
+{
+  detail::require_readable_file(path);
+  try
+  {
+    gemmi::MaybeGzipped input(path);
+    gemmi::CharArray buffer = gemmi::read_into_buffer(input);
+    if (buffer.size() == 0)
+    {
+      throw FileError(path + ": the file is empty");
+    }
+    gemmi::CoorFormat format = gemmi::coor_format_from_ext(input.basepath());
+    if (format == gemmi::CoorFormat::Unknown)
+    {
+      format = gemmi::coor_format_from_content(buffer.data(), buffer.data() + buffer.size());
+    }
+    if (format == gemmi::CoorFormat::Pdb)
+    {
+      conect = scan_pdb_text(buffer.data(), buffer.size(), path);
+      return gemmi::read_pdb_from_memory(buffer.data(), buffer.size(), path);
+    }
+    if (format == gemmi::CoorFormat::Mmcif)
+    {
+      return gemmi::make_structure(gemmi::cif::read_memory(buffer.data(), buffer.size(),
+        path.c_str()));
+    }
+    throw FileError(path + ": neither a PDB nor an mmCIF file");
+  }
+  catch (const Error&)
+  {
+    throw;
+  }
+  catch (const std::exception& e)
+  {
+    throw FileError(path + ": " + e.what());
+  }
+}
+
+std::vector<bool> selection_mask(const AtomTable& table,
+  const std::vector<ChainResidues>& chains, const StructureReadParams& params)
+{
+  std::vector<bool> keep(table.size(), true);
+  if (params.alt_locs == AltLocPolicy::HighestOccupancy)
+  {
+    for (const ChainResidues& chain : chains)
+    {
+      for (const ResidueRange& range : chain.residues)
+      {
+        mark_alternate_locations(table, range, keep);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < table.size(); ++i)
+  {
+    if ((params.remove_waters && is_water_residue(table.residue_names[i])) ||
+      (params.remove_hydrogens && table.atomic_numbers[i] == 1))
+    {
+      keep[i] = false;
+    }
+  }
+  return keep;
+}
+
+} // namespace
+
+bool build_connectivity(
+  AtomTable& table, const std::vector<Bond>& explicit_bonds, const StructureReadParams& params)
+{
+  assign_residues(table);
+  assign_molecules(table);
+  BondPerceptionInput input;
+  input.positions = table.positions.data();
+  input.atomic_numbers = table.atomic_numbers.data();
+  input.molecule_ids = table.molecule_ids.data();
+  input.alt_locs = table.alt_locs.data();
+  input.atom_count = table.size();
+  BondPerceptionParams bond_params = params.bonds;
+  bond_params.coarse_grained = params.force_coarse_grained || looks_coarse_grained(input);
+  if (bond_params.coarse_grained)
+  {
+    std::fill(table.atomic_numbers.begin(), table.atomic_numbers.end(), std::uint8_t(0));
+  }
+  std::vector<Bond> perceived;
+  if (params.perceive_bonds)
+  {
+    perceived = perceive_bonds(input, bond_params);
+  }
+  table.bonds = merge_bonds(perceived, explicit_bonds);
+  return bond_params.coarse_grained;
+}
+
+StructureFile read_structure(
+  const std::string& path, const StructureReadParams& params, const ProgressCallback& progress)
+{
+  auto report = [&progress](double fraction) {
+    if (progress && !progress(fraction))
+    {
+      throw FileError("reading was aborted");
+    }
+  };
+  ConectRecords conect;
+  const gemmi::Structure structure = parse_with_gemmi(path, conect);
+  report(0.5);
+
+  StructureFile file;
+  file.title = structure.get_info("_struct.title");
+  for (std::size_t m = 0; m < structure.models.size(); ++m)
+  {
+    const gemmi::Model& model = structure.models[m];
+    std::vector<ChainResidues> chains;
+    std::unordered_map<const gemmi::Atom*, std::size_t> atom_index;
+    AtomTable table = convert_model(model, chains, atom_index);
+    if (table.size() == 0)
+    {
+      continue;
+    }
+    check_finite(table, path);
+    int span_id = 0;
+    for (const gemmi::Helix& helix : structure.helices)
+    {
+      mark_span(table, chains, helix.start, helix.end, helix_kind(helix.pdb_helix_class),
+        span_id++);
+    }
+    for (const gemmi::Sheet& sheet : structure.sheets)
+    {
+      for (const gemmi::Sheet::Strand& strand : sheet.strands)
+      {
+        mark_span(table, chains, strand.start, strand.end, SecondaryStructure::Strand, span_id++);
+      }
+    }
+    std::vector<std::string> warnings;
+    table.bonds = explicit_bonds(structure, model, atom_index, table, conect, warnings);
+    if (m == 0)
+    {
+      file.warnings = warnings;
+    }
+    table.filter(selection_mask(table, chains, params));
+    const std::vector<Bond> kept_explicit = table.bonds;
+    file.coarse_grained = build_connectivity(table, kept_explicit, params);
+    if (structure.cell.is_crystal())
+    {
+      table.box = PeriodicBox::from_cell(structure.cell.a, structure.cell.b, structure.cell.c,
+        structure.cell.alpha, structure.cell.beta, structure.cell.gamma);
+    }
+    file.models.push_back(std::move(table));
+    report(0.5 + 0.5 * double(m + 1) / double(structure.models.size()));
+  }
+  if (file.models.empty())
+  {
+    throw FileError(path + ": the file contains no atoms");
+  }
+  return file;
+}
+
+} // namespace mesolens

@@ -1,0 +1,193 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoAtomTableConversion.h"
+
+#include "mesolens/atom_table.h"
+#include "mesolens/elements.h"
+
+#include <vtkCellArray.h>
+#include <vtkCharArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkFloatArray.h>
+#include <vtkIdTypeArray.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSignedCharArray.h>
+#include <vtkStringArray.h>
+#include <vtkUnsignedCharArray.h>
+
+namespace vtkMesoAtomTableConversion
+{
+
+namespace
+{
+template <typename ArrayT, typename ValueT>
+void add_array(vtkPointData* data, const char* name, const std::vector<ValueT>& values)
+{
+  vtkNew<ArrayT> array;
+  array->SetName(name);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(values.size()));
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    array->SetValue(static_cast<vtkIdType>(i), values[i]);
+  }
+  data->AddArray(array);
+}
+
+void add_strings(vtkPointData* data, const char* name, const std::vector<std::string>& values)
+{
+  vtkNew<vtkStringArray> array;
+  array->SetName(name);
+  array->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
+  for (std::size_t i = 0; i < values.size(); ++i)
+  {
+    array->SetValue(static_cast<vtkIdType>(i), values[i]);
+  }
+  data->AddArray(array);
+}
+
+std::vector<std::string> as_strings(const std::vector<char>& codes)
+{
+  std::vector<std::string> out(codes.size());
+  for (std::size_t i = 0; i < codes.size(); ++i)
+  {
+    if (codes[i] != ' ' && codes[i] != '\0')
+    {
+      out[i] = std::string(1, codes[i]);
+    }
+  }
+  return out;
+}
+} // namespace
+
+void ToPolyData(const mesolens::AtomTable& table, double length_scale, vtkPolyData* output)
+{
+  output->Initialize();
+  const vtkIdType n = static_cast<vtkIdType>(table.size());
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToFloat();
+  output->SetPoints(points);
+  SetPositions(table.positions, {}, length_scale, output);
+
+  // Atoms are vertices: a vtkPolyData without cells has no bounds and renders nothing.
+  vtkNew<vtkIdTypeArray> vertex_offsets;
+  vtkNew<vtkIdTypeArray> vertex_ids;
+  vertex_offsets->SetNumberOfValues(n + 1);
+  vertex_ids->SetNumberOfValues(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    vertex_offsets->SetValue(i, i);
+    vertex_ids->SetValue(i, i);
+  }
+  vertex_offsets->SetValue(n, n);
+  vtkNew<vtkCellArray> vertices;
+  vertices->SetData(vertex_offsets, vertex_ids);
+  output->SetVerts(vertices);
+
+  const vtkIdType bond_count = static_cast<vtkIdType>(table.bonds.size());
+  vtkNew<vtkIdTypeArray> line_offsets;
+  vtkNew<vtkIdTypeArray> line_ids;
+  line_offsets->SetNumberOfValues(bond_count + 1);
+  line_ids->SetNumberOfValues(2 * bond_count);
+  for (vtkIdType b = 0; b < bond_count; ++b)
+  {
+    line_offsets->SetValue(b, 2 * b);
+    line_ids->SetValue(2 * b, table.bonds[std::size_t(b)].first);
+    line_ids->SetValue(2 * b + 1, table.bonds[std::size_t(b)].second);
+  }
+  line_offsets->SetValue(bond_count, 2 * bond_count);
+  vtkNew<vtkCellArray> lines;
+  lines->SetData(line_offsets, line_ids);
+  output->SetLines(lines);
+
+  vtkPointData* data = output->GetPointData();
+  std::vector<std::string> symbols(table.size());
+  for (std::size_t i = 0; i < table.size(); ++i)
+  {
+    symbols[i] = mesolens::element_symbol(table.atomic_numbers[i]);
+  }
+  add_strings(data, "AtomName", table.atom_names);
+  add_strings(data, "Element", symbols);
+  add_array<vtkUnsignedCharArray>(data, "AtomicNumber", table.atomic_numbers);
+  add_strings(data, "ResidueName", table.residue_names);
+  add_array<vtkIntArray>(data, "ResidueNumber", table.residue_numbers);
+  add_strings(data, "InsertionCode", as_strings(table.insertion_codes));
+  add_strings(data, "ChainId", table.chain_ids);
+  add_strings(data, "AltLoc", as_strings(table.alt_locs));
+  add_array<vtkFloatArray>(data, "Occupancy", table.occupancies);
+  add_array<vtkFloatArray>(data, "BFactor", table.b_factors);
+  add_array<vtkUnsignedCharArray>(data, "IsHetAtm", table.is_hetero);
+  add_array<vtkIntArray>(data, "SerialNumber", table.serials);
+  add_array<vtkSignedCharArray>(data, "FormalCharge", table.formal_charges);
+  add_array<vtkUnsignedCharArray>(data, "SecondaryStructure", table.secondary_structure);
+  add_array<vtkIntArray>(data, "SecondaryStructureId", table.secondary_structure_ids);
+  add_array<vtkIntArray>(data, "ResidueIndex", table.residue_indices);
+  add_array<vtkIntArray>(data, "MoleculeId", table.molecule_ids);
+  data->SetActiveScalars("AtomicNumber");
+  SetPeriodicBox(table.box, length_scale, output);
+}
+
+void SetPositions(const std::vector<float>& positions, const std::vector<std::size_t>& kept,
+  double length_scale, vtkPolyData* output)
+{
+  const std::size_t n = kept.empty() ? positions.size() / 3 : kept.size();
+  vtkPoints* points = output->GetPoints();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(n));
+  auto* coordinates = vtkFloatArray::SafeDownCast(points->GetData());
+  float* out = coordinates->GetPointer(0);
+  const float scale = static_cast<float>(length_scale);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const std::size_t source = kept.empty() ? i : kept[i];
+    for (int k = 0; k < 3; ++k)
+    {
+      out[3 * i + std::size_t(k)] = positions[3 * source + std::size_t(k)] * scale;
+    }
+  }
+  points->Modified();
+}
+
+void SetPeriodicBox(const mesolens::PeriodicBox& box, double length_scale, vtkPolyData* output)
+{
+  vtkFieldData* field = output->GetFieldData();
+  field->RemoveArray("PeriodicBoxVectors");
+  if (!box.is_set())
+  {
+    return;
+  }
+  vtkNew<vtkDoubleArray> vectors;
+  vectors->SetName("PeriodicBoxVectors");
+  vectors->SetNumberOfComponents(9);
+  vectors->SetNumberOfTuples(1);
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      vectors->SetComponent(0, 3 * r + c, box.vectors[std::size_t(r)][std::size_t(c)] * length_scale);
+    }
+  }
+  field->AddArray(vectors);
+}
+
+void SetFieldValue(vtkPolyData* output, const char* name, double value)
+{
+  vtkNew<vtkDoubleArray> array;
+  array->SetName(name);
+  array->InsertNextValue(value);
+  output->GetFieldData()->RemoveArray(name);
+  output->GetFieldData()->AddArray(array);
+}
+
+void SetFieldString(vtkPolyData* output, const char* name, const std::string& value)
+{
+  vtkNew<vtkStringArray> array;
+  array->SetName(name);
+  array->InsertNextValue(value);
+  output->GetFieldData()->RemoveArray(name);
+  output->GetFieldData()->AddArray(array);
+}
+
+}

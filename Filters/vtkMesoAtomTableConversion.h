@@ -1,0 +1,40 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Conversion of a Core AtomTable into the vtkPolyData layout of every MesoLens atom reader
+// (private to MesoLensFilters; not installed, not wrapped).
+#ifndef vtkMesoAtomTableConversion_h
+#define vtkMesoAtomTableConversion_h
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+class vtkPolyData;
+namespace mesolens
+{
+struct AtomTable;
+struct PeriodicBox;
+}
+
+namespace vtkMesoAtomTableConversion
+{
+
+/// Fills `output` with one vertex per atom, one line per bond and the named point arrays
+/// documented in vtkMesoStructureReader.h. Positions are multiplied by `length_scale`.
+void ToPolyData(const mesolens::AtomTable& table, double length_scale, vtkPolyData* output);
+
+/// Replaces the points of an output built by ToPolyData with `positions` (3 floats per atom,
+/// Å) times `length_scale`, picking atoms `kept` (all atoms when empty).
+void SetPositions(const std::vector<float>& positions, const std::vector<std::size_t>& kept,
+  double length_scale, vtkPolyData* output);
+
+/// Adds (or replaces) the field-data array "PeriodicBoxVectors" (9 doubles, rows a, b, c, in
+/// output length units); removes it when the box is not set.
+void SetPeriodicBox(const mesolens::PeriodicBox& box, double length_scale, vtkPolyData* output);
+
+/// Adds a one-value field-data array (replacing one of the same name).
+void SetFieldValue(vtkPolyData* output, const char* name, double value);
+void SetFieldString(vtkPolyData* output, const char* name, const std::string& value);
+
+}
+
+#endif

@@ -1,0 +1,232 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoMeshReader.h"
+
+#include "mesolens/errors.h"
+#include "mesolens/off_file.h"
+
+#include <vtkCallbackCommand.h>
+#include <vtkCellArray.h>
+#include <vtkCellArrayIterator.h>
+#include <vtkCellData.h>
+#include <vtkExecutive.h>
+#include <vtkIdList.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkNew.h>
+#include <vtkOBJReader.h>
+#include <vtkObjectFactory.h>
+#include <vtkPLYReader.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSTLReader.h>
+#include <vtkSmartPointer.h>
+#include <vtkXMLPolyDataReader.h>
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <sys/stat.h>
+
+vtkStandardNewMacro(vtkMesoMeshReader);
+
+vtkMesoMeshReader::vtkMesoMeshReader()
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+namespace
+{
+std::string extension_of(const std::string& path)
+{
+  const auto dot = path.find_last_of('.');
+  std::string extension = dot == std::string::npos ? std::string() : path.substr(dot + 1);
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+bool known_extension(const std::string& extension)
+{
+  return extension == "obj" || extension == "ply" || extension == "stl" ||
+    extension == "vtp" || extension == "off";
+}
+
+/// Collects error events of an inner VTK reader so they can be reported as ours.
+struct ErrorCollector
+{
+  std::string Message;
+  static void Callback(vtkObject*, unsigned long, void* clientData, void* callData)
+  {
+    auto* self = static_cast<ErrorCollector*>(clientData);
+    if (self->Message.empty() && callData)
+    {
+      self->Message = static_cast<const char*>(callData);
+    }
+  }
+};
+
+/// Keeps polygons only, fan-splitting those with more than three vertices.
+void keep_triangles(vtkPolyData* mesh)
+{
+  vtkNew<vtkCellArray> triangles;
+  vtkCellArray* polys = mesh->GetPolys();
+  auto iterator = vtk::TakeSmartPointer(polys->NewIterator());
+  for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell())
+  {
+    vtkIdType size = 0;
+    const vtkIdType* ids = nullptr;
+    iterator->GetCurrentCell(size, ids);
+    for (vtkIdType k = 1; k + 1 < size; ++k)
+    {
+      const vtkIdType triangle[3] = { ids[0], ids[k], ids[k + 1] };
+      triangles->InsertNextCell(3, triangle);
+    }
+  }
+  mesh->SetVerts(nullptr);
+  mesh->SetLines(nullptr);
+  mesh->SetStrips(nullptr);
+  mesh->SetPolys(triangles);
+  mesh->GetCellData()->Initialize();
+}
+} // namespace
+
+int vtkMesoMeshReader::CanReadFile(const char* fileName)
+{
+  if (!fileName || !known_extension(extension_of(fileName)))
+  {
+    return 0;
+  }
+  std::ifstream probe(fileName);
+  return probe ? 1 : 0;
+}
+
+bool vtkMesoMeshReader::ReadWithVTK(const std::string& extension, vtkPolyData* output)
+{
+  vtkSmartPointer<vtkAlgorithm> reader;
+  if (extension == "obj")
+  {
+    auto obj = vtkSmartPointer<vtkOBJReader>::New();
+    obj->SetFileName(this->FileName.c_str());
+    reader = obj;
+  }
+  else if (extension == "ply")
+  {
+    auto ply = vtkSmartPointer<vtkPLYReader>::New();
+    ply->SetFileName(this->FileName.c_str());
+    reader = ply;
+  }
+  else if (extension == "stl")
+  {
+    auto stl = vtkSmartPointer<vtkSTLReader>::New();
+    stl->SetFileName(this->FileName.c_str());
+    stl->MergingOn();
+    reader = stl;
+  }
+  else
+  {
+    auto vtp = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+    vtp->SetFileName(this->FileName.c_str());
+    reader = vtp;
+  }
+  ErrorCollector errors;
+  vtkNew<vtkCallbackCommand> callback;
+  callback->SetCallback(&ErrorCollector::Callback);
+  callback->SetClientData(&errors);
+  reader->AddObserver(vtkCommand::ErrorEvent, callback);
+  reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, callback);
+  const bool updated = reader->GetExecutive()->Update() != 0;
+  if (!updated || !errors.Message.empty())
+  {
+    vtkErrorMacro("Cannot read " << this->FileName << ": "
+                                 << (errors.Message.empty() ? "the reader failed" : errors.Message));
+    return false;
+  }
+  output->ShallowCopy(vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0)));
+  return true;
+}
+
+bool vtkMesoMeshReader::ReadOFF(vtkPolyData* output)
+{
+  mesolens::PolygonSoup soup;
+  try
+  {
+    soup = mesolens::read_off(this->FileName);
+  }
+  catch (const mesolens::Error& e)
+  {
+    vtkErrorMacro("Cannot read " << this->FileName << ": " << e.what());
+    return false;
+  }
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(soup.points.size() / 3));
+  for (vtkIdType i = 0; i < points->GetNumberOfPoints(); ++i)
+  {
+    points->SetPoint(i, soup.points.data() + 3 * i);
+  }
+  vtkNew<vtkCellArray> polys;
+  for (const auto& polygon : soup.polygons)
+  {
+    polys->InsertNextCell(static_cast<vtkIdType>(polygon.size()));
+    for (const std::int64_t id : polygon)
+    {
+      polys->InsertCellPoint(static_cast<vtkIdType>(id));
+    }
+  }
+  output->SetPoints(points);
+  output->SetPolys(polys);
+  return true;
+}
+
+int vtkMesoMeshReader::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  output->Initialize();
+  if (this->FileName.empty())
+  {
+    vtkErrorMacro("No FileName was set.");
+    return 0;
+  }
+  struct stat info
+  {
+  };
+  if (::stat(this->FileName.c_str(), &info) != 0 || !S_ISREG(info.st_mode))
+  {
+    vtkErrorMacro("Cannot read " << this->FileName << ": no such file");
+    return 0;
+  }
+  if (info.st_size == 0)
+  {
+    vtkErrorMacro("Cannot read " << this->FileName << ": the file is empty");
+    return 0;
+  }
+  const std::string extension = extension_of(this->FileName);
+  if (!known_extension(extension))
+  {
+    vtkErrorMacro("Cannot read " << this->FileName
+                                 << ": unknown mesh format (expected .obj, .ply, .stl, .vtp or .off)");
+    return 0;
+  }
+  vtkNew<vtkPolyData> mesh;
+  const bool read = extension == "off" ? this->ReadOFF(mesh) : this->ReadWithVTK(extension, mesh);
+  if (!read)
+  {
+    return 0;
+  }
+  if (mesh->GetNumberOfPolys() == 0)
+  {
+    vtkErrorMacro("Cannot read " << this->FileName << ": the file holds no polygons");
+    return 0;
+  }
+  keep_triangles(mesh);
+  output->ShallowCopy(mesh);
+  return 1;
+}
+
+void vtkMesoMeshReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << (this->FileName.empty() ? "(none)" : this->FileName) << "\n";
+}

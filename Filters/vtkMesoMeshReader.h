@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+/**
+ * @class   vtkMesoMeshReader
+ * @brief   Reads a cell-component surface mesh (.obj, .ply, .stl, .vtp, .off) as triangles.
+ *
+ * OBJ, PLY, STL and VTP go through VTK's own readers (vtkOBJReader, vtkPLYReader, vtkSTLReader,
+ * vtkXMLPolyDataReader); OFF through CGAL's polygon-soup reader, so meshes with defects (holes,
+ * non-manifold or inconsistently oriented faces, degenerate triangles) are read as they are and
+ * vtkMesoMeshReport can describe them. Polygons with more than three vertices are split into
+ * triangles; vertices, lines and strips are dropped. Point normals and texture coordinates of
+ * the file are kept. Coordinates are in the file's own unit (the mitochondrion meshes of the
+ * test data are in µm).
+ *
+ * A missing, empty or unreadable file, or one without any polygon, gives a vtkErrorMacro
+ * naming the file, an empty output and a failed update.
+ */
+#ifndef vtkMesoMeshReader_h
+#define vtkMesoMeshReader_h
+
+#include "MesoLensFiltersModule.h"
+#include "vtkPolyDataAlgorithm.h"
+
+#include <string>
+
+class MESOLENSFILTERS_EXPORT vtkMesoMeshReader : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkMesoMeshReader* New();
+  vtkTypeMacro(vtkMesoMeshReader, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Path of the mesh file. Default: none.
+  vtkSetStdStringFromCharMacro(FileName);
+  vtkGetCharFromStdStringMacro(FileName);
+  ///@}
+
+  /// 1 when the extension is .obj, .ply, .stl, .vtp or .off and the file exists.
+  static int CanReadFile(const char* fileName);
+
+protected:
+  vtkMesoMeshReader();
+  ~vtkMesoMeshReader() override = default;
+
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  std::string FileName;
+
+private:
+  vtkMesoMeshReader(const vtkMesoMeshReader&) = delete;
+  void operator=(const vtkMesoMeshReader&) = delete;
+
+  bool ReadWithVTK(const std::string& extension, vtkPolyData* output);
+  bool ReadOFF(vtkPolyData* output);
+};
+
+#endif

@@ -1,0 +1,235 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoStructureReader.h"
+
+#include "vtkMesoAtomTableConversion.h"
+
+#include "mesolens/errors.h"
+#include "mesolens/structure_file.h"
+
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
+#include <vtkPolyData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <fstream>
+#include <vector>
+
+vtkStandardNewMacro(vtkMesoStructureReader);
+
+struct vtkMesoStructureReader::Cache
+{
+  mesolens::StructureFile File;
+  vtkMTimeType ReadTime = 0;
+  bool Valid = false;
+  std::string Warnings;
+};
+
+vtkMesoStructureReader::vtkMesoStructureReader()
+  : Parsed(new Cache)
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+vtkMesoStructureReader::~vtkMesoStructureReader() = default;
+
+namespace
+{
+std::string lower_case(std::string text)
+{
+  std::transform(text.begin(), text.end(), text.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+bool has_suffix(const std::string& text, const std::string& suffix)
+{
+  return text.size() >= suffix.size() &&
+    text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+} // namespace
+
+int vtkMesoStructureReader::CanReadFile(const char* fileName)
+{
+  if (!fileName)
+  {
+    return 0;
+  }
+  std::string name = lower_case(fileName);
+  if (has_suffix(name, ".gz"))
+  {
+    name.resize(name.size() - 3);
+  }
+  for (const char* extension : { ".pdb", ".ent", ".cif", ".mmcif" })
+  {
+    if (has_suffix(name, extension))
+    {
+      std::ifstream probe(fileName);
+      return probe ? 1 : 0;
+    }
+  }
+  // No known extension: sniff the first line for PDB records or a CIF data block.
+  std::ifstream probe(fileName);
+  std::string line;
+  if (!probe || !std::getline(probe, line))
+  {
+    return 0;
+  }
+  for (const char* record : { "HEADER", "ATOM  ", "HETATM", "CRYST1", "MODEL ", "REMARK", "data_" })
+  {
+    if (line.rfind(record, 0) == 0)
+    {
+      return 1;
+    }
+  }
+  return 0;
+}
+
+bool vtkMesoStructureReader::ReadIfNeeded()
+{
+  Cache& cache = *this->Parsed;
+  if (cache.Valid && cache.ReadTime >= this->GetMTime())
+  {
+    return true;
+  }
+  cache.Valid = false;
+  cache.File = mesolens::StructureFile{};
+  cache.Warnings.clear();
+  if (this->FileName.empty())
+  {
+    vtkErrorMacro("No FileName was set.");
+    return false;
+  }
+  mesolens::StructureReadParams params;
+  params.alt_locs = this->KeepAllAlternateLocations ? mesolens::AltLocPolicy::KeepAll
+                                                    : mesolens::AltLocPolicy::HighestOccupancy;
+  params.remove_waters = this->RemoveWaters;
+  params.remove_hydrogens = this->RemoveHydrogens;
+  params.perceive_bonds = this->PerceiveBonds;
+  params.bonds.tolerance = static_cast<float>(this->BondTolerance);
+  params.bonds.bead_cutoff = static_cast<float>(this->CoarseGrainedBeadCutoff);
+  params.force_coarse_grained = this->ForceCoarseGrained;
+  try
+  {
+    cache.File = mesolens::read_structure(this->FileName, params, [this](double fraction) {
+      this->UpdateProgress(0.9 * fraction);
+      return !this->GetAbortExecute();
+    });
+  }
+  catch (const mesolens::Error& e)
+  {
+    vtkErrorMacro("Cannot read " << this->FileName << ": " << e.what());
+    return false;
+  }
+  catch (const std::exception& e)
+  {
+    vtkErrorMacro("Cannot read " << this->FileName << ": unexpected error: " << e.what());
+    return false;
+  }
+  for (const std::string& warning : cache.File.warnings)
+  {
+    vtkWarningMacro(<< this->FileName << ": " << warning);
+    cache.Warnings += warning + "\n";
+  }
+  cache.ReadTime = this->GetMTime();
+  cache.Valid = true;
+  return true;
+}
+
+int vtkMesoStructureReader::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  if (!this->ReadIfNeeded())
+  {
+    // The update fails here, before RequestData: do not leave an earlier result behind.
+    if (vtkPolyData* output = vtkPolyData::GetData(outInfo))
+    {
+      output->Initialize();
+    }
+    return 0;
+  }
+  const std::size_t models = this->Parsed->File.models.size();
+  if (models > 1)
+  {
+    std::vector<double> steps(models);
+    for (std::size_t m = 0; m < models; ++m)
+    {
+      steps[m] = static_cast<double>(m);
+    }
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), steps.data(),
+      static_cast<int>(models));
+    const double range[2] = { 0.0, static_cast<double>(models - 1) };
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  }
+  return 1;
+}
+
+int vtkMesoStructureReader::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkPolyData* output = vtkPolyData::GetData(outInfo);
+  output->Initialize();
+  if (!this->ReadIfNeeded())
+  {
+    return 0;
+  }
+  const std::vector<mesolens::AtomTable>& models = this->Parsed->File.models;
+  std::size_t model = 0;
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+  {
+    const double requested = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+    if (std::isfinite(requested))
+    {
+      const double clamped = std::min(std::max(requested, 0.0), double(models.size() - 1));
+      model = static_cast<std::size_t>(std::lround(clamped));
+    }
+  }
+  vtkMesoAtomTableConversion::ToPolyData(models[model], 1.0, output);
+  vtkMesoAtomTableConversion::SetFieldValue(output, "ModelIndex", double(model));
+  vtkMesoAtomTableConversion::SetFieldValue(
+    output, "CoarseGrained", this->Parsed->File.coarse_grained ? 1.0 : 0.0);
+  vtkMesoAtomTableConversion::SetFieldString(output, "Title", this->Parsed->File.title);
+  if (models.size() > 1)
+  {
+    output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), double(model));
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+int vtkMesoStructureReader::GetNumberOfModels()
+{
+  this->UpdateInformation();
+  return this->Parsed->Valid ? static_cast<int>(this->Parsed->File.models.size()) : 0;
+}
+
+const char* vtkMesoStructureReader::GetTitle()
+{
+  this->UpdateInformation();
+  return this->Parsed->File.title.c_str();
+}
+
+const char* vtkMesoStructureReader::GetWarnings()
+{
+  return this->Parsed->Warnings.c_str();
+}
+
+void vtkMesoStructureReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "FileName: " << (this->FileName.empty() ? "(none)" : this->FileName) << "\n";
+  os << indent << "KeepAllAlternateLocations: " << this->KeepAllAlternateLocations << "\n";
+  os << indent << "RemoveWaters: " << this->RemoveWaters << "\n";
+  os << indent << "RemoveHydrogens: " << this->RemoveHydrogens << "\n";
+  os << indent << "PerceiveBonds: " << this->PerceiveBonds << "\n";
+  os << indent << "BondTolerance: " << this->BondTolerance << "\n";
+  os << indent << "CoarseGrainedBeadCutoff: " << this->CoarseGrainedBeadCutoff << "\n";
+  os << indent << "ForceCoarseGrained: " << this->ForceCoarseGrained << "\n";
+}

@@ -1,0 +1,143 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+/**
+ * @class   vtkMesoStructureReader
+ * @brief   Reads PDB and PDBx/mmCIF files (plain or .gz) into atoms and bonds, losing no atom.
+ *
+ * Parsing is done by gemmi. Unlike vtkPDBReader, every atom is kept: hydrogens, HETATM
+ * records, waters and (optionally) every alternate location.
+ *
+ * Output: a vtkPolyData with one point and one vertex cell per atom (coordinates in Å), one
+ * line cell per bond, and these point arrays:
+ * - `AtomName`, `Element` (symbol, "X" when unknown or a coarse-grained bead), `ResidueName`,
+ *   `ChainId` (author chain), `InsertionCode`, `AltLoc` (vtkStringArray, "" when blank);
+ * - `AtomicNumber` (unsigned char, 0 = unknown/bead; the active scalars);
+ * - `ResidueNumber` (author number), `SerialNumber`, `ResidueIndex` (0-based running residue),
+ *   `MoleculeId` (0-based; one per residue, except that the polymer residues of a chain form
+ *   one molecule), `SecondaryStructureId` (index of the HELIX/strand span, -1 = none) (int);
+ * - `Occupancy`, `BFactor` (Å²) (float); `IsHetAtm` (0/1), `FormalCharge` (signed char);
+ * - `SecondaryStructure` (unsigned char: 0 coil, 1 alpha helix, 2 3-10 helix, 3 pi helix,
+ *   4 strand, 8 other helix) from HELIX/SHEET records or struct_conf/struct_sheet_range.
+ * Field data: `PeriodicBoxVectors` (9 doubles, Å) when CRYST1/_cell gives a crystal cell,
+ * `CoarseGrained` (1 when bonds were perceived between beads), `ModelIndex`, `Title`.
+ *
+ * Bonds: CONECT records, LINK/SSBOND/struct_conn covalent and disulfide links, and (when
+ * PerceiveBonds is on) distance-based perception inside each molecule: d < r_cov(a) + r_cov(b) +
+ * BondTolerance, in O(n) with a spatial grid. Files of coarse-grained beads (detected, or forced
+ * with ForceCoarseGrained) bond beads of a molecule closer than CoarseGrainedBeadCutoff.
+ *
+ * Models (NMR ensembles) are time steps: TIME_STEPS = 0, 1, ..., NumberOfModels - 1, and
+ * UPDATE_TIME_STEP t selects model round(t), clamped to the valid range.
+ *
+ * On a missing, empty, truncated or malformed file, or NaN coordinates, the reader reports the
+ * file and the problem with vtkErrorMacro, leaves the output empty and the update fails.
+ */
+#ifndef vtkMesoStructureReader_h
+#define vtkMesoStructureReader_h
+
+#include "MesoLensFiltersModule.h"
+#include "vtkPolyDataAlgorithm.h"
+
+#include <memory>
+#include <string>
+
+class MESOLENSFILTERS_EXPORT vtkMesoStructureReader : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkMesoStructureReader* New();
+  vtkTypeMacro(vtkMesoStructureReader, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  ///@{
+  /// Path of the .pdb, .ent, .cif or .mmcif file (optionally .gz). Default: none.
+  vtkSetStdStringFromCharMacro(FileName);
+  vtkGetCharFromStdStringMacro(FileName);
+  ///@}
+
+  /// 1 when the file looks like PDB or mmCIF (by extension, else by content); 0 otherwise.
+  static int CanReadFile(const char* fileName);
+
+  ///@{
+  /// Keep every alternate location instead of the highest-occupancy conformer of each residue.
+  /// Default: false.
+  vtkSetMacro(KeepAllAlternateLocations, bool);
+  vtkGetMacro(KeepAllAlternateLocations, bool);
+  vtkBooleanMacro(KeepAllAlternateLocations, bool);
+  ///@}
+
+  ///@{
+  /// Drop water molecules (HOH, WAT, SOL, ...). Default: false.
+  vtkSetMacro(RemoveWaters, bool);
+  vtkGetMacro(RemoveWaters, bool);
+  vtkBooleanMacro(RemoveWaters, bool);
+  ///@}
+
+  ///@{
+  /// Drop hydrogen (and deuterium) atoms. Default: false.
+  vtkSetMacro(RemoveHydrogens, bool);
+  vtkGetMacro(RemoveHydrogens, bool);
+  vtkBooleanMacro(RemoveHydrogens, bool);
+  ///@}
+
+  ///@{
+  /// Perceive covalent bonds from distances (explicit records are always used). Default: true.
+  vtkSetMacro(PerceiveBonds, bool);
+  vtkGetMacro(PerceiveBonds, bool);
+  vtkBooleanMacro(PerceiveBonds, bool);
+  ///@}
+
+  ///@{
+  /// Tolerance (Å) added to the sum of covalent radii. Range [0, 1]; default 0.45.
+  vtkSetClampMacro(BondTolerance, double, 0.0, 1.0);
+  vtkGetMacro(BondTolerance, double);
+  ///@}
+
+  ///@{
+  /// Bond cutoff between coarse-grained beads of one molecule (Å). Range [0.5, 10]; default 5.
+  vtkSetClampMacro(CoarseGrainedBeadCutoff, double, 0.5, 10.0);
+  vtkGetMacro(CoarseGrainedBeadCutoff, double);
+  ///@}
+
+  ///@{
+  /// Treat the file as coarse-grained beads even when it does not look so. Default: false.
+  vtkSetMacro(ForceCoarseGrained, bool);
+  vtkGetMacro(ForceCoarseGrained, bool);
+  vtkBooleanMacro(ForceCoarseGrained, bool);
+  ///@}
+
+  /// Number of models in the file (valid after UpdateInformation; 0 on error).
+  int GetNumberOfModels();
+
+  /// Title of the entry (TITLE or _struct.title), valid after UpdateInformation.
+  const char* GetTitle();
+
+  /// Warnings of the last read (e.g. CONECT records naming missing atoms), one per line.
+  const char* GetWarnings();
+
+protected:
+  vtkMesoStructureReader();
+  ~vtkMesoStructureReader() override;
+
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  std::string FileName;
+  bool KeepAllAlternateLocations = false;
+  bool RemoveWaters = false;
+  bool RemoveHydrogens = false;
+  bool PerceiveBonds = true;
+  double BondTolerance = 0.45;
+  double CoarseGrainedBeadCutoff = 5.0;
+  bool ForceCoarseGrained = false;
+
+private:
+  vtkMesoStructureReader(const vtkMesoStructureReader&) = delete;
+  void operator=(const vtkMesoStructureReader&) = delete;
+
+  /// Parses the file unless the cached parse is newer than every setting.
+  bool ReadIfNeeded();
+
+  struct Cache;
+  std::unique_ptr<Cache> Parsed;
+};
+
+#endif

@@ -1,0 +1,335 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoTrajectoryReader.h"
+
+#include "vtkMesoAtomTableConversion.h"
+
+#include "mesolens/errors.h"
+#include "mesolens/gro_topology.h"
+#include "mesolens/molecule_assignment.h"
+#include "mesolens/molecule_pbc.h"
+#include "mesolens/structure_file.h"
+#include "mesolens/trajectory_file.h"
+
+#include <vtkFieldData.h>
+#include <vtkFloatArray.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkNew.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+vtkStandardNewMacro(vtkMesoTrajectoryReader);
+
+struct vtkMesoTrajectoryReader::State
+{
+  bool Valid = false;
+  vtkMTimeType OpenTime = 0;
+  mesolens::AtomTable Topology;               // every atom, with molecules and bonds
+  std::vector<std::size_t> KeptAtoms;         // output atoms (empty: all)
+  vtkSmartPointer<vtkPolyData> Template;      // output arrays, built once
+  std::unique_ptr<mesolens::TrajectoryFile> File; // null: the topology is the only frame
+  std::vector<double> Times;                  // ps
+  std::unique_ptr<mesolens::MoleculeContinuity> Continuity;
+};
+
+vtkMesoTrajectoryReader::vtkMesoTrajectoryReader()
+  : Internal(new State)
+{
+  this->SetNumberOfInputPorts(0);
+}
+
+vtkMesoTrajectoryReader::~vtkMesoTrajectoryReader() = default;
+
+namespace
+{
+std::string extension_of(const std::string& path)
+{
+  const auto dot = path.find_last_of('.');
+  std::string extension = dot == std::string::npos ? std::string() : path.substr(dot + 1);
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return extension;
+}
+
+/// Names, residues and connectivity of the topology; bonds are perceived on whole molecules.
+mesolens::AtomTable load_topology(const std::string& path, const mesolens::StructureReadParams& params)
+{
+  mesolens::AtomTable table;
+  std::vector<mesolens::Bond> explicit_bonds;
+  if (extension_of(path) == "gro")
+  {
+    table = mesolens::read_gro_topology(path);
+  }
+  else
+  {
+    mesolens::StructureReadParams structure_params;
+    structure_params.alt_locs = mesolens::AltLocPolicy::KeepAll;
+    structure_params.perceive_bonds = false; // perceived below, after making molecules whole
+    mesolens::StructureFile file = mesolens::read_structure(path, structure_params);
+    table = std::move(file.models.front());
+    explicit_bonds = table.bonds;
+  }
+  mesolens::assign_residues(table);
+  mesolens::assign_molecules(table);
+  mesolens::AtomTable whole = table;
+  mesolens::make_molecules_whole(
+    whole.positions.data(), whole.molecule_ids.data(), whole.size(), whole.box);
+  mesolens::build_connectivity(whole, explicit_bonds, params);
+  table.bonds = whole.bonds;
+  table.atomic_numbers = whole.atomic_numbers; // zeroed for coarse-grained beads
+  table.molecule_ids = whole.molecule_ids;
+  return table;
+}
+} // namespace
+
+int vtkMesoTrajectoryReader::CanReadFile(const char* fileName)
+{
+  return fileName && mesolens::TrajectoryFile::has_trajectory_extension(fileName) ? 1 : 0;
+}
+
+bool vtkMesoTrajectoryReader::OpenIfNeeded()
+{
+  State& state = *this->Internal;
+  if (state.Valid && state.OpenTime >= this->GetMTime())
+  {
+    return true;
+  }
+  state = State{};
+  if (this->TopologyFileName.empty())
+  {
+    vtkErrorMacro("No TopologyFileName was set.");
+    return false;
+  }
+  mesolens::StructureReadParams params;
+  params.perceive_bonds = this->PerceiveBonds;
+  params.bonds.tolerance = static_cast<float>(this->BondTolerance);
+  params.bonds.bead_cutoff = static_cast<float>(this->CoarseGrainedBeadCutoff);
+  const auto incomplete = this->SkipIncompleteFrames
+    ? mesolens::TrajectoryFile::IncompleteFrames::Skip
+    : mesolens::TrajectoryFile::IncompleteFrames::Reject;
+  try
+  {
+    state.Topology = load_topology(this->TopologyFileName, params);
+    this->UpdateProgress(0.5);
+    std::string trajectory = this->TrajectoryFileName;
+    if (trajectory.empty() && extension_of(this->TopologyFileName) == "gro")
+    {
+      trajectory = this->TopologyFileName;
+    }
+    if (!trajectory.empty())
+    {
+      state.File = std::make_unique<mesolens::TrajectoryFile>(trajectory, incomplete);
+      if (state.File->atom_count() != state.Topology.size())
+      {
+        vtkErrorMacro("Atom count mismatch: trajectory " << trajectory << " has "
+                                                         << state.File->atom_count()
+                                                         << " atoms per frame but topology "
+                                                         << this->TopologyFileName << " has "
+                                                         << state.Topology.size() << " atoms.");
+        state = State{};
+        return false;
+      }
+      state.Times = state.File->frame_times();
+    }
+    else
+    {
+      state.Times = { 0.0 };
+    }
+  }
+  catch (const mesolens::Error& e)
+  {
+    vtkErrorMacro("Cannot read " << this->TopologyFileName
+                                 << (this->TrajectoryFileName.empty() ? "" : " + ")
+                                 << this->TrajectoryFileName << ": " << e.what());
+    state = State{};
+    return false;
+  }
+
+  mesolens::AtomTable output_atoms = state.Topology;
+  if (this->RemoveWaters)
+  {
+    std::vector<bool> keep(output_atoms.size());
+    for (std::size_t i = 0; i < keep.size(); ++i)
+    {
+      keep[i] = !mesolens::is_water_residue(output_atoms.residue_names[i]);
+      if (keep[i])
+      {
+        state.KeptAtoms.push_back(i);
+      }
+    }
+    output_atoms.filter(keep);
+  }
+  state.Template = vtkSmartPointer<vtkPolyData>::New();
+  vtkMesoAtomTableConversion::ToPolyData(output_atoms, 1.0, state.Template);
+  if (this->MakeMoleculesWhole && this->KeepMoleculesContinuous && state.File)
+  {
+    state.Continuity = std::make_unique<mesolens::MoleculeContinuity>(state.Topology.molecule_ids);
+  }
+  state.OpenTime = this->GetMTime();
+  state.Valid = true;
+  return true;
+}
+
+std::size_t vtkMesoTrajectoryReader::FrameForTime(double time) const
+{
+  const std::vector<double>& times = this->Internal->Times;
+  if (!std::isfinite(time) || times.empty())
+  {
+    return 0;
+  }
+  const double slack = 1e-6 * std::max(1.0, std::abs(time));
+  const auto after = std::upper_bound(times.begin(), times.end(), time + slack);
+  return after == times.begin() ? 0 : static_cast<std::size_t>(after - times.begin() - 1);
+}
+
+int vtkMesoTrajectoryReader::RequestInformation(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  if (!this->OpenIfNeeded())
+  {
+    if (vtkPolyData* output = vtkPolyData::GetData(outInfo))
+    {
+      output->Initialize();
+    }
+    return 0;
+  }
+  const std::vector<double>& times = this->Internal->Times;
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(),
+    static_cast<int>(times.size()));
+  const double range[2] = { times.front(), times.back() };
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
+  return 1;
+}
+
+int vtkMesoTrajectoryReader::RequestData(
+  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+{
+  vtkInformation* outInfo = outputVector->GetInformationObject(0);
+  vtkPolyData* output = vtkPolyData::GetData(outInfo);
+  output->Initialize();
+  if (!this->OpenIfNeeded())
+  {
+    return 0;
+  }
+  State& state = *this->Internal;
+  double requested = state.Times.front();
+  if (outInfo->Has(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP()))
+  {
+    requested = outInfo->Get(vtkStreamingDemandDrivenPipeline::UPDATE_TIME_STEP());
+  }
+  const std::size_t frame_index = this->FrameForTime(requested);
+
+  mesolens::TrajectoryFrame frame;
+  try
+  {
+    auto whole_frame = [&](std::size_t index) {
+      mesolens::TrajectoryFrame f = state.File->read_frame(index);
+      if (this->MakeMoleculesWhole)
+      {
+        mesolens::make_molecules_whole(
+          f.positions.data(), state.Topology.molecule_ids.data(), state.Topology.size(), f.box);
+      }
+      return f;
+    };
+    if (state.File)
+    {
+      // Continuity needs every earlier frame once: visit the ones not seen yet, in order.
+      if (state.Continuity)
+      {
+        for (std::size_t k = state.Continuity->known_frames(); k < frame_index; ++k)
+        {
+          mesolens::TrajectoryFrame earlier = whole_frame(k);
+          state.Continuity->add_frame(k, earlier.positions.data(), earlier.box);
+          this->UpdateProgress(0.9 * double(k) / double(frame_index));
+          if (this->GetAbortExecute())
+          {
+            return 0;
+          }
+        }
+      }
+      frame = whole_frame(frame_index);
+      if (state.Continuity)
+      {
+        if (state.Continuity->known_frames() == frame_index)
+        {
+          state.Continuity->add_frame(frame_index, frame.positions.data(), frame.box);
+        }
+        else
+        {
+          state.Continuity->apply(frame_index, frame.positions.data(), frame.box);
+        }
+      }
+    }
+    else
+    {
+      frame.positions = state.Topology.positions;
+      frame.box = state.Topology.box;
+      if (this->MakeMoleculesWhole)
+      {
+        mesolens::make_molecules_whole(frame.positions.data(), state.Topology.molecule_ids.data(),
+          state.Topology.size(), frame.box);
+      }
+    }
+  }
+  catch (const mesolens::Error& e)
+  {
+    vtkErrorMacro("Cannot read frame " << frame_index << ": " << e.what());
+    output->Initialize();
+    return 0;
+  }
+
+  const double scale = this->LengthUnit == NANOMETER ? 0.1 : 1.0;
+  output->CopyStructure(state.Template);
+  output->GetPointData()->PassData(state.Template->GetPointData());
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToFloat();
+  output->SetPoints(points);
+  vtkMesoAtomTableConversion::SetPositions(frame.positions, state.KeptAtoms, scale, output);
+  vtkMesoAtomTableConversion::SetPeriodicBox(frame.box, scale, output);
+  vtkMesoAtomTableConversion::SetFieldValue(output, "TimePs", frame.time_ps);
+  vtkMesoAtomTableConversion::SetFieldValue(output, "FrameIndex", double(frame_index));
+  vtkMesoAtomTableConversion::SetFieldValue(output, "Step", double(frame.step));
+  output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), state.Times[frame_index]);
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+int vtkMesoTrajectoryReader::GetNumberOfFrames()
+{
+  this->UpdateInformation();
+  return this->Internal->Valid ? static_cast<int>(this->Internal->Times.size()) : 0;
+}
+
+vtkIdType vtkMesoTrajectoryReader::GetNumberOfTopologyAtoms()
+{
+  this->UpdateInformation();
+  return this->Internal->Valid ? static_cast<vtkIdType>(this->Internal->Topology.size()) : 0;
+}
+
+void vtkMesoTrajectoryReader::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "TopologyFileName: "
+     << (this->TopologyFileName.empty() ? "(none)" : this->TopologyFileName) << "\n";
+  os << indent << "TrajectoryFileName: "
+     << (this->TrajectoryFileName.empty() ? "(none)" : this->TrajectoryFileName) << "\n";
+  os << indent << "LengthUnit: " << (this->LengthUnit == NANOMETER ? "nm" : "Angstrom") << "\n";
+  os << indent << "MakeMoleculesWhole: " << this->MakeMoleculesWhole << "\n";
+  os << indent << "KeepMoleculesContinuous: " << this->KeepMoleculesContinuous << "\n";
+  os << indent << "RemoveWaters: " << this->RemoveWaters << "\n";
+  os << indent << "PerceiveBonds: " << this->PerceiveBonds << "\n";
+  os << indent << "BondTolerance: " << this->BondTolerance << "\n";
+  os << indent << "CoarseGrainedBeadCutoff: " << this->CoarseGrainedBeadCutoff << "\n";
+  os << indent << "SkipIncompleteFrames: " << this->SkipIncompleteFrames << "\n";
+}

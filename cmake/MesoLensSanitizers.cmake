@@ -1,0 +1,9 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# AddressSanitizer + UndefinedBehaviorSanitizer for the whole build (tests included).
+# Run the Python tests of such a build with LD_PRELOAD of libasan; the CTest setup does that.
+option(MESOLENS_ENABLE_SANITIZERS "Build with AddressSanitizer and UndefinedBehaviorSanitizer" OFF)
+if (MESOLENS_ENABLE_SANITIZERS)
+  set(mesolens_sanitizer_flags -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
+  add_compile_options(${mesolens_sanitizer_flags})
+  add_link_options(-fsanitize=address,undefined)
+endif ()

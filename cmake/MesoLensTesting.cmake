@@ -1,0 +1,52 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+find_package(GTest REQUIRED)
+include(GoogleTest)
+
+# Every test gets the data folders; tests needing ../shared/data skip (CTest reports them as
+# skipped, not passed) when it is absent.
+set(mesolens_test_definitions
+  MESOLENS_DATA_DIR="${MESOLENS_DATA_DIR}"
+  MESOLENS_SHARED_DATA_DIR="${MESOLENS_SHARED_DATA_DIR}"
+  MESOLENS_BASELINE_DIR="${CMAKE_SOURCE_DIR}/Testing/Baseline"
+  MESOLENS_TEST_OUTPUT_DIR="${CMAKE_BINARY_DIR}/Testing/Output")
+file(MAKE_DIRECTORY "${CMAKE_BINARY_DIR}/Testing/Output")
+
+# mesolens_add_gtest(<name> LABEL <label> SOURCES ... LIBRARIES ...)
+function(mesolens_add_gtest name)
+  cmake_parse_arguments(arg "" "LABEL;TIMEOUT" "SOURCES;LIBRARIES" ${ARGN})
+  add_executable(${name} ${arg_SOURCES})
+  target_link_libraries(${name} PRIVATE ${arg_LIBRARIES} GTest::gtest GTest::gtest_main)
+  target_compile_definitions(${name} PRIVATE ${mesolens_test_definitions})
+  target_include_directories(${name} PRIVATE "${CMAKE_SOURCE_DIR}/Testing/Support")
+  if (NOT arg_TIMEOUT)
+    set(arg_TIMEOUT 300)
+  endif ()
+  gtest_discover_tests(${name}
+    PROPERTIES LABELS "${arg_LABEL}" TIMEOUT ${arg_TIMEOUT}
+               SKIP_REGULAR_EXPRESSION "\\[  SKIPPED \\]"
+    DISCOVERY_TIMEOUT 60)
+endfunction()
+
+# Python tests run with Debian's interpreter (which has vtkmodules) and the build's package.
+set(MESOLENS_PYTHON_EXECUTABLE "/usr/bin/python3" CACHE FILEPATH "Python with vtkmodules")
+function(mesolens_add_python_test name script)
+  cmake_parse_arguments(arg "" "LABEL" "ARGS" ${ARGN})
+  if (NOT arg_LABEL)
+    set(arg_LABEL python)
+  endif ()
+  add_test(NAME ${name} COMMAND "${MESOLENS_PYTHON_EXECUTABLE}" "${script}" ${arg_ARGS})
+  set(environment
+    "PYTHONPATH=${MESOLENS_PYTHONPATH}"
+    "MESOLENS_DATA_DIR=${MESOLENS_DATA_DIR}"
+    "MESOLENS_SHARED_DATA_DIR=${MESOLENS_SHARED_DATA_DIR}"
+    "MESOLENS_BASELINE_DIR=${CMAKE_SOURCE_DIR}/Testing/Baseline"
+    "MESOLENS_TEST_OUTPUT_DIR=${CMAKE_BINARY_DIR}/Testing/Output"
+    "PYTHONDONTWRITEBYTECODE=1")
+  if (MESOLENS_ENABLE_SANITIZERS)
+    execute_process(COMMAND ${CMAKE_CXX_COMPILER} -print-file-name=libasan.so
+      OUTPUT_VARIABLE asan_library OUTPUT_STRIP_TRAILING_WHITESPACE)
+    list(APPEND environment "LD_PRELOAD=${asan_library}" "ASAN_OPTIONS=detect_leaks=0")
+  endif ()
+  set_tests_properties(${name} PROPERTIES
+    LABELS "${arg_LABEL}" ENVIRONMENT "${environment}" SKIP_RETURN_CODE 77 TIMEOUT 300)
+endfunction()

@@ -82,7 +82,8 @@ mesolens::AtomTable load_topology(const std::string& path, const mesolens::Struc
   mesolens::AtomTable whole = table;
   mesolens::make_molecules_whole(
     whole.positions.data(), whole.molecule_ids.data(), whole.size(), whole.box);
-  mesolens::build_connectivity(whole, explicit_bonds, params);
+  const bool elements_given = extension_of(path) != "gro";
+  mesolens::build_connectivity(whole, explicit_bonds, params, elements_given);
   table.bonds = whole.bonds;
   table.atomic_numbers = whole.atomic_numbers; // zeroed for coarse-grained beads
   table.molecule_ids = whole.molecule_ids;

@@ -13,6 +13,7 @@
 #include <gemmi/pdb.hpp>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -32,24 +33,85 @@ bool ends_with(const std::string& text, const std::string& suffix)
       [](char a, char b) { return std::tolower(a) == std::tolower(b); });
 }
 
-/// CONECT records of a PDB file: (serial, bonded serial) pairs, and whether a record was cut.
+/// What the raw-text pass over a PDB file found.
 struct ConectRecords
 {
-  std::vector<std::pair<int, int>> pairs;
-  std::size_t unreadable_fields = 0;
+  std::vector<std::pair<int, int>> pairs; ///< CONECT (serial, bonded serial)
+  std::size_t unreadable_fields = 0;      ///< CONECT fields that are not numbers
+  std::size_t legacy_columns = 0;         ///< records whose columns 77-80 were blanked
+  std::size_t atom_records = 0;           ///< ATOM/HETATM records
+  std::size_t element_records = 0;        ///< ... with an element symbol in columns 77-78
 };
 
-/// Scans the raw PDB text once: collects CONECT pairs (gemmi 0.5 ignores CONECT) and rejects
-/// ATOM/HETATM records too short to hold coordinates, the mark of a truncated file.
-ConectRecords scan_pdb_text(const char* data, std::size_t size, const std::string& path)
+bool is_charge_field(char a, char b)
+{
+  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  const auto sign = [](char c) { return c == '+' || c == '-'; };
+  return (a == ' ' && b == ' ') || (digit(a) && sign(b)) || (sign(a) && digit(b)) ||
+    (a == ' ' && digit(b)) || (digit(a) && b == ' ');
+}
+
+bool is_element_field(char a, char b)
+{
+  if (a == ' ' && b == ' ')
+  {
+    return true;
+  }
+  const std::string symbol = std::string(1, a) + std::string(1, b);
+  return atomic_number_from_symbol(symbol) != 0 || symbol == " X" || symbol == "X ";
+}
+
+/// True when the fixed-width field holds one number (blanks around it allowed).
+bool is_number_field(const char* field, std::size_t width)
+{
+  const std::string text(field, width);
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  std::strtod(begin, &end);
+  if (end == begin)
+  {
+    return false;
+  }
+  return std::all_of(static_cast<const char*>(end), begin + text.size(),
+    [](char c) { return c == ' '; });
+}
+
+/// Pre-remediation files (1HPV) keep the entry id and a serial in columns 73-80. Blanks columns
+/// 77-80 of such a record, so gemmi infers the element from the atom name instead of failing
+/// on the "charge".
+bool blank_legacy_columns(char* line, std::size_t length)
+{
+  if (length < 77)
+  {
+    return false;
+  }
+  const char element_a = line[76];
+  const char element_b = length > 77 ? line[77] : ' ';
+  const char charge_a = length > 78 ? line[78] : ' ';
+  const char charge_b = length > 79 ? line[79] : ' ';
+  if (is_element_field(element_a, element_b) && is_charge_field(charge_a, charge_b))
+  {
+    return false;
+  }
+  for (std::size_t column = 76; column < std::min<std::size_t>(length, 80); ++column)
+  {
+    line[column] = ' ';
+  }
+  return true;
+}
+
+/// Scans the raw PDB text once: collects CONECT pairs (gemmi 0.5 ignores CONECT), rejects
+/// ATOM/HETATM records too short to hold coordinates (the mark of a truncated file), and
+/// blanks legacy text in columns 77-80.
+ConectRecords scan_pdb_text(char* data, std::size_t size, const std::string& path)
 {
   ConectRecords records;
   std::size_t line_number = 0;
-  const char* line = data;
-  const char* end = data + size;
+  char* line = data;
+  char* end = data + size;
   while (line < end)
   {
-    const char* newline = static_cast<const char*>(std::memchr(line, '\n', std::size_t(end - line)));
+    char* newline = static_cast<char*>(std::memchr(line, '\n', std::size_t(end - line)));
     const char* line_end = newline ? newline : end;
     std::size_t length = std::size_t(line_end - line);
     if (length > 0 && line[length - 1] == '\r')
@@ -64,6 +126,28 @@ ConectRecords scan_pdb_text(const char* data, std::size_t size, const std::strin
       throw FileError(path + ": line " + std::to_string(line_number) + " is an " +
         std::string(line, 6) + " record of " + std::to_string(length) +
         " columns, too short to hold coordinates (54); the file looks truncated");
+    }
+    for (std::size_t column = 30; atom && column < 54; column += 8)
+    {
+      if (!is_number_field(line + column, 8))
+      {
+        throw FileError(path + ": line " + std::to_string(line_number) + " has '" +
+          std::string(line + column, 8) + "' in coordinate columns " +
+          std::to_string(column + 1) + "-" + std::to_string(column + 8) + ", not a number");
+      }
+    }
+    if (atom && blank_legacy_columns(line, length))
+    {
+      ++records.legacy_columns;
+    }
+    if (atom)
+    {
+      ++records.atom_records;
+      if (length > 77 && (std::isalpha(static_cast<unsigned char>(line[76])) ||
+                           std::isalpha(static_cast<unsigned char>(line[77]))))
+      {
+        ++records.element_records;
+      }
     }
     if (length >= 11 && std::strncmp(line, "CONECT", 6) == 0)
     {
@@ -297,6 +381,12 @@ std::vector<Bond> explicit_bonds(const gemmi::Structure& structure, const gemmi:
         " CONECT entries name atom serials that are not in the file; they were ignored");
     }
   }
+  if (conect.legacy_columns > 0)
+  {
+    warnings.push_back(std::to_string(conect.legacy_columns) +
+      " atom records carry non-standard text in columns 77-80 (pre-remediation PDB format); "
+      "their elements were inferred from the atom names");
+  }
   if (conect.unreadable_fields > 0)
   {
     warnings.push_back(std::to_string(conect.unreadable_fields) +
@@ -408,8 +498,8 @@ std::vector<bool> selection_mask(const AtomTable& table,
 
 } // namespace
 
-bool build_connectivity(
-  AtomTable& table, const std::vector<Bond>& explicit_bonds, const StructureReadParams& params)
+bool build_connectivity(AtomTable& table, const std::vector<Bond>& explicit_bonds,
+  const StructureReadParams& params, bool elements_given)
 {
   assign_residues(table);
   assign_molecules(table);
@@ -420,7 +510,8 @@ bool build_connectivity(
   input.alt_locs = table.alt_locs.data();
   input.atom_count = table.size();
   BondPerceptionParams bond_params = params.bonds;
-  bond_params.coarse_grained = params.force_coarse_grained || looks_coarse_grained(input);
+  bond_params.coarse_grained =
+    params.force_coarse_grained || (!elements_given && looks_coarse_grained(input));
   if (bond_params.coarse_grained)
   {
     std::fill(table.atomic_numbers.begin(), table.atomic_numbers.end(), std::uint8_t(0));
@@ -445,6 +536,9 @@ StructureFile read_structure(
   };
   ConectRecords conect;
   const gemmi::Structure structure = parse_with_gemmi(path, conect);
+  // mmCIF always names elements (type_symbol); a PDB file does when most records fill 77-78.
+  const bool elements_given = structure.input_format != gemmi::CoorFormat::Pdb ||
+    2 * conect.element_records > conect.atom_records;
   report(0.5);
 
   StructureFile file;
@@ -481,7 +575,7 @@ StructureFile read_structure(
     }
     table.filter(selection_mask(table, chains, params));
     const std::vector<Bond> kept_explicit = table.bonds;
-    file.coarse_grained = build_connectivity(table, kept_explicit, params);
+    file.coarse_grained = build_connectivity(table, kept_explicit, params, elements_given);
     if (structure.cell.is_crystal())
     {
       table.box = PeriodicBox::from_cell(structure.cell.a, structure.cell.b, structure.cell.c,

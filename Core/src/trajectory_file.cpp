@@ -5,6 +5,7 @@
 #include "gromacs_support.h"
 #include "mesolens/errors.h"
 #include "trajectory_index.h"
+#include "xtc_frame_check.h"
 
 #include <gromacs/fileio/oenv.h>
 #include <gromacs/fileio/trxio.h>
@@ -56,6 +57,7 @@ Format format_of(const std::string& path)
 struct TrajectoryFile::Impl
 {
   std::string Path;
+  bool IsXtc = false;
   detail::FrameIndex Index;
   gmx_output_env_t* OutputEnvironment = nullptr;
   t_trxstatus* Status = nullptr;
@@ -99,6 +101,10 @@ struct TrajectoryFile::Impl
 
   void decode(std::size_t frame_index, TrajectoryFrame& out)
   {
+    if (this->IsXtc)
+    {
+      detail::check_xtc_frame(this->Path, this->Index.offsets[frame_index]);
+    }
     this->open_decoder();
     if (gmx_fio_seek(trx_get_fileio(this->Status), this->Index.offsets[frame_index]) != 0)
     {
@@ -152,6 +158,7 @@ TrajectoryFile::TrajectoryFile(const std::string& path, IncompleteFrames incompl
   {
     case Format::Xtc:
       this->Internal->Index = detail::index_xtc(path);
+      this->Internal->IsXtc = true;
       break;
     case Format::Trr:
       this->Internal->Index = detail::index_trr(path);

@@ -24,6 +24,9 @@
 #include <vtkXMLPolyDataReader.h>
 
 #include <algorithm>
+#include <array>
+#include <map>
+#include <vector>
 #include <cctype>
 #include <fstream>
 #include <sys/stat.h>
@@ -65,6 +68,62 @@ struct ErrorCollector
     }
   }
 };
+
+/// vtkOBJReader gives every face corner its own point when the file has per-corner normals or
+/// texture coordinates (the hiPSC membrane goes from 1216 vertices to 7284 points), which makes a
+/// closed surface look like a triangle soup. Points with identical coordinates are merged back
+/// (the attributes of the first one are kept), so the mesh has its file topology.
+void weld_identical_points(vtkPolyData* mesh)
+{
+  const vtkIdType n = mesh->GetNumberOfPoints();
+  std::map<std::array<double, 3>, vtkIdType> first_at;
+  std::vector<vtkIdType> new_id(static_cast<std::size_t>(n));
+  std::vector<vtkIdType> kept;
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    std::array<double, 3> p{};
+    mesh->GetPoint(i, p.data());
+    const auto found = first_at.emplace(p, static_cast<vtkIdType>(kept.size()));
+    if (found.second)
+    {
+      kept.push_back(i);
+    }
+    new_id[static_cast<std::size_t>(i)] = found.first->second;
+  }
+  if (static_cast<vtkIdType>(kept.size()) == n)
+  {
+    return;
+  }
+  vtkNew<vtkPoints> points;
+  points->SetDataType(mesh->GetPoints()->GetDataType());
+  points->SetNumberOfPoints(static_cast<vtkIdType>(kept.size()));
+  vtkNew<vtkPointData> data;
+  data->CopyAllocate(mesh->GetPointData(), static_cast<vtkIdType>(kept.size()));
+  for (std::size_t k = 0; k < kept.size(); ++k)
+  {
+    points->SetPoint(static_cast<vtkIdType>(k), mesh->GetPoint(kept[k]));
+    data->CopyData(mesh->GetPointData(), kept[k], static_cast<vtkIdType>(k));
+  }
+  vtkNew<vtkCellArray> polys;
+  auto iterator = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
+  std::vector<vtkIdType> ids;
+  for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell())
+  {
+    vtkIdType size = 0;
+    const vtkIdType* cell = nullptr;
+    iterator->GetCurrentCell(size, cell);
+    ids.assign(cell, cell + size);
+    for (vtkIdType& id : ids)
+    {
+      id = new_id[static_cast<std::size_t>(id)];
+    }
+    polys->InsertNextCell(size, ids.data());
+  }
+  mesh->Initialize();
+  mesh->SetPoints(points);
+  mesh->GetPointData()->ShallowCopy(data);
+  mesh->SetPolys(polys);
+}
 
 /// Keeps polygons only, fan-splitting those with more than three vertices.
 void keep_triangles(vtkPolyData* mesh)
@@ -221,6 +280,10 @@ int vtkMesoMeshReader::RequestData(
     return 0;
   }
   keep_triangles(mesh);
+  if (extension != "off")
+  {
+    weld_identical_points(mesh);
+  }
   output->ShallowCopy(mesh);
   return 1;
 }

@@ -2,6 +2,7 @@
 #include "mesolens/structure_file.h"
 
 #include "file_checks.h"
+#include "mesolens/bond_consensus.h"
 #include "mesolens/elements.h"
 #include "mesolens/errors.h"
 #include "mesolens/molecule_assignment.h"
@@ -520,6 +521,10 @@ bool build_connectivity(AtomTable& table, const std::vector<Bond>& explicit_bond
   if (params.perceive_bonds)
   {
     perceived = perceive_bonds(input, bond_params);
+    if (bond_params.coarse_grained)
+    {
+      perceived = consensus_bonds(table, perceived);
+    }
   }
   table.bonds = merge_bonds(perceived, explicit_bonds);
   return bond_params.coarse_grained;

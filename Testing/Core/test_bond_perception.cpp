@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "mesolens/bond_perception.h"
 
+#include "mesolens/bond_consensus.h"
+
 #include "mesolens/elements.h"
 #include "mesolens/errors.h"
 
@@ -171,4 +173,30 @@ TEST(BondPerception, MergeKeepsSortedUnion)
   const std::vector<mesolens::Bond> b = { { 0, 1 }, { 1, 2 } };
   const std::vector<mesolens::Bond> expected = { { 0, 1 }, { 1, 2 }, { 2, 3 } };
   EXPECT_EQ(mesolens::merge_bonds(a, b), expected);
+}
+
+TEST(BondConsensus, CopiesOfAMoleculeTypeShareTheirBonds)
+{
+  // Four copies of a three-bead molecule A-B-C: one copy lacks B-C, another has an extra A-C.
+  mesolens::AtomTable table;
+  for (int copy = 0; copy < 4; ++copy)
+  {
+    for (const char* name : { "A", "B", "C" })
+    {
+      table.append_atom(name, 0, 0, 0);
+      table.residue_names.back() = "LIP";
+      table.molecule_ids.back() = copy;
+    }
+  }
+  table.append_atom("X", 0, 0, 0); // a different type with one copy keeps its own bonds
+  table.append_atom("Y", 0, 0, 0);
+  table.molecule_ids[12] = table.molecule_ids[13] = 4;
+  const std::vector<mesolens::Bond> perceived = { { 0, 1 }, { 1, 2 }, { 3, 4 }, { 6, 7 },
+    { 7, 8 }, { 6, 8 }, { 9, 10 }, { 10, 11 }, { 12, 13 } };
+  const std::vector<mesolens::Bond> expected = { { 0, 1 }, { 1, 2 }, { 3, 4 }, { 4, 5 }, { 6, 7 },
+    { 7, 8 }, { 9, 10 }, { 10, 11 }, { 12, 13 } };
+  EXPECT_EQ(mesolens::consensus_bonds(table, perceived), expected);
+  mesolens::BondConsensusParams strict;
+  strict.min_fraction = 0;
+  EXPECT_THROW(mesolens::consensus_bonds(table, perceived, strict), mesolens::InvalidInput);
 }

@@ -64,8 +64,9 @@ StructureFile read_structure(const std::string& path, const StructureReadParams&
 /// Bonds and molecules for a table that has names and positions (used by every reader):
 /// assigns residues and molecules, perceives bonds and merges `explicit_bonds`. When the file
 /// named no elements (`elements_given` false: GRO, PDB without columns 77-78) and
-/// looks_coarse_grained() says so, the particles are beads: their atomic numbers are set to 0
-/// and the bead cutoff is used. Returns true when the particles were treated as beads.
+/// looks_coarse_grained() says so, the particles are beads: their atomic numbers are set to 0,
+/// the bead cutoff is used and the bonds are made consistent per molecule type
+/// (consensus_bonds()). Returns true when the particles were treated as beads.
 bool build_connectivity(AtomTable& table, const std::vector<Bond>& explicit_bonds,
   const StructureReadParams& params, bool elements_given);
 

@@ -1,0 +1,154 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoMeshReader.h"
+#include "vtkMesoMeshReport.h"
+
+#include "mesolens_test_data.h"
+#include "mesolens_vtk_test_utilities.h"
+
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkSphereSource.h>
+#include <vtkXMLPolyDataWriter.h>
+
+#include <gtest/gtest.h>
+
+using mesolens_test::data_file;
+
+namespace
+{
+struct MeshCase
+{
+  const char* file;
+  vtkIdType points;
+  vtkIdType triangles;
+  vtkIdType euler; // 2 - 2 genus for closed surfaces
+};
+
+// Vertex and face counts and genus from ../shared/data/README.md (checked there independently).
+const MeshCase real_meshes[] = {
+  { "meshes/mito5_outer_membrane.obj", 4172, 8340, 2 },
+  { "meshes/hipsc_cell_membrane_1.obj", 1216, 2428, 2 },
+  { "meshes/celegans_embryo_cell10_T10.ply", 727, 1450, 2 },
+  { "meshes/celegans_embryo_cell10_T11.ply", 665, 1326, 2 },
+};
+} // namespace
+
+TEST(vtkMesoMeshReader, RealCellMeshesAreClosedManifolds)
+{
+  for (const MeshCase& c : real_meshes)
+  {
+    SCOPED_TRACE(c.file);
+    vtkNew<vtkMesoMeshReader> reader;
+    reader->SetFileName(data_file(c.file).c_str());
+    vtkNew<vtkMesoMeshReport> report;
+    report->SetInputConnection(reader->GetOutputPort());
+    ASSERT_EQ(report->GetExecutive()->Update(), 1);
+    EXPECT_EQ(report->GetNumberOfPoints(), c.points);
+    EXPECT_EQ(report->GetNumberOfTriangles(), c.triangles);
+    EXPECT_EQ(report->GetEulerCharacteristic(), c.euler);
+    EXPECT_TRUE(report->GetIsClosedManifold()) << report->GetDefectsDescription();
+    EXPECT_EQ(report->GetNumberOfComponents(), 1);
+    vtkPolyData* out = report->GetOutput();
+    EXPECT_EQ(out->GetFieldData()->GetArray("NumberOfBoundaryLoops")->GetTuple1(0), 0.0);
+    EXPECT_EQ(out->GetCellData()->GetArray("DegenerateTriangle")->GetRange()[1], 0.0);
+  }
+}
+
+TEST(vtkMesoMeshReader, InnerMembraneHasGenusFour)
+{
+  const std::string path = mesolens_test::shared_file("meshes/mito5_inner_membrane.obj");
+  if (!mesolens_test::exists(path))
+  {
+    GTEST_SKIP() << "shared data not found: " << path;
+  }
+  vtkNew<vtkMesoMeshReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkNew<vtkMesoMeshReport> report;
+  EXPECT_TRUE(report->Analyze(reader->GetOutput()));
+  EXPECT_EQ(report->GetNumberOfTriangles(), 20660);
+  EXPECT_EQ(report->GetEulerCharacteristic(), 2 - 2 * 4);
+}
+
+TEST(vtkMesoMeshReader, DefectiveMeshesAreReadAndDescribed)
+{
+  vtkNew<vtkMesoMeshReader> reader;
+  vtkNew<vtkMesoMeshReport> report;
+  reader->SetFileName(data_file("meshes/bad/cgal_cube-ouvert.off").c_str());
+  reader->Update();
+  EXPECT_FALSE(report->Analyze(reader->GetOutput()) && report->GetIsClosedManifold());
+  EXPECT_EQ(report->GetNumberOfBoundaryEdges(), 4);
+  EXPECT_EQ(report->GetNumberOfBoundaryLoops(), 1);
+  EXPECT_EQ(report->GetNumberOfUnreferencedVertices(), 1);
+  EXPECT_NE(std::string(report->GetDefectsDescription()).find("boundary edges"), std::string::npos);
+
+  reader->SetFileName(data_file("meshes/bad/cgal_degtri_sliding.off").c_str());
+  reader->Update();
+  EXPECT_FALSE(report->Analyze(reader->GetOutput()));
+  EXPECT_GT(report->GetNumberOfDegenerateTriangles(), 0);
+
+  reader->SetFileName(data_file("meshes/bad/cgal_tet-shuffled.off").c_str());
+  reader->Update();
+  report->Analyze(reader->GetOutput());
+  EXPECT_GT(report->GetNumberOfInconsistentlyOrientedEdges(), 0);
+  EXPECT_FALSE(report->GetIsClosedManifold());
+}
+
+TEST(vtkMesoMeshReader, VtpRoundTrip)
+{
+  vtkNew<vtkSphereSource> sphere;
+  sphere->SetThetaResolution(16);
+  sphere->SetPhiResolution(16);
+  vtkNew<vtkXMLPolyDataWriter> writer;
+  const std::string path = mesolens_test::output_file("sphere.vtp");
+  writer->SetFileName(path.c_str());
+  writer->SetInputConnection(sphere->GetOutputPort());
+  writer->Write();
+  vtkNew<vtkMesoMeshReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->Update();
+  vtkNew<vtkMesoMeshReport> report;
+  EXPECT_TRUE(report->Analyze(reader->GetOutput()));
+  EXPECT_TRUE(report->GetIsClosedManifold());
+  EXPECT_EQ(report->GetEulerCharacteristic(), 2);
+}
+
+TEST(vtkMesoMeshReader, BadFilesFailCleanly)
+{
+  const struct
+  {
+    std::string path;
+    const char* problem;
+  } cases[] = {
+    { mesolens_test::output_file("missing.obj"), "no such file" },
+    { mesolens_test::write_bytes("empty_mesh.ply", ""), "empty" },
+    { mesolens_test::garbage_file("garbage_mesh.ply"), "Cannot read" },
+    { mesolens_test::garbage_file("garbage_mesh.off"), "not a valid OFF" },
+    { mesolens_test::write_bytes("points_only.obj", "v 0 0 0\nv 1 0 0\n"), "no polygons" },
+    { data_file("proteins/1crn.pdb"), "unknown mesh format" },
+  };
+  for (const auto& c : cases)
+  {
+    SCOPED_TRACE(c.path);
+    vtkNew<vtkMesoMeshReader> reader;
+    mesolens_test::EventRecorder events(reader);
+    reader->SetFileName(c.path.c_str());
+    EXPECT_EQ(reader->GetExecutive()->Update(), 0);
+    EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 0);
+    EXPECT_NE(events.AllErrors().find(c.problem), std::string::npos) << events.AllErrors();
+  }
+}
+
+TEST(vtkMesoMeshReport, EmptyInput)
+{
+  vtkNew<vtkPolyData> empty;
+  vtkNew<vtkMesoMeshReport> report;
+  EXPECT_FALSE(report->Analyze(empty));
+  EXPECT_NE(std::string(report->GetDefectsDescription()).find("no triangles"), std::string::npos);
+  report->SetInputData(empty);
+  EXPECT_EQ(report->GetExecutive()->Update(), 1);
+}

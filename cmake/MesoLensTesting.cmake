@@ -50,3 +50,26 @@ function(mesolens_add_python_test name script)
   set_tests_properties(${name} PROPERTIES
     LABELS "${arg_LABEL}" ENVIRONMENT "${environment}" SKIP_RETURN_CODE 77 TIMEOUT 300)
 endfunction()
+
+# Strict image comparison (Testing/Support/mesolens_compare_images.cxx).
+add_executable(mesolens_compare_images "${CMAKE_SOURCE_DIR}/Testing/Support/mesolens_compare_images.cxx")
+target_link_libraries(mesolens_compare_images PRIVATE VTK::IOImage VTK::CommonDataModel)
+
+# mesolens_add_image_test(<name> BASELINE <png> COMMAND <program> <args>... [WILL_FAIL])
+# Runs the program, which must write ${MESOLENS_TEST_OUTPUT_DIR}/<name>.png (pass it with
+# @IMAGE@ in the arguments), then compares that image with Testing/Baseline/<png>.
+function(mesolens_add_image_test name)
+  cmake_parse_arguments(arg "WILL_FAIL" "BASELINE;LABEL" "COMMAND" ${ARGN})
+  if (NOT arg_LABEL)
+    set(arg_LABEL render)
+  endif ()
+  set(image "${CMAKE_BINARY_DIR}/Testing/Output/${name}.png")
+  string(REPLACE "@IMAGE@" "${image}" command "${arg_COMMAND}")
+  add_test(NAME ${name} COMMAND "${CMAKE_COMMAND}"
+    "-DCOMMAND=${command}" "-DIMAGE=${image}"
+    "-DBASELINE=${CMAKE_SOURCE_DIR}/Testing/Baseline/${arg_BASELINE}"
+    "-DCOMPARE=$<TARGET_FILE:mesolens_compare_images>"
+    -P "${CMAKE_SOURCE_DIR}/cmake/MesoLensRunImageTest.cmake")
+  set_tests_properties(${name} PROPERTIES LABELS "${arg_LABEL}" TIMEOUT 300
+    WILL_FAIL ${arg_WILL_FAIL})
+endfunction()

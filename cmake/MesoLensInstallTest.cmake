@@ -1,0 +1,33 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Installs the build into PREFIX, then configures, builds and runs Examples/Consumer against it
+# with find_package(MesoLens), and checks the Python package from the install tree.
+file(REMOVE_RECURSE "${PREFIX}" "${CONSUMER_BUILD}")
+execute_process(COMMAND "${CMAKE_COMMAND}" --install "${BUILD}" --prefix "${PREFIX}"
+  RESULT_VARIABLE status OUTPUT_QUIET)
+if (NOT status EQUAL 0)
+  message(FATAL_ERROR "cmake --install failed")
+endif ()
+execute_process(COMMAND "${CMAKE_COMMAND}" -S "${SOURCE}" -B "${CONSUMER_BUILD}"
+  "-DCMAKE_PREFIX_PATH=${PREFIX}" -DCMAKE_BUILD_TYPE=Release RESULT_VARIABLE status)
+if (NOT status EQUAL 0)
+  message(FATAL_ERROR "find_package(MesoLens) failed")
+endif ()
+execute_process(COMMAND "${CMAKE_COMMAND}" --build "${CONSUMER_BUILD}" RESULT_VARIABLE status)
+if (NOT status EQUAL 0)
+  message(FATAL_ERROR "the consumer did not build")
+endif ()
+execute_process(COMMAND "${CONSUMER_BUILD}/count_atoms" "${PDB}" RESULT_VARIABLE status
+  OUTPUT_VARIABLE output)
+message(STATUS "count_atoms: ${output}")
+if (NOT status EQUAL 0 OR NOT output MATCHES "327 atoms, 337 bonds")
+  message(FATAL_ERROR "the consumer gave a wrong answer: ${output}")
+endif ()
+if (PYTHON)
+  execute_process(COMMAND "${CMAKE_COMMAND}" -E env "PYTHONPATH=${PREFIX}/lib/python3/dist-packages"
+    "${PYTHON}" -c "import vtkmodules.all, mesolens; r = mesolens.vtkMesoStructureReader(); r.SetFileName('${PDB}'); r.Update(); print(r.GetOutput().GetNumberOfPoints(), 'atoms from', mesolens.__file__)"
+    RESULT_VARIABLE status OUTPUT_VARIABLE output)
+  message(STATUS "python: ${output}")
+  if (NOT status EQUAL 0 OR NOT output MATCHES "^327 atoms from ${PREFIX}")
+    message(FATAL_ERROR "the installed Python package does not work: ${output}")
+  endif ()
+endif ()

@@ -1,0 +1,31 @@
+#!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Installs what is missing (Debian 12 packages), configures and builds MesoLens in ./build.
+# Idempotent: packages already installed are not touched; the build is incremental.
+#   BUILD_DIR=...   build folder (default: build)
+#   CMAKE_ARGS=...  extra CMake arguments (e.g. -DMESOLENS_ENABLE_SANITIZERS=ON)
+set -eu
+cd "$(dirname "$0")/.."
+BUILD_DIR=${BUILD_DIR:-build}
+
+packages="cmake g++ make pkg-config zlib1g-dev
+  libvtk9-dev python3-vtk9 python3-numpy libeigen3-dev libcgal-dev libopenmesh-dev
+  libgtest-dev gemmi-dev tao-pegtl-dev libgromacs-dev
+  xvfb xauth mesa-utils libgl1-mesa-dri"
+missing=""
+for package in $packages; do
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+    missing="$missing $package"
+  fi
+done
+if [ -n "$missing" ]; then
+  echo "Installing:$missing"
+  sudo=""
+  if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+  $sudo apt-get update
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y --no-install-recommends $missing
+fi
+
+# shellcheck disable=SC2086
+cmake -S . -B "$BUILD_DIR" -DCMAKE_BUILD_TYPE=Release -DPython3_EXECUTABLE=/usr/bin/python3 ${CMAKE_ARGS:-}
+cmake --build "$BUILD_DIR" -j "$(nproc)"

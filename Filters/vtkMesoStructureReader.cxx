@@ -2,6 +2,7 @@
 #include "vtkMesoStructureReader.h"
 
 #include "vtkMesoAtomTableConversion.h"
+#include "vtkMesoParallelFor.h"
 
 #include "mesolens/errors.h"
 #include "mesolens/structure_file.h"
@@ -112,6 +113,7 @@ bool vtkMesoStructureReader::ReadIfNeeded()
   params.bonds.tolerance = static_cast<float>(this->BondTolerance);
   params.bonds.bead_cutoff = static_cast<float>(this->CoarseGrainedBeadCutoff);
   params.force_coarse_grained = this->ForceCoarseGrained;
+  params.parallel_for = vtkMesoParallelFor::Get();
   try
   {
     cache.File = mesolens::read_structure(this->FileName, params, [this](double fraction) {

@@ -2,6 +2,7 @@
 #include "vtkMesoTrajectoryReader.h"
 
 #include "vtkMesoAtomTableConversion.h"
+#include "vtkMesoParallelFor.h"
 
 #include "mesolens/errors.h"
 #include "mesolens/gro_topology.h"
@@ -113,6 +114,7 @@ bool vtkMesoTrajectoryReader::OpenIfNeeded()
   params.perceive_bonds = this->PerceiveBonds;
   params.bonds.tolerance = static_cast<float>(this->BondTolerance);
   params.bonds.bead_cutoff = static_cast<float>(this->CoarseGrainedBeadCutoff);
+  params.parallel_for = vtkMesoParallelFor::Get();
   const auto incomplete = this->SkipIncompleteFrames
     ? mesolens::TrajectoryFile::IncompleteFrames::Skip
     : mesolens::TrajectoryFile::IncompleteFrames::Reject;

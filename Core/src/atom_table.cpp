@@ -12,6 +12,27 @@
 namespace mesolens
 {
 
+void AtomTable::reserve(std::size_t count)
+{
+  this->positions.reserve(3 * count);
+  this->atom_names.reserve(count);
+  this->atomic_numbers.reserve(count);
+  this->residue_names.reserve(count);
+  this->residue_numbers.reserve(count);
+  this->insertion_codes.reserve(count);
+  this->chain_ids.reserve(count);
+  this->alt_locs.reserve(count);
+  this->occupancies.reserve(count);
+  this->b_factors.reserve(count);
+  this->is_hetero.reserve(count);
+  this->serials.reserve(count);
+  this->formal_charges.reserve(count);
+  this->secondary_structure.reserve(count);
+  this->secondary_structure_ids.reserve(count);
+  this->residue_indices.reserve(count);
+  this->molecule_ids.reserve(count);
+}
+
 void AtomTable::append_atom(const std::string& name, float x, float y, float z)
 {
   this->positions.insert(this->positions.end(), { x, y, z });

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <limits>
 #include <numeric>
+#include <unordered_map>
 #include <vector>
 
 namespace mesolens
@@ -18,18 +19,25 @@ namespace mesolens
 namespace
 {
 
-/// Atoms binned in a uniform grid (counting sort): cell c holds sorted_atoms[start[c]..start[c+1]).
+/// Atoms binned in a uniform grid by a counting sort: cell c holds the sorted atoms
+/// [Start[c], Start[c + 1]). Coordinates are copied in sorted order for cache-friendly scans.
 class UniformGrid
 {
 public:
-  UniformGrid(const float* positions, std::size_t count, double cell_size)
+  /// Bins the atoms i < count with include[i] != 0 (all atoms when include is empty) and
+  /// finite coordinates.
+  UniformGrid(const float* positions, std::size_t count, double cell_size,
+    const std::vector<std::uint8_t>& include = {})
   {
+    auto wanted = [&](std::size_t i) {
+      return (include.empty() || include[i] != 0) && finite_atom(positions, i);
+    };
     std::array<double, 3> low{ std::numeric_limits<double>::max(),
       std::numeric_limits<double>::max(), std::numeric_limits<double>::max() };
     std::array<double, 3> high{ -low[0], -low[1], -low[2] };
     for (std::size_t i = 0; i < count; ++i)
     {
-      if (!finite_atom(positions, i))
+      if (!wanted(i))
       {
         continue;
       }
@@ -43,8 +51,8 @@ public:
     {
       low = high = { 0, 0, 0 };
     }
-    // Keep the grid at most a few cells per atom so sparse inputs (a vesicle) stay O(n) in
-    // memory: grow the cell until the cell count is below 8 n + 64.
+    // At most a few cells per atom, so sparse inputs (a vesicle) stay O(n) in memory: grow the
+    // cell until the cell count is below 8 n + 64.
     const double max_cells = 8.0 * double(count) + 64.0;
     this->Cell = std::max(cell_size, 1e-3);
     for (;;)
@@ -64,23 +72,26 @@ public:
     this->Low = low;
     const std::size_t cell_count = std::size_t(this->Dims[0] * this->Dims[1] * this->Dims[2]);
     this->Start.assign(cell_count + 1, 0);
-    this->CellOfAtom.assign(count, -1);
+    std::vector<std::int64_t> cell_of_atom(count, -1);
     for (std::size_t i = 0; i < count; ++i)
     {
-      if (finite_atom(positions, i))
+      if (wanted(i))
       {
-        this->CellOfAtom[i] = this->cell_index(positions + 3 * i);
-        ++this->Start[std::size_t(this->CellOfAtom[i]) + 1];
+        cell_of_atom[i] = this->cell_index(positions + 3 * i);
+        ++this->Start[std::size_t(cell_of_atom[i]) + 1];
       }
     }
     std::partial_sum(this->Start.begin(), this->Start.end(), this->Start.begin());
-    this->SortedAtoms.resize(this->Start.back());
+    this->Atoms.resize(this->Start.back());
+    this->Sorted.resize(3 * this->Start.back());
     std::vector<std::size_t> fill(this->Start.begin(), this->Start.end() - 1);
     for (std::size_t i = 0; i < count; ++i)
     {
-      if (this->CellOfAtom[i] >= 0)
+      if (cell_of_atom[i] >= 0)
       {
-        this->SortedAtoms[fill[std::size_t(this->CellOfAtom[i])]++] = std::uint32_t(i);
+        const std::size_t k = fill[std::size_t(cell_of_atom[i])]++;
+        this->Atoms[k] = std::uint32_t(i);
+        std::copy(positions + 3 * i, positions + 3 * i + 3, this->Sorted.begin() + 3 * k);
       }
     }
   }
@@ -91,6 +102,93 @@ public:
       std::isfinite(positions[3 * i + 2]);
   }
 
+  /// Calls visit(k, l) once for every pair of sorted slots k != l in the same or adjacent cells
+  /// (the cell itself and a half shell of 13 neighbours). Cells of one grid row are contiguous
+  /// in slot order, so the half shell is five contiguous slot ranges: the rest of this cell and
+  /// the next one in the row, then three cells in each of the rows (y+1, z), (y-1, z+1),
+  /// (y, z+1) and (y+1, z+1).
+  template <typename Visit>
+  void for_each_close_pair(Visit&& visit) const
+  {
+    this->for_each_close_pair(0, std::size_t(this->Dims[2]), visit);
+  }
+
+  /// Number of grid planes (z layers of cells).
+  std::size_t plane_count() const { return std::size_t(this->Dims[2]); }
+
+  /// for_each_close_pair() restricted to the cells of planes [first_plane, end_plane).
+  template <typename Visit>
+  void for_each_close_pair(std::size_t first_plane, std::size_t end_plane, Visit&& visit) const
+  {
+    const std::int64_t dx = this->Dims[0];
+    const std::int64_t dy = this->Dims[1];
+    const std::int64_t dz = this->Dims[2];
+    static const std::array<std::array<int, 2>, 4> rows = { { { 1, 0 }, { -1, 1 }, { 0, 1 }, { 1, 1 } } };
+    for (std::int64_t z = std::int64_t(first_plane); z < std::int64_t(end_plane); ++z)
+    {
+      for (std::int64_t y = 0; y < dy; ++y)
+      {
+        const std::int64_t row = (z * dy + y) * dx;
+        for (std::int64_t x = 0; x < dx; ++x)
+        {
+          const std::size_t begin = this->Start[std::size_t(row + x)];
+          const std::size_t end = this->Start[std::size_t(row + x + 1)];
+          if (begin == end)
+          {
+            continue;
+          }
+          std::array<std::size_t, 8> ranges{};
+          std::size_t range_count = 0;
+          const std::int64_t x_low = std::max<std::int64_t>(x - 1, 0);
+          const std::int64_t x_high = std::min<std::int64_t>(x + 1, dx - 1);
+          for (const auto& offset : rows)
+          {
+            const std::int64_t ny = y + offset[0];
+            const std::int64_t nz = z + offset[1];
+            if (ny < 0 || ny >= dy || nz >= dz)
+            {
+              continue;
+            }
+            const std::int64_t other = (nz * dy + ny) * dx;
+            ranges[range_count++] = this->Start[std::size_t(other + x_low)];
+            ranges[range_count++] = this->Start[std::size_t(other + x_high + 1)];
+          }
+          const std::size_t row_end = this->Start[std::size_t(row + x_high + 1)];
+          for (std::size_t k = begin; k < end; ++k)
+          {
+            for (std::size_t l = k + 1; l < row_end; ++l)
+            {
+              visit(k, l);
+            }
+            for (std::size_t r = 0; r < range_count; r += 2)
+            {
+              for (std::size_t l = ranges[r]; l < ranges[r + 1]; ++l)
+              {
+                visit(k, l);
+              }
+            }
+          }
+        }
+      }
+    }
+  }
+
+  /// Number of sorted slots (atoms with finite coordinates).
+  std::size_t slot_count() const { return this->Atoms.size(); }
+
+  /// Original atom index of a sorted slot.
+  std::uint32_t atom(std::size_t slot) const { return this->Atoms[slot]; }
+
+  /// Squared distance between two sorted slots.
+  float squared_distance(std::size_t k, std::size_t l) const
+  {
+    const float dx = this->Sorted[3 * k] - this->Sorted[3 * l];
+    const float dy = this->Sorted[3 * k + 1] - this->Sorted[3 * l + 1];
+    const float dz = this->Sorted[3 * k + 2] - this->Sorted[3 * l + 2];
+    return dx * dx + dy * dy + dz * dz;
+  }
+
+private:
   std::int64_t cell_index(const float* p) const
   {
     std::array<std::int64_t, 3> c{};
@@ -102,45 +200,36 @@ public:
     return (c[2] * this->Dims[1] + c[1]) * this->Dims[0] + c[0];
   }
 
-  /// Calls visit(j) for every atom in the 27 cells around atom i.
-  template <typename Visit>
-  void for_each_neighbour_candidate(std::size_t i, Visit&& visit) const
-  {
-    const std::int64_t cell = this->CellOfAtom[i];
-    if (cell < 0)
-    {
-      return;
-    }
-    const std::int64_t cx = cell % this->Dims[0];
-    const std::int64_t cy = (cell / this->Dims[0]) % this->Dims[1];
-    const std::int64_t cz = cell / (this->Dims[0] * this->Dims[1]);
-    for (std::int64_t z = std::max<std::int64_t>(cz - 1, 0);
-         z <= std::min(cz + 1, this->Dims[2] - 1); ++z)
-    {
-      for (std::int64_t y = std::max<std::int64_t>(cy - 1, 0);
-           y <= std::min(cy + 1, this->Dims[1] - 1); ++y)
-      {
-        for (std::int64_t x = std::max<std::int64_t>(cx - 1, 0);
-             x <= std::min(cx + 1, this->Dims[0] - 1); ++x)
-        {
-          const std::size_t c = std::size_t((z * this->Dims[1] + y) * this->Dims[0] + x);
-          for (std::size_t k = this->Start[c]; k < this->Start[c + 1]; ++k)
-          {
-            visit(this->SortedAtoms[k]);
-          }
-        }
-      }
-    }
-  }
-
-private:
   std::array<double, 3> Low{};
   std::array<std::int64_t, 3> Dims{ 1, 1, 1 };
   double Cell = 1;
   std::vector<std::size_t> Start;
-  std::vector<std::uint32_t> SortedAtoms;
-  std::vector<std::int64_t> CellOfAtom;
+  std::vector<std::uint32_t> Atoms;
+  std::vector<float> Sorted;
 };
+
+/// Sorts bonds by (first, second) in O(n + bonds): a counting sort on the first atom, then an
+/// insertion sort of each atom's few partners.
+std::vector<Bond> sorted_bonds(const std::vector<Bond>& bonds, std::size_t atom_count)
+{
+  std::vector<std::uint32_t> start(atom_count + 1, 0);
+  for (const Bond& bond : bonds)
+  {
+    ++start[bond.first + 1];
+  }
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  std::vector<Bond> sorted(bonds.size());
+  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
+  for (const Bond& bond : bonds)
+  {
+    sorted[fill[bond.first]++] = bond;
+  }
+  for (std::size_t i = 0; i < atom_count; ++i)
+  {
+    std::sort(sorted.begin() + start[i], sorted.begin() + start[i + 1]);
+  }
+  return sorted;
+}
 
 void check_input(const BondPerceptionInput& input)
 {
@@ -155,21 +244,10 @@ void check_input(const BondPerceptionInput& input)
   }
 }
 
-double squared_distance(const float* positions, std::size_t i, std::size_t j)
-{
-  double sum = 0;
-  for (int d = 0; d < 3; ++d)
-  {
-    const double delta = double(positions[3 * i + d]) - double(positions[3 * j + d]);
-    sum += delta * delta;
-  }
-  return sum;
-}
-
 } // namespace
 
-std::vector<Bond> perceive_bonds(
-  const BondPerceptionInput& input, const BondPerceptionParams& params)
+std::vector<Bond> perceive_bonds(const BondPerceptionInput& input,
+  const BondPerceptionParams& params, const ParallelFor& parallel_for)
 {
   check_input(input);
   if (!(params.tolerance >= 0.0f && params.tolerance <= 1.0f))
@@ -183,53 +261,83 @@ std::vector<Bond> perceive_bonds(
       std::to_string(params.bead_cutoff));
   }
   const std::size_t n = input.atom_count;
+  // Atoms alone in their molecule (ions, crystal waters) cannot bond: leave them out of the grid
+  // and out of the cell size, which the largest radius sets.
+  std::vector<std::uint8_t> has_partner(n, 0);
+  {
+    std::unordered_map<int, std::size_t> first_of_molecule;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const auto found = first_of_molecule.emplace(input.molecule_ids[i], i);
+      if (!found.second)
+      {
+        has_partner[i] = has_partner[found.first->second] = 1;
+      }
+    }
+  }
   std::vector<float> radius(n);
   float largest_radius = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
     radius[i] = covalent_radius(input.atomic_numbers[i]);
-    largest_radius = std::max(largest_radius, radius[i]);
+    if (has_partner[i])
+    {
+      largest_radius = std::max(largest_radius, radius[i]);
+    }
   }
   const double reach = params.coarse_grained
     ? double(params.bead_cutoff)
     : 2.0 * double(largest_radius) + double(params.tolerance);
-  const UniformGrid grid(input.positions, n, reach);
-  const double min2 = double(params.minimum_distance) * double(params.minimum_distance);
+  const UniformGrid grid(input.positions, n, reach, has_partner);
+  const float min2 = params.minimum_distance * params.minimum_distance;
+  const float bead2 = params.bead_cutoff * params.bead_cutoff;
 
-  std::vector<Bond> bonds;
-  std::vector<std::uint32_t> partners;
-  for (std::size_t i = 0; i < n; ++i)
+  // Per-slot copies in grid order keep the pair loop on contiguous memory.
+  const std::size_t slots = grid.slot_count();
+  std::vector<float> slot_radius(slots);
+  std::vector<int> slot_molecule(slots);
+  std::vector<char> slot_alt(slots, ' ');
+  for (std::size_t k = 0; k < slots; ++k)
   {
-    partners.clear();
-    grid.for_each_neighbour_candidate(i, [&](std::uint32_t j) {
-      if (j <= i || input.molecule_ids[j] != input.molecule_ids[i])
-      {
-        return;
-      }
-      if (input.alt_locs && input.alt_locs[i] != ' ' && input.alt_locs[j] != ' ' &&
-        input.alt_locs[i] != input.alt_locs[j])
-      {
-        return;
-      }
-      const double limit = params.coarse_grained
-        ? double(params.bead_cutoff)
-        : double(radius[i]) + double(radius[j]) + double(params.tolerance);
-      const double d2 = squared_distance(input.positions, i, j);
-      if (d2 < limit * limit && d2 >= min2)
-      {
-        partners.push_back(j);
-      }
-    });
-    std::sort(partners.begin(), partners.end());
-    for (const std::uint32_t j : partners)
-    {
-      bonds.push_back({ std::uint32_t(i), j });
-    }
+    const std::uint32_t i = grid.atom(k);
+    slot_radius[k] = radius[i] + 0.5f * params.tolerance;
+    slot_molecule[k] = input.molecule_ids[i];
+    slot_alt[k] = input.alt_locs ? input.alt_locs[i] : ' ';
   }
-  return bonds;
+  // One bond list per grid plane, filled concurrently, joined in plane order.
+  std::vector<std::vector<Bond>> plane_bonds(grid.plane_count());
+  run_parallel(parallel_for, grid.plane_count(), [&](std::size_t first, std::size_t end) {
+    for (std::size_t plane = first; plane < end; ++plane)
+    {
+      std::vector<Bond>& found = plane_bonds[plane];
+      grid.for_each_close_pair(plane, plane + 1, [&](std::size_t k, std::size_t l) {
+        if (slot_molecule[k] != slot_molecule[l] ||
+          (slot_alt[k] != ' ' && slot_alt[l] != ' ' && slot_alt[k] != slot_alt[l]))
+        {
+          return;
+        }
+        const float d2 = grid.squared_distance(k, l);
+        const float limit = slot_radius[k] + slot_radius[l];
+        const float limit2 = params.coarse_grained ? bead2 : limit * limit;
+        if (d2 < limit2 && d2 >= min2)
+        {
+          const std::uint32_t i = grid.atom(k);
+          const std::uint32_t j = grid.atom(l);
+          found.push_back({ std::min(i, j), std::max(i, j) });
+        }
+      });
+    }
+  });
+  std::vector<Bond> bonds;
+  bonds.reserve(n + n / 4);
+  for (const std::vector<Bond>& found : plane_bonds)
+  {
+    bonds.insert(bonds.end(), found.begin(), found.end());
+  }
+  return sorted_bonds(bonds, n);
 }
 
-bool looks_coarse_grained(const BondPerceptionInput& input)
+bool looks_coarse_grained(const BondPerceptionInput& input, const std::vector<Bond>& atomistic_bonds)
 {
   check_input(input);
   const std::size_t n = input.atom_count;
@@ -243,28 +351,25 @@ bool looks_coarse_grained(const BondPerceptionInput& input)
     }
     ++molecule_size[std::size_t(m)];
   }
-  const double reach = 2.0;
-  const UniformGrid grid(input.positions, n, reach);
+  std::vector<std::uint8_t> bonded(n, 0);
+  for (const Bond& bond : atomistic_bonds)
+  {
+    if (bond.first < n && bond.second < n)
+    {
+      bonded[bond.first] = bonded[bond.second] = 1;
+    }
+  }
   std::size_t candidates = 0;
-  std::size_t with_neighbour = 0;
+  std::size_t with_bond = 0;
   for (std::size_t i = 0; i < n; ++i)
   {
-    if (molecule_size[std::size_t(input.molecule_ids[i])] < 2)
+    if (molecule_size[std::size_t(input.molecule_ids[i])] >= 2)
     {
-      continue;
+      ++candidates;
+      with_bond += bonded[i];
     }
-    ++candidates;
-    bool found = false;
-    grid.for_each_neighbour_candidate(i, [&](std::uint32_t j) {
-      if (!found && j != i && input.molecule_ids[j] == input.molecule_ids[i] &&
-        squared_distance(input.positions, i, j) < reach * reach)
-      {
-        found = true;
-      }
-    });
-    with_neighbour += found ? 1 : 0;
   }
-  return candidates > 0 && 2 * with_neighbour < candidates;
+  return candidates > 0 && 2 * with_bond < candidates;
 }
 
 std::vector<Bond> merge_bonds(const std::vector<Bond>& a, const std::vector<Bond>& b)

@@ -62,19 +62,52 @@ bool is_element_field(char a, char b)
   return atomic_number_from_symbol(symbol) != 0 || symbol == " X" || symbol == "X ";
 }
 
-/// True when the fixed-width field holds one number (blanks around it allowed).
+/// True when the fixed-width field holds one decimal number (blanks around it allowed), or
+/// "nan"/"inf", which the finiteness check reports later with the atom's name.
 bool is_number_field(const char* field, std::size_t width)
 {
-  const std::string text(field, width);
-  const char* begin = text.c_str();
-  char* end = nullptr;
-  std::strtod(begin, &end);
-  if (end == begin)
+  std::size_t i = 0;
+  while (i < width && field[i] == ' ')
   {
-    return false;
+    ++i;
   }
-  return std::all_of(static_cast<const char*>(end), begin + text.size(),
-    [](char c) { return c == ' '; });
+  const std::size_t first = i;
+  if (i < width && (field[i] == '-' || field[i] == '+'))
+  {
+    ++i;
+  }
+  std::size_t digits = 0;
+  bool dot = false;
+  for (; i < width && field[i] != ' '; ++i)
+  {
+    const char c = field[i];
+    if (c >= '0' && c <= '9')
+    {
+      ++digits;
+    }
+    else if (c == '.' && !dot)
+    {
+      dot = true;
+    }
+    else if ((c == 'e' || c == 'E') && digits > 0 && i + 1 < width)
+    {
+      if (field[i + 1] == '-' || field[i + 1] == '+')
+      {
+        ++i;
+      }
+    }
+    else
+    {
+      const std::string word(field + first, std::min<std::size_t>(width - first, 4));
+      return word.rfind("nan", 0) == 0 || word.rfind("-nan", 0) == 0 ||
+        word.rfind("inf", 0) == 0 || word.rfind("-inf", 0) == 0;
+    }
+  }
+  while (i < width && field[i] == ' ')
+  {
+    ++i;
+  }
+  return digits > 0 && i == width;
 }
 
 /// Pre-remediation files (1HPV) keep the entry id and a serial in columns 73-80. Blanks columns
@@ -217,46 +250,73 @@ struct ChainResidues
   std::vector<ResidueRange> residues;
 };
 
-/// Marks residues from `start` to `end` (inclusive, in chain order) with a secondary structure.
-void mark_span(AtomTable& table, const std::vector<ChainResidues>& chains,
-  const gemmi::AtomAddress& start, const gemmi::AtomAddress& end, SecondaryStructure kind,
-  int span_id)
+/// Finds the residues of HELIX/SHEET spans: per chain, the position of each residue number.
+class ResidueLocator
 {
-  for (const ChainResidues& chain : chains)
+public:
+  explicit ResidueLocator(const std::vector<ChainResidues>& chains)
+    : Chains(chains)
   {
-    if (chain.name != start.chain_name)
+    for (std::size_t c = 0; c < chains.size(); ++c)
     {
-      continue;
-    }
-    std::size_t first = chain.residues.size();
-    for (std::size_t r = 0; r < chain.residues.size(); ++r)
-    {
-      const gemmi::Residue& residue = *chain.residues[r].residue;
-      if (first == chain.residues.size() && residue.seqid == start.res_id.seqid)
+      auto& positions = this->Positions[chains[c].name];
+      for (std::size_t r = 0; r < chains[c].residues.size(); ++r)
       {
-        first = r;
-      }
-      if (first < chain.residues.size())
-      {
-        for (std::size_t i = chain.residues[r].begin; i < chain.residues[r].end; ++i)
-        {
-          table.secondary_structure[i] = static_cast<std::uint8_t>(kind);
-          table.secondary_structure_ids[i] = span_id;
-        }
-        if (residue.seqid == end.res_id.seqid)
-        {
-          return;
-        }
+        const gemmi::SeqId& id = chains[c].residues[r].residue->seqid;
+        // The first residue of a number wins (microheterogeneity repeats numbers).
+        positions.emplace(key(id), std::make_pair(c, r));
       }
     }
   }
-}
+
+  /// Marks residues from `start` to `end` (inclusive, in chain order).
+  void mark(AtomTable& table, const gemmi::AtomAddress& start, const gemmi::AtomAddress& end,
+    SecondaryStructure kind, int span_id) const
+  {
+    const auto chain = this->Positions.find(start.chain_name);
+    if (chain == this->Positions.end())
+    {
+      return;
+    }
+    const auto first = chain->second.find(key(start.res_id.seqid));
+    const auto last = chain->second.find(key(end.res_id.seqid));
+    if (first == chain->second.end() || last == chain->second.end() ||
+      first->second.first != last->second.first)
+    {
+      return;
+    }
+    const ChainResidues& residues = this->Chains[first->second.first];
+    for (std::size_t r = first->second.second; r <= last->second.second; ++r)
+    {
+      for (std::size_t i = residues.residues[r].begin; i < residues.residues[r].end; ++i)
+      {
+        table.secondary_structure[i] = static_cast<std::uint8_t>(kind);
+        table.secondary_structure_ids[i] = span_id;
+      }
+    }
+  }
+
+private:
+  static std::int64_t key(const gemmi::SeqId& id)
+  {
+    const int number = id.num.has_value() ? int(id.num) : 0;
+    return std::int64_t(number) * 256 + static_cast<unsigned char>(id.icode);
+  }
+  const std::vector<ChainResidues>& Chains;
+  std::unordered_map<std::string, std::unordered_map<std::int64_t, std::pair<std::size_t, std::size_t>>>
+    Positions;
+};
 
 /// Alternate-location mask: per residue the conformer with the highest summed occupancy; per
 /// atom name, that conformer's atom, or the best atom of the group when the conformer lacks it.
 void mark_alternate_locations(const AtomTable& table, const ResidueRange& range,
   std::vector<bool>& keep)
 {
+  if (std::all_of(table.alt_locs.begin() + long(range.begin), table.alt_locs.begin() + long(range.end),
+        [](char c) { return c == ' '; }))
+  {
+    return;
+  }
   std::map<char, double> occupancy_by_conformer;
   for (std::size_t i = range.begin; i < range.end; ++i)
   {
@@ -308,10 +368,18 @@ void mark_alternate_locations(const AtomTable& table, const ResidueRange& range,
 }
 
 /// Converts one gemmi model; fills `ranges` with the residue layout for secondary structure.
-AtomTable convert_model(const gemmi::Model& model, std::vector<ChainResidues>& chains,
-  std::unordered_map<const gemmi::Atom*, std::size_t>& atom_index)
+AtomTable convert_model(const gemmi::Model& model, std::vector<ChainResidues>& chains)
 {
   AtomTable table;
+  std::size_t atom_count = 0;
+  for (const gemmi::Chain& chain : model.chains)
+  {
+    for (const gemmi::Residue& residue : chain.residues)
+    {
+      atom_count += residue.atoms.size();
+    }
+  }
+  table.reserve(atom_count);
   for (const gemmi::Chain& chain : model.chains)
   {
     chains.push_back({ chain.name, {} });
@@ -320,7 +388,6 @@ AtomTable convert_model(const gemmi::Model& model, std::vector<ChainResidues>& c
       const std::size_t begin = table.size();
       for (const gemmi::Atom& atom : residue.atoms)
       {
-        atom_index[&atom] = table.size();
         table.append_atom(
           atom.name, float(atom.pos.x), float(atom.pos.y), float(atom.pos.z));
         std::uint8_t z = static_cast<std::uint8_t>(atom.element.elem);
@@ -347,7 +414,7 @@ AtomTable convert_model(const gemmi::Model& model, std::vector<ChainResidues>& c
 }
 
 std::vector<Bond> explicit_bonds(const gemmi::Structure& structure, const gemmi::Model& model,
-  const std::unordered_map<const gemmi::Atom*, std::size_t>& atom_index,
+  const std::vector<ChainResidues>& chains,
   const AtomTable& table, const ConectRecords& conect, std::vector<std::string>& warnings)
 {
   std::vector<Bond> bonds;
@@ -393,6 +460,18 @@ std::vector<Bond> explicit_bonds(const gemmi::Structure& structure, const gemmi:
     warnings.push_back(std::to_string(conect.unreadable_fields) +
       " CONECT fields are not numbers (e.g. ***** serials); they were ignored");
   }
+  // Table index of each residue's first atom, to turn gemmi atom pointers into indices.
+  std::unordered_map<const gemmi::Residue*, std::size_t> first_atom_of;
+  if (!structure.connections.empty())
+  {
+    for (const ChainResidues& chain : chains)
+    {
+      for (const ResidueRange& range : chain.residues)
+      {
+        first_atom_of.emplace(range.residue, range.begin);
+      }
+    }
+  }
   for (const gemmi::Connection& connection : structure.connections)
   {
     if (connection.type == gemmi::Connection::Hydrog ||
@@ -406,11 +485,12 @@ std::vector<Bond> explicit_bonds(const gemmi::Structure& structure, const gemmi:
     {
       continue;
     }
-    const auto ia = atom_index.find(a.atom);
-    const auto ib = atom_index.find(b.atom);
-    if (ia != atom_index.end() && ib != atom_index.end())
+    const auto ia = first_atom_of.find(a.residue);
+    const auto ib = first_atom_of.find(b.residue);
+    if (ia != first_atom_of.end() && ib != first_atom_of.end())
     {
-      add(ia->second, ib->second);
+      add(ia->second + std::size_t(a.atom - a.residue->atoms.data()),
+        ib->second + std::size_t(b.atom - b.residue->atoms.data()));
     }
   }
   std::sort(bonds.begin(), bonds.end());
@@ -511,20 +591,27 @@ bool build_connectivity(AtomTable& table, const std::vector<Bond>& explicit_bond
   input.alt_locs = table.alt_locs.data();
   input.atom_count = table.size();
   BondPerceptionParams bond_params = params.bonds;
-  bond_params.coarse_grained =
-    params.force_coarse_grained || (!elements_given && looks_coarse_grained(input));
+  bond_params.coarse_grained = params.force_coarse_grained;
+  std::vector<Bond> perceived;
+  if (!bond_params.coarse_grained && (params.perceive_bonds || !elements_given))
+  {
+    bond_params.coarse_grained = false;
+    perceived = perceive_bonds(input, bond_params, params.parallel_for);
+    bond_params.coarse_grained = !elements_given && looks_coarse_grained(input, perceived);
+  }
   if (bond_params.coarse_grained)
   {
     std::fill(table.atomic_numbers.begin(), table.atomic_numbers.end(), std::uint8_t(0));
-  }
-  std::vector<Bond> perceived;
-  if (params.perceive_bonds)
-  {
-    perceived = perceive_bonds(input, bond_params);
-    if (bond_params.coarse_grained)
+    perceived.clear();
+    if (params.perceive_bonds)
     {
-      perceived = consensus_bonds(table, perceived);
+      perceived =
+        consensus_bonds(table, perceive_bonds(input, bond_params, params.parallel_for));
     }
+  }
+  if (!params.perceive_bonds)
+  {
+    perceived.clear();
   }
   table.bonds = merge_bonds(perceived, explicit_bonds);
   return bond_params.coarse_grained;
@@ -552,33 +639,39 @@ StructureFile read_structure(
   {
     const gemmi::Model& model = structure.models[m];
     std::vector<ChainResidues> chains;
-    std::unordered_map<const gemmi::Atom*, std::size_t> atom_index;
-    AtomTable table = convert_model(model, chains, atom_index);
+    AtomTable table = convert_model(model, chains);
     if (table.size() == 0)
     {
       continue;
     }
     check_finite(table, path);
     int span_id = 0;
-    for (const gemmi::Helix& helix : structure.helices)
+    if (!structure.helices.empty() || !structure.sheets.empty())
     {
-      mark_span(table, chains, helix.start, helix.end, helix_kind(helix.pdb_helix_class),
-        span_id++);
-    }
-    for (const gemmi::Sheet& sheet : structure.sheets)
-    {
-      for (const gemmi::Sheet::Strand& strand : sheet.strands)
+      const ResidueLocator locator(chains);
+      for (const gemmi::Helix& helix : structure.helices)
       {
-        mark_span(table, chains, strand.start, strand.end, SecondaryStructure::Strand, span_id++);
+        locator.mark(table, helix.start, helix.end, helix_kind(helix.pdb_helix_class), span_id++);
+      }
+      for (const gemmi::Sheet& sheet : structure.sheets)
+      {
+        for (const gemmi::Sheet::Strand& strand : sheet.strands)
+        {
+          locator.mark(table, strand.start, strand.end, SecondaryStructure::Strand, span_id++);
+        }
       }
     }
     std::vector<std::string> warnings;
-    table.bonds = explicit_bonds(structure, model, atom_index, table, conect, warnings);
+    table.bonds = explicit_bonds(structure, model, chains, table, conect, warnings);
     if (m == 0)
     {
       file.warnings = warnings;
     }
-    table.filter(selection_mask(table, chains, params));
+    const std::vector<bool> keep = selection_mask(table, chains, params);
+    if (std::find(keep.begin(), keep.end(), false) != keep.end())
+    {
+      table.filter(keep);
+    }
     const std::vector<Bond> kept_explicit = table.bonds;
     file.coarse_grained = build_connectivity(table, kept_explicit, params, elements_given);
     if (structure.cell.is_crystal())

@@ -136,11 +136,12 @@ TEST(BondPerception, CoarseGrainedBeadCutoff)
   params.coarse_grained = true;
   const auto bonds = mesolens::perceive_bonds(atoms.input(), params);
   ASSERT_EQ(bonds.size(), 1u);
-  EXPECT_TRUE(mesolens::looks_coarse_grained(atoms.input()));
+  EXPECT_TRUE(mesolens::looks_coarse_grained(atoms.input(), mesolens::perceive_bonds(atoms.input())));
   Atoms atomistic;
   atomistic.add(0, 0, 0, 6);
   atomistic.add(1.5f, 0, 0, 6);
-  EXPECT_FALSE(mesolens::looks_coarse_grained(atomistic.input()));
+  EXPECT_FALSE(
+    mesolens::looks_coarse_grained(atomistic.input(), mesolens::perceive_bonds(atomistic.input())));
 }
 
 TEST(BondPerception, RejectsBadParameters)
@@ -164,7 +165,7 @@ TEST(BondPerception, EmptyInput)
 {
   const mesolens::BondPerceptionInput empty;
   EXPECT_TRUE(mesolens::perceive_bonds(empty).empty());
-  EXPECT_FALSE(mesolens::looks_coarse_grained(empty));
+  EXPECT_FALSE(mesolens::looks_coarse_grained(empty, {}));
 }
 
 TEST(BondPerception, MergeKeepsSortedUnion)
@@ -199,4 +200,27 @@ TEST(BondConsensus, CopiesOfAMoleculeTypeShareTheirBonds)
   mesolens::BondConsensusParams strict;
   strict.min_fraction = 0;
   EXPECT_THROW(mesolens::consensus_bonds(table, perceived, strict), mesolens::InvalidInput);
+}
+
+TEST(BondPerception, SameBondsWhateverTheSplit)
+{
+  std::mt19937 random(3);
+  std::uniform_real_distribution<float> coordinate(0.0f, 40.0f);
+  Atoms atoms;
+  for (int i = 0; i < 5000; ++i)
+  {
+    atoms.add(coordinate(random), coordinate(random), coordinate(random), 6, i % 4);
+  }
+  const auto sequential = mesolens::perceive_bonds(atoms.input());
+  // A splitter that runs the ranges in reverse order, in chunks of 3 planes.
+  const mesolens::ParallelFor reversed = [](std::size_t count, const mesolens::RangeKernel& kernel) {
+    for (std::size_t end = count; end > 0;)
+    {
+      const std::size_t begin = end >= 3 ? end - 3 : 0;
+      kernel(begin, end);
+      end = begin;
+    }
+  };
+  EXPECT_EQ(mesolens::perceive_bonds(atoms.input(), {}, reversed), sequential);
+  EXPECT_GT(sequential.size(), 1000u);
 }

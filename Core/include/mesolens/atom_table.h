@@ -71,6 +71,9 @@ struct AtomTable
 
   std::size_t size() const { return atom_names.size(); }
 
+  /// Reserves room for `count` atoms in every per-atom array.
+  void reserve(std::size_t count);
+
   /// Appends one atom with default values for every field but name and position.
   void append_atom(const std::string& name, float x, float y, float z);
 

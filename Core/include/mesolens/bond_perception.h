@@ -3,6 +3,7 @@
 #pragma once
 
 #include "mesolens/atom_table.h"
+#include "mesolens/parallel_for.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -37,14 +38,16 @@ struct BondPerceptionInput
 
 /// Bonds between atoms of the same molecule by distance, sorted by (first, second), unique.
 /// Runs in O(n) expected time: atoms are binned in a uniform grid whose cell is the longest
-/// possible bond, and only the 27 neighbouring cells are searched.
+/// possible bond, and only neighbouring cells are searched; grid planes run through
+/// `parallel_for` (the result does not depend on it).
 /// Throws InvalidInput for a null array or an out-of-range parameter.
 std::vector<Bond> perceive_bonds(const BondPerceptionInput& input,
-  const BondPerceptionParams& params = {});
+  const BondPerceptionParams& params = {}, const ParallelFor& parallel_for = {});
 
-/// True when most atoms of multi-atom molecules have no same-molecule neighbour within 2 Å:
-/// the file then holds coarse-grained beads (Martini), not atoms.
-bool looks_coarse_grained(const BondPerceptionInput& input);
+/// True when most atoms of multi-atom molecules have no bond in `atomistic_bonds` (bonds
+/// perceived with covalent radii): the file then holds coarse-grained beads (Martini, whose
+/// bonded beads are 3-5 Å apart), not atoms.
+bool looks_coarse_grained(const BondPerceptionInput& input, const std::vector<Bond>& atomistic_bonds);
 
 /// Merges two sorted unique bond lists into one sorted unique list.
 std::vector<Bond> merge_bonds(const std::vector<Bond>& a, const std::vector<Bond>& b);

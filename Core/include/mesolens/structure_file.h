@@ -4,6 +4,7 @@
 
 #include "mesolens/atom_table.h"
 #include "mesolens/bond_perception.h"
+#include "mesolens/parallel_for.h"
 
 #include <functional>
 #include <string>
@@ -37,6 +38,8 @@ struct StructureReadParams
   /// force_coarse_grained is set.
   BondPerceptionParams bonds;
   bool force_coarse_grained = false;
+  /// Runs the data-parallel loops (bond perception); empty: the calling thread only.
+  ParallelFor parallel_for;
 };
 
 /// A structure file: one AtomTable per model (NMR ensembles have several).

@@ -1,0 +1,270 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Reader benchmarks. Prints, for each input, the figure and its ratio to a baseline measured in
+// the same run (these machines are noisy; absolute times only mean something relative to it):
+//  - PDB and mmCIF parse time per atom of vtkMesoStructureReader (everything it does: parse,
+//    alternate locations, secondary structure, molecules, bonds) against VTK's vtkPDBReader on
+//    the same PDB file (which drops hydrogens and alternate atoms);
+//  - XTC decoding: frames and atoms per second of mesolens::TrajectoryFile (random access, frame
+//    validation) and of vtkMesoTrajectoryReader (plus whole, continuous molecules) against a
+//    plain sequential GROMACS read_next_frame loop.
+// The largest protein of the shared data (3l5q.gro, 79452 atoms) has no PDB/mmCIF form: it is
+// written as PDB by GROMACS, and its atoms as an mmCIF atom_site loop, first. Inputs that are absent are skipped.
+#include "vtkMesoStructureReader.h"
+#include "vtkMesoTrajectoryReader.h"
+
+#include "mesolens/elements.h"
+#include "mesolens/structure_file.h"
+#include "mesolens/trajectory_file.h"
+#include "mesolens_test_data.h"
+
+#include <gromacs/fileio/confio.h>
+#include <gromacs/fileio/oenv.h>
+#include <gromacs/fileio/trxio.h>
+#include <gromacs/pbcutil/pbc.h>
+#include <gromacs/topology/atoms.h>
+#include <gromacs/topology/symtab.h>
+#include <gromacs/trajectory/trajectoryframe.h>
+#include <gromacs/utility/smalloc.h>
+
+#include <vtkExecutive.h>
+#include <vtkInformation.h>
+#include <vtkNew.h>
+#include <vtkPDBReader.h>
+#include <vtkPolyData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <utility>
+#include <string>
+#include <vector>
+
+namespace
+{
+double seconds_of(const std::function<void()>& work)
+{
+  const auto start = std::chrono::steady_clock::now();
+  work();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double median(std::vector<double> values)
+{
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+/// Median wall time in seconds of `repeats` runs of `work`.
+double median_seconds(int repeats, const std::function<void()>& work)
+{
+  std::vector<double> times;
+  for (int r = 0; r < repeats; ++r)
+  {
+    times.push_back(seconds_of(work));
+  }
+  return median(times);
+}
+
+/// Medians of `repeats` runs of `a` and `b`, interleaved so both see the same machine load.
+std::pair<double, double> interleaved_medians(
+  int repeats, const std::function<void()>& a, const std::function<void()>& b)
+{
+  std::vector<double> times_a;
+  std::vector<double> times_b;
+  for (int r = 0; r < repeats; ++r)
+  {
+    times_a.push_back(seconds_of(a));
+    times_b.push_back(seconds_of(b));
+  }
+  return { median(times_a), median(times_b) };
+}
+
+/// Writes 3l5q.gro as PDB with GROMACS' own writer.
+bool gro_to_pdb(const std::string& gro, const std::string& pdb)
+{
+  t_symtab symtab;
+  open_symtab(&symtab);
+  t_atoms atoms;
+  init_t_atoms(&atoms, 0, FALSE);
+  char* title = nullptr;
+  rvec* x = nullptr;
+  rvec* v = nullptr;
+  matrix box;
+  PbcType pbc = PbcType::Unset;
+  readConfAndAtoms(gro.c_str(), &symtab, &title, &atoms, &pbc, &x, &v, box);
+  write_sto_conf(pdb.c_str(), title, &atoms, x, nullptr, pbc, box);
+  done_atom(&atoms);
+  done_symtab(&symtab);
+  sfree(x);
+  sfree(v);
+  sfree(title);
+  return true;
+}
+
+/// Writes the atoms of a PDB file as a PDBx/mmCIF atom_site loop (the part readers parse).
+void pdb_to_mmcif(const std::string& pdb, const std::string& cif)
+{
+  mesolens::StructureReadParams params;
+  params.perceive_bonds = false;
+  const mesolens::AtomTable t = mesolens::read_structure(pdb, params).models.front();
+  std::FILE* out = std::fopen(cif.c_str(), "w");
+  std::fprintf(out, "data_converted\nloop_\n");
+  for (const char* item : { "group_PDB", "id", "type_symbol", "label_atom_id", "label_alt_id",
+         "label_comp_id", "label_asym_id", "label_entity_id", "label_seq_id", "Cartn_x",
+         "Cartn_y", "Cartn_z", "occupancy", "B_iso_or_equiv", "auth_seq_id", "auth_asym_id",
+         "pdbx_PDB_model_num" })
+  {
+    std::fprintf(out, "_atom_site.%s\n", item);
+  }
+  for (std::size_t i = 0; i < t.size(); ++i)
+  {
+    const std::string chain = t.chain_ids[i].empty() ? "A" : t.chain_ids[i];
+    std::fprintf(out, "%s %zu %s \"%s\" . %s %s 1 %d %.3f %.3f %.3f %.2f %.2f %d %s 1\n",
+      t.is_hetero[i] ? "HETATM" : "ATOM", i + 1, mesolens::element_symbol(t.atomic_numbers[i]),
+      t.atom_names[i].c_str(), t.residue_names[i].c_str(), chain.c_str(), t.residue_numbers[i],
+      t.positions[3 * i], t.positions[3 * i + 1], t.positions[3 * i + 2], t.occupancies[i],
+      t.b_factors[i], t.residue_numbers[i], chain.c_str());
+  }
+  std::fclose(out);
+}
+
+void benchmark_structure(const std::string& label, const std::string& pdb, const std::string& cif)
+{
+  vtkNew<vtkMesoStructureReader> ours;
+  ours->SetFileName(pdb.c_str());
+  vtkNew<vtkPDBReader> vtk;
+  vtk->SetFileName(pdb.c_str());
+  const auto pdb_times = interleaved_medians(
+    9,
+    [&] {
+      ours->Modified();
+      ours->Update();
+    },
+    [&] {
+      vtk->Modified();
+      vtk->Update();
+    });
+  const double ours_pdb = pdb_times.first;
+  const double vtk_pdb = pdb_times.second;
+  const vtkIdType ours_atoms = ours->GetOutput()->GetNumberOfPoints();
+  const vtkIdType ours_bonds = ours->GetOutput()->GetNumberOfLines();
+  const vtkIdType vtk_atoms = vtk->GetOutput()->GetNumberOfPoints();
+  std::printf("BENCH structure-pdb input=%s atoms=%lld | vtkMesoStructureReader %.3f us/atom "
+              "(%.1f ms, %lld atoms, %lld bonds) | vtkPDBReader %.3f us/atom (%.1f ms, %lld atoms) "
+              "| speedup %.1fx\n",
+    label.c_str(), static_cast<long long>(ours_atoms), 1e6 * ours_pdb / double(ours_atoms),
+    1e3 * ours_pdb, static_cast<long long>(ours_atoms), static_cast<long long>(ours_bonds),
+    1e6 * vtk_pdb / double(std::max<vtkIdType>(vtk_atoms, 1)), 1e3 * vtk_pdb,
+    static_cast<long long>(vtk_atoms), vtk_pdb / ours_pdb);
+  if (cif.empty())
+  {
+    return;
+  }
+  ours->SetFileName(cif.c_str());
+  const double ours_cif = median_seconds(9, [&] {
+    ours->Modified();
+    ours->Update();
+  });
+  std::printf("BENCH structure-mmcif input=%s atoms=%lld | vtkMesoStructureReader %.3f us/atom "
+              "(%.1f ms) | vtkPDBReader on the PDB form %.3f us/atom | speedup %.1fx\n",
+    label.c_str(), static_cast<long long>(ours->GetOutput()->GetNumberOfPoints()),
+    1e6 * ours_cif / double(ours->GetOutput()->GetNumberOfPoints()), 1e3 * ours_cif,
+    1e6 * vtk_pdb / double(std::max<vtkIdType>(vtk_atoms, 1)), vtk_pdb / ours_cif);
+}
+
+/// Sequential decoding of every frame with GROMACS alone: the baseline.
+double gromacs_sequential(const std::string& xtc, int& frames)
+{
+  return median_seconds(3, [&] {
+    gmx_output_env_t* oenv = nullptr;
+    output_env_init_default(&oenv);
+    t_trxstatus* status = nullptr;
+    t_trxframe frame;
+    clear_trxframe(&frame, TRUE);
+    frames = 0;
+    bool more = read_first_frame(oenv, &status, xtc.c_str(), &frame, TRX_NEED_X);
+    while (more)
+    {
+      ++frames;
+      more = read_next_frame(oenv, status, &frame);
+    }
+    close_trx(status);
+    done_frame(&frame);
+    output_env_done(oenv);
+  });
+}
+
+void benchmark_trajectory(const std::string& label, const std::string& gro, const std::string& xtc)
+{
+  int frames = 0;
+  const double baseline = gromacs_sequential(xtc, frames);
+  std::size_t atoms = 0;
+  const double core = median_seconds(3, [&] {
+    mesolens::TrajectoryFile file(xtc);
+    atoms = file.atom_count();
+    for (std::size_t f = 0; f < file.frame_count(); ++f)
+    {
+      file.read_frame(f);
+    }
+  });
+  vtkNew<vtkMesoTrajectoryReader> reader;
+  reader->SetTopologyFileName(gro.c_str());
+  reader->SetTrajectoryFileName(xtc.c_str());
+  reader->UpdateInformation();
+  const std::vector<double> times(
+    reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS()),
+    reader->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS()) + frames);
+  const double pipeline = median_seconds(3, [&] {
+    for (auto it = times.rbegin(); it != times.rend(); ++it) // backwards: random access
+    {
+      reader->UpdateTimeStep(*it);
+    }
+  });
+  const double n = double(frames);
+  std::printf("BENCH xtc input=%s frames=%d atoms=%zu | TrajectoryFile %.1f frames/s %.2f Matoms/s "
+              "| vtkMesoTrajectoryReader (whole, continuous, backwards) %.1f frames/s %.2f Matoms/s "
+              "| GROMACS sequential %.1f frames/s %.2f Matoms/s | ratio TrajectoryFile/GROMACS %.2f\n",
+    label.c_str(), frames, atoms, n / core, n * double(atoms) / core / 1e6, n / pipeline,
+    n * double(atoms) / pipeline / 1e6, n / baseline, n * double(atoms) / baseline / 1e6,
+    baseline / core);
+}
+} // namespace
+
+int main()
+{
+  using mesolens_test::data_file;
+  using mesolens_test::exists;
+  using mesolens_test::shared_file;
+  const std::string big_gro = shared_file("proteins/3l5q.gro");
+  if (exists(big_gro))
+  {
+    const std::string pdb = mesolens_test::output_file("3l5q_from_gro.pdb");
+    const std::string cif = mesolens_test::output_file("3l5q_from_gro.cif");
+    gro_to_pdb(big_gro, pdb);
+    pdb_to_mmcif(pdb, cif);
+    benchmark_structure("3l5q (proteasome, written from 3l5q.gro)", pdb, cif);
+  }
+  else
+  {
+    std::printf("BENCH skipped 3l5q: %s not found\n", big_gro.c_str());
+  }
+  const std::string mtor = shared_file("proteins/4jsv.pdb");
+  if (exists(mtor))
+  {
+    benchmark_structure("4jsv.pdb (real PDB entry)", mtor, "");
+  }
+  const std::string achbp = shared_file("proteins/3wip.pdb");
+  if (exists(achbp))
+  {
+    benchmark_structure("3wip (real PDB and mmCIF entries)", achbp, shared_file("proteins/3wip.cif"));
+  }
+  benchmark_structure("1tii.pdb (Data/)", data_file("proteins/1tii.pdb"), "");
+  benchmark_trajectory("yiip_popepopg.xtc (all-atom)", data_file("membranes/yiip_popepopg.gro"),
+    data_file("membranes/yiip_popepopg.xtc"));
+  benchmark_trajectory("martini_dppc_vesicle.xtc (coarse-grained, triclinic)",
+    data_file("membranes/martini_dppc_vesicle.gro"), data_file("membranes/martini_dppc_vesicle.xtc"));
+  return 0;
+}

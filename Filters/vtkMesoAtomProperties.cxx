@@ -14,8 +14,9 @@
 
 vtkStandardNewMacro(vtkMesoAtomProperties);
 
-int vtkMesoAtomProperties::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkMesoAtomProperties::RequestData(vtkInformation*,
+                                       vtkInformationVector** inputVector,
+                                       vtkInformationVector* outputVector)
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
@@ -39,12 +40,14 @@ int vtkMesoAtomProperties::RequestData(
   {
     const int z = static_cast<int>(atomic_numbers->GetComponent(i, 0));
     const bool known = z > 0 && z <= mesolens::max_atomic_number;
-    van_der_waals->SetValue(i,
+    van_der_waals->SetValue(
+      i,
       static_cast<float>((known ? mesolens::van_der_waals_radius(z) : this->BeadRadius) *
-        this->LengthScale));
-    covalent->SetValue(i,
+                         this->LengthScale));
+    covalent->SetValue(
+      i,
       static_cast<float>((known ? mesolens::covalent_radius(z) : this->BeadRadius) *
-        this->LengthScale));
+                         this->LengthScale));
   }
   output->GetPointData()->AddArray(van_der_waals);
   output->GetPointData()->AddArray(covalent);

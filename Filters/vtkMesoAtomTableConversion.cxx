@@ -19,12 +19,10 @@
 #include <vtkStringArray.h>
 #include <vtkUnsignedCharArray.h>
 
-namespace vtkMesoAtomTableConversion
-{
+namespace vtkMesoAtomTableConversion {
 
-namespace
-{
-template <typename ArrayT, typename ValueT>
+namespace {
+template<typename ArrayT, typename ValueT>
 void add_array(vtkPointData* data, const char* name, const std::vector<ValueT>& values)
 {
   vtkNew<ArrayT> array;
@@ -130,8 +128,10 @@ void ToPolyData(const mesolens::AtomTable& table, double length_scale, vtkPolyDa
   SetPeriodicBox(table.box, length_scale, output);
 }
 
-void SetPositions(const std::vector<float>& positions, const std::vector<std::size_t>& kept,
-  double length_scale, vtkPolyData* output)
+void SetPositions(const std::vector<float>& positions,
+                  const std::vector<std::size_t>& kept,
+                  double length_scale,
+                  vtkPolyData* output)
 {
   const std::size_t n = kept.empty() ? positions.size() / 3 : kept.size();
   vtkPoints* points = output->GetPoints();
@@ -166,7 +166,8 @@ void SetPeriodicBox(const mesolens::PeriodicBox& box, double length_scale, vtkPo
   {
     for (int c = 0; c < 3; ++c)
     {
-      vectors->SetComponent(0, 3 * r + c, box.vectors[std::size_t(r)][std::size_t(c)] * length_scale);
+      vectors->SetComponent(
+        0, 3 * r + c, box.vectors[std::size_t(r)][std::size_t(c)] * length_scale);
     }
   }
   field->AddArray(vectors);

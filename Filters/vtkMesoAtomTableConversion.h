@@ -9,14 +9,12 @@
 #include <vector>
 
 class vtkPolyData;
-namespace mesolens
-{
+namespace mesolens {
 struct AtomTable;
 struct PeriodicBox;
 }
 
-namespace vtkMesoAtomTableConversion
-{
+namespace vtkMesoAtomTableConversion {
 
 /// Fills `output` with one vertex per atom, one line per bond and the named point arrays
 /// documented in vtkMesoStructureReader.h. Positions are multiplied by `length_scale`.
@@ -24,8 +22,10 @@ void ToPolyData(const mesolens::AtomTable& table, double length_scale, vtkPolyDa
 
 /// Replaces the points of an output built by ToPolyData with `positions` (3 floats per atom,
 /// Å) times `length_scale`, picking atoms `kept` (all atoms when empty).
-void SetPositions(const std::vector<float>& positions, const std::vector<std::size_t>& kept,
-  double length_scale, vtkPolyData* output);
+void SetPositions(const std::vector<float>& positions,
+                  const std::vector<std::size_t>& kept,
+                  double length_scale,
+                  vtkPolyData* output);
 
 /// Adds (or replaces) the field-data array "PeriodicBoxVectors" (9 doubles, rows a, b, c, in
 /// output length units); removes it when the box is not set.

@@ -38,21 +38,21 @@ vtkMesoMeshReader::vtkMesoMeshReader()
   this->SetNumberOfInputPorts(0);
 }
 
-namespace
-{
+namespace {
 std::string extension_of(const std::string& path)
 {
   const auto dot = path.find_last_of('.');
   std::string extension = dot == std::string::npos ? std::string() : path.substr(dot + 1);
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) {
+    return static_cast<char>(std::tolower(c));
+  });
   return extension;
 }
 
 bool known_extension(const std::string& extension)
 {
-  return extension == "obj" || extension == "ply" || extension == "stl" ||
-    extension == "vtp" || extension == "off";
+  return extension == "obj" || extension == "ply" || extension == "stl" || extension == "vtp" ||
+    extension == "off";
 }
 
 /// Collects error events of an inner VTK reader so they can be reported as ours.
@@ -197,8 +197,9 @@ bool vtkMesoMeshReader::ReadWithVTK(const std::string& extension, vtkPolyData* o
   const bool updated = reader->GetExecutive()->Update() != 0;
   if (!updated || !errors.Message.empty())
   {
-    vtkErrorMacro("Cannot read " << this->FileName << ": "
-                                 << (errors.Message.empty() ? "the reader failed" : errors.Message));
+    vtkErrorMacro(
+      "Cannot read " << this->FileName << ": "
+                     << (errors.Message.empty() ? "the reader failed" : errors.Message));
     return false;
   }
   output->ShallowCopy(vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0)));
@@ -238,8 +239,9 @@ bool vtkMesoMeshReader::ReadOFF(vtkPolyData* output)
   return true;
 }
 
-int vtkMesoMeshReader::RequestData(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkMesoMeshReader::RequestData(vtkInformation*,
+                                   vtkInformationVector**,
+                                   vtkInformationVector* outputVector)
 {
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   output->Initialize();
@@ -264,8 +266,9 @@ int vtkMesoMeshReader::RequestData(
   const std::string extension = extension_of(this->FileName);
   if (!known_extension(extension))
   {
-    vtkErrorMacro("Cannot read " << this->FileName
-                                 << ": unknown mesh format (expected .obj, .ply, .stl, .vtp or .off)");
+    vtkErrorMacro(
+      "Cannot read " << this->FileName
+                     << ": unknown mesh format (expected .obj, .ply, .stl, .vtp or .off)");
     return 0;
   }
   vtkNew<vtkPolyData> mesh;

@@ -9,8 +9,8 @@
  * vtkMesoMeshReport can describe them. Polygons with more than three vertices are split into
  * triangles; vertices, lines and strips are dropped. Points with identical coordinates are
  * merged (vtkOBJReader splits them per face corner when the file has per-corner normals), so
- * the output has the file's topology; the point attributes of the first copy are kept. Coordinates are in the file's own unit (the mitochondrion meshes of the
- * test data are in µm).
+ * the output has the file's topology; the point attributes of the first copy are kept. Coordinates
+ * are in the file's own unit (the mitochondrion meshes of the test data are in µm).
  *
  * A missing, empty or unreadable file, or one without any polygon, gives a vtkErrorMacro
  * naming the file, an empty output and a failed update.

@@ -41,7 +41,8 @@ bool vtkMesoMeshReport::Analyze(vtkPolyData* mesh)
     this->NumberOfNonTriangleCells = leading_cells + mesh->GetNumberOfStrips();
     auto iterator = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
     vtkIdType cell = leading_cells;
-    for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell(), ++cell)
+    for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal();
+         iterator->GoToNextCell(), ++cell)
     {
       vtkIdType size = 0;
       const vtkIdType* ids = nullptr;
@@ -137,8 +138,9 @@ void vtkMesoMeshReport::AddResultsTo(vtkPolyData* output) const
   }
 }
 
-int vtkMesoMeshReport::RequestData(
-  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+int vtkMesoMeshReport::RequestData(vtkInformation*,
+                                   vtkInformationVector** inputVector,
+                                   vtkInformationVector* outputVector)
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
@@ -159,8 +161,9 @@ void vtkMesoMeshReport::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfBoundaryLoops: " << this->NumberOfBoundaryLoops << "\n";
   os << indent << "NumberOfNonManifoldEdges: " << this->NumberOfNonManifoldEdges << "\n";
   os << indent << "NumberOfNonManifoldVertices: " << this->NumberOfNonManifoldVertices << "\n";
-  os << indent << "NumberOfInconsistentlyOrientedEdges: "
-     << this->NumberOfInconsistentlyOrientedEdges << "\n";
+  os << indent
+     << "NumberOfInconsistentlyOrientedEdges: " << this->NumberOfInconsistentlyOrientedEdges
+     << "\n";
   os << indent << "NumberOfDegenerateTriangles: " << this->NumberOfDegenerateTriangles << "\n";
   os << indent << "NumberOfUnreferencedVertices: " << this->NumberOfUnreferencedVertices << "\n";
   os << indent << "NumberOfComponents: " << this->NumberOfComponents << "\n";

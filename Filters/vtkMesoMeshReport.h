@@ -58,7 +58,10 @@ public:
   vtkGetMacro(IsClosedManifold, bool);
 
   /// The defects of the last mesh, one per line ("4 boundary edges in 1 loops"); "" if clean.
-  const char* GetDefectsDescription() { return this->DefectsDescription.c_str(); }
+  const char* GetDefectsDescription()
+  {
+    return this->DefectsDescription.c_str();
+  }
 
 protected:
   vtkMesoMeshReport() = default;
@@ -88,8 +91,8 @@ private:
   bool IsManifold = false;
   bool IsClosedManifold = false;
   std::string DefectsDescription;
-  std::vector<unsigned char> DegenerateFlags;    // per cell of the analysed mesh
-  std::vector<unsigned char> NonManifoldFlags;   // per point
+  std::vector<unsigned char> DegenerateFlags;  // per cell of the analysed mesh
+  std::vector<unsigned char> NonManifoldFlags; // per point
 };
 
 #endif

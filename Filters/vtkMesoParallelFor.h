@@ -6,8 +6,7 @@
 
 #include "mesolens/parallel_for.h"
 
-namespace vtkMesoParallelFor
-{
+namespace vtkMesoParallelFor {
 /// A mesolens::ParallelFor running its ranges through vtkSMPTools::For.
 mesolens::ParallelFor Get();
 }

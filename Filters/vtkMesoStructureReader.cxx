@@ -37,12 +37,12 @@ vtkMesoStructureReader::vtkMesoStructureReader()
 
 vtkMesoStructureReader::~vtkMesoStructureReader() = default;
 
-namespace
-{
+namespace {
 std::string lower_case(std::string text)
 {
-  std::transform(text.begin(), text.end(), text.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) {
+    return static_cast<char>(std::tolower(c));
+  });
   return text;
 }
 
@@ -141,8 +141,9 @@ bool vtkMesoStructureReader::ReadIfNeeded()
   return true;
 }
 
-int vtkMesoStructureReader::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkMesoStructureReader::RequestInformation(vtkInformation*,
+                                               vtkInformationVector**,
+                                               vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
@@ -164,16 +165,17 @@ int vtkMesoStructureReader::RequestInformation(
     {
       steps[m] = static_cast<double>(m);
     }
-    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), steps.data(),
-      static_cast<int>(models));
+    outInfo->Set(
+      vtkStreamingDemandDrivenPipeline::TIME_STEPS(), steps.data(), static_cast<int>(models));
     const double range[2] = { 0.0, static_cast<double>(models - 1) };
     outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
   }
   return 1;
 }
 
-int vtkMesoStructureReader::RequestData(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkMesoStructureReader::RequestData(vtkInformation*,
+                                        vtkInformationVector**,
+                                        vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outInfo);

@@ -33,11 +33,11 @@ struct vtkMesoTrajectoryReader::State
 {
   bool Valid = false;
   vtkMTimeType OpenTime = 0;
-  mesolens::AtomTable Topology;               // every atom, with molecules and bonds
-  std::vector<std::size_t> KeptAtoms;         // output atoms (empty: all)
-  vtkSmartPointer<vtkPolyData> Template;      // output arrays, built once
+  mesolens::AtomTable Topology;                   // every atom, with molecules and bonds
+  std::vector<std::size_t> KeptAtoms;             // output atoms (empty: all)
+  vtkSmartPointer<vtkPolyData> Template;          // output arrays, built once
   std::unique_ptr<mesolens::TrajectoryFile> File; // null: the topology is the only frame
-  std::vector<double> Times;                  // ps
+  std::vector<double> Times;                      // ps
   std::unique_ptr<mesolens::MoleculeContinuity> Continuity;
 };
 
@@ -49,19 +49,20 @@ vtkMesoTrajectoryReader::vtkMesoTrajectoryReader()
 
 vtkMesoTrajectoryReader::~vtkMesoTrajectoryReader() = default;
 
-namespace
-{
+namespace {
 std::string extension_of(const std::string& path)
 {
   const auto dot = path.find_last_of('.');
   std::string extension = dot == std::string::npos ? std::string() : path.substr(dot + 1);
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) {
+    return static_cast<char>(std::tolower(c));
+  });
   return extension;
 }
 
 /// Names, residues and connectivity of the topology; bonds are perceived on whole molecules.
-mesolens::AtomTable load_topology(const std::string& path, const mesolens::StructureReadParams& params)
+mesolens::AtomTable load_topology(const std::string& path,
+                                  const mesolens::StructureReadParams& params)
 {
   mesolens::AtomTable table;
   std::vector<mesolens::Bond> explicit_bonds;
@@ -132,11 +133,10 @@ bool vtkMesoTrajectoryReader::OpenIfNeeded()
       state.File = std::make_unique<mesolens::TrajectoryFile>(trajectory, incomplete);
       if (state.File->atom_count() != state.Topology.size())
       {
-        vtkErrorMacro("Atom count mismatch: trajectory " << trajectory << " has "
-                                                         << state.File->atom_count()
-                                                         << " atoms per frame but topology "
-                                                         << this->TopologyFileName << " has "
-                                                         << state.Topology.size() << " atoms.");
+        vtkErrorMacro("Atom count mismatch: trajectory "
+                      << trajectory << " has " << state.File->atom_count()
+                      << " atoms per frame but topology " << this->TopologyFileName << " has "
+                      << state.Topology.size() << " atoms.");
         state = State{};
         return false;
       }
@@ -193,8 +193,9 @@ std::size_t vtkMesoTrajectoryReader::FrameForTime(double time) const
   return after == times.begin() ? 0 : static_cast<std::size_t>(after - times.begin() - 1);
 }
 
-int vtkMesoTrajectoryReader::RequestInformation(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkMesoTrajectoryReader::RequestInformation(vtkInformation*,
+                                                vtkInformationVector**,
+                                                vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
@@ -208,15 +209,16 @@ int vtkMesoTrajectoryReader::RequestInformation(
     return 0;
   }
   const std::vector<double>& times = this->Internal->Times;
-  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(),
-    static_cast<int>(times.size()));
+  outInfo->Set(
+    vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
   const double range[2] = { times.front(), times.back() };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
   return 1;
 }
 
-int vtkMesoTrajectoryReader::RequestData(
-  vtkInformation*, vtkInformationVector**, vtkInformationVector* outputVector)
+int vtkMesoTrajectoryReader::RequestData(vtkInformation*,
+                                         vtkInformationVector**,
+                                         vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outInfo);
@@ -280,8 +282,10 @@ int vtkMesoTrajectoryReader::RequestData(
       frame.box = state.Topology.box;
       if (this->MakeMoleculesWhole)
       {
-        mesolens::make_molecules_whole(frame.positions.data(), state.Topology.molecule_ids.data(),
-          state.Topology.size(), frame.box);
+        mesolens::make_molecules_whole(frame.positions.data(),
+                                       state.Topology.molecule_ids.data(),
+                                       state.Topology.size(),
+                                       frame.box);
       }
     }
   }
@@ -323,8 +327,9 @@ vtkIdType vtkMesoTrajectoryReader::GetNumberOfTopologyAtoms()
 void vtkMesoTrajectoryReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
-  os << indent << "TopologyFileName: "
-     << (this->TopologyFileName.empty() ? "(none)" : this->TopologyFileName) << "\n";
+  os << indent
+     << "TopologyFileName: " << (this->TopologyFileName.empty() ? "(none)" : this->TopologyFileName)
+     << "\n";
   os << indent << "TrajectoryFileName: "
      << (this->TrajectoryFileName.empty() ? "(none)" : this->TrajectoryFileName) << "\n";
   os << indent << "LengthUnit: " << (this->LengthUnit == NANOMETER ? "nm" : "Angstrom") << "\n";

@@ -68,8 +68,14 @@ public:
   /// Output length unit. Default: ANGSTROM (GROMACS' nm are multiplied by 10).
   vtkSetClampMacro(LengthUnit, int, ANGSTROM, NANOMETER);
   vtkGetMacro(LengthUnit, int);
-  void SetLengthUnitToAngstrom() { this->SetLengthUnit(ANGSTROM); }
-  void SetLengthUnitToNanometer() { this->SetLengthUnit(NANOMETER); }
+  void SetLengthUnitToAngstrom()
+  {
+    this->SetLengthUnit(ANGSTROM);
+  }
+  void SetLengthUnitToNanometer()
+  {
+    this->SetLengthUnit(NANOMETER);
+  }
   ///@}
 
   ///@{

@@ -9,8 +9,7 @@
 #include <string>
 #include <unordered_map>
 
-namespace mesolens
-{
+namespace mesolens {
 
 void AtomTable::reserve(std::size_t count)
 {
@@ -54,9 +53,8 @@ void AtomTable::append_atom(const std::string& name, float x, float y, float z)
   this->molecule_ids.push_back(0);
 }
 
-namespace
-{
-template <typename T>
+namespace {
+template<typename T>
 void keep_entries(std::vector<T>& values, const std::vector<bool>& keep, std::size_t stride = 1)
 {
   std::size_t out = 0;
@@ -99,7 +97,7 @@ void AtomTable::filter(const std::vector<bool>& keep)
   if (keep.size() != this->size())
   {
     throw InvalidInput("AtomTable::filter: mask has " + std::to_string(keep.size()) +
-      " entries for " + std::to_string(this->size()) + " atoms");
+                       " entries for " + std::to_string(this->size()) + " atoms");
   }
   std::vector<std::int64_t> new_index(keep.size(), -1);
   std::int64_t next = 0;
@@ -147,14 +145,23 @@ void AtomTable::check_consistent() const
 {
   const std::size_t n = this->size();
   const std::array<std::size_t, 16> sizes = { this->positions.size() / 3,
-    this->atomic_numbers.size(), this->residue_names.size(), this->residue_numbers.size(),
-    this->insertion_codes.size(), this->chain_ids.size(), this->alt_locs.size(),
-    this->occupancies.size(), this->b_factors.size(), this->is_hetero.size(),
-    this->serials.size(), this->formal_charges.size(), this->secondary_structure.size(),
-    this->secondary_structure_ids.size(), this->residue_indices.size(),
-    this->molecule_ids.size() };
+                                              this->atomic_numbers.size(),
+                                              this->residue_names.size(),
+                                              this->residue_numbers.size(),
+                                              this->insertion_codes.size(),
+                                              this->chain_ids.size(),
+                                              this->alt_locs.size(),
+                                              this->occupancies.size(),
+                                              this->b_factors.size(),
+                                              this->is_hetero.size(),
+                                              this->serials.size(),
+                                              this->formal_charges.size(),
+                                              this->secondary_structure.size(),
+                                              this->secondary_structure_ids.size(),
+                                              this->residue_indices.size(),
+                                              this->molecule_ids.size() };
   if (this->positions.size() % 3 != 0 ||
-    std::any_of(sizes.begin(), sizes.end(), [n](std::size_t s) { return s != n; }))
+      std::any_of(sizes.begin(), sizes.end(), [n](std::size_t s) { return s != n; }))
   {
     throw InvalidInput("AtomTable: per-atom arrays disagree on the number of atoms");
   }
@@ -163,18 +170,20 @@ void AtomTable::check_consistent() const
     if (bond.first >= n || bond.second >= n || bond.first >= bond.second)
     {
       throw InvalidInput("AtomTable: bond (" + std::to_string(bond.first) + ", " +
-        std::to_string(bond.second) + ") is out of range or not ordered");
+                         std::to_string(bond.second) + ") is out of range or not ordered");
     }
   }
 }
 
 bool is_water_residue(const std::string& residue_name)
 {
-  static const std::array<const char*, 14> names = { "HOH", "WAT", "SOL", "H2O", "DOD", "TIP3",
-    "TIP4", "TIP5", "TP3", "SPC", "SPCE", "T3P", "W", "PW" };
+  static const std::array<const char*, 14> names = { "HOH",  "WAT",  "SOL",  "H2O", "DOD",
+                                                     "TIP3", "TIP4", "TIP5", "TP3", "SPC",
+                                                     "SPCE", "T3P",  "W",    "PW" };
   std::string upper = residue_name;
-  std::transform(upper.begin(), upper.end(), upper.begin(),
-    [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) {
+    return static_cast<char>(std::toupper(c));
+  });
   return std::any_of(
     names.begin(), names.end(), [&upper](const char* name) { return upper == name; });
 }

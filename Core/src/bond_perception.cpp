@@ -13,11 +13,9 @@
 #include <unordered_map>
 #include <vector>
 
-namespace mesolens
-{
+namespace mesolens {
 
-namespace
-{
+namespace {
 
 /// Atoms binned in a uniform grid by a counting sort: cell c holds the sorted atoms
 /// [Start[c], Start[c + 1]). Coordinates are copied in sorted order for cache-friendly scans.
@@ -26,14 +24,17 @@ class UniformGrid
 public:
   /// Bins the atoms i < count with include[i] != 0 (all atoms when include is empty) and
   /// finite coordinates.
-  UniformGrid(const float* positions, std::size_t count, double cell_size,
-    const std::vector<std::uint8_t>& include = {})
+  UniformGrid(const float* positions,
+              std::size_t count,
+              double cell_size,
+              const std::vector<std::uint8_t>& include = {})
   {
     auto wanted = [&](std::size_t i) {
       return (include.empty() || include[i] != 0) && finite_atom(positions, i);
     };
     std::array<double, 3> low{ std::numeric_limits<double>::max(),
-      std::numeric_limits<double>::max(), std::numeric_limits<double>::max() };
+                               std::numeric_limits<double>::max(),
+                               std::numeric_limits<double>::max() };
     std::array<double, 3> high{ -low[0], -low[1], -low[2] };
     for (std::size_t i = 0; i < count; ++i)
     {
@@ -107,23 +108,28 @@ public:
   /// in slot order, so the half shell is five contiguous slot ranges: the rest of this cell and
   /// the next one in the row, then three cells in each of the rows (y+1, z), (y-1, z+1),
   /// (y, z+1) and (y+1, z+1).
-  template <typename Visit>
+  template<typename Visit>
   void for_each_close_pair(Visit&& visit) const
   {
     this->for_each_close_pair(0, std::size_t(this->Dims[2]), visit);
   }
 
   /// Number of grid planes (z layers of cells).
-  std::size_t plane_count() const { return std::size_t(this->Dims[2]); }
+  std::size_t plane_count() const
+  {
+    return std::size_t(this->Dims[2]);
+  }
 
   /// for_each_close_pair() restricted to the cells of planes [first_plane, end_plane).
-  template <typename Visit>
+  template<typename Visit>
   void for_each_close_pair(std::size_t first_plane, std::size_t end_plane, Visit&& visit) const
   {
     const std::int64_t dx = this->Dims[0];
     const std::int64_t dy = this->Dims[1];
     const std::int64_t dz = this->Dims[2];
-    static const std::array<std::array<int, 2>, 4> rows = { { { 1, 0 }, { -1, 1 }, { 0, 1 }, { 1, 1 } } };
+    static const std::array<std::array<int, 2>, 4> rows = {
+      { { 1, 0 }, { -1, 1 }, { 0, 1 }, { 1, 1 } }
+    };
     for (std::int64_t z = std::int64_t(first_plane); z < std::int64_t(end_plane); ++z)
     {
       for (std::int64_t y = 0; y < dy; ++y)
@@ -174,10 +180,16 @@ public:
   }
 
   /// Number of sorted slots (atoms with finite coordinates).
-  std::size_t slot_count() const { return this->Atoms.size(); }
+  std::size_t slot_count() const
+  {
+    return this->Atoms.size();
+  }
 
   /// Original atom index of a sorted slot.
-  std::uint32_t atom(std::size_t slot) const { return this->Atoms[slot]; }
+  std::uint32_t atom(std::size_t slot) const
+  {
+    return this->Atoms[slot];
+  }
 
   /// Squared distance between two sorted slots.
   float squared_distance(std::size_t k, std::size_t l) const
@@ -233,8 +245,7 @@ std::vector<Bond> sorted_bonds(const std::vector<Bond>& bonds, std::size_t atom_
 
 void check_input(const BondPerceptionInput& input)
 {
-  if (input.atom_count > 0 &&
-    (!input.positions || !input.atomic_numbers || !input.molecule_ids))
+  if (input.atom_count > 0 && (!input.positions || !input.atomic_numbers || !input.molecule_ids))
   {
     throw InvalidInput("bond perception needs positions, atomic numbers and molecule ids");
   }
@@ -247,18 +258,19 @@ void check_input(const BondPerceptionInput& input)
 } // namespace
 
 std::vector<Bond> perceive_bonds(const BondPerceptionInput& input,
-  const BondPerceptionParams& params, const ParallelFor& parallel_for)
+                                 const BondPerceptionParams& params,
+                                 const ParallelFor& parallel_for)
 {
   check_input(input);
   if (!(params.tolerance >= 0.0f && params.tolerance <= 1.0f))
   {
     throw InvalidInput("bond tolerance must lie in [0, 1] Å, got " +
-      std::to_string(params.tolerance));
+                       std::to_string(params.tolerance));
   }
   if (!(params.bead_cutoff > 0.0f && params.bead_cutoff <= 10.0f))
   {
     throw InvalidInput("bead cutoff must lie in (0, 10] Å, got " +
-      std::to_string(params.bead_cutoff));
+                       std::to_string(params.bead_cutoff));
   }
   const std::size_t n = input.atom_count;
   // Atoms alone in their molecule (ions, crystal waters) cannot bond: leave them out of the grid
@@ -312,7 +324,7 @@ std::vector<Bond> perceive_bonds(const BondPerceptionInput& input,
       std::vector<Bond>& found = plane_bonds[plane];
       grid.for_each_close_pair(plane, plane + 1, [&](std::size_t k, std::size_t l) {
         if (slot_molecule[k] != slot_molecule[l] ||
-          (slot_alt[k] != ' ' && slot_alt[l] != ' ' && slot_alt[k] != slot_alt[l]))
+            (slot_alt[k] != ' ' && slot_alt[l] != ' ' && slot_alt[k] != slot_alt[l]))
         {
           return;
         }
@@ -337,7 +349,8 @@ std::vector<Bond> perceive_bonds(const BondPerceptionInput& input,
   return sorted_bonds(bonds, n);
 }
 
-bool looks_coarse_grained(const BondPerceptionInput& input, const std::vector<Bond>& atomistic_bonds)
+bool looks_coarse_grained(const BondPerceptionInput& input,
+                          const std::vector<Bond>& atomistic_bonds)
 {
   check_input(input);
   const std::size_t n = input.atom_count;

@@ -7,11 +7,9 @@
 #include <cctype>
 #include <string>
 
-namespace mesolens
-{
+namespace mesolens {
 
-namespace
-{
+namespace {
 gemmi::El as_gemmi(int atomic_number)
 {
   if (atomic_number < 0 || atomic_number > max_atomic_number)
@@ -76,8 +74,14 @@ int guess_atomic_number(const std::string& atom_name, const std::string& residue
     const char* name;
     int atomic_number;
   };
-  static const std::array<IonName, 8> charmm_ions = { { { "SOD", 11 }, { "POT", 19 },
-    { "CLA", 17 }, { "CAL", 20 }, { "CES", 55 }, { "LIT", 3 }, { "RUB", 37 }, { "ZN2", 30 } } };
+  static const std::array<IonName, 8> charmm_ions = { { { "SOD", 11 },
+                                                        { "POT", 19 },
+                                                        { "CLA", 17 },
+                                                        { "CAL", 20 },
+                                                        { "CES", 55 },
+                                                        { "LIT", 3 },
+                                                        { "RUB", 37 },
+                                                        { "ZN2", 30 } } };
   for (const IonName& ion : charmm_ions)
   {
     if (name == ion.name)

@@ -6,10 +6,8 @@
 #include <fstream>
 #include <sys/stat.h>
 
-namespace mesolens
-{
-namespace detail
-{
+namespace mesolens {
+namespace detail {
 
 void require_readable_file(const std::string& path)
 {

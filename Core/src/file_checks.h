@@ -4,10 +4,8 @@
 
 #include <string>
 
-namespace mesolens
-{
-namespace detail
-{
+namespace mesolens {
+namespace detail {
 
 /// Throws FileError unless `path` is a readable, non-empty regular file.
 void require_readable_file(const std::string& path);

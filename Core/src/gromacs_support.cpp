@@ -5,13 +5,10 @@
 
 #include <mutex>
 
-namespace mesolens
-{
-namespace detail
-{
+namespace mesolens {
+namespace detail {
 
-namespace
-{
+namespace {
 void throw_gromacs_error(const char* title, const std::string& message, const char*, int)
 {
   std::string text = message;

@@ -12,13 +12,11 @@ struct t_fileio;
 // they link, so a GROMACS that drops them fails at configure time, not at run time.
 std::int64_t gmx_fio_ftell(t_fileio* fio);
 int gmx_fio_seek(t_fileio* fio, std::int64_t offset);
-void gmx_set_error_handler(void (*handler)(const char* title, const std::string& message,
-  const char* file, int line));
+void gmx_set_error_handler(
+  void (*handler)(const char* title, const std::string& message, const char* file, int line));
 
-namespace mesolens
-{
-namespace detail
-{
+namespace mesolens {
+namespace detail {
 
 /// GROMACS ends the process on a fatal error (bad magic number, malformed line). This installs,
 /// once per process, a handler that throws mesolens::FileError instead, so a bad file becomes

@@ -8,11 +8,9 @@
 #include <sstream>
 #include <unordered_map>
 
-namespace mesolens
-{
+namespace mesolens {
 
-namespace
-{
+namespace {
 class DisjointSets
 {
 public:
@@ -30,7 +28,10 @@ public:
     }
     return x;
   }
-  void unite(std::size_t a, std::size_t b) { this->Parent[this->find(a)] = this->find(b); }
+  void unite(std::size_t a, std::size_t b)
+  {
+    this->Parent[this->find(a)] = this->find(b);
+  }
 
 private:
   std::vector<std::size_t> Parent;
@@ -49,8 +50,9 @@ double triangle_area(const double* p, const double* q, const double* r)
 {
   const std::array<double, 3> u{ q[0] - p[0], q[1] - p[1], q[2] - p[2] };
   const std::array<double, 3> v{ r[0] - p[0], r[1] - p[1], r[2] - p[2] };
-  const std::array<double, 3> c{ u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-    u[0] * v[1] - u[1] * v[0] };
+  const std::array<double, 3> c{ u[1] * v[2] - u[2] * v[1],
+                                 u[2] * v[0] - u[0] * v[2],
+                                 u[0] * v[1] - u[1] * v[0] };
   return 0.5 * std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
 }
 
@@ -62,9 +64,8 @@ bool finite_point(const double* p)
 
 bool MeshReport::is_manifold() const
 {
-  return this->triangles > 0 && this->non_manifold_edges == 0 &&
-    this->non_manifold_vertices == 0 && this->degenerate_triangles == 0 &&
-    this->invalid_triangles == 0;
+  return this->triangles > 0 && this->non_manifold_edges == 0 && this->non_manifold_vertices == 0 &&
+    this->degenerate_triangles == 0 && this->invalid_triangles == 0;
 }
 
 bool MeshReport::is_closed_manifold() const
@@ -93,8 +94,7 @@ std::string MeshReport::describe_defects() const
   line(this->inconsistently_oriented_edges, "inconsistently oriented edges");
   if (this->boundary_edges > 0)
   {
-    text << this->boundary_edges << " boundary edges in " << this->boundary_loops
-         << " loops\n";
+    text << this->boundary_edges << " boundary edges in " << this->boundary_loops << " loops\n";
   }
   line(this->unreferenced_vertices, "unreferenced vertices");
   if (this->components > 1)
@@ -122,7 +122,7 @@ MeshReport mesh_report(const TriangleMeshView& mesh, double area_epsilon)
     for (int k = 0; k < 3; ++k)
     {
       if (tri[k] < 0 || std::size_t(tri[k]) >= mesh.point_count ||
-        !finite_point(mesh.points + 3 * tri[k]))
+          !finite_point(mesh.points + 3 * tri[k]))
       {
         valid[t] = false;
       }
@@ -137,9 +137,8 @@ MeshReport mesh_report(const TriangleMeshView& mesh, double area_epsilon)
     {
       const double* p = mesh.points + 3 * tri[k];
       const double* q = mesh.points + 3 * tri[(k + 1) % 3];
-      edge_length_sum +=
-        std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
-          (p[2] - q[2]) * (p[2] - q[2]));
+      edge_length_sum += std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                                   (p[2] - q[2]) * (p[2] - q[2]));
       ++edge_length_count;
     }
   }
@@ -160,8 +159,9 @@ MeshReport mesh_report(const TriangleMeshView& mesh, double area_epsilon)
     const std::int64_t* tri = mesh.triangles + 3 * t;
     const bool repeated = tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2];
     if (repeated ||
-      triangle_area(mesh.points + 3 * tri[0], mesh.points + 3 * tri[1], mesh.points + 3 * tri[2]) <=
-        area_threshold)
+        triangle_area(mesh.points + 3 * tri[0],
+                      mesh.points + 3 * tri[1],
+                      mesh.points + 3 * tri[2]) <= area_threshold)
     {
       ++report.degenerate_triangles;
       report.triangle_is_degenerate[t] = 1;
@@ -178,7 +178,8 @@ MeshReport mesh_report(const TriangleMeshView& mesh, double area_epsilon)
     }
   }
   std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
-    return x.low != y.low ? x.low < y.low : (x.high != y.high ? x.high < y.high : x.triangle < y.triangle);
+    return x.low != y.low ? x.low < y.low
+                          : (x.high != y.high ? x.high < y.high : x.triangle < y.triangle);
   });
 
   DisjointSets triangle_sets(mesh.triangle_count);
@@ -222,8 +223,10 @@ MeshReport mesh_report(const TriangleMeshView& mesh, double area_epsilon)
         ++report.inconsistently_oriented_edges;
       }
       triangle_sets.unite(uses[i].triangle, uses[i + 1].triangle);
-      corner_sets.unite(corner(uses[i].low, uses[i].triangle), corner(uses[i].low, uses[i + 1].triangle));
-      corner_sets.unite(corner(uses[i].high, uses[i].triangle), corner(uses[i].high, uses[i + 1].triangle));
+      corner_sets.unite(corner(uses[i].low, uses[i].triangle),
+                        corner(uses[i].low, uses[i + 1].triangle));
+      corner_sets.unite(corner(uses[i].high, uses[i].triangle),
+                        corner(uses[i].high, uses[i + 1].triangle));
     }
     else
     {
@@ -278,8 +281,7 @@ MeshReport mesh_report(const TriangleMeshView& mesh, double area_epsilon)
   {
     report.components += (valid[t] && triangle_sets.find(t) == t) ? 1 : 0;
   }
-  report.euler_characteristic =
-    long(referenced_count) - long(report.edges) + long(valid_triangles);
+  report.euler_characteristic = long(referenced_count) - long(report.edges) + long(valid_triangles);
   return report;
 }
 

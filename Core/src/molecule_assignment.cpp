@@ -8,17 +8,16 @@
 #include <string>
 #include <unordered_map>
 
-namespace mesolens
-{
+namespace mesolens {
 
-namespace
-{
+namespace {
 // Protonation-state and force-field variants that the PDB chemical component table lacks.
 bool is_force_field_amino_acid(const std::string& name)
 {
-  static const std::array<const char*, 22> variants = { "HSD", "HSE", "HSP", "HID", "HIE",
-    "HIP", "HISD", "HISE", "HISH", "HISA", "HISB", "CYX", "CYM", "CYS2", "LYN", "LYSH", "ASH",
-    "ASPH", "GLH", "GLUH", "ARGN", "NME" };
+  static const std::array<const char*, 22> variants = {
+    "HSD", "HSE", "HSP",  "HID", "HIE",  "HIP", "HISD", "HISE", "HISH", "HISA", "HISB",
+    "CYX", "CYM", "CYS2", "LYN", "LYSH", "ASH", "ASPH", "GLH",  "GLUH", "ARGN", "NME"
+  };
   for (const char* variant : variants)
   {
     if (name == variant)
@@ -100,8 +99,10 @@ double periodic_distance(const AtomTable& table, long a, long b)
 }
 
 /// True when the residues are chemically linked along the backbone.
-bool backbone_linked(
-  const AtomTable& table, const ResidueSpan& previous, const ResidueSpan& next, PolymerKind kind)
+bool backbone_linked(const AtomTable& table,
+                     const ResidueSpan& previous,
+                     const ResidueSpan& next,
+                     PolymerKind kind)
 {
   struct LinkRule
   {
@@ -109,11 +110,14 @@ bool backbone_linked(
     const char* to;
     double max_distance; // Å
   };
-  static const std::array<LinkRule, 3> protein_links = { { { "C", "N", 2.0 },
-    { "CA", "CA", 4.3 }, { "BB", "BB", 5.0 } } };
-  static const std::array<LinkRule, 4> nucleic_links = { { { "O3'", "P", 2.0 },
-    { "O3*", "P", 2.0 }, { "P", "P", 8.0 }, { "BB1", "BB1", 8.0 } } };
-  const LinkRule* rules = kind == PolymerKind::Protein ? protein_links.data() : nucleic_links.data();
+  static const std::array<LinkRule, 3> protein_links = {
+    { { "C", "N", 2.0 }, { "CA", "CA", 4.3 }, { "BB", "BB", 5.0 } }
+  };
+  static const std::array<LinkRule, 4> nucleic_links = {
+    { { "O3'", "P", 2.0 }, { "O3*", "P", 2.0 }, { "P", "P", 8.0 }, { "BB1", "BB1", 8.0 } }
+  };
+  const LinkRule* rules =
+    kind == PolymerKind::Protein ? protein_links.data() : nucleic_links.data();
   const std::size_t rule_count =
     kind == PolymerKind::Protein ? protein_links.size() : nucleic_links.size();
   for (std::size_t r = 0; r < rule_count; ++r)

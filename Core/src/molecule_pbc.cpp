@@ -9,11 +9,9 @@
 #include <cmath>
 #include <unordered_map>
 
-namespace mesolens
-{
+namespace mesolens {
 
-namespace
-{
+namespace {
 Eigen::Matrix3d box_columns(const PeriodicBox& box)
 {
   Eigen::Matrix3d m;
@@ -42,8 +40,10 @@ int molecule_count(const std::vector<int>& molecule_ids)
 }
 } // namespace
 
-void make_molecules_whole(
-  float* positions, const int* molecule_ids, std::size_t atom_count, const PeriodicBox& box)
+void make_molecules_whole(float* positions,
+                          const int* molecule_ids,
+                          std::size_t atom_count,
+                          const PeriodicBox& box)
 {
   if (!box.is_set() || atom_count == 0)
   {
@@ -59,8 +59,8 @@ void make_molecules_whole(
       const std::size_t j = found->second;
       float* p = positions + 3 * i;
       const float* q = positions + 3 * j;
-      const std::array<double, 3> d = box.minimum_image(
-        { double(p[0]) - q[0], double(p[1]) - q[1], double(p[2]) - q[2] });
+      const std::array<double, 3> d =
+        box.minimum_image({ double(p[0]) - q[0], double(p[1]) - q[1], double(p[2]) - q[2] });
       for (int k = 0; k < 3; ++k)
       {
         p[k] = float(double(q[k]) + d[std::size_t(k)]);
@@ -108,7 +108,8 @@ void MoleculeContinuity::add_frame(std::size_t frame, float* positions, const Pe
   if (frame != this->Shifts.size())
   {
     throw InvalidInput("MoleculeContinuity::add_frame: frames must be added in order (expected " +
-      std::to_string(this->Shifts.size()) + ", got " + std::to_string(frame) + ")");
+                       std::to_string(this->Shifts.size()) + ", got " + std::to_string(frame) +
+                       ")");
   }
   std::vector<std::int32_t> shifts(3 * std::size_t(this->MoleculeCount), 0);
   if (frame > 0 && box.is_set())
@@ -118,10 +119,9 @@ void MoleculeContinuity::add_frame(std::size_t frame, float* positions, const Pe
     const Eigen::PartialPivLU<Eigen::Matrix3d> lu(m);
     for (std::size_t mol = 0; mol < std::size_t(this->MoleculeCount); ++mol)
     {
-      const Eigen::Vector3d drift(
-        this->PreviousCentroids[3 * mol] - current[3 * mol],
-        this->PreviousCentroids[3 * mol + 1] - current[3 * mol + 1],
-        this->PreviousCentroids[3 * mol + 2] - current[3 * mol + 2]);
+      const Eigen::Vector3d drift(this->PreviousCentroids[3 * mol] - current[3 * mol],
+                                  this->PreviousCentroids[3 * mol + 1] - current[3 * mol + 1],
+                                  this->PreviousCentroids[3 * mol + 2] - current[3 * mol + 2]);
       const Eigen::Vector3d fractional = lu.solve(drift);
       for (int k = 0; k < 3; ++k)
       {
@@ -139,7 +139,7 @@ void MoleculeContinuity::apply(std::size_t frame, float* positions, const Period
   if (frame >= this->Shifts.size())
   {
     throw InvalidInput("MoleculeContinuity::apply: frame " + std::to_string(frame) +
-      " has not been added");
+                       " has not been added");
   }
   if (!box.is_set())
   {
@@ -154,7 +154,8 @@ void MoleculeContinuity::apply(std::size_t frame, float* positions, const Period
       double offset = 0;
       for (int v = 0; v < 3; ++v)
       {
-        offset += double(shifts[3 * mol + std::size_t(v)]) * box.vectors[std::size_t(v)][std::size_t(k)];
+        offset +=
+          double(shifts[3 * mol + std::size_t(v)]) * box.vectors[std::size_t(v)][std::size_t(k)];
       }
       positions[3 * i + std::size_t(k)] = float(positions[3 * i + std::size_t(k)] + offset);
     }

@@ -10,8 +10,7 @@
 #include <cmath>
 #include <sstream>
 
-namespace mesolens
-{
+namespace mesolens {
 
 PolygonSoup read_off(const std::string& path)
 {

@@ -6,11 +6,9 @@
 #include <cmath>
 #include <limits>
 
-namespace mesolens
-{
+namespace mesolens {
 
-namespace
-{
+namespace {
 Eigen::Matrix3d as_matrix(const PeriodicBox& box)
 {
   Eigen::Matrix3d m; // columns are a, b, c
@@ -90,8 +88,12 @@ std::array<double, 3> PeriodicBox::minimum_image(const std::array<double, 3>& d)
   return { best[0], best[1], best[2] };
 }
 
-PeriodicBox PeriodicBox::from_cell(
-  double a, double b, double c, double alpha, double beta, double gamma)
+PeriodicBox PeriodicBox::from_cell(double a,
+                                   double b,
+                                   double c,
+                                   double alpha,
+                                   double beta,
+                                   double gamma)
 {
   const double degree = std::acos(-1.0) / 180.0;
   const double cos_alpha = std::cos(alpha * degree);
@@ -102,9 +104,8 @@ PeriodicBox PeriodicBox::from_cell(
   box.vectors[0] = { a, 0, 0 };
   box.vectors[1] = { b * cos_gamma, b * sin_gamma, 0 };
   const double cx = c * cos_beta;
-  const double cy = std::abs(sin_gamma) > 1e-12
-    ? c * (cos_alpha - cos_beta * cos_gamma) / sin_gamma
-    : 0.0;
+  const double cy =
+    std::abs(sin_gamma) > 1e-12 ? c * (cos_alpha - cos_beta * cos_gamma) / sin_gamma : 0.0;
   const double cz2 = c * c - cx * cx - cy * cy;
   box.vectors[2] = { cx, cy, cz2 > 0 ? std::sqrt(cz2) : 0.0 };
   return box;

@@ -21,17 +21,16 @@
 #include <map>
 #include <unordered_map>
 
-namespace mesolens
-{
+namespace mesolens {
 
-namespace
-{
+namespace {
 
 bool ends_with(const std::string& text, const std::string& suffix)
 {
   return text.size() >= suffix.size() &&
-    std::equal(suffix.rbegin(), suffix.rend(), text.rbegin(),
-      [](char a, char b) { return std::tolower(a) == std::tolower(b); });
+    std::equal(suffix.rbegin(), suffix.rend(), text.rbegin(), [](char a, char b) {
+           return std::tolower(a) == std::tolower(b);
+         });
 }
 
 /// What the raw-text pass over a PDB file found.
@@ -99,8 +98,8 @@ bool is_number_field(const char* field, std::size_t width)
     else
     {
       const std::string word(field + first, std::min<std::size_t>(width - first, 4));
-      return word.rfind("nan", 0) == 0 || word.rfind("-nan", 0) == 0 ||
-        word.rfind("inf", 0) == 0 || word.rfind("-inf", 0) == 0;
+      return word.rfind("nan", 0) == 0 || word.rfind("-nan", 0) == 0 || word.rfind("inf", 0) == 0 ||
+        word.rfind("-inf", 0) == 0;
     }
   }
   while (i < width && field[i] == ' ')
@@ -153,21 +152,22 @@ ConectRecords scan_pdb_text(char* data, std::size_t size, const std::string& pat
       --length;
     }
     ++line_number;
-    const bool atom = length >= 6 &&
-      (std::strncmp(line, "ATOM  ", 6) == 0 || std::strncmp(line, "HETATM", 6) == 0);
+    const bool atom =
+      length >= 6 && (std::strncmp(line, "ATOM  ", 6) == 0 || std::strncmp(line, "HETATM", 6) == 0);
     if (atom && length < 54)
     {
       throw FileError(path + ": line " + std::to_string(line_number) + " is an " +
-        std::string(line, 6) + " record of " + std::to_string(length) +
-        " columns, too short to hold coordinates (54); the file looks truncated");
+                      std::string(line, 6) + " record of " + std::to_string(length) +
+                      " columns, too short to hold coordinates (54); the file looks truncated");
     }
     for (std::size_t column = 30; atom && column < 54; column += 8)
     {
       if (!is_number_field(line + column, 8))
       {
         throw FileError(path + ": line " + std::to_string(line_number) + " has '" +
-          std::string(line + column, 8) + "' in coordinate columns " +
-          std::to_string(column + 1) + "-" + std::to_string(column + 8) + ", not a number");
+                        std::string(line + column, 8) + "' in coordinate columns " +
+                        std::to_string(column + 1) + "-" + std::to_string(column + 8) +
+                        ", not a number");
       }
     }
     if (atom && blank_legacy_columns(line, length))
@@ -177,8 +177,9 @@ ConectRecords scan_pdb_text(char* data, std::size_t size, const std::string& pat
     if (atom)
     {
       ++records.atom_records;
-      if (length > 77 && (std::isalpha(static_cast<unsigned char>(line[76])) ||
-                           std::isalpha(static_cast<unsigned char>(line[77]))))
+      if (length > 77 &&
+          (std::isalpha(static_cast<unsigned char>(line[76])) ||
+           std::isalpha(static_cast<unsigned char>(line[77]))))
       {
         ++records.element_records;
       }
@@ -194,8 +195,9 @@ ConectRecords scan_pdb_text(char* data, std::size_t size, const std::string& pat
         char* parse_end = nullptr;
         const long value = std::strtol(text.c_str(), &parse_end, 10);
         if (parse_end == text.c_str() ||
-          std::any_of(static_cast<const char*>(parse_end), text.c_str() + text.size(),
-            [](char c) { return c != ' '; }))
+            std::any_of(static_cast<const char*>(parse_end),
+                        text.c_str() + text.size(),
+                        [](char c) { return c != ' '; }))
         {
           if (text.find_first_not_of(' ') != std::string::npos)
           {
@@ -270,8 +272,11 @@ public:
   }
 
   /// Marks residues from `start` to `end` (inclusive, in chain order).
-  void mark(AtomTable& table, const gemmi::AtomAddress& start, const gemmi::AtomAddress& end,
-    SecondaryStructure kind, int span_id) const
+  void mark(AtomTable& table,
+            const gemmi::AtomAddress& start,
+            const gemmi::AtomAddress& end,
+            SecondaryStructure kind,
+            int span_id) const
   {
     const auto chain = this->Positions.find(start.chain_name);
     if (chain == this->Positions.end())
@@ -281,7 +286,7 @@ public:
     const auto first = chain->second.find(key(start.res_id.seqid));
     const auto last = chain->second.find(key(end.res_id.seqid));
     if (first == chain->second.end() || last == chain->second.end() ||
-      first->second.first != last->second.first)
+        first->second.first != last->second.first)
     {
       return;
     }
@@ -303,17 +308,20 @@ private:
     return std::int64_t(number) * 256 + static_cast<unsigned char>(id.icode);
   }
   const std::vector<ChainResidues>& Chains;
-  std::unordered_map<std::string, std::unordered_map<std::int64_t, std::pair<std::size_t, std::size_t>>>
+  std::unordered_map<std::string,
+                     std::unordered_map<std::int64_t, std::pair<std::size_t, std::size_t>>>
     Positions;
 };
 
 /// Alternate-location mask: per residue the conformer with the highest summed occupancy; per
 /// atom name, that conformer's atom, or the best atom of the group when the conformer lacks it.
-void mark_alternate_locations(const AtomTable& table, const ResidueRange& range,
-  std::vector<bool>& keep)
+void mark_alternate_locations(const AtomTable& table,
+                              const ResidueRange& range,
+                              std::vector<bool>& keep)
 {
-  if (std::all_of(table.alt_locs.begin() + long(range.begin), table.alt_locs.begin() + long(range.end),
-        [](char c) { return c == ' '; }))
+  if (std::all_of(table.alt_locs.begin() + long(range.begin),
+                  table.alt_locs.begin() + long(range.end),
+                  [](char c) { return c == ' '; }))
   {
     return;
   }
@@ -388,8 +396,7 @@ AtomTable convert_model(const gemmi::Model& model, std::vector<ChainResidues>& c
       const std::size_t begin = table.size();
       for (const gemmi::Atom& atom : residue.atoms)
       {
-        table.append_atom(
-          atom.name, float(atom.pos.x), float(atom.pos.y), float(atom.pos.z));
+        table.append_atom(atom.name, float(atom.pos.x), float(atom.pos.y), float(atom.pos.z));
         std::uint8_t z = static_cast<std::uint8_t>(atom.element.elem);
         if (atom.element.elem == gemmi::El::D)
         {
@@ -413,9 +420,12 @@ AtomTable convert_model(const gemmi::Model& model, std::vector<ChainResidues>& c
   return table;
 }
 
-std::vector<Bond> explicit_bonds(const gemmi::Structure& structure, const gemmi::Model& model,
-  const std::vector<ChainResidues>& chains,
-  const AtomTable& table, const ConectRecords& conect, std::vector<std::string>& warnings)
+std::vector<Bond> explicit_bonds(const gemmi::Structure& structure,
+                                 const gemmi::Model& model,
+                                 const std::vector<ChainResidues>& chains,
+                                 const AtomTable& table,
+                                 const ConectRecords& conect,
+                                 std::vector<std::string>& warnings)
 {
   std::vector<Bond> bonds;
   auto add = [&bonds](std::size_t a, std::size_t b) {
@@ -445,20 +455,22 @@ std::vector<Bond> explicit_bonds(const gemmi::Structure& structure, const gemmi:
     }
     if (unresolved > 0)
     {
-      warnings.push_back(std::to_string(unresolved) +
+      warnings.push_back(
+        std::to_string(unresolved) +
         " CONECT entries name atom serials that are not in the file; they were ignored");
     }
   }
   if (conect.legacy_columns > 0)
   {
-    warnings.push_back(std::to_string(conect.legacy_columns) +
+    warnings.push_back(
+      std::to_string(conect.legacy_columns) +
       " atom records carry non-standard text in columns 77-80 (pre-remediation PDB format); "
       "their elements were inferred from the atom names");
   }
   if (conect.unreadable_fields > 0)
   {
     warnings.push_back(std::to_string(conect.unreadable_fields) +
-      " CONECT fields are not numbers (e.g. ***** serials); they were ignored");
+                       " CONECT fields are not numbers (e.g. ***** serials); they were ignored");
   }
   // Table index of each residue's first atom, to turn gemmi atom pointers into indices.
   std::unordered_map<const gemmi::Residue*, std::size_t> first_atom_of;
@@ -475,7 +487,7 @@ std::vector<Bond> explicit_bonds(const gemmi::Structure& structure, const gemmi:
   for (const gemmi::Connection& connection : structure.connections)
   {
     if (connection.type == gemmi::Connection::Hydrog ||
-      connection.type == gemmi::Connection::MetalC)
+        connection.type == gemmi::Connection::MetalC)
     {
       continue;
     }
@@ -490,7 +502,7 @@ std::vector<Bond> explicit_bonds(const gemmi::Structure& structure, const gemmi:
     if (ia != first_atom_of.end() && ib != first_atom_of.end())
     {
       add(ia->second + std::size_t(a.atom - a.residue->atoms.data()),
-        ib->second + std::size_t(b.atom - b.residue->atoms.data()));
+          ib->second + std::size_t(b.atom - b.residue->atoms.data()));
     }
   }
   std::sort(bonds.begin(), bonds.end());
@@ -507,8 +519,9 @@ void check_finite(const AtomTable& table, const std::string& path)
       if (!std::isfinite(table.positions[3 * i + std::size_t(d)]))
       {
         throw InvalidInput(path + ": atom " + std::to_string(table.serials[i]) + " (" +
-          table.atom_names[i] + " of " + table.residue_names[i] + " " +
-          std::to_string(table.residue_numbers[i]) + ") has a non-finite coordinate");
+                           table.atom_names[i] + " of " + table.residue_names[i] + " " +
+                           std::to_string(table.residue_numbers[i]) +
+                           ") has a non-finite coordinate");
       }
     }
   }
@@ -537,8 +550,8 @@ gemmi::Structure parse_with_gemmi(const std::string& path, ConectRecords& conect
     }
     if (format == gemmi::CoorFormat::Mmcif)
     {
-      return gemmi::make_structure(gemmi::cif::read_memory(buffer.data(), buffer.size(),
-        path.c_str()));
+      return gemmi::make_structure(
+        gemmi::cif::read_memory(buffer.data(), buffer.size(), path.c_str()));
     }
     throw FileError(path + ": neither a PDB nor an mmCIF file");
   }
@@ -553,7 +566,8 @@ gemmi::Structure parse_with_gemmi(const std::string& path, ConectRecords& conect
 }
 
 std::vector<bool> selection_mask(const AtomTable& table,
-  const std::vector<ChainResidues>& chains, const StructureReadParams& params)
+                                 const std::vector<ChainResidues>& chains,
+                                 const StructureReadParams& params)
 {
   std::vector<bool> keep(table.size(), true);
   if (params.alt_locs == AltLocPolicy::HighestOccupancy)
@@ -569,7 +583,7 @@ std::vector<bool> selection_mask(const AtomTable& table,
   for (std::size_t i = 0; i < table.size(); ++i)
   {
     if ((params.remove_waters && is_water_residue(table.residue_names[i])) ||
-      (params.remove_hydrogens && table.atomic_numbers[i] == 1))
+        (params.remove_hydrogens && table.atomic_numbers[i] == 1))
     {
       keep[i] = false;
     }
@@ -579,8 +593,10 @@ std::vector<bool> selection_mask(const AtomTable& table,
 
 } // namespace
 
-bool build_connectivity(AtomTable& table, const std::vector<Bond>& explicit_bonds,
-  const StructureReadParams& params, bool elements_given)
+bool build_connectivity(AtomTable& table,
+                        const std::vector<Bond>& explicit_bonds,
+                        const StructureReadParams& params,
+                        bool elements_given)
 {
   assign_residues(table);
   assign_molecules(table);
@@ -605,8 +621,7 @@ bool build_connectivity(AtomTable& table, const std::vector<Bond>& explicit_bond
     perceived.clear();
     if (params.perceive_bonds)
     {
-      perceived =
-        consensus_bonds(table, perceive_bonds(input, bond_params, params.parallel_for));
+      perceived = consensus_bonds(table, perceive_bonds(input, bond_params, params.parallel_for));
     }
   }
   if (!params.perceive_bonds)
@@ -617,8 +632,9 @@ bool build_connectivity(AtomTable& table, const std::vector<Bond>& explicit_bond
   return bond_params.coarse_grained;
 }
 
-StructureFile read_structure(
-  const std::string& path, const StructureReadParams& params, const ProgressCallback& progress)
+StructureFile read_structure(const std::string& path,
+                             const StructureReadParams& params,
+                             const ProgressCallback& progress)
 {
   auto report = [&progress](double fraction) {
     if (progress && !progress(fraction))
@@ -676,8 +692,12 @@ StructureFile read_structure(
     file.coarse_grained = build_connectivity(table, kept_explicit, params, elements_given);
     if (structure.cell.is_crystal())
     {
-      table.box = PeriodicBox::from_cell(structure.cell.a, structure.cell.b, structure.cell.c,
-        structure.cell.alpha, structure.cell.beta, structure.cell.gamma);
+      table.box = PeriodicBox::from_cell(structure.cell.a,
+                                         structure.cell.b,
+                                         structure.cell.c,
+                                         structure.cell.alpha,
+                                         structure.cell.beta,
+                                         structure.cell.gamma);
     }
     file.models.push_back(std::move(table));
     report(0.5 + 0.5 * double(m + 1) / double(structure.models.size()));

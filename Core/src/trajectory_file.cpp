@@ -15,11 +15,9 @@
 #include <cctype>
 #include <cmath>
 
-namespace mesolens
-{
+namespace mesolens {
 
-namespace
-{
+namespace {
 enum class Format
 {
   Xtc,
@@ -36,8 +34,9 @@ Format format_of(const std::string& path)
     return Format::Unknown;
   }
   std::string extension = path.substr(dot + 1);
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-    [](unsigned char c) { return char(std::tolower(c)); });
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) {
+    return char(std::tolower(c));
+  });
   if (extension == "xtc")
   {
     return Format::Xtc;
@@ -63,7 +62,10 @@ struct TrajectoryFile::Impl
   t_trxstatus* Status = nullptr;
   t_trxframe Frame{};
 
-  ~Impl() { this->close(); }
+  ~Impl()
+  {
+    this->close();
+  }
 
   void close()
   {
@@ -110,11 +112,11 @@ struct TrajectoryFile::Impl
     {
       throw FileError(this->Path + ": cannot seek to frame " + std::to_string(frame_index));
     }
-    if (!read_next_frame(this->OutputEnvironment, this->Status, &this->Frame) ||
-      !this->Frame.bX || this->Frame.natoms != this->Index.atom_count)
+    if (!read_next_frame(this->OutputEnvironment, this->Status, &this->Frame) || !this->Frame.bX ||
+        this->Frame.natoms != this->Index.atom_count)
     {
       throw FileError(this->Path + ": frame " + std::to_string(frame_index) +
-        " could not be decoded");
+                      " could not be decoded");
     }
     constexpr float angstrom_per_nm = 10.0f;
     const std::size_t n = std::size_t(this->Frame.natoms);
@@ -127,7 +129,7 @@ struct TrajectoryFile::Impl
         if (!std::isfinite(value))
         {
           throw FileError(this->Path + ": frame " + std::to_string(frame_index) + ", atom " +
-            std::to_string(i + 1) + " has a non-finite coordinate");
+                          std::to_string(i + 1) + " has a non-finite coordinate");
         }
         out.positions[3 * i + std::size_t(k)] = value;
       }
@@ -173,7 +175,7 @@ TrajectoryFile::TrajectoryFile(const std::string& path, IncompleteFrames incompl
   if (!index.incomplete_tail.empty() && incomplete == IncompleteFrames::Reject)
   {
     throw FileError(path + ": truncated trajectory: " + index.incomplete_tail + "; " +
-      std::to_string(index.offsets.size()) + " complete frames precede it");
+                    std::to_string(index.offsets.size()) + " complete frames precede it");
   }
   if (index.offsets.empty())
   {
@@ -209,7 +211,7 @@ TrajectoryFrame TrajectoryFile::read_frame(std::size_t index)
   if (index >= this->frame_count())
   {
     throw InvalidInput(this->Internal->Path + ": frame " + std::to_string(index) +
-      " requested, the file has " + std::to_string(this->frame_count()));
+                       " requested, the file has " + std::to_string(this->frame_count()));
   }
   TrajectoryFrame frame;
   try

@@ -10,13 +10,10 @@
 #include <fstream>
 #include <memory>
 
-namespace mesolens
-{
-namespace detail
-{
+namespace mesolens {
+namespace detail {
 
-namespace
-{
+namespace {
 constexpr std::int32_t xtc_magic = 1995;
 constexpr std::int32_t trr_magic = 1993;
 
@@ -37,10 +34,22 @@ public:
     this->Stream.seekg(0);
   }
 
-  std::int64_t size() const { return this->Size; }
-  std::int64_t position() { return std::int64_t(this->Stream.tellg()); }
-  bool at_end() { return this->position() >= this->Size; }
-  bool has(std::int64_t bytes) { return this->position() + bytes <= this->Size; }
+  std::int64_t size() const
+  {
+    return this->Size;
+  }
+  std::int64_t position()
+  {
+    return std::int64_t(this->Stream.tellg());
+  }
+  bool at_end()
+  {
+    return this->position() >= this->Size;
+  }
+  bool has(std::int64_t bytes)
+  {
+    return this->position() + bytes <= this->Size;
+  }
 
   bool read_int(std::int32_t& value)
   {
@@ -50,7 +59,7 @@ public:
       return false;
     }
     value = std::int32_t((std::uint32_t(b[0]) << 24) | (std::uint32_t(b[1]) << 16) |
-      (std::uint32_t(b[2]) << 8) | std::uint32_t(b[3]));
+                         (std::uint32_t(b[2]) << 8) | std::uint32_t(b[3]));
     return true;
   }
   bool read_float(float& value)
@@ -75,8 +84,14 @@ public:
     std::memcpy(&value, &bits, 8);
     return true;
   }
-  void seek(std::int64_t offset) { this->Stream.seekg(offset); }
-  void clear() { this->Stream.clear(); }
+  void seek(std::int64_t offset)
+  {
+    this->Stream.seekg(offset);
+  }
+  void clear()
+  {
+    this->Stream.clear();
+  }
 
 private:
   std::string Path;
@@ -84,13 +99,15 @@ private:
   std::int64_t Size = 0;
 };
 
-void check_atom_count(FrameIndex& index, std::int64_t atoms, std::size_t frame,
-  const std::string& path)
+void check_atom_count(FrameIndex& index,
+                      std::int64_t atoms,
+                      std::size_t frame,
+                      const std::string& path)
 {
   if (atoms <= 0)
   {
-    throw FileError(path + ": frame " + std::to_string(frame) + " claims " +
-      std::to_string(atoms) + " atoms; the file is corrupt");
+    throw FileError(path + ": frame " + std::to_string(frame) + " claims " + std::to_string(atoms) +
+                    " atoms; the file is corrupt");
   }
   if (index.atom_count < 0)
   {
@@ -99,7 +116,7 @@ void check_atom_count(FrameIndex& index, std::int64_t atoms, std::size_t frame,
   else if (index.atom_count != atoms)
   {
     throw FileError(path + ": frame " + std::to_string(frame) + " has " + std::to_string(atoms) +
-      " atoms but frame 0 has " + std::to_string(index.atom_count));
+                    " atoms but frame 0 has " + std::to_string(index.atom_count));
   }
 }
 
@@ -130,8 +147,8 @@ FrameIndex index_xtc(const std::string& path)
     if (magic != xtc_magic)
     {
       throw FileError(path + ": not an XTC trajectory (frame " + std::to_string(frame) +
-        " at byte " + std::to_string(start) + " has magic number " + std::to_string(magic) +
-        ", expected " + std::to_string(xtc_magic) + ")");
+                      " at byte " + std::to_string(start) + " has magic number " +
+                      std::to_string(magic) + ", expected " + std::to_string(xtc_magic) + ")");
     }
     // Header: natoms, step, time, 3x3 box, then natoms again before the coordinates.
     std::int32_t atoms_again = 0;
@@ -151,7 +168,8 @@ FrameIndex index_xtc(const std::string& path)
     if (atoms_again != atoms)
     {
       throw FileError(path + ": frame " + std::to_string(frame) + " is corrupt (atom counts " +
-        std::to_string(atoms) + " and " + std::to_string(atoms_again) + " in its header)");
+                      std::to_string(atoms) + " and " + std::to_string(atoms_again) +
+                      " in its header)");
     }
     std::int64_t payload = 0;
     if (atoms <= 9)
@@ -208,8 +226,8 @@ FrameIndex index_trr(const std::string& path)
     if (magic != trr_magic)
     {
       throw FileError(path + ": not a TRR trajectory (frame " + std::to_string(frame) +
-        " at byte " + std::to_string(start) + " has magic number " + std::to_string(magic) +
-        ", expected " + std::to_string(trr_magic) + ")");
+                      " at byte " + std::to_string(start) + " has magic number " +
+                      std::to_string(magic) + ", expected " + std::to_string(trr_magic) + ")");
     }
     // Version string: its size + 1, then an XDR string (length, bytes padded to 4).
     std::int32_t size_plus_one = 0;
@@ -241,7 +259,8 @@ FrameIndex index_trr(const std::string& path)
     check_atom_count(index, atoms, frame, path);
     if (ir != 0 || energy != 0 || top != 0 || sym != 0)
     {
-      throw FileError(path + ": frame " + std::to_string(frame) +
+      throw FileError(
+        path + ": frame " + std::to_string(frame) +
         " carries input records, energies or a topology, which TRR readers do not support");
     }
     if (x == 0)
@@ -249,8 +268,8 @@ FrameIndex index_trr(const std::string& path)
       throw FileError(path + ": frame " + std::to_string(frame) + " has no coordinates");
     }
     const std::int64_t real_size = box != 0 ? box / 9 : x / (3 * std::int64_t(atoms));
-    if ((real_size != 4 && real_size != 8) || x != 3 * std::int64_t(atoms) * real_size ||
-      box < 0 || vir < 0 || pres < 0 || v < 0 || f < 0)
+    if ((real_size != 4 && real_size != 8) || x != 3 * std::int64_t(atoms) * real_size || box < 0 ||
+        vir < 0 || pres < 0 || v < 0 || f < 0)
     {
       throw FileError(path + ": frame " + std::to_string(frame) + " has inconsistent sizes");
     }
@@ -317,7 +336,7 @@ FrameIndex index_gro(const std::string& path)
     if (end == count_line.c_str())
     {
       throw FileError(path + ": frame " + std::to_string(frame) +
-        " does not give an atom count on its second line; not a GRO file");
+                      " does not give an atom count on its second line; not a GRO file");
     }
     check_atom_count(index, atoms, frame, path);
     bool complete = true;

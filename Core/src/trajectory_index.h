@@ -6,10 +6,8 @@
 #include <string>
 #include <vector>
 
-namespace mesolens
-{
-namespace detail
-{
+namespace mesolens {
+namespace detail {
 
 /// Byte offset, time and atom count of every complete frame, plus what ended the scan.
 struct FrameIndex

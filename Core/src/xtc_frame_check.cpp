@@ -7,13 +7,10 @@
 #include <fstream>
 #include <vector>
 
-namespace mesolens
-{
-namespace detail
-{
+namespace mesolens {
+namespace detail {
 
-namespace
-{
+namespace {
 // Bounds of the table of "magic" small-coordinate sizes in the XTC algorithm: a small-atom
 // group is coded with `small_index` bits, small_index in [first_small_index, small_index_end).
 constexpr int first_small_index = 9;
@@ -23,7 +20,7 @@ constexpr std::uint32_t large_size_limit = 0xffffff;
 std::int32_t big_endian_int(const unsigned char* p)
 {
   return std::int32_t((std::uint32_t(p[0]) << 24) | (std::uint32_t(p[1]) << 16) |
-    (std::uint32_t(p[2]) << 8) | std::uint32_t(p[3]));
+                      (std::uint32_t(p[2]) << 8) | std::uint32_t(p[3]));
 }
 
 /// Bits needed to store `size` values, as the XTC algorithm counts them.
@@ -92,7 +89,7 @@ void check_xtc_frame(const std::string& path, std::int64_t offset)
 {
   auto corrupt = [&](const std::string& why) {
     return FileError(path + ": the frame at byte " + std::to_string(offset) + " is corrupt (" +
-      why + "); it was not decoded");
+                     why + "); it was not decoded");
   };
   std::ifstream file(path, std::ios::binary);
   file.seekg(offset);

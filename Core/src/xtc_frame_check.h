@@ -5,10 +5,8 @@
 #include <cstdint>
 #include <string>
 
-namespace mesolens
-{
-namespace detail
-{
+namespace mesolens {
+namespace detail {
 
 /// Walks the compressed coordinate bit stream of the XTC frame at `offset` the way GROMACS'
 /// decoder (xdr3dfcoord) will, without decoding values, and throws FileError when the decoder

@@ -12,8 +12,7 @@
 #include <limits>
 #include <random>
 
-namespace
-{
+namespace {
 struct Atoms
 {
   std::vector<float> positions;
@@ -69,8 +68,8 @@ TEST(BondPerception, CarbonCarbonDistances)
 {
   Atoms atoms;
   atoms.add(0, 0, 0, 6);
-  atoms.add(1.54f, 0, 0, 6);  // single bond
-  atoms.add(3.54f, 0, 0, 6);  // 2.0 Å from the previous: beyond 0.73 + 0.73 + 0.45
+  atoms.add(1.54f, 0, 0, 6); // single bond
+  atoms.add(3.54f, 0, 0, 6); // 2.0 Å from the previous: beyond 0.73 + 0.73 + 0.45
   const auto bonds = mesolens::perceive_bonds(atoms.input());
   ASSERT_EQ(bonds.size(), 1u);
   EXPECT_EQ(bonds[0].first, 0u);
@@ -117,8 +116,8 @@ TEST(BondPerception, GridMatchesBruteForceOnRandomCloud)
   Atoms atoms;
   for (int i = 0; i < 3000; ++i)
   {
-    atoms.add(coordinate(random), coordinate(random), coordinate(random), elements[element(random)],
-      i % 3);
+    atoms.add(
+      coordinate(random), coordinate(random), coordinate(random), elements[element(random)], i % 3);
   }
   const auto grid = mesolens::perceive_bonds(atoms.input());
   const auto reference = brute_force(atoms, 0.45f);
@@ -136,7 +135,8 @@ TEST(BondPerception, CoarseGrainedBeadCutoff)
   params.coarse_grained = true;
   const auto bonds = mesolens::perceive_bonds(atoms.input(), params);
   ASSERT_EQ(bonds.size(), 1u);
-  EXPECT_TRUE(mesolens::looks_coarse_grained(atoms.input(), mesolens::perceive_bonds(atoms.input())));
+  EXPECT_TRUE(
+    mesolens::looks_coarse_grained(atoms.input(), mesolens::perceive_bonds(atoms.input())));
   Atoms atomistic;
   atomistic.add(0, 0, 0, 6);
   atomistic.add(1.5f, 0, 0, 6);
@@ -192,10 +192,12 @@ TEST(BondConsensus, CopiesOfAMoleculeTypeShareTheirBonds)
   table.append_atom("X", 0, 0, 0); // a different type with one copy keeps its own bonds
   table.append_atom("Y", 0, 0, 0);
   table.molecule_ids[12] = table.molecule_ids[13] = 4;
-  const std::vector<mesolens::Bond> perceived = { { 0, 1 }, { 1, 2 }, { 3, 4 }, { 6, 7 },
-    { 7, 8 }, { 6, 8 }, { 9, 10 }, { 10, 11 }, { 12, 13 } };
-  const std::vector<mesolens::Bond> expected = { { 0, 1 }, { 1, 2 }, { 3, 4 }, { 4, 5 }, { 6, 7 },
-    { 7, 8 }, { 9, 10 }, { 10, 11 }, { 12, 13 } };
+  const std::vector<mesolens::Bond> perceived = { { 0, 1 },  { 1, 2 },   { 3, 4 },
+                                                  { 6, 7 },  { 7, 8 },   { 6, 8 },
+                                                  { 9, 10 }, { 10, 11 }, { 12, 13 } };
+  const std::vector<mesolens::Bond> expected = { { 0, 1 },  { 1, 2 },   { 3, 4 },
+                                                 { 4, 5 },  { 6, 7 },   { 7, 8 },
+                                                 { 9, 10 }, { 10, 11 }, { 12, 13 } };
   EXPECT_EQ(mesolens::consensus_bonds(table, perceived), expected);
   mesolens::BondConsensusParams strict;
   strict.min_fraction = 0;
@@ -213,7 +215,8 @@ TEST(BondPerception, SameBondsWhateverTheSplit)
   }
   const auto sequential = mesolens::perceive_bonds(atoms.input());
   // A splitter that runs the ranges in reverse order, in chunks of 3 planes.
-  const mesolens::ParallelFor reversed = [](std::size_t count, const mesolens::RangeKernel& kernel) {
+  const mesolens::ParallelFor reversed = [](std::size_t count,
+                                            const mesolens::RangeKernel& kernel) {
     for (std::size_t end = count; end > 0;)
     {
       const std::size_t begin = end >= 3 ? end - 3 : 0;

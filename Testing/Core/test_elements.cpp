@@ -20,7 +20,7 @@ TEST(Elements, SymbolsRoundTrip)
 
 TEST(Elements, RadiiOfCommonElements)
 {
-  EXPECT_FLOAT_EQ(mesolens::covalent_radius(6), 0.73f);  // Cordero 2008, sp3 carbon
+  EXPECT_FLOAT_EQ(mesolens::covalent_radius(6), 0.73f); // Cordero 2008, sp3 carbon
   EXPECT_FLOAT_EQ(mesolens::covalent_radius(1), 0.31f);
   EXPECT_FLOAT_EQ(mesolens::van_der_waals_radius(6), 1.70f); // Bondi 1964
   EXPECT_FLOAT_EQ(mesolens::van_der_waals_radius(8), 1.52f);
@@ -29,8 +29,8 @@ TEST(Elements, RadiiOfCommonElements)
 
 TEST(Elements, GuessFromAtomNames)
 {
-  EXPECT_EQ(mesolens::guess_atomic_number("CA", "ALA"), 6);  // C-alpha, not calcium
-  EXPECT_EQ(mesolens::guess_atomic_number("CA", "CA"), 20);  // calcium ion
+  EXPECT_EQ(mesolens::guess_atomic_number("CA", "ALA"), 6); // C-alpha, not calcium
+  EXPECT_EQ(mesolens::guess_atomic_number("CA", "CA"), 20); // calcium ion
   EXPECT_EQ(mesolens::guess_atomic_number("NA", "NA"), 11);
   EXPECT_EQ(mesolens::guess_atomic_number("CLA", "CLA"), 17);
   EXPECT_EQ(mesolens::guess_atomic_number("SOD", "SOD"), 11);

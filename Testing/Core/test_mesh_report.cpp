@@ -10,8 +10,7 @@
 #include <cmath>
 #include <limits>
 
-namespace
-{
+namespace {
 struct Mesh
 {
   std::vector<double> points;
@@ -127,7 +126,8 @@ TEST(MeshReport, BadMeshesFromCgal)
   r = from_off(mesolens_test::data_file("meshes/bad/cgal_tet-shuffled.off")).report();
   EXPECT_GT(r.inconsistently_oriented_edges, 0u);
   EXPECT_EQ(r.boundary_edges, 0u);
-  r = from_off(mesolens_test::data_file("meshes/bad/cgal_tetra_intersected_by_triangle.off")).report();
+  r = from_off(mesolens_test::data_file("meshes/bad/cgal_tetra_intersected_by_triangle.off"))
+        .report();
   EXPECT_EQ(r.components, 2u);
   r = from_off(mesolens_test::data_file("meshes/bad/cgal_degtri_sliding.off")).report();
   EXPECT_GT(r.degenerate_triangles, 0u);
@@ -141,8 +141,10 @@ TEST(MeshReport, BadMeshesFromCgal)
 TEST(OffFile, BadFiles)
 {
   EXPECT_THROW(mesolens::read_off(mesolens_test::output_file("missing.off")), mesolens::FileError);
-  EXPECT_THROW(mesolens::read_off(mesolens_test::write_bytes("empty.off", "")), mesolens::FileError);
+  EXPECT_THROW(mesolens::read_off(mesolens_test::write_bytes("empty.off", "")),
+               mesolens::FileError);
   EXPECT_THROW(mesolens::read_off(mesolens_test::garbage_file("garbage.off")), mesolens::FileError);
-  EXPECT_THROW(mesolens::read_off(mesolens_test::write_bytes("cut.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n")),
+  EXPECT_THROW(
+    mesolens::read_off(mesolens_test::write_bytes("cut.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n")),
     mesolens::FileError);
 }

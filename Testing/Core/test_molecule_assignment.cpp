@@ -3,10 +3,13 @@
 
 #include <gtest/gtest.h>
 
-namespace
-{
-void add(mesolens::AtomTable& t, const char* name, const char* residue, int number,
-  const char* chain, float x)
+namespace {
+void add(mesolens::AtomTable& t,
+         const char* name,
+         const char* residue,
+         int number,
+         const char* chain,
+         float x)
 {
   t.append_atom(name, x, 0, 0);
   t.residue_names.back() = residue;

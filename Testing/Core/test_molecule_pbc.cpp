@@ -7,8 +7,7 @@
 
 #include <cmath>
 
-namespace
-{
+namespace {
 mesolens::PeriodicBox cube(double edge)
 {
   mesolens::PeriodicBox box;

@@ -6,8 +6,7 @@
 #include <cmath>
 #include <random>
 
-namespace
-{
+namespace {
 double length(const std::array<double, 3>& v)
 {
   return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);

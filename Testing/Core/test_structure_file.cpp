@@ -14,8 +14,7 @@
 #include <tuple>
 #include <zlib.h>
 
-namespace
-{
+namespace {
 using mesolens_test::data_file;
 
 struct Expected
@@ -96,23 +95,27 @@ TEST_P(StructureCounts, MatchIndependentReaders)
   EXPECT_EQ(t.size(), e.atoms);
   EXPECT_EQ(t.residue_indices.back() + 1, e.residues);
   EXPECT_EQ(std::set<std::string>(t.chain_ids.begin(), t.chain_ids.end()).size(), e.chains);
-  EXPECT_EQ(std::size_t(std::count(t.atomic_numbers.begin(), t.atomic_numbers.end(), 1)), e.hydrogens);
+  EXPECT_EQ(std::size_t(std::count(t.atomic_numbers.begin(), t.atomic_numbers.end(), 1)),
+            e.hydrogens);
   EXPECT_EQ(count_spans(t), e.secondary_structure_spans);
   if (e.bonds >= 0)
   {
     EXPECT_EQ(long(t.bonds.size()), e.bonds);
   }
   EXPECT_FALSE(file.coarse_grained);
-  EXPECT_TRUE(std::none_of(t.atomic_numbers.begin(), t.atomic_numbers.end(),
-    [](std::uint8_t z) { return z == 0; }));
+  EXPECT_TRUE(std::none_of(
+    t.atomic_numbers.begin(), t.atomic_numbers.end(), [](std::uint8_t z) { return z == 0; }));
 }
 
-INSTANTIATE_TEST_SUITE_P(RealFiles, StructureCounts, ::testing::ValuesIn(expected_counts),
-  [](const ::testing::TestParamInfo<Expected>& info) {
-    std::string name = std::string(info.param.file).substr(sizeof("proteins/") - 1);
-    std::replace(name.begin(), name.end(), '.', '_');
-    return name;
-  });
+INSTANTIATE_TEST_SUITE_P(RealFiles,
+                         StructureCounts,
+                         ::testing::ValuesIn(expected_counts),
+                         [](const ::testing::TestParamInfo<Expected>& info) {
+                           std::string name =
+                             std::string(info.param.file).substr(sizeof("proteins/") - 1);
+                           std::replace(name.begin(), name.end(), '.', '_');
+                           return name;
+                         });
 
 TEST(StructureFile, HelixAndSheetSpansFollowRecords)
 {
@@ -154,16 +157,18 @@ TEST(StructureFile, AlternateLocationsKeepHighestOccupancy)
   EXPECT_EQ(met48, 8u);
   mesolens::StructureReadParams keep_all;
   keep_all.alt_locs = mesolens::AltLocPolicy::KeepAll;
-  EXPECT_EQ(mesolens::read_structure(data_file("proteins/3o5r.pdb"), keep_all).models[0].size(), 1470u);
-  EXPECT_EQ(mesolens::read_structure(data_file("proteins/4we2.pdb"), keep_all).models[0].size(), 2238u);
+  EXPECT_EQ(mesolens::read_structure(data_file("proteins/3o5r.pdb"), keep_all).models[0].size(),
+            1470u);
+  EXPECT_EQ(mesolens::read_structure(data_file("proteins/4we2.pdb"), keep_all).models[0].size(),
+            2238u);
 }
 
 TEST(StructureFile, InsertionCodesAndHetatm)
 {
   const auto t = mesolens::read_structure(data_file("proteins/1dix.pdb")).models.front();
-  EXPECT_EQ(std::count_if(t.insertion_codes.begin(), t.insertion_codes.end(),
-              [](char c) { return c != ' '; }),
-    21);
+  EXPECT_EQ(std::count_if(
+              t.insertion_codes.begin(), t.insertion_codes.end(), [](char c) { return c != ' '; }),
+            21);
   const auto ubq = mesolens::read_structure(data_file("proteins/1ubq.pdb")).models.front();
   EXPECT_EQ(std::count(ubq.is_hetero.begin(), ubq.is_hetero.end(), 1), 58); // waters
 }
@@ -172,10 +177,12 @@ TEST(StructureFile, RemoveWatersAndHydrogens)
 {
   mesolens::StructureReadParams params;
   params.remove_waters = true;
-  EXPECT_EQ(mesolens::read_structure(data_file("proteins/1ubq.pdb"), params).models[0].size(), 602u);
+  EXPECT_EQ(mesolens::read_structure(data_file("proteins/1ubq.pdb"), params).models[0].size(),
+            602u);
   params = {};
   params.remove_hydrogens = true;
-  EXPECT_EQ(mesolens::read_structure(data_file("proteins/1l2y.pdb"), params).models[0].size(), 154u);
+  EXPECT_EQ(mesolens::read_structure(data_file("proteins/1l2y.pdb"), params).models[0].size(),
+            154u);
 }
 
 TEST(StructureFile, ExplicitBondsWithoutPerception)
@@ -183,8 +190,10 @@ TEST(StructureFile, ExplicitBondsWithoutPerception)
   mesolens::StructureReadParams params;
   params.perceive_bonds = false;
   // CONECT pairs (MDAnalysis): 3 disulfides in 1CRN, 242 unique pairs in 4GXY.
-  EXPECT_EQ(mesolens::read_structure(data_file("proteins/1crn.pdb"), params).models[0].bonds.size(), 3u);
-  EXPECT_EQ(mesolens::read_structure(data_file("proteins/4gxy.pdb"), params).models[0].bonds.size(), 242u);
+  EXPECT_EQ(mesolens::read_structure(data_file("proteins/1crn.pdb"), params).models[0].bonds.size(),
+            3u);
+  EXPECT_EQ(mesolens::read_structure(data_file("proteins/4gxy.pdb"), params).models[0].bonds.size(),
+            242u);
 }
 
 TEST(StructureFile, ModelsDifferInCoordinates)
@@ -215,22 +224,26 @@ TEST(StructureFile, BadInputsThrowFileError)
 {
   using mesolens_test::output_file;
   EXPECT_THROW(mesolens::read_structure(output_file("does_not_exist.pdb")), mesolens::FileError);
-  EXPECT_THROW(mesolens::read_structure(mesolens_test::write_bytes("empty.pdb", "")), mesolens::FileError);
-  EXPECT_THROW(mesolens::read_structure(mesolens_test::garbage_file("garbage.pdb")), mesolens::FileError);
-  EXPECT_THROW(mesolens::read_structure(mesolens_test::garbage_file("garbage.cif")), mesolens::FileError);
+  EXPECT_THROW(mesolens::read_structure(mesolens_test::write_bytes("empty.pdb", "")),
+               mesolens::FileError);
+  EXPECT_THROW(mesolens::read_structure(mesolens_test::garbage_file("garbage.pdb")),
+               mesolens::FileError);
+  EXPECT_THROW(mesolens::read_structure(mesolens_test::garbage_file("garbage.cif")),
+               mesolens::FileError);
   // Cut in the middle of an ATOM record.
   const std::string text = mesolens_test::read_bytes(data_file("proteins/1crn.pdb"));
   const std::size_t cut = text.find("ATOM    100") + 40;
-  EXPECT_THROW(mesolens::read_structure(mesolens_test::write_bytes("truncated.pdb", text.substr(0, cut))),
+  EXPECT_THROW(
+    mesolens::read_structure(mesolens_test::write_bytes("truncated.pdb", text.substr(0, cut))),
     mesolens::FileError);
   const std::string cif = mesolens_test::read_bytes(data_file("proteins/1crn.cif"));
-  EXPECT_THROW(mesolens::read_structure(mesolens_test::write_bytes("truncated.cif",
-                 cif.substr(0, cif.find("ATOM   100") + 30))),
-    mesolens::FileError);
+  EXPECT_THROW(mesolens::read_structure(mesolens_test::write_bytes(
+                 "truncated.cif", cif.substr(0, cif.find("ATOM   100") + 30))),
+               mesolens::FileError);
   EXPECT_THROW(mesolens::read_structure(crambin_with_x_field("     nan", "nan.pdb")),
-    mesolens::InvalidInput);
+               mesolens::InvalidInput);
   EXPECT_THROW(mesolens::read_structure(crambin_with_x_field("   12.3x", "letters.pdb")),
-    mesolens::FileError);
+               mesolens::FileError);
   EXPECT_THROW(mesolens::read_structure(mesolens_test::data_file("proteins")), mesolens::FileError);
 }
 
@@ -244,7 +257,8 @@ TEST(StructureFile, ProgressCanAbort)
   ASSERT_FALSE(reported.empty());
   EXPECT_DOUBLE_EQ(reported.back(), 1.0);
   EXPECT_TRUE(std::is_sorted(reported.begin(), reported.end()));
-  EXPECT_THROW(mesolens::read_structure(data_file("proteins/1l2y.pdb"), {}, [](double) { return false; }),
+  EXPECT_THROW(
+    mesolens::read_structure(data_file("proteins/1l2y.pdb"), {}, [](double) { return false; }),
     mesolens::FileError);
 }
 
@@ -258,16 +272,17 @@ TEST(StructureFile, AwkwardFilesReadOrFailCleanly)
   while (const dirent* entry = readdir(directory))
   {
     const std::string name = entry->d_name;
-    if (name.size() > 4 && (name.substr(name.size() - 4) == ".pdb" || name.substr(name.size() - 4) == ".cif"))
+    if (name.size() > 4 &&
+        (name.substr(name.size() - 4) == ".pdb" || name.substr(name.size() - 4) == ".cif"))
     {
       names.push_back(name);
     }
   }
   closedir(directory);
   ASSERT_GE(names.size(), 30u);
-  const std::set<std::string> must_fail = { "freesasa_empty.pdb", "freesasa_empty_model.pdb",
-    "biopython_header.pdb", "gemmi_5moo_header.pdb", "biopython_4Q9R_min.cif",
-    "biopython_1MOM_min.cif" };
+  const std::set<std::string> must_fail = { "freesasa_empty.pdb",     "freesasa_empty_model.pdb",
+                                            "biopython_header.pdb",   "gemmi_5moo_header.pdb",
+                                            "biopython_4Q9R_min.cif", "biopython_1MOM_min.cif" };
   for (const std::string& name : names)
   {
     SCOPED_TRACE(name);

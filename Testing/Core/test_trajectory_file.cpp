@@ -14,11 +14,14 @@
 
 #include <cmath>
 
-namespace
-{
+namespace {
 using mesolens_test::data_file;
 
-void expect_atom(const mesolens::TrajectoryFrame& frame, std::size_t atom, float x, float y, float z)
+void expect_atom(const mesolens::TrajectoryFrame& frame,
+                 std::size_t atom,
+                 float x,
+                 float y,
+                 float z)
 {
   EXPECT_NEAR(frame.positions[3 * atom], x, 1e-3) << atom;
   EXPECT_NEAR(frame.positions[3 * atom + 1], y, 1e-3) << atom;
@@ -112,7 +115,8 @@ TEST(TrajectoryFile, GroAsTrajectory)
   const auto frame = file.read_frame(0);
   EXPECT_NEAR(frame.positions[0], 470.89f, 1e-2); // 47.089 nm
   // Two concatenated copies make a two-frame GRO.
-  const std::string one = mesolens_test::read_bytes(data_file("membranes/martini_dppc_chol_bilayer.gro"));
+  const std::string one =
+    mesolens_test::read_bytes(data_file("membranes/martini_dppc_chol_bilayer.gro"));
   mesolens::TrajectoryFile twice(mesolens_test::write_bytes("two_frames.gro", one + one));
   EXPECT_EQ(twice.frame_count(), 2u);
   EXPECT_EQ(twice.read_frame(1).positions, twice.read_frame(0).positions);
@@ -120,8 +124,8 @@ TEST(TrajectoryFile, GroAsTrajectory)
 
 TEST(TrajectoryFile, TruncatedXtc)
 {
-  const std::string path =
-    mesolens_test::truncated_copy(data_file("membranes/yiip_popepopg.xtc"), 500000, "truncated.xtc");
+  const std::string path = mesolens_test::truncated_copy(
+    data_file("membranes/yiip_popepopg.xtc"), 500000, "truncated.xtc");
   try
   {
     mesolens::TrajectoryFile file(path);
@@ -141,16 +145,20 @@ TEST(TrajectoryFile, BadFiles)
 {
   using mesolens_test::output_file;
   EXPECT_THROW(mesolens::TrajectoryFile(output_file("missing.xtc")), mesolens::FileError);
-  EXPECT_THROW(mesolens::TrajectoryFile(mesolens_test::write_bytes("empty.xtc", "")), mesolens::FileError);
-  EXPECT_THROW(mesolens::TrajectoryFile(mesolens_test::garbage_file("garbage.xtc")), mesolens::FileError);
-  EXPECT_THROW(mesolens::TrajectoryFile(mesolens_test::garbage_file("garbage.trr")), mesolens::FileError);
-  EXPECT_THROW(mesolens::TrajectoryFile(mesolens_test::garbage_file("garbage.gro")), mesolens::FileError);
+  EXPECT_THROW(mesolens::TrajectoryFile(mesolens_test::write_bytes("empty.xtc", "")),
+               mesolens::FileError);
+  EXPECT_THROW(mesolens::TrajectoryFile(mesolens_test::garbage_file("garbage.xtc")),
+               mesolens::FileError);
+  EXPECT_THROW(mesolens::TrajectoryFile(mesolens_test::garbage_file("garbage.trr")),
+               mesolens::FileError);
+  EXPECT_THROW(mesolens::TrajectoryFile(mesolens_test::garbage_file("garbage.gro")),
+               mesolens::FileError);
   EXPECT_THROW(mesolens::TrajectoryFile(data_file("membranes/yiip_popepopg.gro") + ".dcd"),
-    mesolens::FileError);
+               mesolens::FileError);
   // A header cut inside the first frame.
   EXPECT_THROW(mesolens::TrajectoryFile(mesolens_test::truncated_copy(
                  data_file("membranes/yiip_popepopg.xtc"), 30, "header.xtc")),
-    mesolens::FileError);
+               mesolens::FileError);
 }
 
 TEST(TrajectoryFile, CorruptCompressedDataIsAnErrorNotACrash)
@@ -185,12 +193,22 @@ TEST(GroTopology, AtomsResiduesAndBox)
   EXPECT_NEAR(t.box.vectors[0][0], 63.0, 0.1);
   EXPECT_EQ(t.residue_names[0], "DPPC");
   EXPECT_EQ(t.atomic_numbers[0], 7); // N of the choline
+  // Awkward but readable: a blank atom name, velocities on only some lines.
+  EXPECT_EQ(
+    mesolens::read_gro_topology(data_file("proteins/awkward/mdanalysis_missing_atomname.gro"))
+      .size(),
+    1u);
+  EXPECT_EQ(
+    mesolens::read_gro_topology(data_file("proteins/awkward/mdanalysis_test_incomplete_vel.gro"))
+      .size(),
+    5u);
   const auto bad = data_file("proteins/awkward/mdanalysis_empty_atom.gro");
   EXPECT_THROW(mesolens::read_gro_topology(bad), mesolens::FileError);
-  EXPECT_THROW(mesolens::read_gro_topology(mesolens_test::output_file("nothing.gro")), mesolens::FileError);
+  EXPECT_THROW(mesolens::read_gro_topology(mesolens_test::output_file("nothing.gro")),
+               mesolens::FileError);
   EXPECT_THROW(mesolens::read_gro_topology(mesolens_test::garbage_file("garbage_topology.gro")),
-    mesolens::FileError);
+               mesolens::FileError);
   EXPECT_THROW(mesolens::read_gro_topology(mesolens_test::truncated_copy(
                  data_file("membranes/dppc128_slipids_323K.gro"), 5000, "cut.gro")),
-    mesolens::FileError);
+               mesolens::FileError);
 }

@@ -18,8 +18,7 @@
 #include <iostream>
 #include <string>
 
-namespace
-{
+namespace {
 bool readable(const std::string& path)
 {
   std::ifstream file(path, std::ios::binary);
@@ -64,7 +63,8 @@ int main(int argc, char* argv[])
   }
   if (!readable(baseline_path))
   {
-    std::cerr << "FAIL: no baseline " << baseline_path << " (MESOLENS_UPDATE_BASELINES=1 creates it)\n";
+    std::cerr << "FAIL: no baseline " << baseline_path
+              << " (MESOLENS_UPDATE_BASELINES=1 creates it)\n";
     return fail_and_maybe_update(image_path, baseline_path);
   }
   vtkNew<vtkPNGReader> image_reader;

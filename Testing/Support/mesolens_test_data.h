@@ -7,8 +7,7 @@
 #include <string>
 #include <sys/stat.h>
 
-namespace mesolens_test
-{
+namespace mesolens_test {
 
 /// A file under Data/ (in the repository).
 inline std::string data_file(const std::string& relative)
@@ -51,7 +50,9 @@ inline std::string write_bytes(const std::string& name, const std::string& bytes
 }
 
 /// Writes the first `bytes` bytes of `source` to an output file and returns its path.
-inline std::string truncated_copy(const std::string& source, std::size_t bytes, const std::string& name)
+inline std::string truncated_copy(const std::string& source,
+                                  std::size_t bytes,
+                                  const std::string& name)
 {
   return write_bytes(name, read_bytes(source).substr(0, bytes));
 }

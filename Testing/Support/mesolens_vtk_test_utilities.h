@@ -11,8 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace mesolens_test
-{
+namespace mesolens_test {
 
 /// Records the ErrorEvent and WarningEvent messages of an algorithm and its executive.
 class EventRecorder

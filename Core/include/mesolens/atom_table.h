@@ -9,8 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace mesolens
-{
+namespace mesolens {
 
 /// Secondary-structure class of a residue, stored per atom. The values are stable: they are
 /// written to the `SecondaryStructure` point array. PDB HELIX classes map to the helix kinds
@@ -49,27 +48,30 @@ struct Bond
 /// Ångström. Strings are trimmed of the blanks of fixed-column formats.
 struct AtomTable
 {
-  std::vector<float> positions;            ///< x, y, z per atom, Å
-  std::vector<std::string> atom_names;     ///< e.g. "CA", "O1P", "NC3"
-  std::vector<std::uint8_t> atomic_numbers; ///< 0 = unknown element or coarse-grained bead
-  std::vector<std::string> residue_names;  ///< e.g. "ALA", "DPPC", "HOH"
-  std::vector<int> residue_numbers;        ///< author residue number (PDB resSeq, GRO resnr)
-  std::vector<char> insertion_codes;       ///< ' ' when none
-  std::vector<std::string> chain_ids;      ///< author chain id, "" when none
-  std::vector<char> alt_locs;              ///< ' ' when none
-  std::vector<float> occupancies;          ///< 1 when the format has none
-  std::vector<float> b_factors;            ///< Å², 0 when the format has none
-  std::vector<std::uint8_t> is_hetero;     ///< 1 for HETATM records
-  std::vector<int> serials;                ///< serial number in the file (1-based; 0 = none)
-  std::vector<std::int8_t> formal_charges; ///< elementary charges, 0 when none
+  std::vector<float> positions;                  ///< x, y, z per atom, Å
+  std::vector<std::string> atom_names;           ///< e.g. "CA", "O1P", "NC3"
+  std::vector<std::uint8_t> atomic_numbers;      ///< 0 = unknown element or coarse-grained bead
+  std::vector<std::string> residue_names;        ///< e.g. "ALA", "DPPC", "HOH"
+  std::vector<int> residue_numbers;              ///< author residue number (PDB resSeq, GRO resnr)
+  std::vector<char> insertion_codes;             ///< ' ' when none
+  std::vector<std::string> chain_ids;            ///< author chain id, "" when none
+  std::vector<char> alt_locs;                    ///< ' ' when none
+  std::vector<float> occupancies;                ///< 1 when the format has none
+  std::vector<float> b_factors;                  ///< Å², 0 when the format has none
+  std::vector<std::uint8_t> is_hetero;           ///< 1 for HETATM records
+  std::vector<int> serials;                      ///< serial number in the file (1-based; 0 = none)
+  std::vector<std::int8_t> formal_charges;       ///< elementary charges, 0 when none
   std::vector<std::uint8_t> secondary_structure; ///< SecondaryStructure values
-  std::vector<int> secondary_structure_ids; ///< index of the HELIX/strand span, -1 = none
-  std::vector<int> residue_indices;        ///< 0-based running residue index
-  std::vector<int> molecule_ids;           ///< 0-based molecule index (see assign_molecules)
-  std::vector<Bond> bonds;                 ///< sorted, unique
-  PeriodicBox box;                         ///< unit cell, if the file gives one
+  std::vector<int> secondary_structure_ids;      ///< index of the HELIX/strand span, -1 = none
+  std::vector<int> residue_indices;              ///< 0-based running residue index
+  std::vector<int> molecule_ids;                 ///< 0-based molecule index (see assign_molecules)
+  std::vector<Bond> bonds;                       ///< sorted, unique
+  PeriodicBox box;                               ///< unit cell, if the file gives one
 
-  std::size_t size() const { return atom_names.size(); }
+  std::size_t size() const
+  {
+    return atom_names.size();
+  }
 
   /// Reserves room for `count` atoms in every per-atom array.
   void reserve(std::size_t count);

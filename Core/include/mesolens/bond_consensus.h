@@ -7,8 +7,7 @@
 #include <cstddef>
 #include <vector>
 
-namespace mesolens
-{
+namespace mesolens {
 
 /// Parameters of consensus_bonds().
 struct BondConsensusParams
@@ -28,7 +27,8 @@ struct BondConsensusParams
 /// On the Martini DPPC vesicle of Data/ with a 5 Å cutoff this recovers exactly the 11 bonds
 /// of each lipid, where the cutoff alone misses 16 % and adds 0.8 per lipid.
 /// Needs table.molecule_ids; `bonds` must be within molecules. Result sorted and unique.
-std::vector<Bond> consensus_bonds(const AtomTable& table, const std::vector<Bond>& bonds,
-  const BondConsensusParams& params = {});
+std::vector<Bond> consensus_bonds(const AtomTable& table,
+                                  const std::vector<Bond>& bonds,
+                                  const BondConsensusParams& params = {});
 
 } // namespace mesolens

@@ -9,8 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace mesolens
-{
+namespace mesolens {
 
 /// Parameters of perceive_bonds().
 struct BondPerceptionParams
@@ -29,10 +28,10 @@ struct BondPerceptionParams
 /// Read-only view over the atoms that bond perception looks at.
 struct BondPerceptionInput
 {
-  const float* positions = nullptr;           ///< 3 per atom, Å; non-finite atoms never bond
+  const float* positions = nullptr;             ///< 3 per atom, Å; non-finite atoms never bond
   const std::uint8_t* atomic_numbers = nullptr; ///< per atom (0 = unknown: radius 0.5 Å)
-  const int* molecule_ids = nullptr;          ///< per atom; only atoms of one molecule bond
-  const char* alt_locs = nullptr;             ///< optional; different non-blank altlocs never bond
+  const int* molecule_ids = nullptr;            ///< per atom; only atoms of one molecule bond
+  const char* alt_locs = nullptr; ///< optional; different non-blank altlocs never bond
   std::size_t atom_count = 0;
 };
 
@@ -42,12 +41,14 @@ struct BondPerceptionInput
 /// `parallel_for` (the result does not depend on it).
 /// Throws InvalidInput for a null array or an out-of-range parameter.
 std::vector<Bond> perceive_bonds(const BondPerceptionInput& input,
-  const BondPerceptionParams& params = {}, const ParallelFor& parallel_for = {});
+                                 const BondPerceptionParams& params = {},
+                                 const ParallelFor& parallel_for = {});
 
 /// True when most atoms of multi-atom molecules have no bond in `atomistic_bonds` (bonds
 /// perceived with covalent radii): the file then holds coarse-grained beads (Martini, whose
 /// bonded beads are 3-5 Å apart), not atoms.
-bool looks_coarse_grained(const BondPerceptionInput& input, const std::vector<Bond>& atomistic_bonds);
+bool looks_coarse_grained(const BondPerceptionInput& input,
+                          const std::vector<Bond>& atomistic_bonds);
 
 /// Merges two sorted unique bond lists into one sorted unique list.
 std::vector<Bond> merge_bonds(const std::vector<Bond>& a, const std::vector<Bond>& b);

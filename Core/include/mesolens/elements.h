@@ -6,8 +6,7 @@
 
 #include <string>
 
-namespace mesolens
-{
+namespace mesolens {
 
 /// Largest atomic number known to the tables (oganesson).
 constexpr int max_atomic_number = 118;

@@ -6,8 +6,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace mesolens
-{
+namespace mesolens {
 
 /// Base class of every exception MesoLens Core throws.
 class Error : public std::runtime_error

@@ -7,8 +7,7 @@
 
 #include <string>
 
-namespace mesolens
-{
+namespace mesolens {
 
 /// Reads the first frame of a .gro file: atom and residue names, residue numbers, positions
 /// (converted from nm to Å) and the box. Elements are guessed from names

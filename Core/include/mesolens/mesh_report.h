@@ -8,8 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace mesolens
-{
+namespace mesolens {
 
 /// Read-only view of a triangle mesh: vertex positions (3 doubles each) and triangles
 /// (3 vertex indices each).
@@ -24,19 +23,19 @@ struct TriangleMeshView
 /// What mesh_report() found. Counts refer to the input indices.
 struct MeshReport
 {
-  std::size_t vertices = 0;             ///< points of the mesh
-  std::size_t triangles = 0;            ///< triangles of the mesh
-  std::size_t edges = 0;                ///< unique undirected edges
-  std::size_t boundary_edges = 0;       ///< edges with one triangle
-  std::size_t boundary_loops = 0;       ///< closed boundary curves
-  std::size_t non_manifold_edges = 0;   ///< edges with more than two triangles
+  std::size_t vertices = 0;              ///< points of the mesh
+  std::size_t triangles = 0;             ///< triangles of the mesh
+  std::size_t edges = 0;                 ///< unique undirected edges
+  std::size_t boundary_edges = 0;        ///< edges with one triangle
+  std::size_t boundary_loops = 0;        ///< closed boundary curves
+  std::size_t non_manifold_edges = 0;    ///< edges with more than two triangles
   std::size_t non_manifold_vertices = 0; ///< vertices whose triangle fan is not one disk/half-disk
   std::size_t inconsistently_oriented_edges = 0; ///< interior edges used twice in one direction
-  std::size_t degenerate_triangles = 0; ///< repeated vertex or area < area_epsilon
-  std::size_t unreferenced_vertices = 0; ///< points used by no triangle
-  std::size_t invalid_triangles = 0;    ///< an index out of range or a non-finite vertex
-  std::size_t components = 0;           ///< edge-connected triangle components
-  long euler_characteristic = 0;        ///< V - E + F over referenced vertices
+  std::size_t degenerate_triangles = 0;          ///< repeated vertex or area < area_epsilon
+  std::size_t unreferenced_vertices = 0;         ///< points used by no triangle
+  std::size_t invalid_triangles = 0;             ///< an index out of range or a non-finite vertex
+  std::size_t components = 0;                    ///< edge-connected triangle components
+  long euler_characteristic = 0;                 ///< V - E + F over referenced vertices
   std::vector<std::uint8_t> triangle_is_degenerate; ///< per triangle, 1 = degenerate or invalid
   std::vector<std::uint8_t> vertex_is_non_manifold; ///< per vertex, 1 = non-manifold
 

@@ -4,8 +4,7 @@
 
 #include "mesolens/atom_table.h"
 
-namespace mesolens
-{
+namespace mesolens {
 
 /// Fills table.residue_indices: a new residue starts whenever chain id, residue number,
 /// insertion code or residue name changes from the previous atom.

@@ -8,8 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-namespace mesolens
-{
+namespace mesolens {
 
 /// Moves atoms by box vectors so that every molecule is whole: each atom is placed at the
 /// minimum image of its displacement from the previous atom of the same molecule (atoms of a
@@ -17,8 +16,10 @@ namespace mesolens
 /// consecutive atoms of a molecule are closer than half the shortest box height, which holds for
 /// lipids, proteins and nucleic acids in any sensible box. No-op when the box is not set.
 /// positions: 3 per atom, same length unit as the box. molecule_ids: per atom, >= 0.
-void make_molecules_whole(float* positions, const int* molecule_ids, std::size_t atom_count,
-  const PeriodicBox& box);
+void make_molecules_whole(float* positions,
+                          const int* molecule_ids,
+                          std::size_t atom_count,
+                          const PeriodicBox& box);
 
 /// Keeps molecules from jumping across the box between frames: the centroid of each molecule
 /// in frame k is moved to the periodic image closest to its centroid in frame k-1. Shifts are
@@ -31,7 +32,10 @@ public:
   explicit MoleculeContinuity(std::vector<int> molecule_ids);
 
   /// Number of frames whose shifts are known.
-  std::size_t known_frames() const { return this->Shifts.size(); }
+  std::size_t known_frames() const
+  {
+    return this->Shifts.size();
+  }
 
   /// Records frame `frame` (must equal known_frames()), whose molecules are already whole, and
   /// applies its shifts to `positions` in place.

@@ -6,13 +6,12 @@
 #include <string>
 #include <vector>
 
-namespace mesolens
-{
+namespace mesolens {
 
 /// A polygon soup: no orientation or manifoldness is assumed.
 struct PolygonSoup
 {
-  std::vector<double> points;                     ///< 3 per vertex
+  std::vector<double> points;                      ///< 3 per vertex
   std::vector<std::vector<std::int64_t>> polygons; ///< vertex indices per face
 };
 

@@ -5,8 +5,7 @@
 #include <cstddef>
 #include <functional>
 
-namespace mesolens
-{
+namespace mesolens {
 
 /// A loop body over the index range [begin, end).
 using RangeKernel = std::function<void(std::size_t begin, std::size_t end)>;
@@ -18,7 +17,9 @@ using RangeKernel = std::function<void(std::size_t begin, std::size_t end)>;
 using ParallelFor = std::function<void(std::size_t count, const RangeKernel& kernel)>;
 
 /// Calls `parallel_for` if set, else kernel(0, count).
-inline void run_parallel(const ParallelFor& parallel_for, std::size_t count, const RangeKernel& kernel)
+inline void run_parallel(const ParallelFor& parallel_for,
+                         std::size_t count,
+                         const RangeKernel& kernel)
 {
   if (count == 0)
   {

@@ -4,8 +4,7 @@
 
 #include <array>
 
-namespace mesolens
-{
+namespace mesolens {
 
 /// A periodic box given by its three edge vectors a, b, c (rows), in Å. GROMACS boxes are lower
 /// triangular (a along x, b in the xy plane); PDB CRYST1 cells are converted to that form.
@@ -27,8 +26,12 @@ struct PeriodicBox
   std::array<double, 3> minimum_image(const std::array<double, 3>& d) const;
 
   /// The box from unit-cell parameters (lengths Å, angles in degrees), GROMACS convention.
-  static PeriodicBox from_cell(double a, double b, double c, double alpha, double beta,
-    double gamma);
+  static PeriodicBox from_cell(double a,
+                               double b,
+                               double c,
+                               double alpha,
+                               double beta,
+                               double gamma);
 };
 
 } // namespace mesolens

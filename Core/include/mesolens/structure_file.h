@@ -10,8 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace mesolens
-{
+namespace mesolens {
 
 /// How alternate locations (altlocs) are resolved.
 enum class AltLocPolicy
@@ -46,8 +45,8 @@ struct StructureReadParams
 struct StructureFile
 {
   std::vector<AtomTable> models;
-  std::string title;            ///< TITLE / _struct.title, may be empty
-  bool coarse_grained = false;  ///< bonds were perceived with the bead cutoff
+  std::string title;                 ///< TITLE / _struct.title, may be empty
+  bool coarse_grained = false;       ///< bonds were perceived with the bead cutoff
   std::vector<std::string> warnings; ///< things a user should know (ignored CONECT serials...)
 };
 
@@ -61,8 +60,9 @@ using ProgressCallback = std::function<bool(double)>;
 /// gemmi does not read) and LINK/SSBOND/struct_conn covalent and disulfide links become bonds.
 /// Throws FileError for a missing, empty, truncated or unparsable file, or one without atoms;
 /// InvalidInput for non-finite coordinates.
-StructureFile read_structure(const std::string& path, const StructureReadParams& params = {},
-  const ProgressCallback& progress = {});
+StructureFile read_structure(const std::string& path,
+                             const StructureReadParams& params = {},
+                             const ProgressCallback& progress = {});
 
 /// Bonds and molecules for a table that has names and positions (used by every reader):
 /// assigns residues and molecules, perceives bonds and merges `explicit_bonds`. When the file
@@ -70,7 +70,9 @@ StructureFile read_structure(const std::string& path, const StructureReadParams&
 /// looks_coarse_grained() says so, the particles are beads: their atomic numbers are set to 0,
 /// the bead cutoff is used and the bonds are made consistent per molecule type
 /// (consensus_bonds()). Returns true when the particles were treated as beads.
-bool build_connectivity(AtomTable& table, const std::vector<Bond>& explicit_bonds,
-  const StructureReadParams& params, bool elements_given);
+bool build_connectivity(AtomTable& table,
+                        const std::vector<Bond>& explicit_bonds,
+                        const StructureReadParams& params,
+                        bool elements_given);
 
 } // namespace mesolens

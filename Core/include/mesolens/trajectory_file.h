@@ -11,8 +11,7 @@
 #include <string>
 #include <vector>
 
-namespace mesolens
-{
+namespace mesolens {
 
 /// One decoded frame. Positions are in Å (GROMACS' nm × 10).
 struct TrajectoryFrame
@@ -34,15 +33,15 @@ public:
   /// What to do with an incomplete last frame (a trajectory cut short while being written).
   enum class IncompleteFrames
   {
-    Reject,   ///< throw FileError naming the frame and the byte offset
-    Skip,     ///< index only the complete frames
+    Reject, ///< throw FileError naming the frame and the byte offset
+    Skip,   ///< index only the complete frames
   };
 
   /// Opens `path` (.xtc, .trr or .gro, by extension). Throws FileError when the file is missing,
   /// empty, not of that format, truncated (with IncompleteFrames::Reject), or when frames
   /// disagree on the atom count.
   explicit TrajectoryFile(const std::string& path,
-    IncompleteFrames incomplete = IncompleteFrames::Reject);
+                          IncompleteFrames incomplete = IncompleteFrames::Reject);
   ~TrajectoryFile();
   TrajectoryFile(const TrajectoryFile&) = delete;
   TrajectoryFile& operator=(const TrajectoryFile&) = delete;

@@ -27,20 +27,24 @@ TEST(vtkMesoAtomProperties, RadiiFromElements)
   EXPECT_FLOAT_EQ(pd->GetArray("CovalentRadius")->GetTuple1(1), 0.73f);    // CA
   properties->SetLengthScale(0.1);
   properties->Update();
-  EXPECT_NEAR(properties->GetOutput()->GetPointData()->GetArray("VanDerWaalsRadius")->GetTuple1(0), 0.155, 1e-6);
+  EXPECT_NEAR(properties->GetOutput()->GetPointData()->GetArray("VanDerWaalsRadius")->GetTuple1(0),
+              0.155,
+              1e-6);
 }
 
 TEST(vtkMesoAtomProperties, BeadsGetBeadRadius)
 {
   vtkNew<vtkMesoTrajectoryReader> reader;
-  reader->SetTopologyFileName(mesolens_test::data_file("membranes/martini_dppc_chol_bilayer.gro").c_str());
+  reader->SetTopologyFileName(
+    mesolens_test::data_file("membranes/martini_dppc_chol_bilayer.gro").c_str());
   vtkNew<vtkMesoAtomProperties> properties;
   properties->SetInputConnection(reader->GetOutputPort());
   properties->Update();
   EXPECT_EQ(properties->GetOutput()->GetNumberOfPoints(), 5040);
   // 360 DPPC x 11 bonds + 90 CHOL x 13 (Martini cholesterol's rigid ring constraints).
   EXPECT_EQ(properties->GetOutput()->GetNumberOfLines(), 360 * 11 + 90 * 13);
-  EXPECT_FLOAT_EQ(properties->GetOutput()->GetPointData()->GetArray("VanDerWaalsRadius")->GetRange()[1], 2.35f);
+  EXPECT_FLOAT_EQ(
+    properties->GetOutput()->GetPointData()->GetArray("VanDerWaalsRadius")->GetRange()[1], 2.35f);
 }
 
 TEST(vtkMesoAtomProperties, InputWithoutAtomicNumbers)

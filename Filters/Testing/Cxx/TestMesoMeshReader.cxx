@@ -18,8 +18,7 @@
 
 using mesolens_test::data_file;
 
-namespace
-{
+namespace {
 struct MeshCase
 {
   const char* file;

@@ -30,14 +30,23 @@ TEST(vtkMesoStructureReader, ArraysOfOneAtomPerVertex)
   EXPECT_EQ(atoms->GetNumberOfVerts(), 327);
   EXPECT_EQ(atoms->GetNumberOfLines(), 337);
   vtkPointData* pd = atoms->GetPointData();
-  for (const char* name : { "AtomicNumber", "ResidueNumber", "SerialNumber", "ResidueIndex",
-         "MoleculeId", "SecondaryStructure", "SecondaryStructureId", "Occupancy", "BFactor",
-         "IsHetAtm", "FormalCharge" })
+  for (const char* name : { "AtomicNumber",
+                            "ResidueNumber",
+                            "SerialNumber",
+                            "ResidueIndex",
+                            "MoleculeId",
+                            "SecondaryStructure",
+                            "SecondaryStructureId",
+                            "Occupancy",
+                            "BFactor",
+                            "IsHetAtm",
+                            "FormalCharge" })
   {
     ASSERT_NE(pd->GetArray(name), nullptr) << name;
     EXPECT_EQ(pd->GetArray(name)->GetNumberOfTuples(), 327) << name;
   }
-  for (const char* name : { "AtomName", "Element", "ResidueName", "ChainId", "InsertionCode", "AltLoc" })
+  for (const char* name :
+       { "AtomName", "Element", "ResidueName", "ChainId", "InsertionCode", "AltLoc" })
   {
     auto* strings = vtkStringArray::SafeDownCast(pd->GetAbstractArray(name));
     ASSERT_NE(strings, nullptr) << name;
@@ -107,7 +116,8 @@ TEST(vtkMesoStructureReader, CanReadFile)
 {
   EXPECT_EQ(vtkMesoStructureReader::CanReadFile(data_file("proteins/1crn.pdb").c_str()), 1);
   EXPECT_EQ(vtkMesoStructureReader::CanReadFile(data_file("proteins/1crn.cif").c_str()), 1);
-  EXPECT_EQ(vtkMesoStructureReader::CanReadFile(data_file("meshes/hipsc_cell_membrane_1.obj").c_str()), 0);
+  EXPECT_EQ(
+    vtkMesoStructureReader::CanReadFile(data_file("meshes/hipsc_cell_membrane_1.obj").c_str()), 0);
   EXPECT_EQ(vtkMesoStructureReader::CanReadFile(nullptr), 0);
 }
 
@@ -125,7 +135,8 @@ TEST(vtkMesoStructureReader, BadInputsFailCleanly)
   } cases[] = {
     { mesolens_test::output_file("no_such_file.pdb"), "no such file" },
     { mesolens_test::write_bytes("reader_empty.pdb", ""), "empty" },
-    { mesolens_test::write_bytes("reader_truncated.pdb", text.substr(0, text.find("ATOM    100") + 40)),
+    { mesolens_test::write_bytes("reader_truncated.pdb",
+                                 text.substr(0, text.find("ATOM    100") + 40)),
       "truncated" },
     { mesolens_test::garbage_file("reader_garbage.pdb"), "no atoms" },
     { mesolens_test::write_bytes("reader_nan.pdb", nan_text), "non-finite" },

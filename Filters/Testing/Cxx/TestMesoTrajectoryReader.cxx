@@ -21,9 +21,13 @@
 
 using mesolens_test::data_file;
 
-namespace
-{
-void expect_point(vtkPolyData* atoms, vtkIdType id, double x, double y, double z, double scale = 1.0)
+namespace {
+void expect_point(vtkPolyData* atoms,
+                  vtkIdType id,
+                  double x,
+                  double y,
+                  double z,
+                  double scale = 1.0)
 {
   double p[3];
   atoms->GetPoint(id, p);
@@ -52,7 +56,8 @@ double largest_molecule_extent(vtkPolyData* atoms)
     atoms->GetPoint(i, a);
     atoms->GetPoint(found, b);
     largest = std::max(largest,
-      std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2])));
+                       std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                                 (a[2] - b[2]) * (a[2] - b[2])));
   }
   return largest;
 }
@@ -90,7 +95,8 @@ TEST(vtkMesoTrajectoryReader, TimeStepsAndFrames)
   expect_point(reader->GetOutput(), 43479, -15.01, 62.42, 83.23);
   // Topology arrays and bonds are those of the .gro.
   EXPECT_GT(reader->GetOutput()->GetNumberOfLines(), 40000);
-  auto* residues = vtkStringArray::SafeDownCast(reader->GetOutput()->GetPointData()->GetAbstractArray("ResidueName"));
+  auto* residues = vtkStringArray::SafeDownCast(
+    reader->GetOutput()->GetPointData()->GetAbstractArray("ResidueName"));
   ASSERT_NE(residues, nullptr);
   // Box vectors of the hexagonal cell.
   auto* box = reader->GetOutput()->GetFieldData()->GetArray("PeriodicBoxVectors");
@@ -143,7 +149,8 @@ TEST(vtkMesoTrajectoryReader, VesicleMoleculesAreWholeAndContinuous)
     double b[3];
     last->GetPoint(i, a);
     previous->GetPoint(i, b);
-    largest_step = std::max(largest_step, std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]));
+    largest_step =
+      std::max(largest_step, std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]));
   }
   EXPECT_LT(largest_step, 100.0); // beads move a few Å in 500 ps, never a box length
 }

@@ -7,8 +7,16 @@ execute_process(COMMAND "${CMAKE_COMMAND}" --install "${BUILD}" --prefix "${PREF
 if (NOT status EQUAL 0)
   message(FATAL_ERROR "cmake --install failed")
 endif ()
+set(consumer_flags "")
+set(python_environment "PYTHONPATH=${PREFIX}/lib/python3/dist-packages")
+if (SANITIZERS)
+  # Libraries built with the sanitizers need the runtime in whatever links them.
+  set(consumer_flags "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined")
+  list(APPEND python_environment "LD_PRELOAD=${PRELOAD}" "ASAN_OPTIONS=detect_leaks=0")
+endif ()
 execute_process(COMMAND "${CMAKE_COMMAND}" -S "${SOURCE}" -B "${CONSUMER_BUILD}"
-  "-DCMAKE_PREFIX_PATH=${PREFIX}" -DCMAKE_BUILD_TYPE=Release RESULT_VARIABLE status)
+  "-DCMAKE_PREFIX_PATH=${PREFIX}" -DCMAKE_BUILD_TYPE=Release ${consumer_flags}
+  RESULT_VARIABLE status)
 if (NOT status EQUAL 0)
   message(FATAL_ERROR "find_package(MesoLens) failed")
 endif ()
@@ -23,7 +31,7 @@ if (NOT status EQUAL 0 OR NOT output MATCHES "327 atoms, 337 bonds")
   message(FATAL_ERROR "the consumer gave a wrong answer: ${output}")
 endif ()
 if (PYTHON)
-  execute_process(COMMAND "${CMAKE_COMMAND}" -E env "PYTHONPATH=${PREFIX}/lib/python3/dist-packages"
+  execute_process(COMMAND "${CMAKE_COMMAND}" -E env ${python_environment}
     "${PYTHON}" -c "import vtkmodules.all, mesolens; r = mesolens.vtkMesoStructureReader(); r.SetFileName('${PDB}'); r.Update(); print(r.GetOutput().GetNumberOfPoints(), 'atoms from', mesolens.__file__)"
     RESULT_VARIABLE status OUTPUT_VARIABLE output)
   message(STATUS "python: ${output}")

@@ -538,6 +538,15 @@ gemmi::Structure parse_with_gemmi(const std::string& path, ConectRecords& conect
     {
       throw FileError(path + ": the file is empty");
     }
+    const auto binary = std::find_if(buffer.data(), buffer.data() + buffer.size(), [](char c) {
+      const auto byte = static_cast<unsigned char>(c);
+      return byte < 0x09 || (byte > 0x0d && byte < 0x20 && byte != 0x1b);
+    });
+    if (binary != buffer.data() + buffer.size())
+    {
+      throw FileError(path + ": binary data at byte " +
+        std::to_string(binary - buffer.data()) + "; not a PDB or mmCIF text file");
+    }
     gemmi::CoorFormat format = gemmi::coor_format_from_ext(input.basepath());
     if (format == gemmi::CoorFormat::Unknown)
     {

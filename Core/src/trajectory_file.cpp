@@ -86,6 +86,18 @@ struct TrajectoryFile::Impl
     }
   }
 
+  void close_after_error()
+  {
+    try
+    {
+      this->close();
+    }
+    catch (const FileError&)
+    {
+      this->Status = nullptr; // GROMACS refused to close it: give it up
+    }
+  }
+
   void open_decoder()
   {
     if (this->Status)
@@ -94,9 +106,20 @@ struct TrajectoryFile::Impl
     }
     output_env_init_default(&this->OutputEnvironment);
     clear_trxframe(&this->Frame, TRUE);
-    if (!read_first_frame(
-          this->OutputEnvironment, &this->Status, this->Path.c_str(), &this->Frame, TRX_NEED_X))
+    bool opened = false;
+    try
     {
+      opened = read_first_frame(
+        this->OutputEnvironment, &this->Status, this->Path.c_str(), &this->Frame, TRX_NEED_X);
+    }
+    catch (const FileError&)
+    {
+      this->close_after_error();
+      throw;
+    }
+    if (!opened)
+    {
+      this->close_after_error();
       throw FileError(this->Path + ": GROMACS could not read the first frame");
     }
   }
@@ -214,17 +237,7 @@ TrajectoryFrame TrajectoryFile::read_frame(std::size_t index)
                        " requested, the file has " + std::to_string(this->frame_count()));
   }
   TrajectoryFrame frame;
-  try
-  {
-    this->Internal->decode(index, frame);
-  }
-  catch (const FileError&)
-  {
-    // GROMACS may have left its reader half-way through a frame: start afresh next time.
-    this->Internal->Status = nullptr;
-    this->Internal->Frame = t_trxframe{};
-    throw;
-  }
+  this->Internal->decode(index, frame);
   return frame;
 }
 

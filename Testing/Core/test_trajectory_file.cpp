@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 namespace {
 using mesolens_test::data_file;
@@ -28,8 +29,9 @@ void expect_atom(const mesolens::TrajectoryFrame& frame,
   EXPECT_NEAR(frame.positions[3 * atom + 2], z, 1e-3) << atom;
 }
 
-/// Writes the frames of an XTC as a full-precision TRR with GROMACS' own writer.
-std::string trr_copy_of(const std::string& xtc, const std::string& name)
+/// Writes the frames of an XTC as a full-precision TRR with GROMACS' own writer; with
+/// `poison_atom` >= 0, that atom's x in the last frame is NaN.
+std::string trr_copy_of(const std::string& xtc, const std::string& name, int poison_atom = -1)
 {
   const std::string path = mesolens_test::output_file(name);
   gmx_output_env_t* oenv = nullptr;
@@ -39,11 +41,17 @@ std::string trr_copy_of(const std::string& xtc, const std::string& name)
   clear_trxframe(&frame, TRUE);
   t_trxstatus* out = open_trx(path.c_str(), "w");
   bool more = read_first_frame(oenv, &in, xtc.c_str(), &frame, TRX_NEED_X);
+  int written = 0;
   while (more)
   {
     frame.bV = FALSE;
     frame.bF = FALSE;
+    if (poison_atom >= 0 && written == 4)
+    {
+      frame.x[poison_atom][0] = std::numeric_limits<float>::quiet_NaN();
+    }
     write_trxframe(out, &frame, nullptr);
+    ++written;
     more = read_next_frame(oenv, in, &frame);
   }
   close_trx(out);
@@ -106,6 +114,29 @@ TEST(TrajectoryFile, TrrWrittenByGromacsReadsTheSameFrames)
     }
     EXPECT_DOUBLE_EQ(a.time_ps, b.time_ps);
   }
+}
+
+TEST(TrajectoryFile, NonFiniteCoordinatesAreAnError)
+{
+  mesolens::TrajectoryFile file(
+    trr_copy_of(data_file("membranes/yiip_popepopg.xtc"), "yiip_nan.trr", 1000));
+  EXPECT_NO_THROW(file.read_frame(3));
+  try
+  {
+    file.read_frame(4);
+    FAIL() << "a NaN coordinate was accepted";
+  }
+  catch (const mesolens::FileError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("atom 1001"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("non-finite"), std::string::npos) << e.what();
+  }
+  // GRO topology with "nan" in a coordinate field: GROMACS itself rejects it.
+  std::string gro = mesolens_test::read_bytes(data_file("membranes/martini_dppc_chol_bilayer.gro"));
+  const std::size_t third_line = gro.find('\n', gro.find('\n') + 1) + 1;
+  gro.replace(third_line + 20, 8, "     nan");
+  EXPECT_THROW(mesolens::read_gro_topology(mesolens_test::write_bytes("nan.gro", gro)),
+    mesolens::FileError);
 }
 
 TEST(TrajectoryFile, GroAsTrajectory)

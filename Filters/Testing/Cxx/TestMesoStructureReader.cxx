@@ -138,7 +138,7 @@ TEST(vtkMesoStructureReader, BadInputsFailCleanly)
     { mesolens_test::write_bytes("reader_truncated.pdb",
                                  text.substr(0, text.find("ATOM    100") + 40)),
       "truncated" },
-    { mesolens_test::garbage_file("reader_garbage.pdb"), "no atoms" },
+    { mesolens_test::garbage_file("reader_garbage.pdb"), "binary data" },
     { mesolens_test::write_bytes("reader_nan.pdb", nan_text), "non-finite" },
   };
   for (const auto& c : cases)

@@ -14,8 +14,7 @@
 
 vtkStandardNewMacro(vtkMesoAtomProperties);
 
-int vtkMesoAtomProperties::RequestData(vtkInformation*,
-                                       vtkInformationVector** inputVector,
+int vtkMesoAtomProperties::RequestData(vtkInformation*, vtkInformationVector** inputVector,
                                        vtkInformationVector* outputVector)
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);

@@ -5,7 +5,6 @@
 #include "mesolens/elements.h"
 
 #include <vtkCellArray.h>
-#include <vtkCharArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
@@ -128,10 +127,8 @@ void ToPolyData(const mesolens::AtomTable& table, double length_scale, vtkPolyDa
   SetPeriodicBox(table.box, length_scale, output);
 }
 
-void SetPositions(const std::vector<float>& positions,
-                  const std::vector<std::size_t>& kept,
-                  double length_scale,
-                  vtkPolyData* output)
+void SetPositions(const std::vector<float>& positions, const std::vector<std::size_t>& kept,
+                  double length_scale, vtkPolyData* output)
 {
   const std::size_t n = kept.empty() ? positions.size() / 3 : kept.size();
   vtkPoints* points = output->GetPoints();
@@ -166,8 +163,8 @@ void SetPeriodicBox(const mesolens::PeriodicBox& box, double length_scale, vtkPo
   {
     for (int c = 0; c < 3; ++c)
     {
-      vectors->SetComponent(
-        0, 3 * r + c, box.vectors[std::size_t(r)][std::size_t(c)] * length_scale);
+      vectors->SetComponent(0, 3 * r + c,
+                            box.vectors[std::size_t(r)][std::size_t(c)] * length_scale);
     }
   }
   field->AddArray(vectors);

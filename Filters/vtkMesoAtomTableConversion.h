@@ -22,10 +22,8 @@ void ToPolyData(const mesolens::AtomTable& table, double length_scale, vtkPolyDa
 
 /// Replaces the points of an output built by ToPolyData with `positions` (3 floats per atom,
 /// Å) times `length_scale`, picking atoms `kept` (all atoms when empty).
-void SetPositions(const std::vector<float>& positions,
-                  const std::vector<std::size_t>& kept,
-                  double length_scale,
-                  vtkPolyData* output);
+void SetPositions(const std::vector<float>& positions, const std::vector<std::size_t>& kept,
+                  double length_scale, vtkPolyData* output);
 
 /// Adds (or replaces) the field-data array "PeriodicBoxVectors" (9 doubles, rows a, b, c, in
 /// output length units); removes it when the box is not set.

@@ -9,7 +9,6 @@
 #include <vtkCellArrayIterator.h>
 #include <vtkCellData.h>
 #include <vtkExecutive.h>
-#include <vtkIdList.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkNew.h>
@@ -43,9 +42,8 @@ std::string extension_of(const std::string& path)
 {
   const auto dot = path.find_last_of('.');
   std::string extension = dot == std::string::npos ? std::string() : path.substr(dot + 1);
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) {
-    return static_cast<char>(std::tolower(c));
-  });
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return extension;
 }
 
@@ -239,8 +237,7 @@ bool vtkMesoMeshReader::ReadOFF(vtkPolyData* output)
   return true;
 }
 
-int vtkMesoMeshReader::RequestData(vtkInformation*,
-                                   vtkInformationVector**,
+int vtkMesoMeshReader::RequestData(vtkInformation*, vtkInformationVector**,
                                    vtkInformationVector* outputVector)
 {
   vtkPolyData* output = vtkPolyData::GetData(outputVector);

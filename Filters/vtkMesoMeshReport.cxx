@@ -138,8 +138,7 @@ void vtkMesoMeshReport::AddResultsTo(vtkPolyData* output) const
   }
 }
 
-int vtkMesoMeshReport::RequestData(vtkInformation*,
-                                   vtkInformationVector** inputVector,
+int vtkMesoMeshReport::RequestData(vtkInformation*, vtkInformationVector** inputVector,
                                    vtkInformationVector* outputVector)
 {
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);

@@ -40,9 +40,8 @@ vtkMesoStructureReader::~vtkMesoStructureReader() = default;
 namespace {
 std::string lower_case(std::string text)
 {
-  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) {
-    return static_cast<char>(std::tolower(c));
-  });
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return text;
 }
 
@@ -141,8 +140,7 @@ bool vtkMesoStructureReader::ReadIfNeeded()
   return true;
 }
 
-int vtkMesoStructureReader::RequestInformation(vtkInformation*,
-                                               vtkInformationVector**,
+int vtkMesoStructureReader::RequestInformation(vtkInformation*, vtkInformationVector**,
                                                vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -165,16 +163,15 @@ int vtkMesoStructureReader::RequestInformation(vtkInformation*,
     {
       steps[m] = static_cast<double>(m);
     }
-    outInfo->Set(
-      vtkStreamingDemandDrivenPipeline::TIME_STEPS(), steps.data(), static_cast<int>(models));
+    outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), steps.data(),
+                 static_cast<int>(models));
     const double range[2] = { 0.0, static_cast<double>(models - 1) };
     outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
   }
   return 1;
 }
 
-int vtkMesoStructureReader::RequestData(vtkInformation*,
-                                        vtkInformationVector**,
+int vtkMesoStructureReader::RequestData(vtkInformation*, vtkInformationVector**,
                                         vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -197,8 +194,8 @@ int vtkMesoStructureReader::RequestData(vtkInformation*,
   }
   vtkMesoAtomTableConversion::ToPolyData(models[model], 1.0, output);
   vtkMesoAtomTableConversion::SetFieldValue(output, "ModelIndex", double(model));
-  vtkMesoAtomTableConversion::SetFieldValue(
-    output, "CoarseGrained", this->Parsed->File.coarse_grained ? 1.0 : 0.0);
+  vtkMesoAtomTableConversion::SetFieldValue(output, "CoarseGrained",
+                                            this->Parsed->File.coarse_grained ? 1.0 : 0.0);
   vtkMesoAtomTableConversion::SetFieldString(output, "Title", this->Parsed->File.title);
   if (models.size() > 1)
   {

@@ -54,9 +54,8 @@ std::string extension_of(const std::string& path)
 {
   const auto dot = path.find_last_of('.');
   std::string extension = dot == std::string::npos ? std::string() : path.substr(dot + 1);
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) {
-    return static_cast<char>(std::tolower(c));
-  });
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return extension;
 }
 
@@ -82,8 +81,8 @@ mesolens::AtomTable load_topology(const std::string& path,
   mesolens::assign_residues(table);
   mesolens::assign_molecules(table);
   mesolens::AtomTable whole = table;
-  mesolens::make_molecules_whole(
-    whole.positions.data(), whole.molecule_ids.data(), whole.size(), whole.box);
+  mesolens::make_molecules_whole(whole.positions.data(), whole.molecule_ids.data(), whole.size(),
+                                 whole.box);
   const bool elements_given = extension_of(path) != "gro";
   mesolens::build_connectivity(whole, explicit_bonds, params, elements_given);
   table.bonds = whole.bonds;
@@ -193,8 +192,7 @@ std::size_t vtkMesoTrajectoryReader::FrameForTime(double time) const
   return after == times.begin() ? 0 : static_cast<std::size_t>(after - times.begin() - 1);
 }
 
-int vtkMesoTrajectoryReader::RequestInformation(vtkInformation*,
-                                                vtkInformationVector**,
+int vtkMesoTrajectoryReader::RequestInformation(vtkInformation*, vtkInformationVector**,
                                                 vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -209,15 +207,14 @@ int vtkMesoTrajectoryReader::RequestInformation(vtkInformation*,
     return 0;
   }
   const std::vector<double>& times = this->Internal->Times;
-  outInfo->Set(
-    vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(), static_cast<int>(times.size()));
+  outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_STEPS(), times.data(),
+               static_cast<int>(times.size()));
   const double range[2] = { times.front(), times.back() };
   outInfo->Set(vtkStreamingDemandDrivenPipeline::TIME_RANGE(), range, 2);
   return 1;
 }
 
-int vtkMesoTrajectoryReader::RequestData(vtkInformation*,
-                                         vtkInformationVector**,
+int vtkMesoTrajectoryReader::RequestData(vtkInformation*, vtkInformationVector**,
                                          vtkInformationVector* outputVector)
 {
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
@@ -242,8 +239,8 @@ int vtkMesoTrajectoryReader::RequestData(vtkInformation*,
       mesolens::TrajectoryFrame f = state.File->read_frame(index);
       if (this->MakeMoleculesWhole)
       {
-        mesolens::make_molecules_whole(
-          f.positions.data(), state.Topology.molecule_ids.data(), state.Topology.size(), f.box);
+        mesolens::make_molecules_whole(f.positions.data(), state.Topology.molecule_ids.data(),
+                                       state.Topology.size(), f.box);
       }
       return f;
     };
@@ -282,10 +279,8 @@ int vtkMesoTrajectoryReader::RequestData(vtkInformation*,
       frame.box = state.Topology.box;
       if (this->MakeMoleculesWhole)
       {
-        mesolens::make_molecules_whole(frame.positions.data(),
-                                       state.Topology.molecule_ids.data(),
-                                       state.Topology.size(),
-                                       frame.box);
+        mesolens::make_molecules_whole(frame.positions.data(), state.Topology.molecule_ids.data(),
+                                       state.Topology.size(), frame.box);
       }
     }
   }

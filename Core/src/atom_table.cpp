@@ -181,11 +181,10 @@ bool is_water_residue(const std::string& residue_name)
                                                      "TIP3", "TIP4", "TIP5", "TP3", "SPC",
                                                      "SPCE", "T3P",  "W",    "PW" };
   std::string upper = residue_name;
-  std::transform(upper.begin(), upper.end(), upper.begin(), [](unsigned char c) {
-    return static_cast<char>(std::toupper(c));
-  });
-  return std::any_of(
-    names.begin(), names.end(), [&upper](const char* name) { return upper == name; });
+  std::transform(upper.begin(), upper.end(), upper.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  return std::any_of(names.begin(), names.end(),
+                     [&upper](const char* name) { return upper == name; });
 }
 
 } // namespace mesolens

@@ -10,8 +10,7 @@
 
 namespace mesolens {
 
-std::vector<Bond> consensus_bonds(const AtomTable& table,
-                                  const std::vector<Bond>& bonds,
+std::vector<Bond> consensus_bonds(const AtomTable& table, const std::vector<Bond>& bonds,
                                   const BondConsensusParams& params)
 {
   if (!(params.min_fraction > 0.0 && params.min_fraction <= 1.0) || params.min_copies < 1)

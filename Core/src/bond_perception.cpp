@@ -24,9 +24,7 @@ class UniformGrid
 public:
   /// Bins the atoms i < count with include[i] != 0 (all atoms when include is empty) and
   /// finite coordinates.
-  UniformGrid(const float* positions,
-              std::size_t count,
-              double cell_size,
+  UniformGrid(const float* positions, std::size_t count, double cell_size,
               const std::vector<std::uint8_t>& include = {})
   {
     auto wanted = [&](std::size_t i) {
@@ -206,8 +204,8 @@ private:
     std::array<std::int64_t, 3> c{};
     for (int d = 0; d < 3; ++d)
     {
-      c[d] = std::clamp<std::int64_t>(
-        std::int64_t((double(p[d]) - this->Low[d]) / this->Cell), 0, this->Dims[d] - 1);
+      c[d] = std::clamp<std::int64_t>(std::int64_t((double(p[d]) - this->Low[d]) / this->Cell), 0,
+                                      this->Dims[d] - 1);
     }
     return (c[2] * this->Dims[1] + c[1]) * this->Dims[0] + c[0];
   }

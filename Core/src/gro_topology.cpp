@@ -61,8 +61,8 @@ AtomTable read_gro_topology(const std::string& path)
   GroConfiguration gro;
   try
   {
-    readConfAndAtoms(
-      path.c_str(), &gro.symtab, &gro.title, &gro.atoms, &gro.pbc_type, &gro.x, &gro.v, gro.box);
+    readConfAndAtoms(path.c_str(), &gro.symtab, &gro.title, &gro.atoms, &gro.pbc_type, &gro.x,
+                     &gro.v, gro.box);
   }
   catch (const FileError& e)
   {

@@ -12,8 +12,8 @@ struct t_fileio;
 // they link, so a GROMACS that drops them fails at configure time, not at run time.
 std::int64_t gmx_fio_ftell(t_fileio* fio);
 int gmx_fio_seek(t_fileio* fio, std::int64_t offset);
-void gmx_set_error_handler(
-  void (*handler)(const char* title, const std::string& message, const char* file, int line));
+void gmx_set_error_handler(void (*handler)(const char* title, const std::string& message,
+                                           const char* file, int line));
 
 namespace mesolens {
 namespace detail {

@@ -50,8 +50,7 @@ double triangle_area(const double* p, const double* q, const double* r)
 {
   const std::array<double, 3> u{ q[0] - p[0], q[1] - p[1], q[2] - p[2] };
   const std::array<double, 3> v{ r[0] - p[0], r[1] - p[1], r[2] - p[2] };
-  const std::array<double, 3> c{ u[1] * v[2] - u[2] * v[1],
-                                 u[2] * v[0] - u[0] * v[2],
+  const std::array<double, 3> c{ u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
                                  u[0] * v[1] - u[1] * v[0] };
   return 0.5 * std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
 }
@@ -159,8 +158,7 @@ MeshReport mesh_report(const TriangleMeshView& mesh, double area_epsilon)
     const std::int64_t* tri = mesh.triangles + 3 * t;
     const bool repeated = tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2];
     if (repeated ||
-        triangle_area(mesh.points + 3 * tri[0],
-                      mesh.points + 3 * tri[1],
+        triangle_area(mesh.points + 3 * tri[0], mesh.points + 3 * tri[1],
                       mesh.points + 3 * tri[2]) <= area_threshold)
     {
       ++report.degenerate_triangles;

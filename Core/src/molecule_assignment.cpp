@@ -99,9 +99,7 @@ double periodic_distance(const AtomTable& table, long a, long b)
 }
 
 /// True when the residues are chemically linked along the backbone.
-bool backbone_linked(const AtomTable& table,
-                     const ResidueSpan& previous,
-                     const ResidueSpan& next,
+bool backbone_linked(const AtomTable& table, const ResidueSpan& previous, const ResidueSpan& next,
                      PolymerKind kind)
 {
   struct LinkRule

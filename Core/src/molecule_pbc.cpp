@@ -40,15 +40,14 @@ int molecule_count(const std::vector<int>& molecule_ids)
 }
 } // namespace
 
-void make_molecules_whole(float* positions,
-                          const int* molecule_ids,
-                          std::size_t atom_count,
+void make_molecules_whole(float* positions, const int* molecule_ids, std::size_t atom_count,
                           const PeriodicBox& box)
 {
   if (!box.is_set() || atom_count == 0)
   {
     return;
   }
+  const MinimumImage minimum_image(box);
   std::unordered_map<int, std::size_t> previous_atom;
   previous_atom.reserve(atom_count / 4 + 1);
   for (std::size_t i = 0; i < atom_count; ++i)
@@ -60,7 +59,7 @@ void make_molecules_whole(float* positions,
       float* p = positions + 3 * i;
       const float* q = positions + 3 * j;
       const std::array<double, 3> d =
-        box.minimum_image({ double(p[0]) - q[0], double(p[1]) - q[1], double(p[2]) - q[2] });
+        minimum_image({ double(p[0]) - q[0], double(p[1]) - q[1], double(p[2]) - q[2] });
       for (int k = 0; k < 3; ++k)
       {
         p[k] = float(double(q[k]) + d[std::size_t(k)]);
@@ -78,6 +77,7 @@ MoleculeContinuity::MoleculeContinuity(std::vector<int> molecule_ids)
   : MoleculeIds(std::move(molecule_ids))
 {
   this->MoleculeCount = molecule_count(this->MoleculeIds);
+  this->CurrentShifts.assign(3 * std::size_t(this->MoleculeCount), 0);
 }
 
 std::vector<double> MoleculeContinuity::centroids(const float* positions) const
@@ -105,47 +105,80 @@ std::vector<double> MoleculeContinuity::centroids(const float* positions) const
 
 void MoleculeContinuity::add_frame(std::size_t frame, float* positions, const PeriodicBox& box)
 {
-  if (frame != this->Shifts.size())
+  if (frame != this->Changes.size())
   {
     throw InvalidInput("MoleculeContinuity::add_frame: frames must be added in order (expected " +
-                       std::to_string(this->Shifts.size()) + ", got " + std::to_string(frame) +
+                       std::to_string(this->Changes.size()) + ", got " + std::to_string(frame) +
                        ")");
   }
-  std::vector<std::int32_t> shifts(3 * std::size_t(this->MoleculeCount), 0);
+  std::vector<Change> changes;
   if (frame > 0 && box.is_set())
   {
     const std::vector<double> current = this->centroids(positions);
-    const Eigen::Matrix3d m = box_columns(box);
-    const Eigen::PartialPivLU<Eigen::Matrix3d> lu(m);
+    const Eigen::PartialPivLU<Eigen::Matrix3d> lu(box_columns(box));
     for (std::size_t mol = 0; mol < std::size_t(this->MoleculeCount); ++mol)
     {
       const Eigen::Vector3d drift(this->PreviousCentroids[3 * mol] - current[3 * mol],
                                   this->PreviousCentroids[3 * mol + 1] - current[3 * mol + 1],
                                   this->PreviousCentroids[3 * mol + 2] - current[3 * mol + 2]);
       const Eigen::Vector3d fractional = lu.solve(drift);
+      Change change{ std::int32_t(mol), {} };
+      bool changed = false;
       for (int k = 0; k < 3; ++k)
       {
-        shifts[3 * mol + std::size_t(k)] = std::int32_t(std::lround(fractional[k]));
+        change.shift[std::size_t(k)] = std::int32_t(std::lround(fractional[k]));
+        changed =
+          changed || change.shift[std::size_t(k)] != this->CurrentShifts[3 * mol + std::size_t(k)];
+      }
+      if (changed)
+      {
+        std::copy(change.shift.begin(), change.shift.end(),
+                  this->CurrentShifts.begin() + long(3 * mol));
+        changes.push_back(change);
       }
     }
   }
-  this->Shifts.push_back(std::move(shifts));
-  this->apply(frame, positions, box);
+  this->Changes.push_back(std::move(changes));
+  if (frame % checkpoint_interval == 0)
+  {
+    this->Checkpoints.push_back(this->CurrentShifts);
+  }
+  this->shift_atoms(this->CurrentShifts, positions, box);
   this->PreviousCentroids = this->centroids(positions);
+}
+
+std::vector<std::int32_t> MoleculeContinuity::shifts_of(std::size_t frame) const
+{
+  const std::size_t checkpoint = frame / checkpoint_interval;
+  std::vector<std::int32_t> shifts = this->Checkpoints[checkpoint];
+  for (std::size_t f = checkpoint * checkpoint_interval + 1; f <= frame; ++f)
+  {
+    for (const Change& change : this->Changes[f])
+    {
+      std::copy(change.shift.begin(), change.shift.end(),
+                shifts.begin() + long(3 * std::size_t(change.molecule)));
+    }
+  }
+  return shifts;
 }
 
 void MoleculeContinuity::apply(std::size_t frame, float* positions, const PeriodicBox& box) const
 {
-  if (frame >= this->Shifts.size())
+  if (frame >= this->Changes.size())
   {
     throw InvalidInput("MoleculeContinuity::apply: frame " + std::to_string(frame) +
                        " has not been added");
   }
+  this->shift_atoms(this->shifts_of(frame), positions, box);
+}
+
+void MoleculeContinuity::shift_atoms(const std::vector<std::int32_t>& shifts, float* positions,
+                                     const PeriodicBox& box) const
+{
   if (!box.is_set())
   {
     return;
   }
-  const std::vector<std::int32_t>& shifts = this->Shifts[frame];
   for (std::size_t i = 0; i < this->MoleculeIds.size(); ++i)
   {
     const std::size_t mol = std::size_t(this->MoleculeIds[i]);

@@ -50,49 +50,80 @@ bool PeriodicBox::is_orthorhombic() const
 
 std::array<double, 3> PeriodicBox::minimum_image(const std::array<double, 3>& d) const
 {
-  if (!this->is_set())
+  return MinimumImage(*this)(d);
+}
+
+MinimumImage::MinimumImage(const PeriodicBox& box)
+  : Box(box)
+  , Set(box.is_set())
+  , Orthorhombic(box.is_orthorhombic())
+{
+  if (this->Set)
+  {
+    const Eigen::Matrix3d inverse = as_matrix(box).inverse();
+    for (int r = 0; r < 3; ++r)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        this->Inverse[std::size_t(r)][std::size_t(c)] = inverse(r, c);
+      }
+    }
+  }
+}
+
+std::array<double, 3> MinimumImage::operator()(const std::array<double, 3>& d) const
+{
+  if (!this->Set)
   {
     return d;
   }
-  const Eigen::Matrix3d m = as_matrix(*this);
-  const Eigen::Vector3d v(d[0], d[1], d[2]);
-  Eigen::Vector3d fractional = m.partialPivLu().solve(v);
-  for (int i = 0; i < 3; ++i)
+  std::array<double, 3> reduced = d;
+  for (std::size_t axis = 0; axis < 3; ++axis)
   {
-    fractional[i] -= std::round(fractional[i]);
+    const double fractional =
+      this->Inverse[axis][0] * d[0] + this->Inverse[axis][1] * d[1] + this->Inverse[axis][2] * d[2];
+    const double steps = std::round(fractional);
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+      reduced[k] -= steps * this->Box.vectors[axis][k];
+    }
   }
-  const Eigen::Vector3d reduced = m * fractional;
+  if (this->Orthorhombic)
+  {
+    return reduced;
+  }
   // Rounding in fractional space is exact only for orthorhombic boxes; in a skewed box the
   // shortest image can be one lattice step away, so look at the neighbours.
-  Eigen::Vector3d best = reduced;
-  if (!this->is_orthorhombic())
+  auto length2 = [](const std::array<double, 3>& v) {
+    return v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+  };
+  std::array<double, 3> best = reduced;
+  double best_length = length2(reduced);
+  for (int i = -1; i <= 1; ++i)
   {
-    double best_length = reduced.squaredNorm();
-    for (int i = -1; i <= 1; ++i)
+    for (int j = -1; j <= 1; ++j)
     {
-      for (int j = -1; j <= 1; ++j)
+      for (int k = -1; k <= 1; ++k)
       {
-        for (int k = -1; k <= 1; ++k)
+        std::array<double, 3> candidate = reduced;
+        for (std::size_t c = 0; c < 3; ++c)
         {
-          const Eigen::Vector3d candidate = reduced + m * Eigen::Vector3d(i, j, k);
-          const double length = candidate.squaredNorm();
-          if (length < best_length)
-          {
-            best_length = length;
-            best = candidate;
-          }
+          candidate[c] +=
+            i * this->Box.vectors[0][c] + j * this->Box.vectors[1][c] + k * this->Box.vectors[2][c];
+        }
+        const double length = length2(candidate);
+        if (length < best_length)
+        {
+          best_length = length;
+          best = candidate;
         }
       }
     }
   }
-  return { best[0], best[1], best[2] };
+  return best;
 }
 
-PeriodicBox PeriodicBox::from_cell(double a,
-                                   double b,
-                                   double c,
-                                   double alpha,
-                                   double beta,
+PeriodicBox PeriodicBox::from_cell(double a, double b, double c, double alpha, double beta,
                                    double gamma)
 {
   const double degree = std::acos(-1.0) / 180.0;

@@ -28,9 +28,8 @@ namespace {
 bool ends_with(const std::string& text, const std::string& suffix)
 {
   return text.size() >= suffix.size() &&
-    std::equal(suffix.rbegin(), suffix.rend(), text.rbegin(), [](char a, char b) {
-           return std::tolower(a) == std::tolower(b);
-         });
+    std::equal(suffix.rbegin(), suffix.rend(), text.rbegin(),
+               [](char a, char b) { return std::tolower(a) == std::tolower(b); });
 }
 
 /// What the raw-text pass over a PDB file found.
@@ -195,8 +194,7 @@ ConectRecords scan_pdb_text(char* data, std::size_t size, const std::string& pat
         char* parse_end = nullptr;
         const long value = std::strtol(text.c_str(), &parse_end, 10);
         if (parse_end == text.c_str() ||
-            std::any_of(static_cast<const char*>(parse_end),
-                        text.c_str() + text.size(),
+            std::any_of(static_cast<const char*>(parse_end), text.c_str() + text.size(),
                         [](char c) { return c != ' '; }))
         {
           if (text.find_first_not_of(' ') != std::string::npos)
@@ -272,11 +270,8 @@ public:
   }
 
   /// Marks residues from `start` to `end` (inclusive, in chain order).
-  void mark(AtomTable& table,
-            const gemmi::AtomAddress& start,
-            const gemmi::AtomAddress& end,
-            SecondaryStructure kind,
-            int span_id) const
+  void mark(AtomTable& table, const gemmi::AtomAddress& start, const gemmi::AtomAddress& end,
+            SecondaryStructure kind, int span_id) const
   {
     const auto chain = this->Positions.find(start.chain_name);
     if (chain == this->Positions.end())
@@ -315,13 +310,11 @@ private:
 
 /// Alternate-location mask: per residue the conformer with the highest summed occupancy; per
 /// atom name, that conformer's atom, or the best atom of the group when the conformer lacks it.
-void mark_alternate_locations(const AtomTable& table,
-                              const ResidueRange& range,
+void mark_alternate_locations(const AtomTable& table, const ResidueRange& range,
                               std::vector<bool>& keep)
 {
   if (std::all_of(table.alt_locs.begin() + long(range.begin),
-                  table.alt_locs.begin() + long(range.end),
-                  [](char c) { return c == ' '; }))
+                  table.alt_locs.begin() + long(range.end), [](char c) { return c == ' '; }))
   {
     return;
   }
@@ -420,12 +413,9 @@ AtomTable convert_model(const gemmi::Model& model, std::vector<ChainResidues>& c
   return table;
 }
 
-std::vector<Bond> explicit_bonds(const gemmi::Structure& structure,
-                                 const gemmi::Model& model,
-                                 const std::vector<ChainResidues>& chains,
-                                 const AtomTable& table,
-                                 const ConectRecords& conect,
-                                 std::vector<std::string>& warnings)
+std::vector<Bond> explicit_bonds(const gemmi::Structure& structure, const gemmi::Model& model,
+                                 const std::vector<ChainResidues>& chains, const AtomTable& table,
+                                 const ConectRecords& conect, std::vector<std::string>& warnings)
 {
   std::vector<Bond> bonds;
   auto add = [&bonds](std::size_t a, std::size_t b) {
@@ -544,8 +534,8 @@ gemmi::Structure parse_with_gemmi(const std::string& path, ConectRecords& conect
     });
     if (binary != buffer.data() + buffer.size())
     {
-      throw FileError(path + ": binary data at byte " +
-        std::to_string(binary - buffer.data()) + "; not a PDB or mmCIF text file");
+      throw FileError(path + ": binary data at byte " + std::to_string(binary - buffer.data()) +
+                      "; not a PDB or mmCIF text file");
     }
     gemmi::CoorFormat format = gemmi::coor_format_from_ext(input.basepath());
     if (format == gemmi::CoorFormat::Unknown)
@@ -574,8 +564,7 @@ gemmi::Structure parse_with_gemmi(const std::string& path, ConectRecords& conect
   }
 }
 
-std::vector<bool> selection_mask(const AtomTable& table,
-                                 const std::vector<ChainResidues>& chains,
+std::vector<bool> selection_mask(const AtomTable& table, const std::vector<ChainResidues>& chains,
                                  const StructureReadParams& params)
 {
   std::vector<bool> keep(table.size(), true);
@@ -602,10 +591,8 @@ std::vector<bool> selection_mask(const AtomTable& table,
 
 } // namespace
 
-bool build_connectivity(AtomTable& table,
-                        const std::vector<Bond>& explicit_bonds,
-                        const StructureReadParams& params,
-                        bool elements_given)
+bool build_connectivity(AtomTable& table, const std::vector<Bond>& explicit_bonds,
+                        const StructureReadParams& params, bool elements_given)
 {
   assign_residues(table);
   assign_molecules(table);
@@ -641,8 +628,7 @@ bool build_connectivity(AtomTable& table,
   return bond_params.coarse_grained;
 }
 
-StructureFile read_structure(const std::string& path,
-                             const StructureReadParams& params,
+StructureFile read_structure(const std::string& path, const StructureReadParams& params,
                              const ProgressCallback& progress)
 {
   auto report = [&progress](double fraction) {
@@ -701,12 +687,9 @@ StructureFile read_structure(const std::string& path,
     file.coarse_grained = build_connectivity(table, kept_explicit, params, elements_given);
     if (structure.cell.is_crystal())
     {
-      table.box = PeriodicBox::from_cell(structure.cell.a,
-                                         structure.cell.b,
-                                         structure.cell.c,
-                                         structure.cell.alpha,
-                                         structure.cell.beta,
-                                         structure.cell.gamma);
+      table.box =
+        PeriodicBox::from_cell(structure.cell.a, structure.cell.b, structure.cell.c,
+                               structure.cell.alpha, structure.cell.beta, structure.cell.gamma);
     }
     file.models.push_back(std::move(table));
     report(0.5 + 0.5 * double(m + 1) / double(structure.models.size()));

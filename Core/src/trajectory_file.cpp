@@ -34,9 +34,8 @@ Format format_of(const std::string& path)
     return Format::Unknown;
   }
   std::string extension = path.substr(dot + 1);
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) {
-    return char(std::tolower(c));
-  });
+  std::transform(extension.begin(), extension.end(), extension.begin(),
+                 [](unsigned char c) { return char(std::tolower(c)); });
   if (extension == "xtc")
   {
     return Format::Xtc;
@@ -109,8 +108,8 @@ struct TrajectoryFile::Impl
     bool opened = false;
     try
     {
-      opened = read_first_frame(
-        this->OutputEnvironment, &this->Status, this->Path.c_str(), &this->Frame, TRX_NEED_X);
+      opened = read_first_frame(this->OutputEnvironment, &this->Status, this->Path.c_str(),
+                                &this->Frame, TRX_NEED_X);
     }
     catch (const FileError&)
     {

@@ -99,9 +99,7 @@ private:
   std::int64_t Size = 0;
 };
 
-void check_atom_count(FrameIndex& index,
-                      std::int64_t atoms,
-                      std::size_t frame,
+void check_atom_count(FrameIndex& index, std::int64_t atoms, std::size_t frame,
                       const std::string& path)
 {
   if (atoms <= 0)

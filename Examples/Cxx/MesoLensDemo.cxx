@@ -159,8 +159,8 @@ bool add_membrane(vtkRenderer* renderer, const Options& options, vtkLookupTable*
   vtkNew<vtkActor> actor;
   actor->SetMapper(spheres);
   renderer->AddActor(actor);
-  add_title(
-    renderer, "DPPC bilayer, 128 lipids: " + counts(properties->GetOutput()), options.width / 60);
+  add_title(renderer, "DPPC bilayer, 128 lipids: " + counts(properties->GetOutput()),
+            options.width / 60);
   return true;
 }
 } // namespace

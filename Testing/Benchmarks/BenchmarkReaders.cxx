@@ -69,8 +69,7 @@ double median_seconds(int repeats, const std::function<void()>& work)
 }
 
 /// Medians of `repeats` runs of `a` and `b`, interleaved so both see the same machine load.
-std::pair<double, double> interleaved_medians(int repeats,
-                                              const std::function<void()>& a,
+std::pair<double, double> interleaved_medians(int repeats, const std::function<void()>& a,
                                               const std::function<void()>& b)
 {
   std::vector<double> times_a;
@@ -113,45 +112,22 @@ void pdb_to_mmcif(const std::string& pdb, const std::string& cif)
   const mesolens::AtomTable t = mesolens::read_structure(pdb, params).models.front();
   std::FILE* out = std::fopen(cif.c_str(), "w");
   std::fprintf(out, "data_converted\nloop_\n");
-  for (const char* item : { "group_PDB",
-                            "id",
-                            "type_symbol",
-                            "label_atom_id",
-                            "label_alt_id",
-                            "label_comp_id",
-                            "label_asym_id",
-                            "label_entity_id",
-                            "label_seq_id",
-                            "Cartn_x",
-                            "Cartn_y",
-                            "Cartn_z",
-                            "occupancy",
-                            "B_iso_or_equiv",
-                            "auth_seq_id",
-                            "auth_asym_id",
-                            "pdbx_PDB_model_num" })
+  for (const char* item :
+       { "group_PDB", "id", "type_symbol", "label_atom_id", "label_alt_id", "label_comp_id",
+         "label_asym_id", "label_entity_id", "label_seq_id", "Cartn_x", "Cartn_y", "Cartn_z",
+         "occupancy", "B_iso_or_equiv", "auth_seq_id", "auth_asym_id", "pdbx_PDB_model_num" })
   {
     std::fprintf(out, "_atom_site.%s\n", item);
   }
   for (std::size_t i = 0; i < t.size(); ++i)
   {
     const std::string chain = t.chain_ids[i].empty() ? "A" : t.chain_ids[i];
-    std::fprintf(out,
-                 "%s %zu %s \"%s\" . %s %s 1 %d %.3f %.3f %.3f %.2f %.2f %d %s 1\n",
-                 t.is_hetero[i] ? "HETATM" : "ATOM",
-                 i + 1,
-                 mesolens::element_symbol(t.atomic_numbers[i]),
-                 t.atom_names[i].c_str(),
-                 t.residue_names[i].c_str(),
-                 chain.c_str(),
-                 t.residue_numbers[i],
-                 t.positions[3 * i],
-                 t.positions[3 * i + 1],
-                 t.positions[3 * i + 2],
-                 t.occupancies[i],
-                 t.b_factors[i],
-                 t.residue_numbers[i],
-                 chain.c_str());
+    std::fprintf(out, "%s %zu %s \"%s\" . %s %s 1 %d %.3f %.3f %.3f %.2f %.2f %d %s 1\n",
+                 t.is_hetero[i] ? "HETATM" : "ATOM", i + 1,
+                 mesolens::element_symbol(t.atomic_numbers[i]), t.atom_names[i].c_str(),
+                 t.residue_names[i].c_str(), chain.c_str(), t.residue_numbers[i],
+                 t.positions[3 * i], t.positions[3 * i + 1], t.positions[3 * i + 2],
+                 t.occupancies[i], t.b_factors[i], t.residue_numbers[i], chain.c_str());
   }
   std::fclose(out);
 }
@@ -180,16 +156,11 @@ void benchmark_structure(const std::string& label, const std::string& pdb, const
   std::printf("BENCH structure-pdb input=%s atoms=%lld | vtkMesoStructureReader %.3f us/atom "
               "(%.1f ms, %lld atoms, %lld bonds) | vtkPDBReader %.3f us/atom (%.1f ms, %lld atoms) "
               "| speedup %.1fx\n",
-              label.c_str(),
-              static_cast<long long>(ours_atoms),
-              1e6 * ours_pdb / double(ours_atoms),
-              1e3 * ours_pdb,
-              static_cast<long long>(ours_atoms),
-              static_cast<long long>(ours_bonds),
-              1e6 * vtk_pdb / double(std::max<vtkIdType>(vtk_atoms, 1)),
-              1e3 * vtk_pdb,
-              static_cast<long long>(vtk_atoms),
-              vtk_pdb / ours_pdb);
+              label.c_str(), static_cast<long long>(ours_atoms),
+              1e6 * ours_pdb / double(ours_atoms), 1e3 * ours_pdb,
+              static_cast<long long>(ours_atoms), static_cast<long long>(ours_bonds),
+              1e6 * vtk_pdb / double(std::max<vtkIdType>(vtk_atoms, 1)), 1e3 * vtk_pdb,
+              static_cast<long long>(vtk_atoms), vtk_pdb / ours_pdb);
   if (cif.empty())
   {
     return;
@@ -201,12 +172,9 @@ void benchmark_structure(const std::string& label, const std::string& pdb, const
   });
   std::printf("BENCH structure-mmcif input=%s atoms=%lld | vtkMesoStructureReader %.3f us/atom "
               "(%.1f ms) | vtkPDBReader on the PDB form %.3f us/atom | speedup %.1fx\n",
-              label.c_str(),
-              static_cast<long long>(ours->GetOutput()->GetNumberOfPoints()),
-              1e6 * ours_cif / double(ours->GetOutput()->GetNumberOfPoints()),
-              1e3 * ours_cif,
-              1e6 * vtk_pdb / double(std::max<vtkIdType>(vtk_atoms, 1)),
-              vtk_pdb / ours_cif);
+              label.c_str(), static_cast<long long>(ours->GetOutput()->GetNumberOfPoints()),
+              1e6 * ours_cif / double(ours->GetOutput()->GetNumberOfPoints()), 1e3 * ours_cif,
+              1e6 * vtk_pdb / double(std::max<vtkIdType>(vtk_atoms, 1)), vtk_pdb / ours_cif);
 }
 
 /// Sequential decoding of every frame with GROMACS alone: the baseline.
@@ -262,15 +230,8 @@ void benchmark_trajectory(const std::string& label, const std::string& gro, cons
     "BENCH xtc input=%s frames=%d atoms=%zu | TrajectoryFile %.1f frames/s %.2f Matoms/s "
     "| vtkMesoTrajectoryReader (whole, continuous, backwards) %.1f frames/s %.2f Matoms/s "
     "| GROMACS sequential %.1f frames/s %.2f Matoms/s | ratio TrajectoryFile/GROMACS %.2f\n",
-    label.c_str(),
-    frames,
-    atoms,
-    n / core,
-    n * double(atoms) / core / 1e6,
-    n / pipeline,
-    n * double(atoms) / pipeline / 1e6,
-    n / baseline,
-    n * double(atoms) / baseline / 1e6,
+    label.c_str(), frames, atoms, n / core, n * double(atoms) / core / 1e6, n / pipeline,
+    n * double(atoms) / pipeline / 1e6, n / baseline, n * double(atoms) / baseline / 1e6,
     baseline / core);
 }
 } // namespace
@@ -301,12 +262,11 @@ int main()
   const std::string achbp = shared_file("proteins/3wip.pdb");
   if (exists(achbp))
   {
-    benchmark_structure(
-      "3wip (real PDB and mmCIF entries)", achbp, shared_file("proteins/3wip.cif"));
+    benchmark_structure("3wip (real PDB and mmCIF entries)", achbp,
+                        shared_file("proteins/3wip.cif"));
   }
   benchmark_structure("1tii.pdb (Data/)", data_file("proteins/1tii.pdb"), "");
-  benchmark_trajectory("yiip_popepopg.xtc (all-atom)",
-                       data_file("membranes/yiip_popepopg.gro"),
+  benchmark_trajectory("yiip_popepopg.xtc (all-atom)", data_file("membranes/yiip_popepopg.gro"),
                        data_file("membranes/yiip_popepopg.xtc"));
   benchmark_trajectory("martini_dppc_vesicle.xtc (coarse-grained, triclinic)",
                        data_file("membranes/martini_dppc_vesicle.gro"),

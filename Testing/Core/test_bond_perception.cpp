@@ -116,8 +116,8 @@ TEST(BondPerception, GridMatchesBruteForceOnRandomCloud)
   Atoms atoms;
   for (int i = 0; i < 3000; ++i)
   {
-    atoms.add(
-      coordinate(random), coordinate(random), coordinate(random), elements[element(random)], i % 3);
+    atoms.add(coordinate(random), coordinate(random), coordinate(random), elements[element(random)],
+              i % 3);
   }
   const auto grid = mesolens::perceive_bonds(atoms.input());
   const auto reference = brute_force(atoms, 0.45f);

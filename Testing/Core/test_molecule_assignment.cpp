@@ -4,12 +4,8 @@
 #include <gtest/gtest.h>
 
 namespace {
-void add(mesolens::AtomTable& t,
-         const char* name,
-         const char* residue,
-         int number,
-         const char* chain,
-         float x)
+void add(mesolens::AtomTable& t, const char* name, const char* residue, int number,
+         const char* chain, float x)
 {
   t.append_atom(name, x, 0, 0);
   t.residue_names.back() = residue;

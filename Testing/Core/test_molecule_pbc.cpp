@@ -77,3 +77,27 @@ TEST(MoleculePbc, ContinuityUndoesBoxCrossings)
   EXPECT_THROW(continuity.apply(9, p.data(), box), mesolens::InvalidInput);
   EXPECT_THROW(continuity.add_frame(9, p.data(), box), mesolens::InvalidInput);
 }
+
+TEST(MoleculePbc, ContinuityAcrossCheckpoints)
+{
+  // 200 frames (several checkpoints) of a molecule drifting 3 Å per frame in a 10 Å box, and a
+  // resting one: random access to any frame gives the unwrapped position.
+  const auto box = cube(10);
+  mesolens::MoleculeContinuity continuity({ 0, 1 });
+  auto wrapped_frame = [](std::size_t f) {
+    const double x = 1.0 + 3.0 * double(f);
+    return std::vector<float>{ float(std::fmod(x, 10.0)), 0, 0, 5, 5, 5 };
+  };
+  for (std::size_t f = 0; f < 200; ++f)
+  {
+    std::vector<float> p = wrapped_frame(f);
+    continuity.add_frame(f, p.data(), box);
+  }
+  for (std::size_t f : { 199u, 0u, 64u, 65u, 130u, 63u })
+  {
+    std::vector<float> p = wrapped_frame(f);
+    continuity.apply(f, p.data(), box);
+    EXPECT_NEAR(p[0], 1.0 + 3.0 * double(f), 1e-3) << f;
+    EXPECT_FLOAT_EQ(p[3], 5.0f);
+  }
+}

@@ -103,13 +103,11 @@ TEST_P(StructureCounts, MatchIndependentReaders)
     EXPECT_EQ(long(t.bonds.size()), e.bonds);
   }
   EXPECT_FALSE(file.coarse_grained);
-  EXPECT_TRUE(std::none_of(
-    t.atomic_numbers.begin(), t.atomic_numbers.end(), [](std::uint8_t z) { return z == 0; }));
+  EXPECT_TRUE(std::none_of(t.atomic_numbers.begin(), t.atomic_numbers.end(),
+                           [](std::uint8_t z) { return z == 0; }));
 }
 
-INSTANTIATE_TEST_SUITE_P(RealFiles,
-                         StructureCounts,
-                         ::testing::ValuesIn(expected_counts),
+INSTANTIATE_TEST_SUITE_P(RealFiles, StructureCounts, ::testing::ValuesIn(expected_counts),
                          [](const ::testing::TestParamInfo<Expected>& info) {
                            std::string name =
                              std::string(info.param.file).substr(sizeof("proteins/") - 1);
@@ -166,8 +164,8 @@ TEST(StructureFile, AlternateLocationsKeepHighestOccupancy)
 TEST(StructureFile, InsertionCodesAndHetatm)
 {
   const auto t = mesolens::read_structure(data_file("proteins/1dix.pdb")).models.front();
-  EXPECT_EQ(std::count_if(
-              t.insertion_codes.begin(), t.insertion_codes.end(), [](char c) { return c != ' '; }),
+  EXPECT_EQ(std::count_if(t.insertion_codes.begin(), t.insertion_codes.end(),
+                          [](char c) { return c != ' '; }),
             21);
   const auto ubq = mesolens::read_structure(data_file("proteins/1ubq.pdb")).models.front();
   EXPECT_EQ(std::count(ubq.is_hetero.begin(), ubq.is_hetero.end(), 1), 58); // waters

@@ -18,10 +18,7 @@
 namespace {
 using mesolens_test::data_file;
 
-void expect_atom(const mesolens::TrajectoryFrame& frame,
-                 std::size_t atom,
-                 float x,
-                 float y,
+void expect_atom(const mesolens::TrajectoryFrame& frame, std::size_t atom, float x, float y,
                  float z)
 {
   EXPECT_NEAR(frame.positions[3 * atom], x, 1e-3) << atom;
@@ -136,7 +133,7 @@ TEST(TrajectoryFile, NonFiniteCoordinatesAreAnError)
   const std::size_t third_line = gro.find('\n', gro.find('\n') + 1) + 1;
   gro.replace(third_line + 20, 8, "     nan");
   EXPECT_THROW(mesolens::read_gro_topology(mesolens_test::write_bytes("nan.gro", gro)),
-    mesolens::FileError);
+               mesolens::FileError);
 }
 
 TEST(TrajectoryFile, GroAsTrajectory)
@@ -155,8 +152,8 @@ TEST(TrajectoryFile, GroAsTrajectory)
 
 TEST(TrajectoryFile, TruncatedXtc)
 {
-  const std::string path = mesolens_test::truncated_copy(
-    data_file("membranes/yiip_popepopg.xtc"), 500000, "truncated.xtc");
+  const std::string path = mesolens_test::truncated_copy(data_file("membranes/yiip_popepopg.xtc"),
+                                                         500000, "truncated.xtc");
   try
   {
     mesolens::TrajectoryFile file(path);

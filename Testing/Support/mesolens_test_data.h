@@ -50,8 +50,7 @@ inline std::string write_bytes(const std::string& name, const std::string& bytes
 }
 
 /// Writes the first `bytes` bytes of `source` to an output file and returns its path.
-inline std::string truncated_copy(const std::string& source,
-                                  std::size_t bytes,
+inline std::string truncated_copy(const std::string& source, std::size_t bytes,
                                   const std::string& name)
 {
   return write_bytes(name, read_bytes(source).substr(0, bytes));

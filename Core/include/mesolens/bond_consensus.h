@@ -27,8 +27,7 @@ struct BondConsensusParams
 /// On the Martini DPPC vesicle of Data/ with a 5 Å cutoff this recovers exactly the 11 bonds
 /// of each lipid, where the cutoff alone misses 16 % and adds 0.8 per lipid.
 /// Needs table.molecule_ids; `bonds` must be within molecules. Result sorted and unique.
-std::vector<Bond> consensus_bonds(const AtomTable& table,
-                                  const std::vector<Bond>& bonds,
+std::vector<Bond> consensus_bonds(const AtomTable& table, const std::vector<Bond>& bonds,
                                   const BondConsensusParams& params = {});
 
 } // namespace mesolens

@@ -4,6 +4,7 @@
 
 #include "mesolens/periodic_box.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -16,15 +17,15 @@ namespace mesolens {
 /// consecutive atoms of a molecule are closer than half the shortest box height, which holds for
 /// lipids, proteins and nucleic acids in any sensible box. No-op when the box is not set.
 /// positions: 3 per atom, same length unit as the box. molecule_ids: per atom, >= 0.
-void make_molecules_whole(float* positions,
-                          const int* molecule_ids,
-                          std::size_t atom_count,
+void make_molecules_whole(float* positions, const int* molecule_ids, std::size_t atom_count,
                           const PeriodicBox& box);
 
 /// Keeps molecules from jumping across the box between frames: the centroid of each molecule
 /// in frame k is moved to the periodic image closest to its centroid in frame k-1. Shifts are
 /// remembered per frame, so frames can be requested in any order (frames before the requested
-/// one are visited once, in order, the first time).
+/// one are visited once, in order, the first time). Memory: the molecules that changed image in
+/// each frame, plus a full shift table every checkpoint_interval frames, so a long trajectory
+/// costs O(molecules x frames / 64 + box crossings), not O(molecules x frames).
 class MoleculeContinuity
 {
 public:
@@ -34,7 +35,7 @@ public:
   /// Number of frames whose shifts are known.
   std::size_t known_frames() const
   {
-    return this->Shifts.size();
+    return this->Changes.size();
   }
 
   /// Records frame `frame` (must equal known_frames()), whose molecules are already whole, and
@@ -44,13 +45,27 @@ public:
   /// Applies the remembered shifts of a known frame to whole positions in place.
   void apply(std::size_t frame, float* positions, const PeriodicBox& box) const;
 
+  /// Frames between two full shift tables.
+  static constexpr std::size_t checkpoint_interval = 64;
+
 private:
+  /// A molecule whose image shift (in multiples of a, b, c) changed in a frame.
+  struct Change
+  {
+    std::int32_t molecule;
+    std::array<std::int32_t, 3> shift;
+  };
   std::vector<double> centroids(const float* positions) const;
+  std::vector<std::int32_t> shifts_of(std::size_t frame) const;
+  void shift_atoms(const std::vector<std::int32_t>& shifts, float* positions,
+                   const PeriodicBox& box) const;
+
   std::vector<int> MoleculeIds;
   int MoleculeCount = 0;
-  /// Per frame, per molecule: integer multiples of a, b, c added to the molecule.
-  std::vector<std::vector<std::int32_t>> Shifts;
-  std::vector<double> PreviousCentroids;
+  std::vector<std::vector<Change>> Changes;           ///< per frame: new shifts
+  std::vector<std::vector<std::int32_t>> Checkpoints; ///< full shifts at frames 0, 64, ...
+  std::vector<std::int32_t> CurrentShifts;            ///< shifts of the last known frame
+  std::vector<double> PreviousCentroids;              ///< shifted centroids, last known frame
 };
 
 } // namespace mesolens

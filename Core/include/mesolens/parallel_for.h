@@ -17,8 +17,7 @@ using RangeKernel = std::function<void(std::size_t begin, std::size_t end)>;
 using ParallelFor = std::function<void(std::size_t count, const RangeKernel& kernel)>;
 
 /// Calls `parallel_for` if set, else kernel(0, count).
-inline void run_parallel(const ParallelFor& parallel_for,
-                         std::size_t count,
+inline void run_parallel(const ParallelFor& parallel_for, std::size_t count,
                          const RangeKernel& kernel)
 {
   if (count == 0)

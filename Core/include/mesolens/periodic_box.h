@@ -26,12 +26,23 @@ struct PeriodicBox
   std::array<double, 3> minimum_image(const std::array<double, 3>& d) const;
 
   /// The box from unit-cell parameters (lengths Å, angles in degrees), GROMACS convention.
-  static PeriodicBox from_cell(double a,
-                               double b,
-                               double c,
-                               double alpha,
-                               double beta,
+  static PeriodicBox from_cell(double a, double b, double c, double alpha, double beta,
                                double gamma);
+};
+
+/// PeriodicBox::minimum_image() for many displacements in one box: the inverse box matrix is
+/// computed once. Identity when the box is not set.
+class MinimumImage
+{
+public:
+  explicit MinimumImage(const PeriodicBox& box);
+  std::array<double, 3> operator()(const std::array<double, 3>& d) const;
+
+private:
+  PeriodicBox Box;
+  bool Set = false;
+  bool Orthorhombic = true;
+  std::array<std::array<double, 3>, 3> Inverse{}; ///< fractional = Inverse * cartesian
 };
 
 } // namespace mesolens

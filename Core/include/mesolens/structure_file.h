@@ -60,8 +60,7 @@ using ProgressCallback = std::function<bool(double)>;
 /// gemmi does not read) and LINK/SSBOND/struct_conn covalent and disulfide links become bonds.
 /// Throws FileError for a missing, empty, truncated or unparsable file, or one without atoms;
 /// InvalidInput for non-finite coordinates.
-StructureFile read_structure(const std::string& path,
-                             const StructureReadParams& params = {},
+StructureFile read_structure(const std::string& path, const StructureReadParams& params = {},
                              const ProgressCallback& progress = {});
 
 /// Bonds and molecules for a table that has names and positions (used by every reader):
@@ -70,9 +69,7 @@ StructureFile read_structure(const std::string& path,
 /// looks_coarse_grained() says so, the particles are beads: their atomic numbers are set to 0,
 /// the bead cutoff is used and the bonds are made consistent per molecule type
 /// (consensus_bonds()). Returns true when the particles were treated as beads.
-bool build_connectivity(AtomTable& table,
-                        const std::vector<Bond>& explicit_bonds,
-                        const StructureReadParams& params,
-                        bool elements_given);
+bool build_connectivity(AtomTable& table, const std::vector<Bond>& explicit_bonds,
+                        const StructureReadParams& params, bool elements_given);
 
 } // namespace mesolens

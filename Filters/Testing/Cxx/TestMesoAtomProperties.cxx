@@ -28,8 +28,7 @@ TEST(vtkMesoAtomProperties, RadiiFromElements)
   properties->SetLengthScale(0.1);
   properties->Update();
   EXPECT_NEAR(properties->GetOutput()->GetPointData()->GetArray("VanDerWaalsRadius")->GetTuple1(0),
-              0.155,
-              1e-6);
+              0.155, 1e-6);
 }
 
 TEST(vtkMesoAtomProperties, BeadsGetBeadRadius)

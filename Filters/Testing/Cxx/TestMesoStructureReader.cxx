@@ -30,17 +30,9 @@ TEST(vtkMesoStructureReader, ArraysOfOneAtomPerVertex)
   EXPECT_EQ(atoms->GetNumberOfVerts(), 327);
   EXPECT_EQ(atoms->GetNumberOfLines(), 337);
   vtkPointData* pd = atoms->GetPointData();
-  for (const char* name : { "AtomicNumber",
-                            "ResidueNumber",
-                            "SerialNumber",
-                            "ResidueIndex",
-                            "MoleculeId",
-                            "SecondaryStructure",
-                            "SecondaryStructureId",
-                            "Occupancy",
-                            "BFactor",
-                            "IsHetAtm",
-                            "FormalCharge" })
+  for (const char* name : { "AtomicNumber", "ResidueNumber", "SerialNumber", "ResidueIndex",
+                            "MoleculeId", "SecondaryStructure", "SecondaryStructureId", "Occupancy",
+                            "BFactor", "IsHetAtm", "FormalCharge" })
   {
     ASSERT_NE(pd->GetArray(name), nullptr) << name;
     EXPECT_EQ(pd->GetArray(name)->GetNumberOfTuples(), 327) << name;

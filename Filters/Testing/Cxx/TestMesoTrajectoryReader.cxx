@@ -22,11 +22,7 @@
 using mesolens_test::data_file;
 
 namespace {
-void expect_point(vtkPolyData* atoms,
-                  vtkIdType id,
-                  double x,
-                  double y,
-                  double z,
+void expect_point(vtkPolyData* atoms, vtkIdType id, double x, double y, double z,
                   double scale = 1.0)
 {
   double p[3];

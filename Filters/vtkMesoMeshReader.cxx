@@ -2,6 +2,7 @@
 #include "vtkMesoMeshReader.h"
 
 #include "mesolens/errors.h"
+#include "mesolens/file_names.h"
 #include "mesolens/off_file.h"
 
 #include <vtkCallbackCommand.h>
@@ -26,7 +27,6 @@
 #include <array>
 #include <map>
 #include <vector>
-#include <cctype>
 #include <fstream>
 #include <sys/stat.h>
 
@@ -38,14 +38,6 @@ vtkMesoMeshReader::vtkMesoMeshReader()
 }
 
 namespace {
-std::string extension_of(const std::string& path)
-{
-  const auto dot = path.find_last_of('.');
-  std::string extension = dot == std::string::npos ? std::string() : path.substr(dot + 1);
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
-}
 
 bool known_extension(const std::string& extension)
 {
@@ -150,7 +142,7 @@ void keep_triangles(vtkPolyData* mesh)
 
 int vtkMesoMeshReader::CanReadFile(const char* fileName)
 {
-  if (!fileName || !known_extension(extension_of(fileName)))
+  if (!fileName || !known_extension(mesolens::file_extension(fileName)))
   {
     return 0;
   }
@@ -260,7 +252,7 @@ int vtkMesoMeshReader::RequestData(vtkInformation*, vtkInformationVector**,
     vtkErrorMacro("Cannot read " << this->FileName << ": the file is empty");
     return 0;
   }
-  const std::string extension = extension_of(this->FileName);
+  const std::string extension = mesolens::file_extension(this->FileName);
   if (!known_extension(extension))
   {
     vtkErrorMacro(

@@ -2,9 +2,10 @@
 #include "vtkMesoStructureReader.h"
 
 #include "vtkMesoAtomTableConversion.h"
-#include "vtkMesoParallelFor.h"
+#include "vtkMesoAtomReaderParameters.h"
 
 #include "mesolens/errors.h"
+#include "mesolens/file_names.h"
 #include "mesolens/structure_file.h"
 
 #include <vtkInformation.h>
@@ -14,7 +15,6 @@
 #include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <vector>
@@ -32,25 +32,9 @@ struct vtkMesoStructureReader::Cache
 vtkMesoStructureReader::vtkMesoStructureReader()
   : Parsed(new Cache)
 {
-  this->SetNumberOfInputPorts(0);
 }
 
 vtkMesoStructureReader::~vtkMesoStructureReader() = default;
-
-namespace {
-std::string lower_case(std::string text)
-{
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
-}
-
-bool has_suffix(const std::string& text, const std::string& suffix)
-{
-  return text.size() >= suffix.size() &&
-    text.compare(text.size() - suffix.size(), suffix.size(), suffix) == 0;
-}
-} // namespace
 
 int vtkMesoStructureReader::CanReadFile(const char* fileName)
 {
@@ -58,18 +42,11 @@ int vtkMesoStructureReader::CanReadFile(const char* fileName)
   {
     return 0;
   }
-  std::string name = lower_case(fileName);
-  if (has_suffix(name, ".gz"))
+  const std::string extension = mesolens::file_extension(fileName, true);
+  if (extension == "pdb" || extension == "ent" || extension == "cif" || extension == "mmcif")
   {
-    name.resize(name.size() - 3);
-  }
-  for (const char* extension : { ".pdb", ".ent", ".cif", ".mmcif" })
-  {
-    if (has_suffix(name, extension))
-    {
-      std::ifstream probe(fileName);
-      return probe ? 1 : 0;
-    }
+    std::ifstream probe(fileName);
+    return probe ? 1 : 0;
   }
   // No known extension: sniff the first line for PDB records or a CIF data block.
   std::ifstream probe(fileName);
@@ -103,16 +80,10 @@ bool vtkMesoStructureReader::ReadIfNeeded()
     vtkErrorMacro("No FileName was set.");
     return false;
   }
-  mesolens::StructureReadParams params;
+  mesolens::StructureReadParams params = vtkMesoAtomReaderParameters(this);
   params.alt_locs = this->KeepAllAlternateLocations ? mesolens::AltLocPolicy::KeepAll
                                                     : mesolens::AltLocPolicy::HighestOccupancy;
-  params.remove_waters = this->RemoveWaters;
   params.remove_hydrogens = this->RemoveHydrogens;
-  params.perceive_bonds = this->PerceiveBonds;
-  params.bonds.tolerance = static_cast<float>(this->BondTolerance);
-  params.bonds.bead_cutoff = static_cast<float>(this->CoarseGrainedBeadCutoff);
-  params.force_coarse_grained = this->ForceCoarseGrained;
-  params.parallel_for = vtkMesoParallelFor::Get();
   try
   {
     cache.File = mesolens::read_structure(this->FileName, params, [this](double fraction) {
@@ -227,10 +198,5 @@ void vtkMesoStructureReader::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName.empty() ? "(none)" : this->FileName) << "\n";
   os << indent << "KeepAllAlternateLocations: " << this->KeepAllAlternateLocations << "\n";
-  os << indent << "RemoveWaters: " << this->RemoveWaters << "\n";
   os << indent << "RemoveHydrogens: " << this->RemoveHydrogens << "\n";
-  os << indent << "PerceiveBonds: " << this->PerceiveBonds << "\n";
-  os << indent << "BondTolerance: " << this->BondTolerance << "\n";
-  os << indent << "CoarseGrainedBeadCutoff: " << this->CoarseGrainedBeadCutoff << "\n";
-  os << indent << "ForceCoarseGrained: " << this->ForceCoarseGrained << "\n";
 }

@@ -35,16 +35,16 @@
 #define vtkMesoStructureReader_h
 
 #include "MesoLensFiltersModule.h"
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkMesoAtomReader.h"
 
 #include <memory>
 #include <string>
 
-class MESOLENSFILTERS_EXPORT vtkMesoStructureReader : public vtkPolyDataAlgorithm
+class MESOLENSFILTERS_EXPORT vtkMesoStructureReader : public vtkMesoAtomReader
 {
 public:
   static vtkMesoStructureReader* New();
-  vtkTypeMacro(vtkMesoStructureReader, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkMesoStructureReader, vtkMesoAtomReader);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -65,43 +65,10 @@ public:
   ///@}
 
   ///@{
-  /// Drop water molecules (HOH, WAT, SOL, ...). Default: false.
-  vtkSetMacro(RemoveWaters, bool);
-  vtkGetMacro(RemoveWaters, bool);
-  vtkBooleanMacro(RemoveWaters, bool);
-  ///@}
-
-  ///@{
   /// Drop hydrogen (and deuterium) atoms. Default: false.
   vtkSetMacro(RemoveHydrogens, bool);
   vtkGetMacro(RemoveHydrogens, bool);
   vtkBooleanMacro(RemoveHydrogens, bool);
-  ///@}
-
-  ///@{
-  /// Perceive covalent bonds from distances (explicit records are always used). Default: true.
-  vtkSetMacro(PerceiveBonds, bool);
-  vtkGetMacro(PerceiveBonds, bool);
-  vtkBooleanMacro(PerceiveBonds, bool);
-  ///@}
-
-  ///@{
-  /// Tolerance (Å) added to the sum of covalent radii. Range [0, 1]; default 0.45.
-  vtkSetClampMacro(BondTolerance, double, 0.0, 1.0);
-  vtkGetMacro(BondTolerance, double);
-  ///@}
-
-  ///@{
-  /// Bond cutoff between coarse-grained beads of one molecule (Å). Range [0.5, 10]; default 5.
-  vtkSetClampMacro(CoarseGrainedBeadCutoff, double, 0.5, 10.0);
-  vtkGetMacro(CoarseGrainedBeadCutoff, double);
-  ///@}
-
-  ///@{
-  /// Treat the file as coarse-grained beads even when it does not look so. Default: false.
-  vtkSetMacro(ForceCoarseGrained, bool);
-  vtkGetMacro(ForceCoarseGrained, bool);
-  vtkBooleanMacro(ForceCoarseGrained, bool);
   ///@}
 
   /// Number of models in the file (valid after UpdateInformation; 0 on error).
@@ -122,12 +89,7 @@ protected:
 
   std::string FileName;
   bool KeepAllAlternateLocations = false;
-  bool RemoveWaters = false;
   bool RemoveHydrogens = false;
-  bool PerceiveBonds = true;
-  double BondTolerance = 0.45;
-  double CoarseGrainedBeadCutoff = 5.0;
-  bool ForceCoarseGrained = false;
 
 private:
   vtkMesoStructureReader(const vtkMesoStructureReader&) = delete;

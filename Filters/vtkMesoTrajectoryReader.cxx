@@ -2,9 +2,10 @@
 #include "vtkMesoTrajectoryReader.h"
 
 #include "vtkMesoAtomTableConversion.h"
-#include "vtkMesoParallelFor.h"
+#include "vtkMesoAtomReaderParameters.h"
 
 #include "mesolens/errors.h"
+#include "mesolens/file_names.h"
 #include "mesolens/gro_topology.h"
 #include "mesolens/molecule_assignment.h"
 #include "mesolens/molecule_pbc.h"
@@ -24,7 +25,6 @@
 #include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 
 vtkStandardNewMacro(vtkMesoTrajectoryReader);
@@ -44,20 +44,11 @@ struct vtkMesoTrajectoryReader::State
 vtkMesoTrajectoryReader::vtkMesoTrajectoryReader()
   : Internal(new State)
 {
-  this->SetNumberOfInputPorts(0);
 }
 
 vtkMesoTrajectoryReader::~vtkMesoTrajectoryReader() = default;
 
 namespace {
-std::string extension_of(const std::string& path)
-{
-  const auto dot = path.find_last_of('.');
-  std::string extension = dot == std::string::npos ? std::string() : path.substr(dot + 1);
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return extension;
-}
 
 /// Names, residues and connectivity of the topology; bonds are perceived on whole molecules.
 mesolens::AtomTable load_topology(const std::string& path,
@@ -65,7 +56,7 @@ mesolens::AtomTable load_topology(const std::string& path,
 {
   mesolens::AtomTable table;
   std::vector<mesolens::Bond> explicit_bonds;
-  if (extension_of(path) == "gro")
+  if (mesolens::file_extension(path) == "gro")
   {
     table = mesolens::read_gro_topology(path);
   }
@@ -83,7 +74,7 @@ mesolens::AtomTable load_topology(const std::string& path,
   mesolens::AtomTable whole = table;
   mesolens::make_molecules_whole(whole.positions.data(), whole.molecule_ids.data(), whole.size(),
                                  whole.box);
-  const bool elements_given = extension_of(path) != "gro";
+  const bool elements_given = mesolens::file_extension(path) != "gro";
   mesolens::build_connectivity(whole, explicit_bonds, params, elements_given);
   table.bonds = whole.bonds;
   table.atomic_numbers = whole.atomic_numbers; // zeroed for coarse-grained beads
@@ -110,11 +101,7 @@ bool vtkMesoTrajectoryReader::OpenIfNeeded()
     vtkErrorMacro("No TopologyFileName was set.");
     return false;
   }
-  mesolens::StructureReadParams params;
-  params.perceive_bonds = this->PerceiveBonds;
-  params.bonds.tolerance = static_cast<float>(this->BondTolerance);
-  params.bonds.bead_cutoff = static_cast<float>(this->CoarseGrainedBeadCutoff);
-  params.parallel_for = vtkMesoParallelFor::Get();
+  const mesolens::StructureReadParams params = vtkMesoAtomReaderParameters(this);
   const auto incomplete = this->SkipIncompleteFrames
     ? mesolens::TrajectoryFile::IncompleteFrames::Skip
     : mesolens::TrajectoryFile::IncompleteFrames::Reject;
@@ -123,7 +110,7 @@ bool vtkMesoTrajectoryReader::OpenIfNeeded()
     state.Topology = load_topology(this->TopologyFileName, params);
     this->UpdateProgress(0.5);
     std::string trajectory = this->TrajectoryFileName;
-    if (trajectory.empty() && extension_of(this->TopologyFileName) == "gro")
+    if (trajectory.empty() && mesolens::file_extension(this->TopologyFileName) == "gro")
     {
       trajectory = this->TopologyFileName;
     }
@@ -330,9 +317,5 @@ void vtkMesoTrajectoryReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LengthUnit: " << (this->LengthUnit == NANOMETER ? "nm" : "Angstrom") << "\n";
   os << indent << "MakeMoleculesWhole: " << this->MakeMoleculesWhole << "\n";
   os << indent << "KeepMoleculesContinuous: " << this->KeepMoleculesContinuous << "\n";
-  os << indent << "RemoveWaters: " << this->RemoveWaters << "\n";
-  os << indent << "PerceiveBonds: " << this->PerceiveBonds << "\n";
-  os << indent << "BondTolerance: " << this->BondTolerance << "\n";
-  os << indent << "CoarseGrainedBeadCutoff: " << this->CoarseGrainedBeadCutoff << "\n";
   os << indent << "SkipIncompleteFrames: " << this->SkipIncompleteFrames << "\n";
 }

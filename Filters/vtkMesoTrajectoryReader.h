@@ -30,16 +30,16 @@
 #define vtkMesoTrajectoryReader_h
 
 #include "MesoLensFiltersModule.h"
-#include "vtkPolyDataAlgorithm.h"
+#include "vtkMesoAtomReader.h"
 
 #include <memory>
 #include <string>
 
-class MESOLENSFILTERS_EXPORT vtkMesoTrajectoryReader : public vtkPolyDataAlgorithm
+class MESOLENSFILTERS_EXPORT vtkMesoTrajectoryReader : public vtkMesoAtomReader
 {
 public:
   static vtkMesoTrajectoryReader* New();
-  vtkTypeMacro(vtkMesoTrajectoryReader, vtkPolyDataAlgorithm);
+  vtkTypeMacro(vtkMesoTrajectoryReader, vtkMesoAtomReader);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
@@ -94,32 +94,6 @@ public:
   ///@}
 
   ///@{
-  /// Drop water molecules from the output. Default: false.
-  vtkSetMacro(RemoveWaters, bool);
-  vtkGetMacro(RemoveWaters, bool);
-  vtkBooleanMacro(RemoveWaters, bool);
-  ///@}
-
-  ///@{
-  /// Perceive bonds from the topology's distances. Default: true.
-  vtkSetMacro(PerceiveBonds, bool);
-  vtkGetMacro(PerceiveBonds, bool);
-  vtkBooleanMacro(PerceiveBonds, bool);
-  ///@}
-
-  ///@{
-  /// Tolerance (Å) added to the sum of covalent radii. Range [0, 1]; default 0.45.
-  vtkSetClampMacro(BondTolerance, double, 0.0, 1.0);
-  vtkGetMacro(BondTolerance, double);
-  ///@}
-
-  ///@{
-  /// Bond cutoff between coarse-grained beads of one molecule (Å). Range [0.5, 10]; default 5.
-  vtkSetClampMacro(CoarseGrainedBeadCutoff, double, 0.5, 10.0);
-  vtkGetMacro(CoarseGrainedBeadCutoff, double);
-  ///@}
-
-  ///@{
   /// Index the complete frames of a trajectory whose last frame is cut short (a run still
   /// being written) instead of failing. Default: false.
   vtkSetMacro(SkipIncompleteFrames, bool);
@@ -145,10 +119,6 @@ protected:
   int LengthUnit = ANGSTROM;
   bool MakeMoleculesWhole = true;
   bool KeepMoleculesContinuous = true;
-  bool RemoveWaters = false;
-  bool PerceiveBonds = true;
-  double BondTolerance = 0.45;
-  double CoarseGrainedBeadCutoff = 5.0;
   bool SkipIncompleteFrames = false;
 
 private:

@@ -4,6 +4,7 @@
 #include "file_checks.h"
 #include "gromacs_support.h"
 #include "mesolens/errors.h"
+#include "mesolens/file_names.h"
 #include "trajectory_index.h"
 #include "xtc_frame_check.h"
 
@@ -28,14 +29,7 @@ enum class Format
 
 Format format_of(const std::string& path)
 {
-  const auto dot = path.find_last_of('.');
-  if (dot == std::string::npos)
-  {
-    return Format::Unknown;
-  }
-  std::string extension = path.substr(dot + 1);
-  std::transform(extension.begin(), extension.end(), extension.begin(),
-                 [](unsigned char c) { return char(std::tolower(c)); });
+  const std::string extension = file_extension(path);
   if (extension == "xtc")
   {
     return Format::Xtc;

@@ -123,6 +123,27 @@ std::string incomplete(std::size_t frame, std::int64_t offset, std::int64_t size
   return "frame " + std::to_string(frame) + " starting at byte " + std::to_string(offset) +
     " is incomplete (the file ends at byte " + std::to_string(size) + ")";
 }
+/// Reads the magic number that starts a frame. False (and the index's incomplete tail set) when
+/// the file ends inside it; throws FileError when it is not `expected` (`format`: "an XTC").
+bool read_magic(XdrScanner& file, FrameIndex& index, std::int32_t expected, const char* format,
+                const std::string& path)
+{
+  const std::size_t frame = index.offsets.size();
+  const std::int64_t start = file.position();
+  std::int32_t magic = 0;
+  if (!file.read_int(magic))
+  {
+    index.incomplete_tail = incomplete(frame, start, file.size());
+    return false;
+  }
+  if (magic != expected)
+  {
+    throw FileError(path + ": not " + format + " trajectory (frame " + std::to_string(frame) +
+                    " at byte " + std::to_string(start) + " has magic number " +
+                    std::to_string(magic) + ", expected " + std::to_string(expected) + ")");
+  }
+  return true;
+}
 } // namespace
 
 FrameIndex index_xtc(const std::string& path)
@@ -133,20 +154,12 @@ FrameIndex index_xtc(const std::string& path)
   {
     const std::size_t frame = index.offsets.size();
     const std::int64_t start = file.position();
-    std::int32_t magic = 0;
     std::int32_t atoms = 0;
     std::int32_t step = 0;
     float time = 0;
-    if (!file.read_int(magic))
+    if (!read_magic(file, index, xtc_magic, "an XTC", path))
     {
-      index.incomplete_tail = incomplete(frame, start, file.size());
       break;
-    }
-    if (magic != xtc_magic)
-    {
-      throw FileError(path + ": not an XTC trajectory (frame " + std::to_string(frame) +
-                      " at byte " + std::to_string(start) + " has magic number " +
-                      std::to_string(magic) + ", expected " + std::to_string(xtc_magic) + ")");
     }
     // Header: natoms, step, time, 3x3 box, then natoms again before the coordinates.
     std::int32_t atoms_again = 0;
@@ -215,17 +228,9 @@ FrameIndex index_trr(const std::string& path)
   {
     const std::size_t frame = index.offsets.size();
     const std::int64_t start = file.position();
-    std::int32_t magic = 0;
-    if (!file.read_int(magic))
+    if (!read_magic(file, index, trr_magic, "a TRR", path))
     {
-      index.incomplete_tail = incomplete(frame, start, file.size());
       break;
-    }
-    if (magic != trr_magic)
-    {
-      throw FileError(path + ": not a TRR trajectory (frame " + std::to_string(frame) +
-                      " at byte " + std::to_string(start) + " has magic number " +
-                      std::to_string(magic) + ", expected " + std::to_string(trr_magic) + ")");
     }
     // Version string: its size + 1, then an XDR string (length, bytes padded to 4).
     std::int32_t size_plus_one = 0;

@@ -37,6 +37,7 @@ struct vtkMesoTrajectoryReader::State
   std::vector<std::size_t> KeptAtoms;             // output atoms (empty: all)
   vtkSmartPointer<vtkPolyData> Template;          // output arrays, built once
   std::unique_ptr<mesolens::TrajectoryFile> File; // null: the topology is the only frame
+  bool TrajectoryIsTopology = false;              // the frames are those of the topology file
   std::vector<double> Times;                      // ps
   std::unique_ptr<mesolens::MoleculeContinuity> Continuity;
 };
@@ -113,6 +114,7 @@ bool vtkMesoTrajectoryReader::OpenIfNeeded()
     if (trajectory.empty() && mesolens::file_extension(this->TopologyFileName) == "gro")
     {
       trajectory = this->TopologyFileName;
+      state.TrajectoryIsTopology = true;
     }
     if (!trajectory.empty())
     {
@@ -223,7 +225,18 @@ int vtkMesoTrajectoryReader::RequestData(vtkInformation*, vtkInformationVector**
   try
   {
     auto whole_frame = [&](std::size_t index) {
-      mesolens::TrajectoryFrame f = state.File->read_frame(index);
+      mesolens::TrajectoryFrame f;
+      if (index == 0 && state.TrajectoryIsTopology)
+      {
+        // The topology already holds the first frame of its own file.
+        f.positions = state.Topology.positions;
+        f.box = state.Topology.box;
+        f.time_ps = state.Times.front();
+      }
+      else
+      {
+        f = state.File->read_frame(index);
+      }
       if (this->MakeMoleculesWhole)
       {
         mesolens::make_molecules_whole(f.positions.data(), state.Topology.molecule_ids.data(),

@@ -101,24 +101,17 @@ public:
       std::isfinite(positions[3 * i + 2]);
   }
 
-  /// Calls visit(k, l) once for every pair of sorted slots k != l in the same or adjacent cells
-  /// (the cell itself and a half shell of 13 neighbours). Cells of one grid row are contiguous
-  /// in slot order, so the half shell is five contiguous slot ranges: the rest of this cell and
-  /// the next one in the row, then three cells in each of the rows (y+1, z), (y-1, z+1),
-  /// (y, z+1) and (y+1, z+1).
-  template<typename Visit>
-  void for_each_close_pair(Visit&& visit) const
-  {
-    this->for_each_close_pair(0, std::size_t(this->Dims[2]), visit);
-  }
-
   /// Number of grid planes (z layers of cells).
   std::size_t plane_count() const
   {
     return std::size_t(this->Dims[2]);
   }
 
-  /// for_each_close_pair() restricted to the cells of planes [first_plane, end_plane).
+  /// Calls visit(k, l) once for every pair of sorted slots k != l in the same or adjacent cells
+  /// (the cell itself and a half shell of 13 neighbours), for the cells of planes
+  /// [first_plane, end_plane). Cells of one grid row are contiguous in slot order, so the half
+  /// shell is five contiguous slot ranges: the rest of this cell and the next one in the row,
+  /// then three cells in each of the rows (y+1, z), (y-1, z+1), (y, z+1) and (y+1, z+1).
   template<typename Visit>
   void for_each_close_pair(std::size_t first_plane, std::size_t end_plane, Visit&& visit) const
   {

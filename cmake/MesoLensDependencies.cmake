@@ -3,6 +3,8 @@
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 find_package(ZLIB REQUIRED)
 find_package(CGAL REQUIRED)
+# CONFIG: CGAL puts its own FindOpenMesh.cmake on the module path, which misses Debian's layout.
+find_package(OpenMesh REQUIRED CONFIG)
 find_path(GEMMI_INCLUDE_DIR gemmi/mmread.hpp)
 find_path(PEGTL_INCLUDE_DIR tao/pegtl.hpp)
 if (NOT GEMMI_INCLUDE_DIR OR NOT PEGTL_INCLUDE_DIR)

@@ -12,40 +12,6 @@
 namespace {
 constexpr double pi = 3.14159265358979323846;
 
-/// A flat polar disk: a centre vertex and `rings` rings of `around` vertices, jittered inside,
-/// the outer ring exactly on the circle of radius `outer`.
-mesolens::TriangleMesh polar_disk(int rings, int around, double outer)
-{
-  mesolens::TriangleMesh mesh;
-  mesh.points = { 0, 0, 0 };
-  for (int k = 1; k <= rings; ++k)
-  {
-    for (int i = 0; i < around; ++i)
-    {
-      const double angle = 2 * pi * (i + 0.5 * (k % 2)) / around;
-      const double r =
-        outer * k / rings * (k < rings ? 1 + 0.1 * std::sin(7.0 * i + k) / rings : 1);
-      mesh.points.insert(mesh.points.end(), { r * std::cos(angle), r * std::sin(angle), 0.0 });
-    }
-  }
-  auto ring = [around](int k, int i) { return std::int64_t(1 + (k - 1) * around + (i % around)); };
-  for (int i = 0; i < around; ++i)
-  {
-    mesh.triangles.insert(mesh.triangles.end(), { 0, ring(1, i), ring(1, i + 1) });
-  }
-  for (int k = 1; k < rings; ++k)
-  {
-    for (int i = 0; i < around; ++i)
-    {
-      mesh.triangles.insert(mesh.triangles.end(),
-                            { ring(k, i), ring(k + 1, i), ring(k + 1, i + 1) });
-      mesh.triangles.insert(mesh.triangles.end(),
-                            { ring(k, i), ring(k + 1, i + 1), ring(k, i + 1) });
-    }
-  }
-  return mesh;
-}
-
 void expect_bijective_in_disk(const mesolens::DiskParameterization& map, double radius)
 {
   EXPECT_TRUE(map.bijective()) << map.flipped_triangles << " flipped triangles";
@@ -58,7 +24,7 @@ void expect_bijective_in_disk(const mesolens::DiskParameterization& map, double 
 
 TEST(HarmonicParameterization, FlatDiskIsASimilarity)
 {
-  const auto disk = polar_disk(12, 64, 3.0);
+  const auto disk = mesolens_test::polar_disk(12, 64, 3.0);
   const auto map = mesolens::harmonic_parameterization(disk, 2.0);
   expect_bijective_in_disk(map, 2.0);
   // Mean-value coordinates reproduce linear maps, so uv = (2/3) R x + t exactly.
@@ -125,7 +91,7 @@ TEST(HarmonicParameterization, RefusesWhatIsNotADisk)
                mesolens::TopologyError);
   const auto tube = mesolens_test::cylinder(1.0, 2.0, 16, 8); // an annulus: two boundary loops
   EXPECT_THROW(mesolens::harmonic_parameterization(tube, 1.0), mesolens::TopologyError);
-  const auto disk = polar_disk(3, 12, 1.0);
+  const auto disk = mesolens_test::polar_disk(3, 12, 1.0);
   EXPECT_THROW(mesolens::harmonic_parameterization(disk, 0.0), mesolens::InvalidInput);
   EXPECT_THROW(mesolens::harmonic_parameterization(disk, std::nan("")), mesolens::InvalidInput);
   EXPECT_THROW(mesolens::harmonic_parameterization(mesolens::TriangleMesh{}, 1.0),

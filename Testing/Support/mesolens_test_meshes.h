@@ -161,6 +161,40 @@ inline mesolens::TriangleMesh cylinder(double radius, double half_length, int ar
   return mesh;
 }
 
+/// A flat polar disk: a centre vertex and `rings` rings of `around` vertices, jittered inside,
+/// the outer ring exactly on the circle of radius `outer`.
+inline mesolens::TriangleMesh polar_disk(int rings, int around, double outer)
+{
+  mesolens::TriangleMesh mesh;
+  mesh.points = { 0, 0, 0 };
+  for (int k = 1; k <= rings; ++k)
+  {
+    for (int i = 0; i < around; ++i)
+    {
+      const double angle = 2 * 3.14159265358979323846 * (i + 0.5 * (k % 2)) / around;
+      const double r =
+        outer * k / rings * (k < rings ? 1 + 0.1 * std::sin(7.0 * i + k) / rings : 1);
+      mesh.points.insert(mesh.points.end(), { r * std::cos(angle), r * std::sin(angle), 0.0 });
+    }
+  }
+  auto ring = [around](int k, int i) { return std::int64_t(1 + (k - 1) * around + (i % around)); };
+  for (int i = 0; i < around; ++i)
+  {
+    mesh.triangles.insert(mesh.triangles.end(), { 0, ring(1, i), ring(1, i + 1) });
+  }
+  for (int k = 1; k < rings; ++k)
+  {
+    for (int i = 0; i < around; ++i)
+    {
+      mesh.triangles.insert(mesh.triangles.end(),
+                            { ring(k, i), ring(k + 1, i), ring(k + 1, i + 1) });
+      mesh.triangles.insert(mesh.triangles.end(),
+                            { ring(k, i), ring(k + 1, i + 1), ring(k, i + 1) });
+    }
+  }
+  return mesh;
+}
+
 /// A point inside triangle `triangle` with the given barycentric weights.
 inline mesolens::SurfacePoint surface_point(const mesolens::TriangleMesh& mesh,
                                             std::int64_t triangle,

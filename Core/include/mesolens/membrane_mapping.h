@@ -1,0 +1,96 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Membrane mapping (Waltemate, Sommer and Botsch, VCBM 2014): a membrane patch, tiled k x k,
+// placed in the shell around a parameterized surface region.
+#pragma once
+
+#include "mesolens/parallel_for.h"
+#include "mesolens/polynomial_warp.h"
+#include "mesolens/surface_chart.h"
+
+#include <array>
+#include <cstddef>
+#include <vector>
+
+namespace mesolens {
+
+/// How membrane atoms are carried onto the surface.
+enum class MappingMethod
+{
+  /// Each atom at x0 + w n(x0): x0 the surface point at the atom's (u, v), n the interpolated
+  /// normal, w the atom's height. Follows the surface exactly; bends molecules.
+  Displacement = 0,
+  /// One rigid motion per molecule: its centre of mass is mapped like an atom, and the rotation
+  /// takes the patch's x, y, z axes to the surface's u tangent, v tangent and normal there.
+  /// Keeps every molecule undistorted.
+  MoleculeInstancing = 1,
+  /// One quadratic x(s, t, h) per tile, fitted by least squares to the displacement map on
+  /// 3 layers of samples. Smooth, cheap to evaluate (on the GPU, by the renderer).
+  Polynomial = 2,
+};
+
+/// A membrane patch in its own frame. Its periodic cell is spanned by the in-plane vectors a and
+/// b from `origin` (membrane units, e.g. Å); heights are measured from the bilayer centre.
+struct MembranePatch
+{
+  const float* positions = nullptr; ///< 3 per atom, membrane units
+  std::size_t atom_count = 0;
+  const int* molecule_ids = nullptr; ///< per atom, >= 0; needed by MoleculeInstancing
+  const float* masses = nullptr;     ///< per atom; null: centroids instead of centres of mass
+  std::array<double, 2> origin{ { 0, 0 } };
+  std::array<double, 2> a{ { 0, 0 } }; ///< first cell vector (x, y), membrane units
+  std::array<double, 2> b{ { 0, 0 } }; ///< second cell vector (x, y), membrane units
+  double centre_height = 0;            ///< z of the bilayer centre, membrane units
+};
+
+/// Parameters of map_membrane().
+struct MappingParams
+{
+  MappingMethod method = MappingMethod::Displacement;
+  /// k: the patch is repeated k x k times (by its cell vectors). Range >= 1; default 1.
+  int tiles = 1;
+  /// Mesh units per membrane unit (e.g. 1e-4 for Å onto a mesh in µm). > 0; default 1.
+  double scale = 1;
+  /// (u, v) where the centre of the tiled region goes: the picked point's. Default (0, 0).
+  std::array<double, 2> centre_uv{ { 0, 0 } };
+  /// Polynomial: the fit samples heights -e, 0, +e (membrane units). > 0; default 25 Å (about
+  /// half a bilayer).
+  double layer_half_thickness = 25;
+  /// Polynomial: samples per tile edge (samples x samples per layer). Range >= 3; default 6.
+  int samples = 6;
+};
+
+/// The mapped atoms and what each method leaves for the renderer. Tile t = j k + i holds the
+/// patch shifted by i a + j b.
+struct MappedMembrane
+{
+  std::vector<float> positions;          ///< 3 per atom per tile; tile t: atoms [t n, (t+1) n)
+  std::vector<double> instance_matrices; ///< MoleculeInstancing: 16 per instance (row-major
+                                         ///< 4x4, patch coordinates to mesh coordinates)
+  std::vector<int> instance_molecules;   ///< molecule id of each instance
+  std::vector<int> instance_tiles;       ///< tile of each instance
+  std::vector<double> polynomial_coefficients; ///< Polynomial: 30 per tile (QuadraticWarp)
+  std::vector<double> polynomial_rms_residual; ///< Polynomial: per tile, mesh units
+  std::vector<double> polynomial_max_residual; ///< Polynomial: per tile, mesh units
+};
+
+/// The polynomial's local coordinates of a patch point: (s, t) = 2 f - 1 where f are the
+/// fractional coordinates of (x, y) - origin in the basis (a, b), and h = (z - centre) / e.
+/// The renderer computes the same from atom positions, so the warp of a tile applies to every
+/// atom of the patch.
+std::array<double, 3> polynomial_coordinates(const MembranePatch& patch,
+                                             double layer_half_thickness, const float* position);
+
+/// Maps the patch onto the chart, k x k tiles centred at params.centre_uv. Throws InvalidInput
+/// for bad parameters, a degenerate cell, missing molecule ids (instancing), non-finite
+/// coordinates, or an atom whose (u, v) falls outside the chart (the geodesic disk is too
+/// small: its radius should be twice the tiled width). Runs through `parallel_for` per tile.
+MappedMembrane map_membrane(const SurfaceChart& chart, const MembranePatch& patch,
+                            const MappingParams& params, const ParallelFor& parallel_for = {});
+
+/// Relative length change of each bond in each tile: |mapped| / (scale |patch|) - 1, tile-major
+/// (tile t: values [t bonds, (t+1) bonds)). `bonds` holds atom index pairs into the patch.
+std::vector<double> bond_length_changes(const MembranePatch& patch, const MappedMembrane& mapped,
+                                        const std::vector<std::array<std::uint32_t, 2>>& bonds,
+                                        double scale);
+
+} // namespace mesolens

@@ -63,6 +63,15 @@ float van_der_waals_radius(int atomic_number)
   return gemmi::vdw_radius(as_gemmi(atomic_number));
 }
 
+float atomic_mass(int atomic_number)
+{
+  if (atomic_number <= 0 || atomic_number > max_atomic_number)
+  {
+    return 1.0f;
+  }
+  return static_cast<float>(gemmi::molecular_weight(as_gemmi(atomic_number)));
+}
+
 int guess_atomic_number(const std::string& atom_name, const std::string& residue_name)
 {
   const std::string name = upper(atom_name);

@@ -211,7 +211,7 @@ MappedMembrane map_membrane(const SurfaceChart& chart, const MembranePatch& patc
   auto map_tile = [&](std::size_t tile) {
     const int i = int(tile % std::size_t(k));
     const int j = int(tile / std::size_t(k));
-    float* out = mapped.positions.data() + 3 * n * tile;
+    double* out = mapped.positions.data() + 3 * n * tile;
     SurfaceFrame frame;
     std::array<double, 3> x{};
     switch (params.method)
@@ -228,7 +228,7 @@ MappedMembrane map_membrane(const SurfaceChart& chart, const MembranePatch& patc
           }
           for (int d = 0; d < 3; ++d)
           {
-            out[3 * a + std::size_t(d)] = float(x[std::size_t(d)]);
+            out[3 * a + std::size_t(d)] = x[std::size_t(d)];
           }
         }
         break;
@@ -267,8 +267,8 @@ MappedMembrane map_membrane(const SurfaceChart& chart, const MembranePatch& patc
             const float* p = patch.positions + 3 * a;
             for (int r = 0; r < 3; ++r)
             {
-              out[3 * a + std::size_t(r)] = float(matrix[4 * r] * p[0] + matrix[4 * r + 1] * p[1] +
-                                                  matrix[4 * r + 2] * p[2] + matrix[4 * r + 3]);
+              out[3 * a + std::size_t(r)] = matrix[4 * r] * p[0] + matrix[4 * r + 1] * p[1] +
+                matrix[4 * r + 2] * p[2] + matrix[4 * r + 3];
             }
           }
         }
@@ -311,7 +311,7 @@ MappedMembrane map_membrane(const SurfaceChart& chart, const MembranePatch& patc
           const auto y = evaluate_quadratic(fit.warp, local[0], local[1], local[2]);
           for (int d = 0; d < 3; ++d)
           {
-            out[3 * a + std::size_t(d)] = float(y[std::size_t(d)]);
+            out[3 * a + std::size_t(d)] = y[std::size_t(d)];
           }
         }
         break;
@@ -341,13 +341,14 @@ std::vector<double> bond_length_changes(const MembranePatch& patch, const Mapped
   const std::size_t n = patch.atom_count;
   const std::size_t tiles = n == 0 ? 0 : mapped.positions.size() / (3 * n);
   std::vector<double> changes(tiles * bonds.size());
-  auto length = [](const float* p, const float* q) {
-    return std::sqrt(double(p[0] - q[0]) * (p[0] - q[0]) + double(p[1] - q[1]) * (p[1] - q[1]) +
-                     double(p[2] - q[2]) * (p[2] - q[2]));
+  auto length = [](const auto* p, const auto* q) {
+    return std::sqrt((double(p[0]) - q[0]) * (double(p[0]) - q[0]) +
+                     (double(p[1]) - q[1]) * (double(p[1]) - q[1]) +
+                     (double(p[2]) - q[2]) * (double(p[2]) - q[2]));
   };
   for (std::size_t t = 0; t < tiles; ++t)
   {
-    const float* tile = mapped.positions.data() + 3 * n * t;
+    const double* tile = mapped.positions.data() + 3 * n * t;
     for (std::size_t b = 0; b < bonds.size(); ++b)
     {
       const auto [i, j] = bonds[b];

@@ -32,7 +32,7 @@ void require_manifold(const TriangleMesh& mesh, const char* what)
     }
   }
   const MeshReport report = mesh_report(mesh.view());
-  if (!report.is_manifold())
+  if (!report.is_manifold() || report.inconsistently_oriented_edges > 0)
   {
     throw TopologyError(std::string(what) +
                         " is not a clean 2-manifold: " + report.describe_defects());

@@ -70,10 +70,12 @@ SyntheticPatch synthetic_patch(int molecules)
   return patch;
 }
 
-double distance(const float* p, const float* q)
+template<typename P, typename Q>
+double distance(const P* p, const Q* q)
 {
-  return std::sqrt(double(p[0] - q[0]) * (p[0] - q[0]) + double(p[1] - q[1]) * (p[1] - q[1]) +
-                   double(p[2] - q[2]) * (p[2] - q[2]));
+  return std::sqrt((double(p[0]) - q[0]) * (double(p[0]) - q[0]) +
+                   (double(p[1]) - q[1]) * (double(p[1]) - q[1]) +
+                   (double(p[2]) - q[2]) * (double(p[2]) - q[2]));
 }
 } // namespace
 
@@ -141,8 +143,8 @@ TEST(MembraneMapping, FlatSurfaceMethodsAgree)
     worst_instanced =
       std::max(worst_instanced, double(std::abs(displaced.positions[i] - instanced.positions[i])));
   }
-  EXPECT_LT(worst_polynomial, 1e-4); // float positions of values ~ 30
-  EXPECT_LT(worst_instanced, 1e-4);
+  EXPECT_LT(worst_polynomial, 1e-6);
+  EXPECT_LT(worst_instanced, 1e-6);
   ASSERT_EQ(polynomial.polynomial_rms_residual.size(), 4u);
   for (double residual : polynomial.polynomial_rms_residual)
   {
@@ -150,7 +152,7 @@ TEST(MembraneMapping, FlatSurfaceMethodsAgree)
   }
   // Heights: the plane's normal is +-z, atoms sit scale * (z - centre) away from it.
   const double height = std::abs(displaced.positions[2]);
-  EXPECT_NEAR(height, 0.5 * std::abs(patch.positions[2] - 4.0), 1e-4);
+  EXPECT_NEAR(height, 0.5 * std::abs(patch.positions[2] - 4.0), 1e-9);
   EXPECT_EQ(instanced.instance_matrices.size(), 16u * 30u * 4u);
   EXPECT_EQ(instanced.instance_tiles.back(), 3);
 }

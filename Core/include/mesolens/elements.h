@@ -24,6 +24,10 @@ float covalent_radius(int atomic_number);
 /// Van der Waals radius in Å (Bondi 1964 / Alvarez 2013); 1.0 Å for unknown (0).
 float van_der_waals_radius(int atomic_number);
 
+/// Standard atomic weight in daltons (gemmi's table); 1 for unknown (0) and for coarse-grained
+/// beads, so their centres of mass are centroids.
+float atomic_mass(int atomic_number);
+
 /// Guesses the element of an atom from its name when a file gives none (GRO, old PDB files).
 /// Ions whose atom name repeats the residue name (NA, CL, MG, ZN, CA in "CA"/"CAL" residues,
 /// CHARMM's SOD/POT/CLA/CAL) get the two-letter element; otherwise the first letter that names an

@@ -63,11 +63,12 @@ struct MappingParams
 /// patch shifted by i a + j b.
 struct MappedMembrane
 {
-  std::vector<float> positions;          ///< 3 per atom per tile; tile t: atoms [t n, (t+1) n)
-  std::vector<double> instance_matrices; ///< MoleculeInstancing: 16 per instance (row-major
-                                         ///< 4x4, patch coordinates to mesh coordinates)
-  std::vector<int> instance_molecules;   ///< molecule id of each instance
-  std::vector<int> instance_tiles;       ///< tile of each instance
+  std::vector<double> positions; ///< 3 per atom per tile; tile t: atoms [t n, (t+1) n) (double:
+                                 ///< Å-sized bonds on µm meshes need it)
+  std::vector<double> instance_matrices;       ///< MoleculeInstancing: 16 per instance (row-major
+                                               ///< 4x4, patch coordinates to mesh coordinates)
+  std::vector<int> instance_molecules;         ///< molecule id of each instance
+  std::vector<int> instance_tiles;             ///< tile of each instance
   std::vector<double> polynomial_coefficients; ///< Polynomial: 30 per tile (QuadraticWarp)
   std::vector<double> polynomial_rms_residual; ///< Polynomial: per tile, mesh units
   std::vector<double> polynomial_max_residual; ///< Polynomial: per tile, mesh units

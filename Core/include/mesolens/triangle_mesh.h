@@ -45,8 +45,8 @@ struct SurfacePoint
 };
 
 /// Throws TopologyError naming `what` and the defects (mesh_report()) unless the mesh is a
-/// 2-manifold (boundary allowed) without degenerate or invalid triangles; InvalidInput when it
-/// has no triangles or a non-finite point.
+/// consistently oriented 2-manifold (boundary allowed) without degenerate or invalid triangles;
+/// InvalidInput when it has no triangles or a non-finite point.
 void require_manifold(const TriangleMesh& mesh, const char* what);
 
 /// Unit normal of a triangle (zero vector for a degenerate one).

@@ -1,0 +1,252 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoDiskParameterization.h"
+#include "vtkMesoGeodesicDisk.h"
+#include "vtkMesoMembraneMapping.h"
+#include "vtkMesoMeshReader.h"
+#include "vtkMesoMeshReport.h"
+#include "vtkMesoTrajectoryReader.h"
+
+#include "mesolens_test_data.h"
+#include "mesolens_vtk_test_utilities.h"
+
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkInformation.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkSphereSource.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+using mesolens_test::data_file;
+
+namespace {
+double field(vtkPolyData* data, const char* name, int component = 0)
+{
+  vtkDataArray* array = data->GetFieldData()->GetArray(name);
+  return array ? array->GetComponent(0, component) : std::nan("");
+}
+
+/// A point of the mitochondrion's outer membrane (µm).
+void outer_membrane_point(vtkMesoMeshReader* mesh, double point[3])
+{
+  mesh->Update();
+  mesh->GetOutput()->GetPoint(1000, point);
+}
+
+double largest_abs(vtkDataArray* values, vtkIdType first)
+{
+  double largest = 0;
+  for (vtkIdType i = first; i < values->GetNumberOfTuples(); ++i)
+  {
+    largest = std::max(largest, std::abs(values->GetComponent(i, 0)));
+  }
+  return largest;
+}
+} // namespace
+
+TEST(vtkMesoGeodesicDisk, DiskAndParameterizationOnTheMitochondrion)
+{
+  vtkNew<vtkMesoMeshReader> mesh;
+  mesh->SetFileName(data_file("meshes/mito5_outer_membrane.obj").c_str());
+  double seed[3];
+  outer_membrane_point(mesh, seed);
+  vtkNew<vtkMesoGeodesicDisk> disk;
+  disk->SetInputConnection(mesh->GetOutputPort());
+  disk->SetSeedPoint(seed);
+  disk->SetRadius(0.05); // µm
+  disk->SetMinimumTriangles(1000);
+  vtkNew<vtkMesoDiskParameterization> map;
+  map->SetInputConnection(disk->GetOutputPort());
+  ASSERT_EQ(map->GetExecutive()->Update(), 1);
+  vtkPolyData* out = map->GetOutput();
+  EXPECT_GE(out->GetNumberOfPolys(), 1000);
+  EXPECT_GE(field(out, "RefinementLevels"), 1.0); // edges of tens of nm: refined
+  EXPECT_EQ(field(out, "Bijective"), 1.0);
+  ASSERT_NE(out->GetPointData()->GetTCoords(), nullptr);
+  ASSERT_NE(out->GetPointData()->GetArray("GeodesicDistance"), nullptr);
+  EXPECT_LE(out->GetPointData()->GetArray("GeodesicDistance")->GetRange()[1], 0.05 + 1e-12);
+  vtkNew<vtkMesoMeshReport> report;
+  report->Analyze(out);
+  EXPECT_EQ(report->GetEulerCharacteristic(), 1);
+  EXPECT_EQ(report->GetNumberOfBoundaryLoops(), 1);
+  // The texture coordinates fill the disk of radius 0.05.
+  double uv_range[2];
+  out->GetPointData()->GetTCoords()->GetRange(uv_range, 0);
+  EXPECT_NEAR(uv_range[1], 0.05, 1e-3);
+}
+
+TEST(vtkMesoMembraneMapping, ThreeMethodsOnTheMitochondrion)
+{
+  vtkNew<vtkMesoMeshReader> mesh;
+  mesh->SetFileName(data_file("meshes/mito5_outer_membrane.obj").c_str());
+  double seed[3];
+  outer_membrane_point(mesh, seed);
+  vtkNew<vtkMesoTrajectoryReader> membrane;
+  membrane->SetTopologyFileName(data_file("membranes/dppc128_slipids_323K.gro").c_str());
+  membrane->RemoveWatersOn();
+  vtkNew<vtkMesoMembraneMapping> mapping;
+  mapping->SetSurfaceConnection(mesh->GetOutputPort());
+  mapping->SetMembraneConnection(membrane->GetOutputPort());
+  mapping->SetSeedPoint(seed);
+  mapping->SetTiles(2);
+  mapping->SetMembraneToMeshScale(1e-4); // Å onto µm
+  std::vector<double> largest_change;
+  for (int method :
+       { vtkMesoMembraneMapping::DISPLACEMENT, vtkMesoMembraneMapping::MOLECULE_INSTANCING,
+         vtkMesoMembraneMapping::POLYNOMIAL })
+  {
+    SCOPED_TRACE(method);
+    mapping->SetMappingMethod(method);
+    ASSERT_EQ(mapping->GetExecutive()->Update(), 1);
+    vtkPolyData* atoms = mapping->GetOutput();
+    EXPECT_EQ(atoms->GetNumberOfPoints(), 4 * 16640);
+    EXPECT_EQ(atoms->GetNumberOfVerts(), 4 * 16640);
+    EXPECT_EQ(atoms->GetNumberOfLines(), 4 * 16512);
+    ASSERT_NE(atoms->GetPointData()->GetArray("TileId"), nullptr);
+    EXPECT_EQ(atoms->GetPointData()->GetArray("TileId")->GetRange()[1], 3.0);
+    ASSERT_NE(atoms->GetPointData()->GetArray("MoleculeId"), nullptr);
+    ASSERT_NE(atoms->GetPointData()->GetAbstractArray("AtomName"), nullptr);
+    vtkDataArray* change = atoms->GetCellData()->GetArray("BondLengthChange");
+    ASSERT_NE(change, nullptr);
+    largest_change.push_back(largest_abs(change, atoms->GetNumberOfVerts()));
+    // d = 2 x 64.2 Å = 0.01284 µm, r = 2 d.
+    EXPECT_NEAR(field(atoms, "GeodesicRadius"), 2 * 2 * 64.2 * 1e-4, 2e-5);
+    vtkPolyData* disk = vtkPolyData::SafeDownCast(mapping->GetOutputDataObject(1));
+    EXPECT_GT(disk->GetNumberOfPolys(), 0);
+    // Atoms stay within a bilayer's reach of the surface.
+    double bounds[6];
+    atoms->GetBounds(bounds);
+    EXPECT_LT(bounds[1] - bounds[0], 0.05);
+  }
+  // Instancing keeps molecules rigid; the other two bend them a little.
+  EXPECT_LT(largest_change[1], 1e-6);
+  EXPECT_GT(largest_change[0], 1e-3);
+  EXPECT_GT(largest_change[2], 1e-3);
+  mapping->SetMappingMethodToPolynomial();
+  mapping->Update();
+  vtkDataArray* coefficients =
+    mapping->GetOutput()->GetFieldData()->GetArray("PolynomialCoefficients");
+  ASSERT_NE(coefficients, nullptr);
+  EXPECT_EQ(coefficients->GetNumberOfComponents(), 30);
+  EXPECT_EQ(coefficients->GetNumberOfTuples(), 4);
+  mapping->SetMappingMethodToMoleculeInstancing();
+  mapping->Update();
+  vtkDataArray* matrices = mapping->GetOutput()->GetFieldData()->GetArray("InstanceMatrices");
+  ASSERT_NE(matrices, nullptr);
+  EXPECT_EQ(matrices->GetNumberOfTuples(), 4 * 128);
+}
+
+TEST(vtkMesoMembraneMapping, TrajectoryTimeStepsPassThrough)
+{
+  vtkNew<vtkSphereSource> sphere; // radius 500 Å: a vesicle-sized surface in the membrane's units
+  sphere->SetRadius(500);
+  sphere->SetThetaResolution(120);
+  sphere->SetPhiResolution(120);
+  vtkNew<vtkMesoTrajectoryReader> membrane;
+  membrane->SetTopologyFileName(data_file("membranes/yiip_popepopg.gro").c_str());
+  membrane->SetTrajectoryFileName(data_file("membranes/yiip_popepopg.xtc").c_str());
+  vtkNew<vtkMesoMembraneMapping> mapping;
+  mapping->SetSurfaceConnection(sphere->GetOutputPort());
+  mapping->SetMembraneConnection(membrane->GetOutputPort());
+  mapping->SetSeedPoint(0, 0, 500);
+  mapping->SetMappingMethodToPolynomial();
+  mapping->UpdateInformation();
+  vtkInformation* info = mapping->GetOutputInformation(0);
+  ASSERT_TRUE(info->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()));
+  EXPECT_EQ(info->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS()), 5);
+  mapping->UpdateTimeStep(40000);
+  double first[3];
+  mapping->GetOutput()->GetPoint(0, first);
+  mapping->UpdateTimeStep(80000);
+  double last[3];
+  mapping->GetOutput()->GetPoint(0, last);
+  EXPECT_NE(first[0], last[0]);
+  EXPECT_EQ(mapping->GetOutput()->GetNumberOfPoints(), 43480);
+}
+
+TEST(vtkMesoMembraneMapping, BadInputsFailCleanly)
+{
+  vtkNew<vtkMesoTrajectoryReader> membrane;
+  membrane->SetTopologyFileName(data_file("membranes/martini_dppc_chol_bilayer.gro").c_str());
+  vtkNew<vtkMesoMeshReader> closed;
+  closed->SetFileName(data_file("meshes/mito5_outer_membrane.obj").c_str());
+  double seed[3];
+  outer_membrane_point(closed, seed);
+  vtkNew<vtkMesoMeshReader> open;
+  open->SetFileName(data_file("meshes/cgal_mesh_with_border.off").c_str());
+  vtkNew<vtkMesoMeshReader> degenerate;
+  degenerate->SetFileName(data_file("meshes/bad/cgal_degtri_sliding.off").c_str());
+  vtkNew<vtkMesoMeshReader> misoriented;
+  misoriented->SetFileName(data_file("meshes/bad/cgal_tet-shuffled.off").c_str());
+  struct Case
+  {
+    const char* name;
+    vtkMesoMeshReader* surface;
+    double seed[3];
+    int tiles;
+    double scale;
+    const char* problem;
+  };
+  const Case cases[] = {
+    { "seed far away", closed, { 100, 100, 100 }, 1, 1e-4, "away from the surface" },
+    { "no tiles", closed, { seed[0], seed[1], seed[2] }, 0, 1e-4, "Tiles must be at least 1" },
+    { "disk larger than the organelle",
+      closed,
+      { seed[0], seed[1], seed[2] },
+      40,
+      1e-4,
+      "geodesic disk" },
+    { "negative scale", closed, { seed[0], seed[1], seed[2] }, 1, -1, "MembraneToMeshScale" },
+    { "disk meets the mesh boundary", open, { 0, 0, 0 }, 3, 1.0, "boundary" },
+    { "degenerate triangles", degenerate, { 0, 0, 0 }, 1, 0.001, "degenerate" },
+    { "inconsistent orientation", misoriented, { 0, 0, 0 }, 1, 0.001, "oriented" },
+  };
+  for (const Case& c : cases)
+  {
+    SCOPED_TRACE(c.name);
+    vtkNew<vtkMesoMembraneMapping> mapping;
+    mesolens_test::EventRecorder events(mapping);
+    mapping->SetSurfaceConnection(c.surface->GetOutputPort());
+    mapping->SetMembraneConnection(membrane->GetOutputPort());
+    mapping->SetSeedPoint(const_cast<double*>(c.seed));
+    mapping->SetTiles(c.tiles);
+    mapping->SetMembraneToMeshScale(c.scale);
+    if (std::string(c.name) == "disk meets the mesh boundary")
+    {
+      double point[3];
+      c.surface->Update();
+      c.surface->GetOutput()->GetPoint(0, point);
+      mapping->SetSeedPoint(point);
+    }
+    EXPECT_EQ(mapping->GetExecutive()->Update(), 0);
+    EXPECT_EQ(mapping->GetOutput()->GetNumberOfPoints(), 0);
+    EXPECT_NE(events.AllErrors().find(c.problem), std::string::npos) << events.AllErrors();
+  }
+  // Molecule instancing without molecule ids: a plain point set.
+  vtkNew<vtkSphereSource> points;
+  vtkNew<vtkMesoMembraneMapping> mapping;
+  mesolens_test::EventRecorder events(mapping);
+  mapping->SetSurfaceConnection(closed->GetOutputPort());
+  mapping->SetMembraneConnection(points->GetOutputPort());
+  mapping->SetSeedPoint(seed);
+  mapping->SetMembraneToMeshScale(1e-4);
+  mapping->SetMappingMethodToMoleculeInstancing();
+  EXPECT_EQ(mapping->GetExecutive()->Update(), 0);
+  EXPECT_NE(events.AllErrors().find("molecule ids"), std::string::npos) << events.AllErrors();
+  // A radius of zero for the disk filter.
+  vtkNew<vtkMesoGeodesicDisk> disk;
+  mesolens_test::EventRecorder disk_events(disk);
+  disk->SetInputConnection(closed->GetOutputPort());
+  disk->SetSeedPoint(seed);
+  disk->SetRadius(0);
+  EXPECT_EQ(disk->GetExecutive()->Update(), 0);
+  EXPECT_NE(disk_events.AllErrors().find("radius"), std::string::npos) << disk_events.AllErrors();
+}

@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoGeodesicDisk.h"
+
+#include "vtkMesoSurfaceConversion.h"
+
+#include "mesolens/errors.h"
+
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
+#include <vtkPolyData.h>
+
+vtkStandardNewMacro(vtkMesoGeodesicDisk);
+
+struct vtkMesoGeodesicDisk::Cache
+{
+  vtkMesoSurfaceConversion::GeodesicDiskBuilder Builder;
+};
+
+vtkMesoGeodesicDisk::vtkMesoGeodesicDisk()
+  : Solver(new Cache)
+{
+}
+
+vtkMesoGeodesicDisk::~vtkMesoGeodesicDisk() = default;
+
+int vtkMesoGeodesicDisk::RequestData(vtkInformation*, vtkInformationVector** inputVector,
+                                     vtkInformationVector* outputVector)
+{
+  vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  output->Initialize();
+  try
+  {
+    this->Solver->Builder.SetSurface(input, input->GetMTime());
+    this->UpdateProgress(0.5);
+    mesolens::GeodesicDiskParams params;
+    params.radius = this->Radius;
+    params.min_triangles = static_cast<std::size_t>(this->MinimumTriangles);
+    params.max_refinement_levels = this->MaximumRefinementLevels;
+    const mesolens::GeodesicDisk disk =
+      this->Solver->Builder.Disk(this->SeedPoint, this->SeedTolerance, params);
+    vtkMesoSurfaceConversion::FromTriangleMesh(disk.mesh, output);
+    vtkMesoSurfaceConversion::AddDiskArrays(disk, this->Radius, output);
+  }
+  catch (const mesolens::Error& e)
+  {
+    vtkErrorMacro("Cannot grow the geodesic disk: " << e.what());
+    output->Initialize();
+    return 0;
+  }
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+void vtkMesoGeodesicDisk::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "SeedPoint: (" << this->SeedPoint[0] << ", " << this->SeedPoint[1] << ", "
+     << this->SeedPoint[2] << ")\n";
+  os << indent << "SeedTolerance: " << this->SeedTolerance << "\n";
+  os << indent << "Radius: " << this->Radius << "\n";
+  os << indent << "MinimumTriangles: " << this->MinimumTriangles << "\n";
+  os << indent << "MaximumRefinementLevels: " << this->MaximumRefinementLevels << "\n";
+}

@@ -1,0 +1,181 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+/**
+ * @class   vtkMesoMembraneMapping
+ * @brief   Places a membrane patch, tiled k x k, in the shell around a picked region of a cell
+ *          surface (Waltemate, Sommer and Botsch, VCBM 2014).
+ *
+ * Input 0: the cell-component surface (triangles, mesh units, e.g. µm). Input 1: the membrane
+ * patch from vtkMesoStructureReader or vtkMesoTrajectoryReader (atoms as vertices, bonds as
+ * lines, `MoleculeId`, `AtomicNumber`, field data `PeriodicBoxVectors`), bilayer normal along z.
+ *
+ * The patch's cell (a, b from PeriodicBoxVectors, or the atoms' x-y bounding box when there is
+ * none) is repeated k x k times (Tiles); the tiled region is d x d with d = k x the cell width,
+ * scaled by MembraneToMeshScale (mesh units per membrane unit: 1e-4 for Å onto µm). Around the
+ * surface point closest to SeedPoint a geodesic disk of radius r = RadiusFactor x d (2, as in
+ * the paper) is grown (see vtkMesoGeodesicDisk; coarse regions are Loop-subdivided) and
+ * parameterized onto the planar disk of radius r (vtkMesoDiskParameterization); the patch goes
+ * to (u, v) = the seed's plus the atom's (x, y) offset, its heights (z minus the bilayer centre,
+ * the mean z) along the normal, by one of three methods (MappingMethod):
+ * - DISPLACEMENT: every atom at x0 + w n(x0);
+ * - MOLECULE_INSTANCING: one rigid motion per molecule (MoleculeId), its centre of mass mapped,
+ *   its x, y, z axes taken to the u tangent, v tangent and normal;
+ * - POLYNOMIAL: one quadratic x(s, t, h) per tile, fitted by least squares (Cholesky) to the
+ *   displacement map on PolynomialSamples^2 samples in 3 layers (h = -e, 0, +e with e =
+ *   LayerHalfThickness).
+ *
+ * Output 0, the mapped atoms: k^2 copies of the patch (tile t = j k + i holds atoms
+ * [t n, (t+1) n)), one vertex per atom and the patch's bonds in every tile; the patch's point
+ * arrays repeated, plus `TileId`; cell data `BondLengthChange` (mapped length / scaled patch
+ * length - 1 for bond lines, 0 for atom vertices: the paper's intra-molecular distortion). Field
+ * data: `GeodesicRadius`, `Tiles`, `MappingMethod`, `MembraneToMeshScale`, `PatchOrigin` (2),
+ * `PatchCellA` (2), `PatchCellB` (2), `PatchCentreHeight`, `LayerHalfThickness`, `SeedUV` (2),
+ * `RefinementLevels`; POLYNOMIAL adds `PolynomialCoefficients` (30 per tile: x, y, z in the
+ * monomial order 1, s, t, h, s², st, sh, t², th, h² of mesolens::quadratic_monomials, with
+ * (s, t) = 2 f - 1 from the atom's fractional cell coordinates f and h = (z - centre) / e) and
+ * `PolynomialResidualRMS`, `PolynomialResidualMax` (per tile, mesh units); MOLECULE_INSTANCING
+ * adds `InstanceMatrices` (16 per instance, row-major), `InstanceMoleculeId`, `InstanceTileId`.
+ * Output 1: the parameterized disk (TextureCoordinates, GeodesicDistance, distortions).
+ *
+ * The disk and its parameterization are kept while the surface, the seed and the sizes stay the
+ * same, so a new trajectory frame (the membrane input's time steps are passed downstream) only
+ * re-maps atoms. Errors (seed far from the surface, k < 1, a disk that meets the mesh boundary
+ * or wraps a handle, a non-manifold surface, no MoleculeId for instancing, NaN) are reported
+ * with vtkErrorMacro; the outputs are then empty and the update fails.
+ */
+#ifndef vtkMesoMembraneMapping_h
+#define vtkMesoMembraneMapping_h
+
+#include "MesoLensFiltersModule.h"
+#include "vtkPolyDataAlgorithm.h"
+
+#include <memory>
+
+class MESOLENSFILTERS_EXPORT vtkMesoMembraneMapping : public vtkPolyDataAlgorithm
+{
+public:
+  static vtkMesoMembraneMapping* New();
+  vtkTypeMacro(vtkMesoMembraneMapping, vtkPolyDataAlgorithm);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// Connect the cell surface (input 0) and the membrane patch (input 1).
+  void SetSurfaceConnection(vtkAlgorithmOutput* output)
+  {
+    this->SetInputConnection(0, output);
+  }
+  void SetMembraneConnection(vtkAlgorithmOutput* output)
+  {
+    this->SetInputConnection(1, output);
+  }
+
+  enum MappingMethods
+  {
+    DISPLACEMENT = 0,
+    MOLECULE_INSTANCING = 1,
+    POLYNOMIAL = 2
+  };
+
+  ///@{
+  /// How atoms are carried onto the surface. Default DISPLACEMENT.
+  vtkSetClampMacro(MappingMethod, int, DISPLACEMENT, POLYNOMIAL);
+  vtkGetMacro(MappingMethod, int);
+  void SetMappingMethodToDisplacement()
+  {
+    this->SetMappingMethod(DISPLACEMENT);
+  }
+  void SetMappingMethodToMoleculeInstancing()
+  {
+    this->SetMappingMethod(MOLECULE_INSTANCING);
+  }
+  void SetMappingMethodToPolynomial()
+  {
+    this->SetMappingMethod(POLYNOMIAL);
+  }
+  ///@}
+
+  ///@{
+  /// The picked point on the surface (mesh units). Default (0, 0, 0).
+  vtkSetVector3Macro(SeedPoint, double);
+  vtkGetVector3Macro(SeedPoint, double);
+  ///@}
+
+  ///@{
+  /// How far SeedPoint may be from the surface (mesh units); <= 0: 2 % of the surface's
+  /// bounding-box diagonal. Default 0.
+  vtkSetMacro(SeedTolerance, double);
+  vtkGetMacro(SeedTolerance, double);
+  ///@}
+
+  ///@{
+  /// k, the patch is repeated k x k times; must be >= 1. Default 1.
+  vtkSetMacro(Tiles, int);
+  vtkGetMacro(Tiles, int);
+  ///@}
+
+  ///@{
+  /// Mesh units per membrane unit (1e-4 maps Å onto a mesh in µm, 0.1 onto nm); > 0.
+  /// Default 1.
+  vtkSetMacro(MembraneToMeshScale, double);
+  vtkGetMacro(MembraneToMeshScale, double);
+  ///@}
+
+  ///@{
+  /// Geodesic radius over the tiled width d (the paper uses r = 2 d). Range [0.8, 10];
+  /// default 2.
+  vtkSetClampMacro(RadiusFactor, double, 0.8, 10.0);
+  vtkGetMacro(RadiusFactor, double);
+  ///@}
+
+  ///@{
+  /// POLYNOMIAL: half the distance between the outer sample layers, membrane units. > 0;
+  /// default 25 (about half a bilayer in Å).
+  vtkSetMacro(LayerHalfThickness, double);
+  vtkGetMacro(LayerHalfThickness, double);
+  ///@}
+
+  ///@{
+  /// POLYNOMIAL: samples per tile edge. Range [3, 32]; default 6 (the paper's 6 x 6).
+  vtkSetClampMacro(PolynomialSamples, int, 3, 32);
+  vtkGetMacro(PolynomialSamples, int);
+  ///@}
+
+  ///@{
+  /// Refine the surface locally until the disk holds at least this many triangles; 0: never.
+  /// Default 2000.
+  vtkSetClampMacro(MinimumDiskTriangles, int, 0, VTK_INT_MAX);
+  vtkGetMacro(MinimumDiskTriangles, int);
+  ///@}
+
+  ///@{
+  /// Most Loop subdivision levels for that refinement. Range [0, 8]; default 5.
+  vtkSetClampMacro(MaximumRefinementLevels, int, 0, 8);
+  vtkGetMacro(MaximumRefinementLevels, int);
+  ///@}
+
+protected:
+  vtkMesoMembraneMapping();
+  ~vtkMesoMembraneMapping() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+  int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
+  int MappingMethod = DISPLACEMENT;
+  double SeedPoint[3] = { 0, 0, 0 };
+  double SeedTolerance = 0;
+  int Tiles = 1;
+  double MembraneToMeshScale = 1;
+  double RadiusFactor = 2;
+  double LayerHalfThickness = 25;
+  int PolynomialSamples = 6;
+  int MinimumDiskTriangles = 2000;
+  int MaximumRefinementLevels = 5;
+
+private:
+  vtkMesoMembraneMapping(const vtkMesoMembraneMapping&) = delete;
+  void operator=(const vtkMesoMembraneMapping&) = delete;
+
+  struct State;
+  std::unique_ptr<State> Internal;
+};
+
+#endif

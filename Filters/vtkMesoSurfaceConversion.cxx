@@ -1,0 +1,208 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoSurfaceConversion.h"
+
+#include "mesolens/errors.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellArrayIterator.h>
+#include <vtkCellData.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkIdTypeArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace vtkMesoSurfaceConversion {
+
+mesolens::TriangleMesh ToTriangleMesh(vtkPolyData* surface)
+{
+  if (!surface || surface->GetNumberOfPolys() == 0)
+  {
+    throw mesolens::InvalidInput("the surface has no triangles");
+  }
+  if (surface->GetNumberOfStrips() > 0)
+  {
+    throw mesolens::InvalidInput("the surface has triangle strips; apply vtkTriangleFilter first");
+  }
+  mesolens::TriangleMesh mesh;
+  const vtkIdType points = surface->GetNumberOfPoints();
+  mesh.points.resize(3 * static_cast<std::size_t>(points));
+  for (vtkIdType i = 0; i < points; ++i)
+  {
+    surface->GetPoint(i, mesh.points.data() + 3 * i);
+  }
+  mesh.triangles.reserve(3 * static_cast<std::size_t>(surface->GetNumberOfPolys()));
+  auto iterator = vtk::TakeSmartPointer(surface->GetPolys()->NewIterator());
+  for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell())
+  {
+    vtkIdType size = 0;
+    const vtkIdType* ids = nullptr;
+    iterator->GetCurrentCell(size, ids);
+    if (size != 3)
+    {
+      throw mesolens::InvalidInput("the surface has a polygon with " + std::to_string(size) +
+                                   " corners; apply vtkTriangleFilter first");
+    }
+    mesh.triangles.insert(mesh.triangles.end(), { ids[0], ids[1], ids[2] });
+  }
+  return mesh;
+}
+
+void FromTriangleMesh(const mesolens::TriangleMesh& mesh, vtkPolyData* output)
+{
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(mesh.vertex_count()));
+  for (std::size_t i = 0; i < mesh.vertex_count(); ++i)
+  {
+    points->SetPoint(static_cast<vtkIdType>(i), mesh.points.data() + 3 * i);
+  }
+  vtkNew<vtkCellArray> triangles;
+  triangles->AllocateExact(static_cast<vtkIdType>(mesh.triangle_count()),
+                           static_cast<vtkIdType>(3 * mesh.triangle_count()));
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+  {
+    const vtkIdType ids[3] = { mesh.triangles[3 * t], mesh.triangles[3 * t + 1],
+                               mesh.triangles[3 * t + 2] };
+    triangles->InsertNextCell(3, ids);
+  }
+  output->SetPoints(points);
+  output->SetPolys(triangles);
+}
+
+void GeodesicDiskBuilder::SetSurface(vtkPolyData* surface, vtkMTimeType surfaceTime)
+{
+  if (this->Solver && this->SolverTime == surfaceTime)
+  {
+    return;
+  }
+  this->Solver.reset();
+  this->Solver = std::make_shared<mesolens::GeodesicSolver>(ToTriangleMesh(surface));
+  this->SolverTime = surfaceTime;
+  double bounds[6];
+  surface->GetBounds(bounds);
+  this->Diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
+                             (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
+                             (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
+}
+
+mesolens::GeodesicDisk GeodesicDiskBuilder::Disk(const double seed[3], double seedTolerance,
+                                                 const mesolens::GeodesicDiskParams& params) const
+{
+  if (!this->Solver)
+  {
+    throw mesolens::InvalidInput("no surface");
+  }
+  double distance = 0;
+  const mesolens::SurfacePoint point =
+    this->Solver->closest_point({ seed[0], seed[1], seed[2] }, &distance);
+  const double tolerance = seedTolerance > 0 ? seedTolerance : 0.02 * this->Diagonal;
+  if (distance > tolerance)
+  {
+    std::ostringstream message;
+    message << "the seed point (" << seed[0] << ", " << seed[1] << ", " << seed[2] << ") is "
+            << distance << " away from the surface, farther than the tolerance " << tolerance
+            << "; pick a point on the surface";
+    throw mesolens::InvalidInput(message.str());
+  }
+  return mesolens::geodesic_disk(*this->Solver, point, params);
+}
+
+void AddDiskArrays(const mesolens::GeodesicDisk& disk, double radius, vtkPolyData* output)
+{
+  vtkNew<vtkDoubleArray> distance;
+  distance->SetName("GeodesicDistance");
+  distance->SetNumberOfValues(static_cast<vtkIdType>(disk.distance.size()));
+  vtkNew<vtkIdTypeArray> original;
+  original->SetName("OriginalPointId");
+  original->SetNumberOfValues(static_cast<vtkIdType>(disk.original_vertex.size()));
+  for (std::size_t v = 0; v < disk.distance.size(); ++v)
+  {
+    distance->SetValue(static_cast<vtkIdType>(v), disk.distance[v]);
+    original->SetValue(static_cast<vtkIdType>(v), static_cast<vtkIdType>(disk.original_vertex[v]));
+  }
+  output->GetPointData()->AddArray(distance);
+  output->GetPointData()->AddArray(original);
+  output->GetPointData()->SetActiveScalars("GeodesicDistance");
+  auto add_field = [output](const char* name, std::initializer_list<double> values) {
+    vtkNew<vtkDoubleArray> array;
+    array->SetName(name);
+    array->SetNumberOfComponents(static_cast<int>(values.size()));
+    array->SetNumberOfTuples(1);
+    int k = 0;
+    for (const double value : values)
+    {
+      array->SetComponent(0, k++, value);
+    }
+    output->GetFieldData()->AddArray(array);
+  };
+  add_field("GeodesicRadius", { radius });
+  add_field("RefinementLevels", { double(disk.refinement_levels) });
+  add_field("HolesClosed", { double(disk.holes_closed) });
+  add_field("SeedTriangle", { double(disk.seed.triangle) });
+  add_field("SeedBarycentric",
+            { disk.seed.barycentric[0], disk.seed.barycentric[1], disk.seed.barycentric[2] });
+  add_field("SeedPosition",
+            { disk.seed.position[0], disk.seed.position[1], disk.seed.position[2] });
+}
+
+void AddParameterizationArrays(const mesolens::DiskParameterization& map, double radius,
+                               vtkPolyData* output)
+{
+  vtkNew<vtkDoubleArray> uv;
+  uv->SetName("TextureCoordinates");
+  uv->SetNumberOfComponents(2);
+  uv->SetNumberOfTuples(static_cast<vtkIdType>(map.uv.size() / 2));
+  std::copy(map.uv.begin(), map.uv.end(), uv->GetPointer(0));
+  output->GetPointData()->SetTCoords(uv);
+  vtkNew<vtkDoubleArray> angle;
+  angle->SetName("AngleDistortion");
+  vtkNew<vtkDoubleArray> area;
+  area->SetName("AreaDistortion");
+  angle->SetNumberOfValues(static_cast<vtkIdType>(map.angle_distortion.size()));
+  area->SetNumberOfValues(static_cast<vtkIdType>(map.area_distortion.size()));
+  for (std::size_t t = 0; t < map.angle_distortion.size(); ++t)
+  {
+    angle->SetValue(static_cast<vtkIdType>(t), map.angle_distortion[t]);
+    area->SetValue(static_cast<vtkIdType>(t), map.area_distortion[t]);
+  }
+  output->GetCellData()->AddArray(angle);
+  output->GetCellData()->AddArray(area);
+  for (const auto& entry : { std::make_pair("ParameterizationRadius", radius),
+                             std::make_pair("FlippedTriangles", double(map.flipped_triangles)),
+                             std::make_pair("Bijective", map.bijective() ? 1.0 : 0.0) })
+  {
+    vtkNew<vtkDoubleArray> array;
+    array->SetName(entry.first);
+    array->InsertNextValue(entry.second);
+    output->GetFieldData()->AddArray(array);
+  }
+}
+
+mesolens::SurfacePoint SeedOf(vtkPolyData* disk)
+{
+  mesolens::SurfacePoint seed;
+  vtkDataArray* triangle = disk->GetFieldData()->GetArray("SeedTriangle");
+  vtkDataArray* barycentric = disk->GetFieldData()->GetArray("SeedBarycentric");
+  vtkDataArray* position = disk->GetFieldData()->GetArray("SeedPosition");
+  if (!triangle || !barycentric || !position || barycentric->GetNumberOfComponents() != 3 ||
+      position->GetNumberOfComponents() != 3)
+  {
+    return seed;
+  }
+  seed.triangle = static_cast<std::int64_t>(triangle->GetComponent(0, 0));
+  for (int k = 0; k < 3; ++k)
+  {
+    seed.barycentric[std::size_t(k)] = barycentric->GetComponent(0, k);
+    seed.position[std::size_t(k)] = position->GetComponent(0, k);
+  }
+  return seed;
+}
+
+}

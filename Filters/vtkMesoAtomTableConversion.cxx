@@ -17,6 +17,7 @@
 #include <vtkSignedCharArray.h>
 #include <vtkStringArray.h>
 #include <vtkUnsignedCharArray.h>
+#include <vtkUnsignedShortArray.h>
 
 namespace vtkMesoAtomTableConversion {
 
@@ -108,7 +109,8 @@ void ToPolyData(const mesolens::AtomTable& table, double length_scale, vtkPolyDa
   }
   add_strings(data, "AtomName", table.atom_names);
   add_strings(data, "Element", symbols);
-  add_array<vtkUnsignedCharArray>(data, "AtomicNumber", table.atomic_numbers);
+  // Not unsigned char: VTK would take an unsigned char active scalar for colours, not values.
+  add_array<vtkUnsignedShortArray>(data, "AtomicNumber", table.atomic_numbers);
   add_strings(data, "ResidueName", table.residue_names);
   add_array<vtkIntArray>(data, "ResidueNumber", table.residue_numbers);
   add_strings(data, "InsertionCode", as_strings(table.insertion_codes));

@@ -10,7 +10,8 @@
  * line cell per bond, and these point arrays:
  * - `AtomName`, `Element` (symbol, "X" when unknown or a coarse-grained bead), `ResidueName`,
  *   `ChainId` (author chain), `InsertionCode`, `AltLoc` (vtkStringArray, "" when blank);
- * - `AtomicNumber` (unsigned char, 0 = unknown/bead; the active scalars);
+ * - `AtomicNumber` (unsigned short, 0 = unknown/bead; the active scalars, so stock mappers colour
+ *   atoms through a lookup table such as vtkMesoElementLookupTable);
  * - `ResidueNumber` (author number), `SerialNumber`, `ResidueIndex` (0-based running residue),
  *   `MoleculeId` (0-based; one per residue, except that the polymer residues of a chain form
  *   one molecule), `SecondaryStructureId` (index of the HELIX/strand span, -1 = none) (int);

@@ -175,30 +175,38 @@ MeshReport mesh_report(const TriangleMeshView& mesh, double area_epsilon)
       }
     }
   }
-  std::sort(uses.begin(), uses.end(), [](const EdgeUse& x, const EdgeUse& y) {
-    return x.low != y.low ? x.low < y.low
-                          : (x.high != y.high ? x.high < y.high : x.triangle < y.triangle);
-  });
+  // Counting sort by the lower vertex, then the few uses of each vertex by (high, triangle).
+  {
+    std::vector<std::size_t> start(mesh.point_count + 1, 0);
+    for (const EdgeUse& use : uses)
+    {
+      ++start[std::size_t(use.low) + 1];
+    }
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    std::vector<EdgeUse> sorted(uses.size());
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (const EdgeUse& use : uses)
+    {
+      sorted[fill[std::size_t(use.low)]++] = use;
+    }
+    for (std::size_t v = 0; v < mesh.point_count; ++v)
+    {
+      std::sort(sorted.begin() + long(start[v]), sorted.begin() + long(start[v + 1]),
+                [](const EdgeUse& x, const EdgeUse& y) {
+                  return x.high != y.high ? x.high < y.high : x.triangle < y.triangle;
+                });
+    }
+    uses = std::move(sorted);
+  }
 
   DisjointSets triangle_sets(mesh.triangle_count);
-  // Corner (vertex, triangle) incidences, joined across manifold edges to find vertex fans.
-  std::unordered_map<std::uint64_t, std::size_t> corner_id;
-  std::vector<std::int64_t> corner_vertex;
-  auto corner = [&](std::int64_t v, std::size_t t) {
-    const std::uint64_t key = (std::uint64_t(v) << 32) ^ std::uint64_t(t);
-    const auto found = corner_id.emplace(key, corner_vertex.size());
-    if (found.second)
-    {
-      corner_vertex.push_back(v);
-    }
-    return found.first->second;
+  // Corners (a vertex in a triangle) are numbered 3 t + k; those of one vertex joined across
+  // manifold edges form its fans.
+  auto corner = [&mesh](std::int64_t v, std::size_t t) {
+    const std::int64_t* tri = mesh.triangles + 3 * t;
+    return 3 * t + (tri[0] == v ? 0 : (tri[1] == v ? 1 : 2));
   };
-  for (const EdgeUse& use : uses)
-  {
-    corner(use.low, use.triangle);
-    corner(use.high, use.triangle);
-  }
-  DisjointSets corner_sets(corner_vertex.size());
+  DisjointSets corner_sets(3 * mesh.triangle_count);
   std::vector<std::pair<std::int64_t, std::int64_t>> boundary;
   for (std::size_t i = 0; i < uses.size();)
   {
@@ -239,14 +247,25 @@ MeshReport mesh_report(const TriangleMeshView& mesh, double area_epsilon)
     i = j;
   }
   // A vertex whose corners fall into more than one fan is non-manifold (two cones touching).
-  std::unordered_map<std::int64_t, std::size_t> fan_of_vertex;
-  for (std::size_t c = 0; c < corner_vertex.size(); ++c)
+  std::vector<std::int64_t> fan_of_vertex(mesh.point_count, -1);
+  for (std::size_t t = 0; t < mesh.triangle_count; ++t)
   {
-    const std::size_t root = corner_sets.find(c);
-    const auto found = fan_of_vertex.emplace(corner_vertex[c], root);
-    if (!found.second && found.first->second != root)
+    if (!valid[t])
     {
-      report.vertex_is_non_manifold[std::size_t(corner_vertex[c])] = 1;
+      continue;
+    }
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+      const auto v = std::size_t(mesh.triangles[3 * t + k]);
+      const auto root = std::int64_t(corner_sets.find(3 * t + k));
+      if (fan_of_vertex[v] < 0)
+      {
+        fan_of_vertex[v] = root;
+      }
+      else if (fan_of_vertex[v] != root)
+      {
+        report.vertex_is_non_manifold[v] = 1;
+      }
     }
   }
   report.non_manifold_vertices = std::size_t(std::count(

@@ -170,58 +170,6 @@ Clipped component_of(const Clipped& in, std::int64_t keep_triangle)
   return out;
 }
 
-/// Boundary loops of a manifold mesh with boundary, as vertex sequences.
-std::vector<std::vector<std::int64_t>> boundary_loops(const TriangleMesh& mesh)
-{
-  std::map<std::uint64_t, int> count;
-  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      ++count[edge_key(mesh.triangles[3 * t + std::size_t(k)],
-                       mesh.triangles[3 * t + std::size_t((k + 1) % 3)])];
-    }
-  }
-  // Directed boundary edges, in the triangles' orientation: next[a] = b.
-  std::unordered_map<std::int64_t, std::int64_t> next;
-  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      const std::int64_t a = mesh.triangles[3 * t + std::size_t(k)];
-      const std::int64_t b = mesh.triangles[3 * t + std::size_t((k + 1) % 3)];
-      if (count[edge_key(a, b)] == 1)
-      {
-        next[a] = b;
-      }
-    }
-  }
-  std::vector<std::vector<std::int64_t>> loops;
-  std::unordered_map<std::int64_t, bool> visited;
-  for (const auto& entry : next)
-  {
-    if (visited[entry.first])
-    {
-      continue;
-    }
-    std::vector<std::int64_t> loop;
-    std::int64_t v = entry.first;
-    while (!visited[v])
-    {
-      visited[v] = true;
-      loop.push_back(v);
-      const auto found = next.find(v);
-      if (found == next.end())
-      {
-        break;
-      }
-      v = found->second;
-    }
-    loops.push_back(std::move(loop));
-  }
-  return loops;
-}
-
 double loop_length(const TriangleMesh& mesh, const std::vector<std::int64_t>& loop)
 {
   double length = 0;

@@ -9,8 +9,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
-#include <unordered_map>
 
 namespace mesolens {
 
@@ -36,57 +34,16 @@ Vec3 cross(const Vec3& a, const Vec3& b)
   return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
 }
 
-/// The boundary loop of a disk, in the triangles' orientation, starting at its smallest vertex.
+/// The one boundary loop of a disk, in the triangles' orientation.
 std::vector<std::int64_t> boundary_loop(const TriangleMesh& disk)
 {
-  std::map<std::pair<std::int64_t, std::int64_t>, int> count;
-  for (std::size_t t = 0; t < disk.triangle_count(); ++t)
+  std::vector<std::vector<std::int64_t>> loops = boundary_loops(disk);
+  if (loops.size() != 1)
   {
-    for (int k = 0; k < 3; ++k)
-    {
-      const std::int64_t a = disk.triangles[3 * t + std::size_t(k)];
-      const std::int64_t b = disk.triangles[3 * t + std::size_t((k + 1) % 3)];
-      ++count[{ std::min(a, b), std::max(a, b) }];
-    }
+    throw TopologyError("the mesh to parameterize has " + std::to_string(loops.size()) +
+                        " boundary loops; a disk has one");
   }
-  std::unordered_map<std::int64_t, std::int64_t> next;
-  for (std::size_t t = 0; t < disk.triangle_count(); ++t)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      const std::int64_t a = disk.triangles[3 * t + std::size_t(k)];
-      const std::int64_t b = disk.triangles[3 * t + std::size_t((k + 1) % 3)];
-      if (count[{ std::min(a, b), std::max(a, b) }] == 1)
-      {
-        next[a] = b;
-      }
-    }
-  }
-  if (next.empty())
-  {
-    throw TopologyError("the mesh to parameterize has no boundary (it is closed, not a disk)");
-  }
-  std::int64_t start = next.begin()->first;
-  for (const auto& entry : next)
-  {
-    start = std::min(start, entry.first);
-  }
-  std::vector<std::int64_t> loop{ start };
-  for (std::int64_t v = next[start]; v != start; v = next[v])
-  {
-    loop.push_back(v);
-    if (loop.size() > next.size() || next.find(v) == next.end())
-    {
-      throw TopologyError("the boundary of the mesh to parameterize is not a single loop");
-    }
-  }
-  if (loop.size() != next.size())
-  {
-    throw TopologyError("the mesh to parameterize has " + std::to_string(next.size()) +
-                        " boundary vertices but its outer loop has " + std::to_string(loop.size()) +
-                        ": it has holes, not a disk");
-  }
-  return loop;
+  return std::move(loops.front());
 }
 } // namespace
 

@@ -3,7 +3,10 @@
 
 #include "mesolens/errors.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
+#include <set>
 #include <string>
 
 namespace mesolens {
@@ -37,6 +40,52 @@ void require_manifold(const TriangleMesh& mesh, const char* what)
     throw TopologyError(std::string(what) +
                         " is not a clean 2-manifold: " + report.describe_defects());
   }
+}
+
+std::vector<std::vector<std::int64_t>> boundary_loops(const TriangleMesh& mesh)
+{
+  // Directed edges; an edge whose reverse is absent lies on the boundary.
+  std::vector<std::pair<std::int64_t, std::int64_t>> directed;
+  directed.reserve(mesh.triangles.size());
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+  {
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+      directed.emplace_back(mesh.triangles[3 * t + k], mesh.triangles[3 * t + (k + 1) % 3]);
+    }
+  }
+  std::sort(directed.begin(), directed.end());
+  std::map<std::int64_t, std::int64_t> next; // ordered: loops start at their smallest vertex
+  for (const auto& [a, b] : directed)
+  {
+    if (!std::binary_search(directed.begin(), directed.end(), std::make_pair(b, a)))
+    {
+      next[a] = b;
+    }
+  }
+  std::vector<std::vector<std::int64_t>> loops;
+  std::set<std::int64_t> visited;
+  for (const auto& entry : next)
+  {
+    if (visited.count(entry.first))
+    {
+      continue;
+    }
+    std::vector<std::int64_t> loop;
+    for (std::int64_t v = entry.first; !visited.count(v);)
+    {
+      visited.insert(v);
+      loop.push_back(v);
+      const auto found = next.find(v);
+      if (found == next.end())
+      {
+        break;
+      }
+      v = found->second;
+    }
+    loops.push_back(std::move(loop));
+  }
+  return loops;
 }
 
 std::array<double, 3> triangle_normal(const TriangleMesh& mesh, std::int64_t triangle)

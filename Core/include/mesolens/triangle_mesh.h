@@ -49,6 +49,11 @@ struct SurfacePoint
 /// InvalidInput when it has no triangles or a non-finite point.
 void require_manifold(const TriangleMesh& mesh, const char* what);
 
+/// The boundary loops of a manifold mesh: vertex sequences in the triangles' orientation
+/// (counter-clockwise around the surface seen from outside), each starting at its smallest
+/// vertex index, ordered by that index. Empty for a closed mesh.
+std::vector<std::vector<std::int64_t>> boundary_loops(const TriangleMesh& mesh);
+
 /// Unit normal of a triangle (zero vector for a degenerate one).
 std::array<double, 3> triangle_normal(const TriangleMesh& mesh, std::int64_t triangle);
 

@@ -343,11 +343,15 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
     params.centre_uv = state.SeedUV;
     params.layer_half_thickness = this->LayerHalfThickness;
     params.samples = this->PolynomialSamples;
+    params.map_atoms = this->OutputAtoms;
     const mesolens::MappedMembrane mapped =
       mesolens::map_membrane(*state.Chart, data.patch, params, vtkMesoParallelFor::Get());
     const std::vector<double> changes =
       mesolens::bond_length_changes(data.patch, mapped, data.bonds, scale);
-    build_atoms(atoms, data, mapped, changes, output);
+    if (!mapped.positions.empty())
+    {
+      build_atoms(atoms, data, mapped, changes, output);
+    }
     const mesolens::MembranePatch& patch = data.patch;
     add_field(output, "GeodesicRadius", { radius });
     add_field(output, "Tiles", { double(this->Tiles) });
@@ -411,4 +415,5 @@ void vtkMesoMembraneMapping::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PolynomialSamples: " << this->PolynomialSamples << "\n";
   os << indent << "MinimumDiskTriangles: " << this->MinimumDiskTriangles << "\n";
   os << indent << "MaximumRefinementLevels: " << this->MaximumRefinementLevels << "\n";
+  os << indent << "OutputAtoms: " << (this->OutputAtoms ? "on" : "off") << "\n";
 }

@@ -23,9 +23,9 @@
  *   displacement map on PolynomialSamples^2 samples in 3 layers (h = -e, 0, +e with e =
  *   LayerHalfThickness).
  *
- * Output 0, the mapped atoms: k^2 copies of the patch (tile t = j k + i holds atoms
- * [t n, (t+1) n)), one vertex per atom and the patch's bonds in every tile; the patch's point
- * arrays repeated, plus `TileId`; cell data `BondLengthChange` (mapped length / scaled patch
+ * Output 0, the mapped atoms (unless OutputAtoms is off): k^2 copies of the patch (tile t = j k + i
+ * holds atoms [t n, (t+1) n)), one vertex per atom and the patch's bonds in every tile; the patch's
+ * point arrays repeated, plus `TileId`; cell data `BondLengthChange` (mapped length / scaled patch
  * length - 1 for bond lines, 0 for atom vertices: the paper's intra-molecular distortion). Field
  * data: `GeodesicRadius`, `Tiles`, `MappingMethod`, `MembraneToMeshScale`, `PatchOrigin` (2),
  * `PatchCellA` (2), `PatchCellB` (2), `PatchCentreHeight`, `LayerHalfThickness`, `SeedUV` (2),
@@ -139,6 +139,16 @@ public:
   ///@}
 
   ///@{
+  /// Map every atom into output 0 (on, default), or (off) leave output 0 without atoms and
+  /// bonds, holding only the field data: for POLYNOMIAL and MOLECULE_INSTANCING, whose
+  /// coefficients or matrices vtkMesoAtomMapper evaluates on the GPU (its warp input).
+  /// DISPLACEMENT always maps the atoms.
+  vtkSetMacro(OutputAtoms, bool);
+  vtkGetMacro(OutputAtoms, bool);
+  vtkBooleanMacro(OutputAtoms, bool);
+  ///@}
+
+  ///@{
   /// Refine the surface locally until the disk holds at least this many triangles; 0: never.
   /// Default 2000.
   vtkSetClampMacro(MinimumDiskTriangles, int, 0, VTK_INT_MAX);
@@ -169,6 +179,7 @@ protected:
   int PolynomialSamples = 6;
   int MinimumDiskTriangles = 2000;
   int MaximumRefinementLevels = 5;
+  bool OutputAtoms = true;
 
 private:
   vtkMesoMembraneMapping(const vtkMesoMembraneMapping&) = delete;

@@ -117,4 +117,53 @@ std::optional<RayHit> ray_cylinder(const Vector3& origin, const Vector3& directi
   return hit;
 }
 
+std::optional<CylinderHitFloat> ray_cylinder_float(const std::array<float, 3>& origin,
+                                                   const std::array<float, 3>& direction,
+                                                   const std::array<float, 3>& a,
+                                                   const std::array<float, 3>& b, float radius)
+{
+  // Line by line what the fragment shader does, in float.
+  auto dotf = [](const std::array<float, 3>& u, const std::array<float, 3>& v) {
+    return u[0] * v[0] + u[1] * v[1] + u[2] * v[2];
+  };
+  std::array<float, 3> ray_origin = origin;
+  const std::array<float, 3> middle{ 0.5f * (a[0] + b[0]), 0.5f * (a[1] + b[1]),
+                                     0.5f * (a[2] + b[2]) };
+  const std::array<float, 3> to_middle{ middle[0] - origin[0], middle[1] - origin[1],
+                                        middle[2] - origin[2] };
+  const float shift = dotf(to_middle, direction);
+  for (int d = 0; d < 3; ++d)
+  {
+    ray_origin[d] += shift * direction[d];
+  }
+  const std::array<float, 3> axis{ b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+  const std::array<float, 3> from_start{ ray_origin[0] - a[0], ray_origin[1] - a[1],
+                                         ray_origin[2] - a[2] };
+  const float axis2 = dotf(axis, axis);
+  const float axis_ray = dotf(axis, direction);
+  const float axis_start = dotf(axis, from_start);
+  const float k2 = axis2 - axis_ray * axis_ray;
+  const float k1 = axis2 * dotf(from_start, direction) - axis_start * axis_ray;
+  const float k0 =
+    axis2 * dotf(from_start, from_start) - axis_start * axis_start - radius * radius * axis2;
+  const float discriminant = k1 * k1 - k2 * k0;
+  if (k2 <= 0 || discriminant < 0)
+  {
+    return std::nullopt;
+  }
+  const float hit_along = (-k1 - std::sqrt(discriminant)) / k2;
+  CylinderHitFloat hit;
+  hit.axial = (axis_start + hit_along * axis_ray) / axis2;
+  if (hit.axial < 0 || hit.axial > 1)
+  {
+    return std::nullopt;
+  }
+  for (int d = 0; d < 3; ++d)
+  {
+    const float point = ray_origin[d] + hit_along * direction[d];
+    hit.normal[d] = (point - a[d] - hit.axial * axis[d]) / radius;
+  }
+  return hit;
+}
+
 } // namespace mesolens

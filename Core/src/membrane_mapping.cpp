@@ -189,7 +189,11 @@ MappedMembrane map_membrane(const SurfaceChart& chart, const MembranePatch& patc
   const std::size_t tile_count = std::size_t(k) * std::size_t(k);
   const std::size_t n = patch.atom_count;
   MappedMembrane mapped;
-  mapped.positions.resize(3 * n * tile_count);
+  const bool map_atoms = params.map_atoms || params.method == MappingMethod::Displacement;
+  if (map_atoms)
+  {
+    mapped.positions.resize(3 * n * tile_count);
+  }
   std::vector<std::string> failures(tile_count);
   const double scale = params.scale;
 
@@ -208,10 +212,11 @@ MappedMembrane map_membrane(const SurfaceChart& chart, const MembranePatch& patc
     mapped.polynomial_max_residual.resize(tile_count);
   }
 
+  const std::vector<std::uint32_t> no_atoms;
   auto map_tile = [&](std::size_t tile) {
     const int i = int(tile % std::size_t(k));
     const int j = int(tile / std::size_t(k));
-    double* out = mapped.positions.data() + 3 * n * tile;
+    double* out = map_atoms ? mapped.positions.data() + 3 * n * tile : nullptr;
     SurfaceFrame frame;
     std::array<double, 3> x{};
     switch (params.method)
@@ -262,7 +267,7 @@ MappedMembrane map_membrane(const SurfaceChart& chart, const MembranePatch& patc
           matrix[15] = 1;
           mapped.instance_molecules[instance] = molecules.ids[m];
           mapped.instance_tiles[instance] = int(tile);
-          for (const std::uint32_t a : molecules.atoms[m])
+          for (const std::uint32_t a : map_atoms ? molecules.atoms[m] : no_atoms)
           {
             const float* p = patch.positions + 3 * a;
             for (int r = 0; r < 3; ++r)
@@ -304,7 +309,7 @@ MappedMembrane map_membrane(const SurfaceChart& chart, const MembranePatch& patc
                   mapped.polynomial_coefficients.begin() + long(3 * quadratic_terms * tile));
         mapped.polynomial_rms_residual[tile] = fit.rms_residual;
         mapped.polynomial_max_residual[tile] = fit.max_residual;
-        for (std::size_t a = 0; a < n; ++a)
+        for (std::size_t a = 0; map_atoms && a < n; ++a)
         {
           const auto local =
             polynomial_coordinates(patch, params.layer_half_thickness, patch.positions + 3 * a);

@@ -54,3 +54,38 @@ TEST(ImpostorGeometry, CylinderSideAndEnds)
               1e-12);
   EXPECT_FALSE(mesolens::ray_cylinder({ 0, 0, 10 }, { 1, 0, 0 }, { 0, 0, 0 }, { 4, 0, 0 }, 1.0));
 }
+
+TEST(ImpostorGeometry, FloatCylinderTwinAgreesWithTheReference)
+{
+  const mesolens::Vector3 origin{ 1.3, 0.4, 10 };
+  const mesolens::Vector3 direction{ 0, 0, -1 };
+  const auto reference = mesolens::ray_cylinder(origin, direction, { 0, 0, 0 }, { 4, 0, 0 }, 1.0);
+  const auto twin =
+    mesolens::ray_cylinder_float({ 1.3f, 0.4f, 10 }, { 0, 0, -1 }, { 0, 0, 0 }, { 4, 0, 0 }, 1.0f);
+  ASSERT_TRUE(reference);
+  ASSERT_TRUE(twin);
+  for (int d = 0; d < 3; ++d)
+  {
+    EXPECT_NEAR(twin->normal[std::size_t(d)], reference->normal[std::size_t(d)], 1e-5);
+  }
+  EXPECT_NEAR(twin->axial, 1.3 / 4, 1e-6);
+  // Past the ends, and along the axis: no hit.
+  EXPECT_FALSE(
+    mesolens::ray_cylinder_float({ 4.5f, 0, 10 }, { 0, 0, -1 }, { 0, 0, 0 }, { 4, 0, 0 }, 1.0f));
+  EXPECT_FALSE(
+    mesolens::ray_cylinder_float({ -10, 0, 0 }, { 1, 0, 0 }, { 0, 0, 0 }, { 4, 0, 0 }, 1.0f));
+}
+
+TEST(ImpostorGeometry, TinyBondFarAwayKeepsItsPrecisionInFloat)
+{
+  // A bond of radius 2e-5 and length 1.5e-4 (Å in µm) one unit from the eye, seen from the
+  // side: the normal at a hit 60 % of the way to its silhouette.
+  const float r = 2e-5f;
+  const float length = 1.5e-4f;
+  const auto hit = mesolens::ray_cylinder_float({ 0.3f * length, 0.6f * r, 0 }, { 0, 0, -1 },
+                                                { 0, 0, -1 }, { length, 0, -1 }, r);
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->normal[1], 0.6f, 2e-3f);
+  EXPECT_NEAR(hit->normal[2], 0.8f, 2e-3f);
+  EXPECT_NEAR(hit->axial, 0.3f, 1e-3f);
+}

@@ -37,4 +37,21 @@ std::optional<std::array<float, 3>> ray_sphere_normal_float(const std::array<flo
 std::optional<RayHit> ray_cylinder(const Vector3& origin, const Vector3& direction,
                                    const Vector3& a, const Vector3& b, double radius);
 
+/// Where the float twin of the bond shader meets its cylinder: the unit outward normal and the
+/// hit's position along the bond (0 at a, 1 at b; the bond's colour changes at 0.5).
+struct CylinderHitFloat
+{
+  std::array<float, 3> normal{};
+  float axial = 0;
+};
+
+/// The bond fragment shader's intersection, in single precision as the GPU computes it: the
+/// ray origin first moves to the ray's closest approach to the bond's middle, so the quadratic's
+/// terms stay of the bond's size (Å bonds in a µm scene keep their precision). Open cylinder:
+/// nullopt outside 0 <= axial <= 1, for a miss, or for a ray along the axis.
+std::optional<CylinderHitFloat> ray_cylinder_float(const std::array<float, 3>& origin,
+                                                   const std::array<float, 3>& direction,
+                                                   const std::array<float, 3>& a,
+                                                   const std::array<float, 3>& b, float radius);
+
 } // namespace mesolens

@@ -57,6 +57,10 @@ struct MappingParams
   double layer_half_thickness = 25;
   /// Polynomial: samples per tile edge (samples x samples per layer). Range >= 3; default 6.
   int samples = 6;
+  /// Polynomial and MoleculeInstancing: also map every atom (false: only the coefficients or
+  /// matrices, for a renderer that evaluates them itself; positions stay empty). Displacement
+  /// always maps the atoms. Default true.
+  bool map_atoms = true;
 };
 
 /// The mapped atoms and what each method leaves for the renderer. Tile t = j k + i holds the
@@ -64,7 +68,8 @@ struct MappingParams
 struct MappedMembrane
 {
   std::vector<double> positions; ///< 3 per atom per tile; tile t: atoms [t n, (t+1) n) (double:
-                                 ///< Å-sized bonds on µm meshes need it)
+                                 ///< Å-sized bonds on µm meshes need it); empty when
+                                 ///< params.map_atoms is false (not for Displacement)
   std::vector<double> instance_matrices;       ///< MoleculeInstancing: 16 per instance (row-major
                                                ///< 4x4, patch coordinates to mesh coordinates)
   std::vector<int> instance_molecules;         ///< molecule id of each instance

@@ -142,6 +142,31 @@ TEST(vtkMesoMembraneMapping, ThreeMethodsOnTheMitochondrion)
   vtkDataArray* matrices = mapping->GetOutput()->GetFieldData()->GetArray("InstanceMatrices");
   ASSERT_NE(matrices, nullptr);
   EXPECT_EQ(matrices->GetNumberOfTuples(), 4 * 128);
+
+  // Without atoms: the same warp, nothing else (for the GPU); displacement still maps.
+  std::vector<double> with_atoms(30);
+  mapping->SetMappingMethodToPolynomial();
+  mapping->Update();
+  coefficients = mapping->GetOutput()->GetFieldData()->GetArray("PolynomialCoefficients");
+  coefficients->GetTuple(3, with_atoms.data());
+  mapping->OutputAtomsOff();
+  mapping->Update();
+  EXPECT_EQ(mapping->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_EQ(mapping->GetOutput()->GetNumberOfLines(), 0);
+  coefficients = mapping->GetOutput()->GetFieldData()->GetArray("PolynomialCoefficients");
+  ASSERT_NE(coefficients, nullptr);
+  for (int c = 0; c < 30; ++c)
+  {
+    EXPECT_EQ(coefficients->GetComponent(3, c), with_atoms[std::size_t(c)]);
+  }
+  mapping->SetMappingMethodToMoleculeInstancing();
+  mapping->Update();
+  EXPECT_EQ(mapping->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_EQ(mapping->GetOutput()->GetFieldData()->GetArray("InstanceMatrices")->GetNumberOfTuples(),
+            4 * 128);
+  mapping->SetMappingMethodToDisplacement();
+  mapping->Update();
+  EXPECT_EQ(mapping->GetOutput()->GetNumberOfPoints(), 4 * 16640);
 }
 
 TEST(vtkMesoMembraneMapping, TrajectoryTimeStepsPassThrough)

@@ -1,0 +1,78 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Scenes of the atom-mapper tests: real molecules from Data/ with fixed windows and cameras.
+#pragma once
+
+#include "vtkMesoAtomMapper.h"
+#include "vtkMesoMembraneMapping.h"
+#include "vtkMesoMeshReader.h"
+#include "vtkMesoStructureReader.h"
+#include "vtkMesoTrajectoryReader.h"
+
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkNew.h>
+#include <vtkPolyData.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkSmartPointer.h>
+
+#include <string>
+
+namespace mesolens_test {
+
+/// Crambin (1CRN, 327 atoms with bonds) read from Data/.
+inline vtkSmartPointer<vtkMesoStructureReader> crambin()
+{
+  auto reader = vtkSmartPointer<vtkMesoStructureReader>::New();
+  reader->SetFileName((std::string(MESOLENS_DATA_DIR) + "/proteins/1crn.pdb").c_str());
+  reader->Update();
+  return reader;
+}
+
+/// An off-screen window without multisampling (the pictures must be reproducible).
+inline vtkSmartPointer<vtkRenderWindow> test_window(int width, int height)
+{
+  auto window = vtkSmartPointer<vtkRenderWindow>::New();
+  window->SetOffScreenRendering(1);
+  window->SetMultiSamples(0);
+  window->SetSize(width, height);
+  return window;
+}
+
+/// Looks at the centre of `atoms` from `distance` along +z.
+inline void look_at(vtkRenderer* renderer, vtkPolyData* atoms, double distance)
+{
+  double centre[3];
+  atoms->GetCenter(centre);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetFocalPoint(centre);
+  camera->SetPosition(centre[0], centre[1], centre[2] + distance);
+  camera->SetViewUp(0, 1, 0);
+  renderer->ResetCameraClippingRange();
+}
+
+/// A 2 x 2 tiling of the DPPC patch on the mitochondrion's outer membrane (µm; atoms at 1e-4),
+/// POLYNOMIAL or MOLECULE_INSTANCING; with output_atoms off only the warp's field data.
+inline vtkSmartPointer<vtkMesoMembraneMapping> mapped_membrane(int method, bool output_atoms)
+{
+  auto surface = vtkSmartPointer<vtkMesoMeshReader>::New();
+  surface->SetFileName(
+    (std::string(MESOLENS_DATA_DIR) + "/meshes/mito5_outer_membrane.obj").c_str());
+  surface->Update();
+  auto membrane = vtkSmartPointer<vtkMesoTrajectoryReader>::New();
+  membrane->SetTopologyFileName(
+    (std::string(MESOLENS_DATA_DIR) + "/membranes/dppc128_slipids_323K.gro").c_str());
+  membrane->RemoveWatersOn();
+  auto mapping = vtkSmartPointer<vtkMesoMembraneMapping>::New();
+  mapping->SetSurfaceConnection(surface->GetOutputPort());
+  mapping->SetMembraneConnection(membrane->GetOutputPort());
+  mapping->SetSeedPoint(surface->GetOutput()->GetPoint(1000));
+  mapping->SetTiles(2);
+  mapping->SetMembraneToMeshScale(1e-4);
+  mapping->SetMappingMethod(method);
+  mapping->SetOutputAtoms(output_atoms);
+  mapping->Update();
+  return mapping;
+}
+
+} // namespace mesolens_test

@@ -1,0 +1,394 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// vtkMesoAtomMapper: picking against a CPU ray cast, GPU data size, animation uploads, bounds
+// and bad input.
+#include "MesoAtomScenes.h"
+#include "mesolens_vtk_test_utilities.h"
+
+#include "mesolens/elements.h"
+#include "mesolens/impostor_geometry.h"
+
+#include <vtkCellArray.h>
+#include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkHardwareSelector.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkProperty.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkWindowToImageFilter.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <optional>
+
+namespace {
+using mesolens::Vector3;
+
+struct Scene
+{
+  vtkSmartPointer<vtkRenderWindow> Window;
+  vtkSmartPointer<vtkRenderer> Renderer;
+  vtkSmartPointer<vtkMesoAtomMapper> Mapper;
+  vtkSmartPointer<vtkActor> Actor;
+};
+
+/// A window, renderer, actor and mapper in a style, without input.
+Scene empty_scene(int style, int size)
+{
+  Scene scene;
+  scene.Window = mesolens_test::test_window(size, size);
+  scene.Renderer = vtkSmartPointer<vtkRenderer>::New();
+  scene.Mapper = vtkSmartPointer<vtkMesoAtomMapper>::New();
+  scene.Mapper->SetStyle(style);
+  scene.Actor = vtkSmartPointer<vtkActor>::New();
+  scene.Actor->SetMapper(scene.Mapper);
+  scene.Renderer->AddActor(scene.Actor);
+  scene.Window->AddRenderer(scene.Renderer);
+  return scene;
+}
+
+Scene make_scene(vtkAlgorithm* source, int style, int size = 160)
+{
+  Scene scene = empty_scene(style, size);
+  scene.Mapper->SetInputConnection(source->GetOutputPort());
+  return scene;
+}
+
+Scene make_scene(vtkPolyData* atoms, int style)
+{
+  Scene scene = empty_scene(style, 64);
+  scene.Mapper->SetInputData(atoms);
+  return scene;
+}
+
+/// The world-space ray through the centre of pixel (x, y).
+void pixel_ray(vtkRenderer* renderer, int x, int y, Vector3& origin, Vector3& direction)
+{
+  double world[2][4];
+  for (int end = 0; end < 2; ++end)
+  {
+    renderer->SetDisplayPoint(x + 0.5, y + 0.5, end);
+    renderer->DisplayToWorld();
+    renderer->GetWorldPoint(world[end]);
+    for (int d = 0; d < 3; ++d)
+    {
+      world[end][d] /= world[end][3];
+    }
+  }
+  double length = 0;
+  for (int d = 0; d < 3; ++d)
+  {
+    origin[d] = world[0][d];
+    direction[d] = world[1][d] - world[0][d];
+    length += direction[d] * direction[d];
+  }
+  for (double& c : direction)
+  {
+    c /= std::sqrt(length);
+  }
+}
+
+/// The cell (atom i: i; bond j: atoms + j) that the CPU ray cast finds first, or -1.
+vtkIdType cpu_pick(vtkPolyData* atoms, int style, const Vector3& origin, const Vector3& direction)
+{
+  const double ball = style == vtkMesoAtomMapper::BALL_AND_STICK ? 0.25 : 1.0;
+  vtkDataArray* numbers = atoms->GetPointData()->GetArray("AtomicNumber");
+  double nearest = std::numeric_limits<double>::infinity();
+  vtkIdType picked = -1;
+  for (vtkIdType i = 0; i < atoms->GetNumberOfPoints(); ++i)
+  {
+    double p[3];
+    atoms->GetPoint(i, p);
+    const double radius =
+      ball * mesolens::van_der_waals_radius(static_cast<int>(numbers->GetComponent(i, 0)));
+    const auto hit = mesolens::ray_sphere(origin, direction, { p[0], p[1], p[2] }, radius);
+    if (hit && hit->t < nearest)
+    {
+      nearest = hit->t;
+      picked = i;
+    }
+  }
+  if (style == vtkMesoAtomMapper::BALL_AND_STICK)
+  {
+    vtkIdType bond = 0;
+    vtkIdType size = 0;
+    const vtkIdType* ids = nullptr;
+    vtkCellArray* lines = atoms->GetLines();
+    for (lines->InitTraversal(); lines->GetNextCell(size, ids); ++bond)
+    {
+      double a[3];
+      double b[3];
+      atoms->GetPoint(ids[0], a);
+      atoms->GetPoint(ids[1], b);
+      const auto hit =
+        mesolens::ray_cylinder(origin, direction, { a[0], a[1], a[2] }, { b[0], b[1], b[2] }, 0.2);
+      if (hit && hit->t < nearest)
+      {
+        nearest = hit->t;
+        picked = atoms->GetNumberOfPoints() + bond;
+      }
+    }
+  }
+  return picked;
+}
+
+/// Hardware picks on a grid of pixels against the CPU ray cast: the fraction that agree among
+/// the pixels where either finds something.
+double picking_agreement(int style)
+{
+  auto reader = mesolens_test::crambin();
+  Scene scene = make_scene(reader, style);
+  mesolens_test::look_at(scene.Renderer, reader->GetOutput(), 55.0);
+  scene.Window->Render();
+  vtkNew<vtkHardwareSelector> selector;
+  selector->SetRenderer(scene.Renderer);
+  selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_CELLS);
+  selector->SetArea(0, 0, 159, 159);
+  EXPECT_TRUE(selector->CaptureBuffers());
+  int compared = 0;
+  int agreed = 0;
+  for (unsigned int y = 0; y < 160; y += 3)
+  {
+    for (unsigned int x = 0; x < 160; x += 3)
+    {
+      const unsigned int position[2] = { x, y };
+      unsigned int found[2];
+      const auto info = selector->GetPixelInformation(position, 0, found);
+      const vtkIdType gpu = info.Valid ? info.AttributeID : -1;
+      Vector3 origin;
+      Vector3 direction;
+      pixel_ray(scene.Renderer, int(x), int(y), origin, direction);
+      const vtkIdType cpu = cpu_pick(reader->GetOutput(), style, origin, direction);
+      if (gpu >= 0 || cpu >= 0)
+      {
+        ++compared;
+        agreed += gpu == cpu;
+      }
+    }
+  }
+  selector->ClearBuffers();
+  EXPECT_GT(compared, 400);
+  return compared ? double(agreed) / compared : 0.0;
+}
+
+vtkSmartPointer<vtkPolyData> two_atoms()
+{
+  auto atoms = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->InsertNextPoint(0, 0, 0);
+  points->InsertNextPoint(1.5, 0, 0);
+  atoms->SetPoints(points);
+  vtkNew<vtkCellArray> vertices;
+  vertices->InsertNextCell({ 0 });
+  vertices->InsertNextCell({ 1 });
+  atoms->SetVerts(vertices);
+  vtkNew<vtkCellArray> lines;
+  lines->InsertNextCell({ 0, 1 });
+  atoms->SetLines(lines);
+  return atoms;
+}
+
+/// Whether anything but the black background was drawn.
+bool drew_something(vtkRenderWindow* window)
+{
+  vtkNew<vtkWindowToImageFilter> capture;
+  capture->SetInput(window);
+  capture->Update();
+  vtkDataArray* pixels = capture->GetOutput()->GetPointData()->GetScalars();
+  for (vtkIdType i = 0; i < pixels->GetNumberOfValues(); ++i)
+  {
+    if (pixels->GetVariantValue(i).ToInt() != 0)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+} // namespace
+
+TEST(MesoAtomMapper, PicksTheAtomTheRayMeetsFirst)
+{
+  EXPECT_GT(picking_agreement(vtkMesoAtomMapper::SPACE_FILLING), 0.97);
+}
+
+TEST(MesoAtomMapper, PicksAtomsAndBondsInBallAndStick)
+{
+  EXPECT_GT(picking_agreement(vtkMesoAtomMapper::BALL_AND_STICK), 0.95);
+}
+
+TEST(MesoAtomMapper, FourteenBytesPerAtomAndOnlyPositionsForANewFrame)
+{
+  auto reader = mesolens_test::crambin();
+  vtkNew<vtkPolyData> atoms;
+  atoms->DeepCopy(reader->GetOutput());
+  Scene scene = make_scene(atoms, vtkMesoAtomMapper::SPACE_FILLING);
+  EXPECT_EQ(scene.Mapper->GetBufferBytesPerAtom(), 0.0);
+  scene.Renderer->ResetCamera();
+  scene.Window->Render();
+  const vtkIdType n = atoms->GetNumberOfPoints();
+  EXPECT_EQ(scene.Mapper->GetBufferBytesPerAtom(), 14.0);
+  EXPECT_EQ(scene.Mapper->GetLastUploadBytes(), 14 * n + 8 * 337); // + the bonds' indices
+
+  // A new time step: the same atoms elsewhere.
+  vtkNew<vtkPoints> moved;
+  moved->DeepCopy(atoms->GetPoints());
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    moved->GetPoint(i, p);
+    moved->SetPoint(i, p[0] + 0.5, p[1], p[2]);
+  }
+  atoms->SetPoints(moved);
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetLastUploadBytes(), 12 * n);
+
+  // Other elements: the types go up again too.
+  vtkDataArray* numbers = atoms->GetPointData()->GetArray("AtomicNumber");
+  numbers->SetComponent(0, 0, 26);
+  numbers->Modified();
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetLastUploadBytes(), 14 * n);
+}
+
+TEST(MesoAtomMapper, BoundsIncludeTheRadii)
+{
+  auto reader = mesolens_test::crambin();
+  vtkNew<vtkMesoAtomMapper> mapper;
+  mapper->SetInputConnection(reader->GetOutputPort());
+  double atoms[6];
+  reader->GetOutput()->GetBounds(atoms);
+  double drawn[6];
+  mapper->GetBounds(drawn);
+  // Crambin's largest atom is sulfur, 1.8 Å.
+  for (int d = 0; d < 3; ++d)
+  {
+    EXPECT_NEAR(drawn[2 * d], atoms[2 * d] - 1.8, 1e-5);
+    EXPECT_NEAR(drawn[2 * d + 1], atoms[2 * d + 1] + 1.8, 1e-5);
+  }
+  mapper->SetStyleToSticks();
+  mapper->GetBounds(drawn);
+  EXPECT_NEAR(drawn[0], atoms[0] - 0.2, 1e-5);
+}
+
+TEST(MesoAtomMapper, ParametersStayInRange)
+{
+  vtkNew<vtkMesoAtomMapper> mapper;
+  mapper->SetBallScale(5);
+  EXPECT_EQ(mapper->GetBallScale(), 1.0);
+  mapper->SetBondRadius(-1);
+  EXPECT_EQ(mapper->GetBondRadius(), 1e-3);
+  mapper->SetStyle(7);
+  EXPECT_EQ(mapper->GetStyle(), vtkMesoAtomMapper::STICKS);
+  mapper->SetRadiusScale(0);
+  EXPECT_GT(mapper->GetRadiusScale(), 0.0);
+}
+
+TEST(MesoAtomMapper, EmptyInputDrawsNothing)
+{
+  vtkNew<vtkPolyData> empty;
+  Scene scene = make_scene(empty, vtkMesoAtomMapper::BALL_AND_STICK);
+  mesolens_test::EventRecorder events(scene.Mapper);
+  scene.Window->Render();
+  EXPECT_FALSE(drew_something(scene.Window));
+  EXPECT_EQ(scene.Mapper->GetBufferBytesPerAtom(), 0.0);
+}
+
+TEST(MesoAtomMapper, AtomsWithoutElementsAreGreyBeads)
+{
+  auto atoms = two_atoms();
+  Scene scene = make_scene(atoms, vtkMesoAtomMapper::SPACE_FILLING);
+  mesolens_test::EventRecorder events(scene.Mapper);
+  scene.Renderer->ResetCamera();
+  scene.Window->Render();
+  EXPECT_TRUE(events.Errors.empty());
+  EXPECT_TRUE(drew_something(scene.Window));
+  double bounds[6];
+  scene.Mapper->GetBounds(bounds);
+  EXPECT_NEAR(bounds[0], -1.0, 1e-6); // radius 1 for beads
+}
+
+TEST(MesoAtomMapper, NonFinitePositionIsAnErrorAndDrawsNothing)
+{
+  auto atoms = two_atoms();
+  atoms->GetPoints()->SetPoint(1, std::nan(""), 0, 0);
+  Scene scene = make_scene(atoms, vtkMesoAtomMapper::SPACE_FILLING);
+  mesolens_test::EventRecorder events(scene.Mapper);
+  scene.Renderer->GetActiveCamera()->SetPosition(0, 0, 10);
+  scene.Renderer->GetActiveCamera()->SetFocalPoint(0, 0, 0);
+  scene.Window->Render();
+  EXPECT_NE(events.AllErrors().find("non-finite"), std::string::npos) << events.AllErrors();
+  EXPECT_FALSE(drew_something(scene.Window));
+}
+
+TEST(MesoAtomMapper, BondToAMissingAtomIsAnError)
+{
+  auto atoms = two_atoms();
+  atoms->GetLines()->InsertNextCell({ 1, 5 });
+  Scene scene = make_scene(atoms, vtkMesoAtomMapper::BALL_AND_STICK);
+  mesolens_test::EventRecorder events(scene.Mapper);
+  scene.Renderer->GetActiveCamera()->SetPosition(0, 0, 10);
+  scene.Renderer->GetActiveCamera()->SetFocalPoint(0, 0, 0);
+  scene.Window->Render();
+  EXPECT_NE(events.AllErrors().find("refers to atom 5 of 2"), std::string::npos)
+    << events.AllErrors();
+  EXPECT_FALSE(drew_something(scene.Window));
+}
+
+TEST(MesoAtomMapper, WarpInputMustComeFromTheMembraneMapping)
+{
+  auto atoms = two_atoms();
+  vtkNew<vtkPolyData> not_a_warp;
+  Scene scene = make_scene(atoms, vtkMesoAtomMapper::SPACE_FILLING);
+  scene.Mapper->SetInputDataObject(1, not_a_warp);
+  mesolens_test::EventRecorder events(scene.Mapper);
+  scene.Renderer->GetActiveCamera()->SetPosition(0, 0, 10);
+  scene.Renderer->GetActiveCamera()->SetFocalPoint(0, 0, 0);
+  scene.Window->Render();
+  EXPECT_NE(events.AllErrors().find("not the output of a vtkMesoMembraneMapping"),
+            std::string::npos)
+    << events.AllErrors();
+  EXPECT_FALSE(drew_something(scene.Window));
+}
+
+TEST(MesoAtomMapper, WarpNeedsThePatchNotTheMappedAtoms)
+{
+  auto mapped = mesolens_test::mapped_membrane(vtkMesoMembraneMapping::POLYNOMIAL, true);
+  Scene scene = make_scene(mapped, vtkMesoAtomMapper::SPACE_FILLING);
+  scene.Mapper->SetWarpConnection(mapped->GetOutputPort());
+  mesolens_test::EventRecorder events(scene.Mapper);
+  scene.Renderer->ResetCamera();
+  scene.Window->Render();
+  EXPECT_NE(events.AllErrors().find("must be the membrane patch"), std::string::npos)
+    << events.AllErrors();
+}
+
+TEST(MesoAtomMapper, InstancingWarpTakesSixteenBytesPerAtom)
+{
+  auto mapping = mesolens_test::mapped_membrane(vtkMesoMembraneMapping::MOLECULE_INSTANCING, false);
+  EXPECT_EQ(mapping->GetOutput()->GetNumberOfPoints(), 0);
+  Scene scene = make_scene(mapping, vtkMesoAtomMapper::SPACE_FILLING, 64);
+  scene.Mapper->SetInputConnection(mapping->GetInputConnection(1, 0));
+  scene.Mapper->SetWarpConnection(mapping->GetOutputPort());
+  scene.Mapper->SetRadiusScale(1e-4);
+  mesolens_test::EventRecorder events(scene.Mapper);
+  scene.Renderer->ResetCamera();
+  scene.Window->Render();
+  EXPECT_TRUE(events.Errors.empty()) << events.AllErrors();
+  EXPECT_EQ(scene.Mapper->GetBufferBytesPerAtom(), 16.0);
+  EXPECT_TRUE(drew_something(scene.Window));
+  // The warped bounds cover the 2 x 2 tiles mapped on the CPU.
+  auto cpu = mesolens_test::mapped_membrane(vtkMesoMembraneMapping::MOLECULE_INSTANCING, true);
+  double mapped[6];
+  cpu->GetOutput()->GetBounds(mapped);
+  double drawn[6];
+  scene.Mapper->GetBounds(drawn);
+  for (int d = 0; d < 3; ++d)
+  {
+    EXPECT_LE(drawn[2 * d], mapped[2 * d]);
+    EXPECT_GE(drawn[2 * d + 1], mapped[2 * d + 1]);
+    EXPECT_LT(drawn[2 * d + 1] - drawn[2 * d], 1.5 * (mapped[2 * d + 1] - mapped[2 * d]));
+  }
+}

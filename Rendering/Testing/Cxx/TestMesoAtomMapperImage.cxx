@@ -1,0 +1,307 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Render tests of vtkMesoAtomMapper: draws one scene to a PNG that the test compares with its
+// baseline (mesolens_compare_images).
+//
+//   TestMesoAtomMapperImage SCENE OUTPUT.png [--radius-factor F]
+//
+// Scenes: space_filling, ball_and_stick, sticks, vtk_sphere_mapper (VTK's own impostors for
+// the same atoms), ssao, shadows, translucent, parallel_viewports, scalar_colors,
+// warp_polynomial_cpu, warp_polynomial_gpu, warp_instancing_cpu, warp_instancing_gpu.
+// --radius-factor scales every radius (a test breaks the picture on purpose with 1.1).
+#include "MesoAtomScenes.h"
+
+#include "vtkMesoAtomProperties.h"
+#include "vtkMesoElementLookupTable.h"
+
+#include <vtkCameraPass.h>
+#include <vtkLight.h>
+#include <vtkLookupTable.h>
+#include <vtkOpenGLRenderer.h>
+#include <vtkOpenGLSphereMapper.h>
+#include <vtkPNGWriter.h>
+#include <vtkPlaneSource.h>
+#include <vtkPointData.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkProperty.h>
+#include <vtkRenderPassCollection.h>
+#include <vtkRenderStepsPass.h>
+#include <vtkRendererCollection.h>
+#include <vtkActorCollection.h>
+#include <vtkSSAOPass.h>
+#include <vtkSequencePass.h>
+#include <vtkShadowMapBakerPass.h>
+#include <vtkShadowMapPass.h>
+#include <vtkWindowToImageFilter.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <iostream>
+#include <map>
+
+namespace {
+using mesolens_test::crambin;
+using mesolens_test::look_at;
+
+double radius_factor = 1.0;
+
+vtkSmartPointer<vtkMesoAtomMapper> atom_mapper(vtkAlgorithm* source, int style)
+{
+  auto mapper = vtkSmartPointer<vtkMesoAtomMapper>::New();
+  mapper->SetInputConnection(source->GetOutputPort());
+  mapper->SetStyle(style);
+  mapper->SetRadiusScale(radius_factor);
+  return mapper;
+}
+
+vtkSmartPointer<vtkRenderer> protein_renderer(vtkMapper* mapper, vtkMesoStructureReader* reader)
+{
+  auto renderer = vtkSmartPointer<vtkRenderer>::New();
+  renderer->SetBackground(0.1, 0.1, 0.15);
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  renderer->AddActor(actor);
+  look_at(renderer, reader->GetOutput(), 55.0);
+  return renderer;
+}
+
+/// A window with one renderer showing crambin in a style.
+vtkSmartPointer<vtkRenderWindow> protein(int style)
+{
+  auto reader = crambin();
+  auto window = mesolens_test::test_window(300, 300);
+  window->AddRenderer(protein_renderer(atom_mapper(reader, style), reader));
+  return window;
+}
+
+vtkSmartPointer<vtkRenderWindow> vtk_sphere_mapper()
+{
+  auto reader = crambin();
+  vtkNew<vtkMesoAtomProperties> radii;
+  radii->SetInputConnection(reader->GetOutputPort());
+  radii->SetLengthScale(radius_factor);
+  vtkNew<vtkOpenGLSphereMapper> mapper;
+  mapper->SetInputConnection(radii->GetOutputPort());
+  mapper->SetScaleArray("VanDerWaalsRadius");
+  vtkNew<vtkMesoElementLookupTable> elements;
+  mapper->SetLookupTable(elements);
+  mapper->UseLookupTableScalarRangeOn();
+  mapper->SetScalarModeToUsePointFieldData();
+  mapper->SelectColorArray("AtomicNumber");
+  mapper->SetColorModeToMapScalars();
+  auto window = mesolens_test::test_window(300, 300);
+  window->AddRenderer(protein_renderer(mapper, reader));
+  return window;
+}
+
+vtkSmartPointer<vtkRenderWindow> ssao()
+{
+  auto window = protein(vtkMesoAtomMapper::SPACE_FILLING);
+  vtkRenderer* renderer = window->GetRenderers()->GetFirstRenderer();
+  vtkNew<vtkRenderStepsPass> basic;
+  vtkNew<vtkSSAOPass> occlusion;
+  occlusion->SetDelegatePass(basic);
+  occlusion->SetRadius(3.0);
+  occlusion->SetBias(0.05);
+  occlusion->SetKernelSize(64);
+  occlusion->BlurOn();
+  vtkOpenGLRenderer::SafeDownCast(renderer)->SetPass(occlusion);
+  return window;
+}
+
+/// Ball-and-stick crambin over a floor, lit from above: the atoms cast shadows on it and on
+/// each other.
+vtkSmartPointer<vtkRenderWindow> shadows()
+{
+  auto window = protein(vtkMesoAtomMapper::BALL_AND_STICK);
+  vtkRenderer* renderer = window->GetRenderers()->GetFirstRenderer();
+  double bounds[6];
+  renderer->ComputeVisiblePropBounds(bounds);
+  vtkNew<vtkPlaneSource> floor;
+  floor->SetOrigin(bounds[0] - 10, bounds[2] - 10, bounds[4] - 3);
+  floor->SetPoint1(bounds[1] + 10, bounds[2] - 10, bounds[4] - 3);
+  floor->SetPoint2(bounds[0] - 10, bounds[3] + 10, bounds[4] - 3);
+  vtkNew<vtkPolyDataMapper> floor_mapper;
+  floor_mapper->SetInputConnection(floor->GetOutputPort());
+  vtkNew<vtkActor> floor_actor;
+  floor_actor->SetMapper(floor_mapper);
+  floor_actor->GetProperty()->SetColor(0.8, 0.8, 0.75);
+  renderer->AddActor(floor_actor);
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPosition((bounds[0] + bounds[1]) / 2 + 15, (bounds[2] + bounds[3]) / 2 + 10,
+                     bounds[5] + 40);
+  light->SetFocalPoint((bounds[0] + bounds[1]) / 2, (bounds[2] + bounds[3]) / 2, bounds[4]);
+  light->PositionalOn();
+  light->SetConeAngle(60);
+  renderer->AddLight(light);
+  vtkNew<vtkShadowMapPass> shadow_pass;
+  vtkNew<vtkRenderPassCollection> passes;
+  passes->AddItem(shadow_pass->GetShadowMapBakerPass());
+  passes->AddItem(shadow_pass);
+  vtkNew<vtkSequencePass> sequence;
+  sequence->SetPasses(passes);
+  vtkNew<vtkCameraPass> camera_pass;
+  camera_pass->SetDelegatePass(sequence);
+  vtkOpenGLRenderer::SafeDownCast(renderer)->SetPass(camera_pass);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->Elevation(-35);
+  renderer->ResetCameraClippingRange();
+  return window;
+}
+
+/// Translucent space-filling atoms cut by an opaque plane, with depth peeling.
+vtkSmartPointer<vtkRenderWindow> translucent()
+{
+  auto window = protein(vtkMesoAtomMapper::SPACE_FILLING);
+  window->SetAlphaBitPlanes(1);
+  vtkRenderer* renderer = window->GetRenderers()->GetFirstRenderer();
+  renderer->SetUseDepthPeeling(1);
+  renderer->SetMaximumNumberOfPeels(16);
+  renderer->SetOcclusionRatio(0.0);
+  renderer->GetActors()->GetLastActor()->GetProperty()->SetOpacity(0.4);
+  double bounds[6];
+  renderer->ComputeVisiblePropBounds(bounds);
+  const double y = (bounds[2] + bounds[3]) / 2;
+  const double z = (bounds[4] + bounds[5]) / 2;
+  vtkNew<vtkPlaneSource> plane;
+  plane->SetOrigin(bounds[0], y, bounds[4]);
+  plane->SetPoint1(bounds[1], y, bounds[4]);
+  plane->SetPoint2(bounds[0], y + 20, bounds[5]);
+  plane->SetCenter((bounds[0] + bounds[1]) / 2, y, z);
+  vtkNew<vtkPolyDataMapper> plane_mapper;
+  plane_mapper->SetInputConnection(plane->GetOutputPort());
+  vtkNew<vtkActor> plane_actor;
+  plane_actor->SetMapper(plane_mapper);
+  plane_actor->GetProperty()->SetColor(0.9, 0.8, 0.3);
+  renderer->AddActor(plane_actor);
+  return window;
+}
+
+/// Two viewports: balls and sticks in a parallel projection, sticks in perspective.
+vtkSmartPointer<vtkRenderWindow> parallel_viewports()
+{
+  auto reader = crambin();
+  auto window = mesolens_test::test_window(400, 200);
+  auto left = protein_renderer(atom_mapper(reader, vtkMesoAtomMapper::BALL_AND_STICK), reader);
+  left->SetViewport(0, 0, 0.5, 1);
+  left->GetActiveCamera()->ParallelProjectionOn();
+  left->GetActiveCamera()->SetParallelScale(18);
+  auto right = protein_renderer(atom_mapper(reader, vtkMesoAtomMapper::STICKS), reader);
+  right->SetViewport(0.5, 0, 1, 1);
+  right->SetBackground(0.15, 0.1, 0.1);
+  window->AddRenderer(left);
+  window->AddRenderer(right);
+  return window;
+}
+
+/// Balls and sticks coloured by B-factor through a blue-to-red table over the B-factors' range.
+vtkSmartPointer<vtkRenderWindow> scalar_colors()
+{
+  auto reader = crambin();
+  auto mapper = atom_mapper(reader, vtkMesoAtomMapper::BALL_AND_STICK);
+  vtkNew<vtkLookupTable> table;
+  table->SetHueRange(0.667, 0.0);
+  table->Build();
+  mapper->SetLookupTable(table);
+  mapper->SetScalarModeToUsePointFieldData();
+  mapper->SelectColorArray("BFactor");
+  mapper->SetScalarRange(reader->GetOutput()->GetPointData()->GetArray("BFactor")->GetRange());
+  auto window = mesolens_test::test_window(300, 300);
+  window->AddRenderer(protein_renderer(mapper, reader));
+  return window;
+}
+
+/// The mapped membrane, balls and sticks, seen from outside the organelle: the atoms mapped on
+/// the CPU (gpu false) or the patch warped by the mapper (gpu true).
+vtkSmartPointer<vtkRenderWindow> warped(int method, bool gpu)
+{
+  auto cpu_mapping = mesolens_test::mapped_membrane(method, true);
+  vtkPolyData* cpu_atoms = cpu_mapping->GetOutput();
+  auto mapper = vtkSmartPointer<vtkMesoAtomMapper>::New();
+  vtkSmartPointer<vtkMesoMembraneMapping> gpu_mapping;
+  if (gpu)
+  {
+    gpu_mapping = mesolens_test::mapped_membrane(method, false);
+    mapper->SetInputConnection(gpu_mapping->GetInputConnection(1, 0));
+    mapper->SetWarpConnection(gpu_mapping->GetOutputPort());
+  }
+  else
+  {
+    mapper->SetInputConnection(cpu_mapping->GetOutputPort());
+  }
+  mapper->SetStyle(vtkMesoAtomMapper::BALL_AND_STICK);
+  mapper->SetRadiusScale(1e-4 * radius_factor);
+  auto renderer = vtkSmartPointer<vtkRenderer>::New();
+  renderer->SetBackground(0.1, 0.1, 0.15);
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(mapper);
+  renderer->AddActor(actor);
+  // Along the outward normal at the mapped region: from the organelle's centre through it.
+  double centre[3];
+  cpu_atoms->GetCenter(centre);
+  double organelle[3];
+  vtkPolyData::SafeDownCast(cpu_mapping->GetInputDataObject(0, 0))->GetCenter(organelle);
+  double normal[3] = { centre[0] - organelle[0], centre[1] - organelle[1],
+                       centre[2] - organelle[2] };
+  const double length =
+    std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetFocalPoint(centre);
+  camera->SetPosition(centre[0] + 0.025 * normal[0] / length,
+                      centre[1] + 0.025 * normal[1] / length,
+                      centre[2] + 0.025 * normal[2] / length);
+  camera->SetViewUp(0, 0, 1);
+  auto window = mesolens_test::test_window(300, 300);
+  window->AddRenderer(renderer);
+  renderer->ResetCameraClippingRange();
+  return window;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  if (argc < 3)
+  {
+    std::cerr << "usage: TestMesoAtomMapperImage SCENE OUTPUT.png [--radius-factor F]\n";
+    return 2;
+  }
+  const std::string scene = argv[1];
+  const std::string output = argv[2];
+  if (argc == 5 && std::string(argv[3]) == "--radius-factor")
+  {
+    radius_factor = std::atof(argv[4]);
+  }
+  const std::map<std::string, std::function<vtkSmartPointer<vtkRenderWindow>()>> scenes{
+    { "space_filling", [] { return protein(vtkMesoAtomMapper::SPACE_FILLING); } },
+    { "ball_and_stick", [] { return protein(vtkMesoAtomMapper::BALL_AND_STICK); } },
+    { "sticks", [] { return protein(vtkMesoAtomMapper::STICKS); } },
+    { "vtk_sphere_mapper", vtk_sphere_mapper },
+    { "ssao", ssao },
+    { "shadows", shadows },
+    { "translucent", translucent },
+    { "parallel_viewports", parallel_viewports },
+    { "scalar_colors", scalar_colors },
+    { "warp_polynomial_cpu", [] { return warped(vtkMesoMembraneMapping::POLYNOMIAL, false); } },
+    { "warp_polynomial_gpu", [] { return warped(vtkMesoMembraneMapping::POLYNOMIAL, true); } },
+    { "warp_instancing_cpu",
+      [] { return warped(vtkMesoMembraneMapping::MOLECULE_INSTANCING, false); } },
+    { "warp_instancing_gpu",
+      [] { return warped(vtkMesoMembraneMapping::MOLECULE_INSTANCING, true); } },
+  };
+  const auto found = scenes.find(scene);
+  if (found == scenes.end())
+  {
+    std::cerr << "unknown scene " << scene << "\n";
+    return 2;
+  }
+  vtkSmartPointer<vtkRenderWindow> window = found->second();
+  window->Render();
+  vtkNew<vtkWindowToImageFilter> capture;
+  capture->SetInput(window);
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(output.c_str());
+  writer->SetInputConnection(capture->GetOutputPort());
+  writer->Write();
+  return 0;
+}

@@ -1,0 +1,30 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Atom impostors, the membrane-mapping warp (Waltemate et al. 2014): one quadratic x(s, t, h)
+// per tile, the tile being the draw call's instance. Per tile the buffer holds 10 texels, one per
+// monomial (1, s, t, h, s², st, sh, t², th, h²) holding its (x, y, z) coefficients (mesh
+// coordinates). (s, t) = 2 f - 1 from the fractional cell coordinates f of the patch
+// atom, h = (z - centre) / e. C++ twins: mesolens::polynomial_coordinates and
+// mesolens::evaluate_quadratic.
+uniform samplerBuffer warpCoefficients;
+uniform vec2 patchOrigin;
+uniform vec4 patchToFractional; // the 2 x 2 inverse of the cell (a, b), column-major
+uniform float patchCentreHeight;
+uniform float inverseLayerHalfThickness;
+
+vec3 warpedPosition(vec3 patchPosition, int tile)
+{
+  vec2 st = 2.0 * (mat2(patchToFractional) * (patchPosition.xy - patchOrigin)) - 1.0;
+  float h = (patchPosition.z - patchCentreHeight) * inverseLayerHalfThickness;
+  int base = 10 * tile;
+  vec3 position = texelFetch(warpCoefficients, base).xyz;
+  position += st.x * texelFetch(warpCoefficients, base + 1).xyz;
+  position += st.y * texelFetch(warpCoefficients, base + 2).xyz;
+  position += h * texelFetch(warpCoefficients, base + 3).xyz;
+  position += st.x * st.x * texelFetch(warpCoefficients, base + 4).xyz;
+  position += st.x * st.y * texelFetch(warpCoefficients, base + 5).xyz;
+  position += st.x * h * texelFetch(warpCoefficients, base + 6).xyz;
+  position += st.y * st.y * texelFetch(warpCoefficients, base + 7).xyz;
+  position += st.y * h * texelFetch(warpCoefficients, base + 8).xyz;
+  position += h * h * texelFetch(warpCoefficients, base + 9).xyz;
+  return position;
+}

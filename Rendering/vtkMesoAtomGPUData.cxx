@@ -1,0 +1,572 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoAtomGPUData.h"
+
+#include "vtkMesoElementLookupTable.h"
+
+#include "mesolens/elements.h"
+#include "mesolens/membrane_mapping.h"
+#include "mesolens/polynomial_warp.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellArrayIterator.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkFloatArray.h>
+#include <vtkMapper.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkScalarsToColors.h>
+#include <vtkSmartPointer.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <unordered_map>
+
+namespace {
+constexpr int element_count = 128;
+constexpr int color_count = 256;
+constexpr int nan_color = color_count - 1;
+
+int element_of(vtkDataArray* numbers, vtkIdType atom)
+{
+  const double z = numbers ? numbers->GetComponent(atom, 0) : 0.0;
+  return std::isfinite(z) ? static_cast<int>(std::clamp(z, 0.0, double(element_count - 1))) : 0;
+}
+
+/// The colour array of the mapper's settings, or nullptr for element colours.
+vtkDataArray* color_array(vtkPolyData* atoms, vtkMapper* mapper)
+{
+  if (!mapper->GetScalarVisibility() ||
+      mapper->GetScalarMode() != VTK_SCALAR_MODE_USE_POINT_FIELD_DATA)
+  {
+    return nullptr;
+  }
+  vtkPointData* points = atoms->GetPointData();
+  if (mapper->GetArrayAccessMode() == VTK_GET_ARRAY_BY_ID)
+  {
+    return points->GetArray(mapper->GetArrayId());
+  }
+  const char* name = mapper->GetArrayName();
+  return name && *name ? points->GetArray(name) : nullptr;
+}
+
+const double* field(vtkPolyData* data, const char* name, int components)
+{
+  vtkDataArray* array = data->GetFieldData()->GetArray(name);
+  if (!array || array->GetNumberOfComponents() != components || array->GetNumberOfTuples() < 1)
+  {
+    return nullptr;
+  }
+  return array->GetTuple(0);
+}
+
+/// Corners of a box: x from bounds[0..1], y [2..3], z [4..5].
+std::array<double, 3> corner(const double bounds[6], int index)
+{
+  return { bounds[(index & 1) ? 1 : 0], bounds[(index & 2) ? 3 : 2], bounds[(index & 4) ? 5 : 4] };
+}
+
+void grow(double bounds[6], const double p[3])
+{
+  for (int d = 0; d < 3; ++d)
+  {
+    bounds[2 * d] = std::min(bounds[2 * d], p[d]);
+    bounds[2 * d + 1] = std::max(bounds[2 * d + 1], p[d]);
+  }
+}
+
+/// The patch frame fields of a membrane mapping output, and the tile count.
+struct PatchFrame
+{
+  const double* origin = nullptr;
+  const double* a = nullptr;
+  const double* b = nullptr;
+  const double* centre = nullptr;
+  const double* half_thickness = nullptr;
+  const double* tiles = nullptr;
+  const double* method = nullptr;
+
+  explicit PatchFrame(vtkPolyData* warp)
+    : origin(field(warp, "PatchOrigin", 2))
+    , a(field(warp, "PatchCellA", 2))
+    , b(field(warp, "PatchCellB", 2))
+    , centre(field(warp, "PatchCentreHeight", 1))
+    , half_thickness(field(warp, "LayerHalfThickness", 1))
+    , tiles(field(warp, "Tiles", 1))
+    , method(field(warp, "MappingMethod", 1))
+  {
+  }
+
+  bool complete() const
+  {
+    return origin && a && b && centre && half_thickness && tiles && method && *tiles >= 1 &&
+      *half_thickness > 0;
+  }
+
+  mesolens::MembranePatch patch() const
+  {
+    mesolens::MembranePatch p;
+    p.origin = { origin[0], origin[1] };
+    p.a = { a[0], a[1] };
+    p.b = { b[0], b[1] };
+    p.centre_height = *centre;
+    return p;
+  }
+};
+
+/// Bounds of the polynomial-warped tiles: each tile's polynomial on a 5 x 5 x 5 grid over the
+/// patch's (s, t, h) box.
+bool polynomial_bounds(vtkPolyData* atoms, vtkPolyData* warp, const PatchFrame& frame,
+                       double bounds[6])
+{
+  vtkDataArray* coefficients = warp->GetFieldData()->GetArray("PolynomialCoefficients");
+  if (!coefficients || coefficients->GetNumberOfComponents() != 30)
+  {
+    return false;
+  }
+  double patch_bounds[6];
+  atoms->GetBounds(patch_bounds);
+  const mesolens::MembranePatch patch = frame.patch();
+  double local[6] = { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
+  for (int c = 0; c < 8; ++c)
+  {
+    const auto p = corner(patch_bounds, c);
+    const float pf[3] = { float(p[0]), float(p[1]), float(p[2]) };
+    const auto q = mesolens::polynomial_coordinates(patch, *frame.half_thickness, pf);
+    grow(local, q.data());
+  }
+  constexpr int steps = 5;
+  for (vtkIdType tile = 0; tile < coefficients->GetNumberOfTuples(); ++tile)
+  {
+    mesolens::QuadraticWarp polynomial{};
+    coefficients->GetTuple(tile, polynomial.data());
+    for (int i = 0; i < steps * steps * steps; ++i)
+    {
+      const double f[3] = { double(i % steps) / (steps - 1),
+                            double(i / steps % steps) / (steps - 1),
+                            double(i / (steps * steps)) / (steps - 1) };
+      const auto x = mesolens::evaluate_quadratic(
+        polynomial, local[0] + f[0] * (local[1] - local[0]),
+        local[2] + f[1] * (local[3] - local[2]), local[4] + f[2] * (local[5] - local[4]));
+      grow(bounds, x.data());
+    }
+  }
+  return true;
+}
+
+/// Molecule slot per atom: the order of the instances of tile 0 (first appearance in the patch).
+bool molecule_slots(vtkPolyData* atoms, vtkPolyData* warp, std::vector<unsigned short>& slots,
+                    int& molecules_per_tile, std::string& problem)
+{
+  vtkDataArray* instance_molecules = warp->GetFieldData()->GetArray("InstanceMoleculeId");
+  vtkDataArray* instance_tiles = warp->GetFieldData()->GetArray("InstanceTileId");
+  vtkDataArray* ids = atoms->GetPointData()->GetArray("MoleculeId");
+  if (!instance_molecules || !instance_tiles || !ids)
+  {
+    problem = "molecule instancing needs InstanceMoleculeId and InstanceTileId on the warp input "
+              "and MoleculeId on the patch";
+    return false;
+  }
+  std::unordered_map<long long, int> slot_of;
+  for (vtkIdType i = 0; i < instance_tiles->GetNumberOfTuples(); ++i)
+  {
+    if (instance_tiles->GetComponent(i, 0) != 0)
+    {
+      break;
+    }
+    slot_of.emplace(static_cast<long long>(instance_molecules->GetComponent(i, 0)),
+                    static_cast<int>(i));
+  }
+  molecules_per_tile = static_cast<int>(slot_of.size());
+  if (molecules_per_tile == 0 || molecules_per_tile > 65536)
+  {
+    problem = "molecule instancing supports 1 to 65536 molecules per tile, the warp input has " +
+      std::to_string(molecules_per_tile);
+    return false;
+  }
+  const vtkIdType n = atoms->GetNumberOfPoints();
+  slots.resize(static_cast<std::size_t>(n));
+  for (vtkIdType a = 0; a < n; ++a)
+  {
+    const auto found = slot_of.find(static_cast<long long>(ids->GetComponent(a, 0)));
+    if (found == slot_of.end())
+    {
+      problem = "patch atom " + std::to_string(a) + " belongs to molecule " +
+        std::to_string(static_cast<long long>(ids->GetComponent(a, 0))) +
+        ", which the warp input does not place: is it the patch that was mapped?";
+      return false;
+    }
+    slots[static_cast<std::size_t>(a)] = static_cast<unsigned short>(found->second);
+  }
+  return true;
+}
+} // namespace
+
+std::vector<float> vtkMesoAtomGPUData::StyleRadii(const Style& style)
+{
+  std::vector<float> radii(element_count);
+  for (int z = 0; z < element_count; ++z)
+  {
+    double r = z == 0 || z > mesolens::max_atomic_number ? 1.0 : mesolens::van_der_waals_radius(z);
+    if (style.Style == 1)
+    {
+      r *= style.BallScale;
+    }
+    else if (style.Style == 2)
+    {
+      r = style.BondRadius;
+    }
+    radii[std::size_t(z)] = static_cast<float>(r * style.RadiusScale);
+  }
+  return radii;
+}
+
+void vtkMesoAtomGPUData::Clear()
+{
+  this->AtomCount = 0;
+  this->TileCount = 1;
+  this->Positions.clear();
+  this->Types.clear();
+  this->MoleculeSlots.clear();
+  this->Bonds.clear();
+  this->WarpMethod = NONE;
+  this->WarpTexels.clear();
+}
+
+bool vtkMesoAtomGPUData::Update(vtkPolyData* atoms, vtkPolyData* warp, const Style& style,
+                                vtkMapper* mapper)
+{
+  this->Clear();
+  this->Radii = StyleRadii(style);
+  this->BondRadius = static_cast<float>(style.BondRadius * style.RadiusScale);
+  if (!atoms || !atoms->GetPoints() || atoms->GetNumberOfPoints() == 0)
+  {
+    return false;
+  }
+  const vtkIdType n = atoms->GetNumberOfPoints();
+  if (n > std::numeric_limits<int>::max())
+  {
+    vtkErrorWithObjectMacro(mapper, "Cannot draw " << n << " atoms: at most 2^31 - 1 per mapper");
+    return false;
+  }
+
+  // Positions, checked for NaN and infinities.
+  vtkDataArray* coordinates = atoms->GetPoints()->GetData();
+  this->Positions.resize(3 * static_cast<std::size_t>(n));
+  if (auto* floats = vtkFloatArray::FastDownCast(coordinates))
+  {
+    std::copy(floats->GetPointer(0), floats->GetPointer(0) + 3 * n, this->Positions.begin());
+  }
+  else
+  {
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      double p[3];
+      coordinates->GetTuple(i, p);
+      for (int d = 0; d < 3; ++d)
+      {
+        this->Positions[std::size_t(3 * i + d)] = static_cast<float>(p[d]);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < this->Positions.size(); ++i)
+  {
+    if (!std::isfinite(this->Positions[i]))
+    {
+      vtkErrorWithObjectMacro(
+        mapper, "Cannot draw the atoms: atom " << i / 3 << " has a non-finite position");
+      this->Clear();
+      return false;
+    }
+  }
+
+  // Types: element and colour index.
+  vtkDataArray* numbers = atoms->GetPointData()->GetArray("AtomicNumber");
+  vtkDataArray* scalars = color_array(atoms, mapper);
+  this->Types.resize(2 * static_cast<std::size_t>(n));
+  this->ColorTable.assign(4 * color_count, 0.6f);
+  if (scalars)
+  {
+    vtkScalarsToColors* table = mapper->GetLookupTable();
+    if (!mapper->GetUseLookupTableScalarRange())
+    {
+      table->SetRange(mapper->GetScalarRange());
+    }
+    const double* range = table->GetRange();
+    const double low = range[0];
+    const double width = range[1] > range[0] ? range[1] - range[0] : 1.0;
+    const int component =
+      std::clamp(mapper->GetArrayComponent(), 0, scalars->GetNumberOfComponents() - 1);
+    for (int bin = 0; bin < color_count; ++bin)
+    {
+      const double value = bin == nan_color ? std::numeric_limits<double>::quiet_NaN()
+                                            : low + (bin + 0.5) / (color_count - 1) * width;
+      const unsigned char* rgba = table->MapValue(value);
+      for (int c = 0; c < 4; ++c)
+      {
+        this->ColorTable[std::size_t(4 * bin + c)] = rgba[c] / 255.0f;
+      }
+    }
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      const double value = scalars->GetComponent(i, component);
+      int bin = nan_color;
+      if (std::isfinite(value))
+      {
+        bin = static_cast<int>(
+          std::clamp((value - low) / width * (color_count - 1), 0.0, double(color_count - 2)));
+      }
+      this->Types[std::size_t(2 * i)] = static_cast<unsigned char>(element_of(numbers, i));
+      this->Types[std::size_t(2 * i + 1)] = static_cast<unsigned char>(bin);
+    }
+  }
+  else
+  {
+    vtkNew<vtkMesoElementLookupTable> elements;
+    for (int z = 0; z <= mesolens::max_atomic_number && z < element_count; ++z)
+    {
+      double rgba[4];
+      elements->GetTableValue(z, rgba);
+      for (int c = 0; c < 4; ++c)
+      {
+        this->ColorTable[std::size_t(4 * z + c)] = static_cast<float>(rgba[c]);
+      }
+    }
+    for (vtkIdType i = 0; i < n; ++i)
+    {
+      const auto z = static_cast<unsigned char>(element_of(numbers, i));
+      this->Types[std::size_t(2 * i)] = z;
+      this->Types[std::size_t(2 * i + 1)] = z;
+    }
+  }
+
+  // Bonds: every segment of the lines.
+  if (vtkCellArray* lines = atoms->GetLines())
+  {
+    auto cells = vtk::TakeSmartPointer(lines->NewIterator());
+    for (cells->GoToFirstCell(); !cells->IsDoneWithTraversal(); cells->GoToNextCell())
+    {
+      vtkIdType size = 0;
+      const vtkIdType* ids = nullptr;
+      cells->GetCurrentCell(size, ids);
+      for (vtkIdType k = 0; k + 1 < size; ++k)
+      {
+        if (ids[k] < 0 || ids[k] >= n || ids[k + 1] < 0 || ids[k + 1] >= n)
+        {
+          vtkErrorWithObjectMacro(mapper,
+                                  "Cannot draw the bonds: line "
+                                    << cells->GetCurrentCellId() << " refers to atom "
+                                    << std::max(ids[k], ids[k + 1]) << " of " << n);
+          this->Clear();
+          return false;
+        }
+        this->Bonds.push_back(static_cast<unsigned int>(ids[k]));
+        this->Bonds.push_back(static_cast<unsigned int>(ids[k + 1]));
+      }
+    }
+  }
+
+  this->AtomCount = n;
+  if (warp && !this->ReadWarp(atoms, warp, mapper))
+  {
+    this->Clear();
+    return false;
+  }
+  return true;
+}
+
+bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp, vtkMapper* mapper)
+{
+  const PatchFrame frame(warp);
+  if (!frame.complete())
+  {
+    vtkErrorWithObjectMacro(mapper,
+                            "Cannot warp the atoms: the warp input is not the output of "
+                            "a vtkMesoMembraneMapping (its patch fields are missing)");
+    return false;
+  }
+  const vtkIdType tiles =
+    static_cast<vtkIdType>(*frame.tiles) * static_cast<vtkIdType>(*frame.tiles);
+  // The mapping's own output has TileId; a warp input with atoms has k^2 copies of the patch.
+  if (atoms->GetPointData()->GetArray("TileId") ||
+      (warp->GetNumberOfPoints() > 0 &&
+       warp->GetNumberOfPoints() != tiles * atoms->GetNumberOfPoints()))
+  {
+    vtkErrorWithObjectMacro(mapper,
+                            "Cannot warp the atoms: the mapper's input must be the "
+                            "membrane patch that was mapped, not the mapped atoms");
+    return false;
+  }
+  const int method = static_cast<int>(*frame.method);
+  const double determinant = frame.a[0] * frame.b[1] - frame.a[1] * frame.b[0];
+  if (!(std::abs(determinant) > 0))
+  {
+    vtkErrorWithObjectMacro(mapper, "Cannot warp the atoms: the patch cell is degenerate");
+    return false;
+  }
+  this->TileCount = tiles;
+  this->PatchOrigin[0] = static_cast<float>(frame.origin[0]);
+  this->PatchOrigin[1] = static_cast<float>(frame.origin[1]);
+  this->PatchToFractional[0] = static_cast<float>(frame.b[1] / determinant);
+  this->PatchToFractional[1] = static_cast<float>(-frame.a[1] / determinant);
+  this->PatchToFractional[2] = static_cast<float>(-frame.b[0] / determinant);
+  this->PatchToFractional[3] = static_cast<float>(frame.a[0] / determinant);
+  this->PatchCentreHeight = static_cast<float>(*frame.centre);
+  this->InverseLayerHalfThickness = static_cast<float>(1.0 / *frame.half_thickness);
+
+  if (method == POLYNOMIAL)
+  {
+    vtkDataArray* coefficients = warp->GetFieldData()->GetArray("PolynomialCoefficients");
+    if (!coefficients || coefficients->GetNumberOfComponents() != 30 ||
+        coefficients->GetNumberOfTuples() != tiles)
+    {
+      vtkErrorWithObjectMacro(mapper,
+                              "Cannot warp the atoms: PolynomialCoefficients should hold "
+                              "30 values for each of the "
+                                << tiles << " tiles");
+      return false;
+    }
+    this->WarpTexels.assign(static_cast<std::size_t>(40 * tiles), 0.0f);
+    for (vtkIdType tile = 0; tile < tiles; ++tile)
+    {
+      for (int term = 0; term < 10; ++term)
+      {
+        for (int d = 0; d < 3; ++d)
+        {
+          this->WarpTexels[std::size_t(40 * tile + 4 * term + d)] =
+            static_cast<float>(coefficients->GetComponent(tile, 10 * d + term));
+        }
+      }
+    }
+  }
+  else if (method == MOLECULE_INSTANCING)
+  {
+    std::string problem;
+    if (!molecule_slots(atoms, warp, this->MoleculeSlots, this->MoleculesPerTile, problem))
+    {
+      vtkErrorWithObjectMacro(mapper, "Cannot warp the atoms: " << problem);
+      return false;
+    }
+    vtkDataArray* matrices = warp->GetFieldData()->GetArray("InstanceMatrices");
+    const vtkIdType motions = tiles * this->MoleculesPerTile;
+    if (!matrices || matrices->GetNumberOfComponents() != 16 ||
+        matrices->GetNumberOfTuples() != motions)
+    {
+      vtkErrorWithObjectMacro(
+        mapper, "Cannot warp the atoms: InstanceMatrices should hold " << motions << " matrices");
+      return false;
+    }
+    this->WarpTexels.resize(static_cast<std::size_t>(12 * motions));
+    for (vtkIdType m = 0; m < motions; ++m)
+    {
+      for (int k = 0; k < 12; ++k)
+      {
+        this->WarpTexels[std::size_t(12 * m + k)] =
+          static_cast<float>(matrices->GetComponent(m, k));
+      }
+    }
+  }
+  else
+  {
+    vtkErrorWithObjectMacro(mapper,
+                            "Cannot warp the atoms on the GPU with mapping method "
+                              << method
+                              << ": only POLYNOMIAL and MOLECULE_INSTANCING have a GPU "
+                                 "form (draw the DISPLACEMENT output directly)");
+    return false;
+  }
+  this->WarpMethod = method;
+  return true;
+}
+
+double vtkMesoAtomGPUData::LargestRadius(vtkPolyData* atoms, const Style& style)
+{
+  const std::vector<float> radii = StyleRadii(style);
+  vtkDataArray* numbers = atoms ? atoms->GetPointData()->GetArray("AtomicNumber") : nullptr;
+  if (!numbers)
+  {
+    return radii[0];
+  }
+  std::vector<bool> present(element_count, false);
+  for (vtkIdType i = 0; i < numbers->GetNumberOfTuples(); ++i)
+  {
+    present[std::size_t(element_of(numbers, i))] = true;
+  }
+  double largest = 0;
+  for (int z = 0; z < element_count; ++z)
+  {
+    if (present[std::size_t(z)])
+    {
+      largest = std::max(largest, double(radii[std::size_t(z)]));
+    }
+  }
+  return largest;
+}
+
+void vtkMesoAtomGPUData::PaddedBounds(vtkPolyData* atoms, vtkPolyData* warp, double pad,
+                                      double bounds[6])
+{
+  if (!atoms || atoms->GetNumberOfPoints() == 0)
+  {
+    return;
+  }
+  if (warp)
+  {
+    const PatchFrame frame(warp);
+    double warped[6] = { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
+    bool known = false;
+    if (frame.complete() && static_cast<int>(*frame.method) == POLYNOMIAL)
+    {
+      known = polynomial_bounds(atoms, warp, frame, warped);
+    }
+    else if (frame.complete() && static_cast<int>(*frame.method) == MOLECULE_INSTANCING)
+    {
+      std::vector<unsigned short> slots;
+      int molecules = 0;
+      std::string problem;
+      vtkDataArray* matrices = warp->GetFieldData()->GetArray("InstanceMatrices");
+      if (matrices && matrices->GetNumberOfComponents() == 16 &&
+          molecule_slots(atoms, warp, slots, molecules, problem))
+      {
+        // Each molecule's box, moved by each of its motions.
+        std::vector<std::array<double, 6>> boxes(std::size_t(molecules),
+                                                 { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 });
+        for (vtkIdType a = 0; a < atoms->GetNumberOfPoints(); ++a)
+        {
+          grow(boxes[slots[std::size_t(a)]].data(), atoms->GetPoint(a));
+        }
+        for (vtkIdType m = 0; m < matrices->GetNumberOfTuples(); ++m)
+        {
+          const double* matrix = matrices->GetTuple(m);
+          const auto& box = boxes[std::size_t(m % molecules)];
+          for (int c = 0; c < 8; ++c)
+          {
+            const auto p = corner(box.data(), c);
+            double x[3];
+            for (int r = 0; r < 3; ++r)
+            {
+              x[r] = matrix[4 * r] * p[0] + matrix[4 * r + 1] * p[1] + matrix[4 * r + 2] * p[2] +
+                matrix[4 * r + 3];
+            }
+            grow(warped, x);
+          }
+        }
+        known = true;
+      }
+    }
+    if (!known)
+    {
+      return;
+    }
+    std::copy(warped, warped + 6, bounds);
+  }
+  for (int d = 0; d < 3; ++d)
+  {
+    bounds[2 * d] -= pad;
+    bounds[2 * d + 1] += pad;
+  }
+}

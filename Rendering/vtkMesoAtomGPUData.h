@@ -1,0 +1,80 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+/**
+ * @class   vtkMesoAtomGPUData
+ * @brief   What vtkMesoAtomMapper puts on the GPU, computed from its inputs on the CPU.
+ *
+ * Per atom: the position (3 floats), 2 type bytes (element for the radius table, index into the
+ * colour table) and, for molecule instancing, a 2-byte molecule slot. Per bond: 2 atom indices.
+ * Tables: 128 radii (scene units, by element), 256 RGBA colours (elements 0..127, or 255 steps
+ * of a lookup table plus its NaN colour at 255). Warp: the per-tile polynomial (10 texels per
+ * tile) or the per-molecule rigid motions (3 texels each) and the patch frame uniforms.
+ */
+#ifndef vtkMesoAtomGPUData_h
+#define vtkMesoAtomGPUData_h
+
+#include <vtkType.h>
+
+#include <vector>
+
+class vtkMapper;
+class vtkPolyData;
+
+class vtkMesoAtomGPUData
+{
+public:
+  /// Warp methods, numbered as vtkMesoMembraneMapping's MappingMethod; NONE: no warp.
+  enum WarpMethods
+  {
+    NONE = -1,
+    MOLECULE_INSTANCING = 1,
+    POLYNOMIAL = 2
+  };
+
+  /// The mapper's radius settings (see vtkMesoAtomMapper).
+  struct Style
+  {
+    int Style = 0;
+    double RadiusScale = 1;
+    double BallScale = 0.25;
+    double BondRadius = 0.2;
+  };
+
+  /// Recomputes everything from the atoms, the optional warp input and the mapper's colouring
+  /// settings. Returns false, with an error reported on `mapper` and AtomCount 0, for inputs it
+  /// cannot draw.
+  bool Update(vtkPolyData* atoms, vtkPolyData* warp, const Style& style, vtkMapper* mapper);
+
+  /// Bounds of what is drawn (warped tiles in warp mode), padded by `pad`. Leaves `bounds` as
+  /// it is when there is nothing to draw.
+  static void PaddedBounds(vtkPolyData* atoms, vtkPolyData* warp, double pad, double bounds[6]);
+
+  /// The largest radius of the elements present among the atoms, scene units.
+  static double LargestRadius(vtkPolyData* atoms, const Style& style);
+
+  /// Radius per element (index 0..127) for a style, scene units; 1.0 x scale for element 0.
+  static std::vector<float> StyleRadii(const Style& style);
+
+  vtkIdType AtomCount = 0;
+  vtkIdType TileCount = 1;
+  std::vector<float> Positions;              ///< 3 per atom
+  std::vector<unsigned char> Types;          ///< 2 per atom
+  std::vector<unsigned short> MoleculeSlots; ///< 1 per atom (instancing only)
+  std::vector<unsigned int> Bonds;           ///< 2 per bond
+  std::vector<float> Radii;                  ///< 128
+  float BondRadius = 0;                      ///< scene units
+  std::vector<float> ColorTable;             ///< 256 RGBA
+
+  int WarpMethod = NONE;
+  std::vector<float> WarpTexels; ///< RGBA texels
+  float PatchOrigin[2] = { 0, 0 };
+  float PatchToFractional[4] = { 1, 0, 0, 1 }; ///< column-major 2 x 2
+  float PatchCentreHeight = 0;
+  float InverseLayerHalfThickness = 1;
+  int MoleculesPerTile = 0;
+
+private:
+  bool ReadWarp(vtkPolyData* atoms, vtkPolyData* warp, vtkMapper* mapper);
+  void Clear();
+};
+
+#endif

@@ -1,0 +1,459 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoAtomMapper.h"
+
+#include "vtkMesoAtomGPUData.h"
+
+#include "vtkMesoAtomColorFS.h"
+#include "vtkMesoAtomSphereFSDec.h"
+#include "vtkMesoAtomSphereFSImpl.h"
+#include "vtkMesoAtomSphereGS.h"
+#include "vtkMesoAtomVS.h"
+#include "vtkMesoBondCylinderFSDec.h"
+#include "vtkMesoBondCylinderFSImpl.h"
+#include "vtkMesoBondCylinderGS.h"
+#include "vtkMesoMoleculeInstancingVS.h"
+#include "vtkMesoPolynomialWarpVS.h"
+
+#include <vtkActor.h>
+#include <vtkAlgorithmOutput.h>
+#include <vtkExecutive.h>
+#include <vtkInformation.h>
+#include <vtkMatrix4x4.h>
+#include <vtkObjectFactory.h>
+#include <vtkOpenGLBufferObject.h>
+#include <vtkOpenGLCamera.h>
+#include <vtkOpenGLHelper.h>
+#include <vtkOpenGLIndexBufferObject.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkOpenGLVertexArrayObject.h>
+#include <vtkPolyData.h>
+#include <vtkProperty.h>
+#include <vtkRenderer.h>
+#include <vtkShaderProgram.h>
+#include <vtkTextureObject.h>
+
+#include <vtk_glew.h>
+
+#include <algorithm>
+
+vtkStandardNewMacro(vtkMesoAtomMapper);
+
+namespace {
+enum class Pass
+{
+  Atoms,
+  Bonds
+};
+
+void set_uniform_int(vtkShaderProgram* program, const char* name, int value)
+{
+  if (program->IsUniformUsed(name))
+  {
+    program->SetUniformi(name, value);
+  }
+}
+
+void set_uniform_float(vtkShaderProgram* program, const char* name, float value)
+{
+  if (program->IsUniformUsed(name))
+  {
+    program->SetUniformf(name, value);
+  }
+}
+
+/// A texture buffer of RGBA float texels and the buffer object behind it.
+struct TexelBuffer
+{
+  vtkNew<vtkOpenGLBufferObject> Buffer;
+  vtkNew<vtkTextureObject> Texture;
+  std::vector<float> Uploaded;
+
+  void Upload(vtkOpenGLRenderWindow* window, const std::vector<float>& texels)
+  {
+    if (texels == this->Uploaded && this->Texture->GetHandle() != 0)
+    {
+      return;
+    }
+    this->Texture->SetContext(window);
+    this->Buffer->SetType(vtkOpenGLBufferObject::TextureBuffer);
+    this->Buffer->Upload(texels, vtkOpenGLBufferObject::TextureBuffer);
+    this->Texture->CreateTextureBuffer(static_cast<unsigned int>(texels.size() / 4), 4, VTK_FLOAT,
+                                       this->Buffer);
+    this->Uploaded = texels;
+  }
+
+  void Release(vtkWindow* window)
+  {
+    this->Texture->ReleaseGraphicsResources(window);
+    this->Buffer->ReleaseGraphicsResources();
+    this->Uploaded.clear();
+  }
+};
+} // namespace
+
+struct vtkMesoAtomMapper::Internals
+{
+  vtkMesoAtomGPUData Data;
+  vtkNew<vtkOpenGLBufferObject> Positions;
+  vtkNew<vtkOpenGLBufferObject> Types;
+  vtkNew<vtkOpenGLBufferObject> Molecules;
+  std::vector<unsigned char> UploadedTypes;
+  std::vector<unsigned short> UploadedMolecules;
+  std::vector<unsigned int> UploadedBonds;
+  TexelBuffer Colors;
+  TexelBuffer Warp;
+  vtkTimeStamp BufferTime;    // the buffers behind the vertex attributes changed
+  vtkTimeStamp ShaderKeyTime; // the warp method changed
+  int ShaderWarpMethod = -1;
+  vtkIdType LastUploadBytes = 0;
+  double LargestRadius = 0;
+  vtkMTimeType LargestRadiusTime = 0;
+  Pass Current = Pass::Atoms;
+  bool Inverted = false;
+};
+
+vtkMesoAtomMapper::vtkMesoAtomMapper()
+  : Internal(std::make_unique<Internals>())
+{
+  this->SetNumberOfInputPorts(2);
+}
+
+vtkMesoAtomMapper::~vtkMesoAtomMapper() = default;
+
+int vtkMesoAtomMapper::FillInputPortInformation(int port, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkPolyData");
+  if (port == 1)
+  {
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  }
+  return 1;
+}
+
+void vtkMesoAtomMapper::SetWarpConnection(vtkAlgorithmOutput* output)
+{
+  this->SetInputConnection(1, output);
+}
+
+vtkPolyData* vtkMesoAtomMapper::WarpInput()
+{
+  if (this->GetNumberOfInputConnections(1) == 0)
+  {
+    return nullptr;
+  }
+  return vtkPolyData::SafeDownCast(this->GetExecutive()->GetInputData(1, 0));
+}
+
+void vtkMesoAtomMapper::Render(vtkRenderer* ren, vtkActor* act)
+{
+  if (this->GetNumberOfInputConnections(1) > 0)
+  {
+    this->GetInputAlgorithm(1, 0)->Update(this->GetInputConnection(1, 0)->GetIndex());
+  }
+  // Translucent atoms: the back halves first, then the front ones.
+  if (act->GetProperty()->GetOpacity() < 1.0 && !act->GetProperty()->GetBackfaceCulling())
+  {
+    this->Internal->Inverted = true;
+    this->Superclass::Render(ren, act);
+    this->Internal->Inverted = false;
+  }
+  this->Superclass::Render(ren, act);
+}
+
+bool vtkMesoAtomMapper::GetNeedToRebuildBufferObjects(vtkRenderer* ren, vtkActor* act)
+{
+  vtkPolyData* warp = this->WarpInput();
+  return this->Superclass::GetNeedToRebuildBufferObjects(ren, act) ||
+    (warp && warp->GetMTime() > this->VBOBuildTime);
+}
+
+void vtkMesoAtomMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*)
+{
+  Internals& in = *this->Internal;
+  in.LastUploadBytes = 0;
+  vtkMesoAtomGPUData::Style style{ this->Style, this->RadiusScale, this->BallScale,
+                                   this->BondRadius };
+  if (!in.Data.Update(this->CurrentInput, this->WarpInput(), style, this))
+  {
+    this->VBOBuildTime.Modified();
+    return;
+  }
+  vtkOpenGLRenderWindow* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
+  const vtkMesoAtomGPUData& data = in.Data;
+
+  in.Positions->Upload(data.Positions, vtkOpenGLBufferObject::ArrayBuffer);
+  in.LastUploadBytes += static_cast<vtkIdType>(sizeof(float) * data.Positions.size());
+  if (data.Types != in.UploadedTypes)
+  {
+    in.Types->Upload(data.Types, vtkOpenGLBufferObject::ArrayBuffer);
+    in.UploadedTypes = data.Types;
+    in.LastUploadBytes += static_cast<vtkIdType>(data.Types.size());
+  }
+  if (!data.MoleculeSlots.empty() && data.MoleculeSlots != in.UploadedMolecules)
+  {
+    in.Molecules->Upload(data.MoleculeSlots, vtkOpenGLBufferObject::ArrayBuffer);
+    in.UploadedMolecules = data.MoleculeSlots;
+    in.LastUploadBytes +=
+      static_cast<vtkIdType>(sizeof(unsigned short) * data.MoleculeSlots.size());
+  }
+  vtkOpenGLIndexBufferObject* bonds = this->Primitives[PrimitiveLines].IBO;
+  if (data.Bonds != in.UploadedBonds)
+  {
+    if (!data.Bonds.empty())
+    {
+      bonds->Upload(data.Bonds, vtkOpenGLBufferObject::ElementArrayBuffer);
+      in.LastUploadBytes += static_cast<vtkIdType>(sizeof(unsigned int) * data.Bonds.size());
+    }
+    in.UploadedBonds = data.Bonds;
+  }
+  bonds->IndexCount = data.Bonds.size();
+  this->Primitives[PrimitiveTris].IBO->IndexCount = static_cast<size_t>(data.AtomCount);
+  this->Primitives[PrimitivePoints].IBO->IndexCount = 0;
+  this->Primitives[PrimitiveTriStrips].IBO->IndexCount = 0;
+  in.Colors.Upload(window, data.ColorTable);
+  if (!data.WarpTexels.empty())
+  {
+    in.Warp.Upload(window, data.WarpTexels);
+  }
+  if (data.WarpMethod != in.ShaderWarpMethod)
+  {
+    in.ShaderWarpMethod = data.WarpMethod;
+    in.ShaderKeyTime.Modified();
+  }
+  in.BufferTime.Modified();
+  this->VBOBuildTime.Modified();
+}
+
+bool vtkMesoAtomMapper::GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren,
+                                                vtkActor* act)
+{
+  return this->Superclass::GetNeedToRebuildShaders(cellBO, ren, act) ||
+    this->Internal->ShaderKeyTime > cellBO.ShaderSourceTime;
+}
+
+void vtkMesoAtomMapper::GetShaderTemplate(std::map<vtkShader::Type, vtkShader*> shaders,
+                                          vtkRenderer* ren, vtkActor* act)
+{
+  this->Superclass::GetShaderTemplate(shaders, ren, act);
+  shaders[vtkShader::Vertex]->SetSource(vtkMesoAtomVS);
+  shaders[vtkShader::Geometry]->SetSource(
+    this->Internal->Current == Pass::Atoms ? vtkMesoAtomSphereGS : vtkMesoBondCylinderGS);
+}
+
+void vtkMesoAtomMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkShader*> shaders,
+                                            vtkRenderer* ren, vtkActor* act)
+{
+  const bool atoms = this->Internal->Current == Pass::Atoms;
+  const int warp = this->Internal->Data.WarpMethod;
+
+  std::string vertex = shaders[vtkShader::Vertex]->GetSource();
+  std::string position = "gl_Position = MCVCMatrix * vertexMC;\n";
+  if (warp >= 0)
+  {
+    vtkShaderProgram::Substitute(vertex, "//MESO::Warp::Dec",
+                                 warp == vtkMesoAtomGPUData::POLYNOMIAL
+                                   ? vtkMesoPolynomialWarpVS
+                                   : vtkMesoMoleculeInstancingVS);
+    position = "vertexMC = vec4(warpedPosition(atomPosition, gl_InstanceID), 1.0);\n  " + position;
+  }
+  vtkShaderProgram::Substitute(vertex, "//MESO::Warp::Impl", position);
+  shaders[vtkShader::Vertex]->SetSource(vertex);
+
+  std::string fragment = shaders[vtkShader::Fragment]->GetSource();
+  vtkShaderProgram::Substitute(fragment, "//VTK::PositionVC::Dec", "in vec4 vertexVCGSOutput;");
+  vtkShaderProgram::Substitute(fragment, "//VTK::PositionVC::Impl",
+                               "vec4 vertexVC = vertexVCGSOutput;\n");
+  vtkShaderProgram::Substitute(fragment, "//VTK::Normal::Dec",
+                               atoms ? vtkMesoAtomSphereFSDec : vtkMesoBondCylinderFSDec);
+  vtkShaderProgram::Substitute(fragment, "//VTK::Depth::Impl",
+                               atoms ? vtkMesoAtomSphereFSImpl : vtkMesoBondCylinderFSImpl);
+  // The normal comes from the intersection.
+  vtkShaderProgram::Substitute(fragment, "//VTK::Normal::Impl", "");
+  // VTK's colour code first, then the atom's colour on top.
+  vtkShaderProgram::Substitute(fragment, "//VTK::Color::Impl",
+                               "//VTK::Color::Impl\n//MESO::AtomColor::Impl\n");
+  shaders[vtkShader::Fragment]->SetSource(fragment);
+
+  this->Superclass::ReplaceShaderValues(shaders, ren, act);
+
+  fragment = shaders[vtkShader::Fragment]->GetSource();
+  vtkShaderProgram::Substitute(fragment, "//MESO::AtomColor::Impl", vtkMesoAtomColorFS);
+  shaders[vtkShader::Fragment]->SetSource(fragment);
+}
+
+void vtkMesoAtomMapper::SetCameraShaderParameters(vtkOpenGLHelper& cellBO, vtkRenderer* ren,
+                                                  vtkActor* act)
+{
+  this->Superclass::SetCameraShaderParameters(cellBO, ren, act);
+  vtkShaderProgram* program = cellBO.Program;
+  vtkOpenGLCamera* camera = static_cast<vtkOpenGLCamera*>(ren->GetActiveCamera());
+  vtkMatrix4x4* wcvc = nullptr;
+  vtkMatrix3x3* normals = nullptr;
+  vtkMatrix4x4* vcdc = nullptr;
+  vtkMatrix4x4* wcdc = nullptr;
+  camera->GetKeyMatrices(ren, wcvc, normals, vcdc, wcdc);
+  if (program->IsUniformUsed("VCDCMatrix"))
+  {
+    program->SetUniformMatrix("VCDCMatrix", vcdc);
+  }
+  set_uniform_int(program, "cameraParallel", camera->GetParallelProjection());
+}
+
+void vtkMesoAtomMapper::SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRenderer* ren,
+                                                  vtkActor* act)
+{
+  Internals& in = *this->Internal;
+  const vtkMesoAtomGPUData& data = in.Data;
+  vtkShaderProgram* program = cellBO.Program;
+  if (cellBO.ShaderSourceTime > cellBO.AttributeUpdateTime ||
+      in.BufferTime > cellBO.AttributeUpdateTime)
+  {
+    cellBO.VAO->Bind();
+    cellBO.VAO->AddAttributeArray(program, in.Positions, "atomPosition", 0, 3 * sizeof(float),
+                                  VTK_FLOAT, 3, false);
+    cellBO.VAO->AddAttributeArray(program, in.Types, "atomType", 0, 2, VTK_UNSIGNED_CHAR, 2, false);
+    if (data.WarpMethod == vtkMesoAtomGPUData::MOLECULE_INSTANCING)
+    {
+      cellBO.VAO->AddAttributeArray(program, in.Molecules, "atomMolecule", 0,
+                                    sizeof(unsigned short), VTK_UNSIGNED_SHORT, 1, false);
+    }
+  }
+  set_uniform_float(program, "invertedDepth", in.Inverted ? -1.0f : 1.0f);
+  set_uniform_float(program, "bondRadius", data.BondRadius);
+  if (program->IsUniformUsed("atomRadii"))
+  {
+    program->SetUniform1fv("atomRadii", static_cast<int>(data.Radii.size()), data.Radii.data());
+  }
+  set_uniform_int(program, "atomColorTable", in.Colors.Texture->GetTextureUnit());
+  if (data.WarpMethod >= 0)
+  {
+    const char* buffer =
+      data.WarpMethod == vtkMesoAtomGPUData::POLYNOMIAL ? "warpCoefficients" : "moleculeMotions";
+    set_uniform_int(program, buffer, in.Warp.Texture->GetTextureUnit());
+    if (program->IsUniformUsed("patchOrigin"))
+    {
+      program->SetUniform2f("patchOrigin", data.PatchOrigin);
+    }
+    if (program->IsUniformUsed("patchToFractional"))
+    {
+      program->SetUniform4f("patchToFractional", data.PatchToFractional);
+    }
+    set_uniform_float(program, "patchCentreHeight", data.PatchCentreHeight);
+    set_uniform_float(program, "inverseLayerHalfThickness", data.InverseLayerHalfThickness);
+    set_uniform_int(program, "moleculesPerTile", data.MoleculesPerTile);
+  }
+  this->Superclass::SetMapperShaderParameters(cellBO, ren, act);
+  cellBO.AttributeUpdateTime.Modified();
+}
+
+void vtkMesoAtomMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
+{
+  Internals& in = *this->Internal;
+  const vtkMesoAtomGPUData& data = in.Data;
+  if (data.AtomCount == 0)
+  {
+    return;
+  }
+  const GLsizei instances = static_cast<GLsizei>(data.TileCount);
+  in.Colors.Texture->Activate();
+  if (data.WarpMethod >= 0)
+  {
+    in.Warp.Texture->Activate();
+  }
+
+  in.Current = Pass::Atoms;
+  this->PrimitiveIDOffset = 0;
+  this->UpdateShaders(this->Primitives[PrimitiveTris], ren, act);
+  glDrawArraysInstanced(GL_POINTS, 0, static_cast<GLsizei>(data.AtomCount), instances);
+
+  vtkOpenGLHelper& bonds = this->Primitives[PrimitiveLines];
+  if (this->Style != SPACE_FILLING && bonds.IBO->IndexCount > 0)
+  {
+    in.Current = Pass::Bonds;
+    // Bonds follow the atoms' vertex cells in VTK's cell numbering (of the patch in warp mode).
+    this->PrimitiveIDOffset = static_cast<int>(data.AtomCount);
+    this->UpdateShaders(bonds, ren, act);
+    bonds.IBO->Bind();
+    glDrawElementsInstanced(GL_LINES, static_cast<GLsizei>(bonds.IBO->IndexCount), GL_UNSIGNED_INT,
+                            nullptr, instances);
+    bonds.IBO->Release();
+    in.Current = Pass::Atoms;
+  }
+}
+
+void vtkMesoAtomMapper::RenderPieceFinish(vtkRenderer* ren, vtkActor* act)
+{
+  Internals& in = *this->Internal;
+  if (in.Colors.Texture->GetHandle() != 0)
+  {
+    in.Colors.Texture->Deactivate();
+  }
+  if (in.Warp.Texture->GetHandle() != 0)
+  {
+    in.Warp.Texture->Deactivate();
+  }
+  this->Superclass::RenderPieceFinish(ren, act);
+}
+
+void vtkMesoAtomMapper::ComputeBounds()
+{
+  this->Superclass::ComputeBounds();
+  // The largest radius takes a pass over the atoms: keep it while atoms and style stay.
+  Internals& in = *this->Internal;
+  vtkPolyData* atoms = this->GetInput();
+  if (!atoms)
+  {
+    return;
+  }
+  const vtkMTimeType key = std::max(atoms->GetMTime(), this->GetMTime());
+  if (key != in.LargestRadiusTime)
+  {
+    vtkMesoAtomGPUData::Style style{ this->Style, this->RadiusScale, this->BallScale,
+                                     this->BondRadius };
+    in.LargestRadius = vtkMesoAtomGPUData::LargestRadius(atoms, style);
+    in.LargestRadiusTime = key;
+  }
+  vtkMesoAtomGPUData::PaddedBounds(atoms, this->WarpInput(), in.LargestRadius, this->Bounds);
+}
+
+double vtkMesoAtomMapper::GetBufferBytesPerAtom() const
+{
+  const vtkMesoAtomGPUData& data = this->Internal->Data;
+  if (data.AtomCount == 0)
+  {
+    return 0;
+  }
+  const double bytes = sizeof(float) * data.Positions.size() + data.Types.size() +
+    sizeof(unsigned short) * data.MoleculeSlots.size();
+  return bytes / static_cast<double>(data.AtomCount);
+}
+
+vtkIdType vtkMesoAtomMapper::GetLastUploadBytes() const
+{
+  return this->Internal->LastUploadBytes;
+}
+
+void vtkMesoAtomMapper::ReleaseGraphicsResources(vtkWindow* window)
+{
+  Internals& in = *this->Internal;
+  in.Positions->ReleaseGraphicsResources();
+  in.Types->ReleaseGraphicsResources();
+  in.Molecules->ReleaseGraphicsResources();
+  in.UploadedTypes.clear();
+  in.UploadedMolecules.clear();
+  in.UploadedBonds.clear();
+  in.Colors.Release(window);
+  in.Warp.Release(window);
+  this->Superclass::ReleaseGraphicsResources(window);
+}
+
+void vtkMesoAtomMapper::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  static const char* styles[] = { "SPACE_FILLING", "BALL_AND_STICK", "STICKS" };
+  os << indent << "Style: " << styles[this->Style] << "\n";
+  os << indent << "RadiusScale: " << this->RadiusScale << "\n";
+  os << indent << "BallScale: " << this->BallScale << "\n";
+  os << indent << "BondRadius: " << this->BondRadius << "\n";
+  os << indent << "Warp: " << (this->GetNumberOfInputConnections(1) ? "connected" : "none") << "\n";
+}

@@ -1,0 +1,164 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+/**
+ * @class   vtkMesoAtomMapper
+ * @brief   Draws atoms as ray-cast sphere impostors and bonds as ray-cast cylinder impostors,
+ *          with exact per-pixel depth and normals; optionally warped onto a cell surface on
+ *          the GPU.
+ *
+ * Input: atoms as points (from vtkMesoStructureReader, vtkMesoTrajectoryReader or
+ * vtkMesoMembraneMapping), bonds as 2-point lines, the `AtomicNumber` point array for radii and
+ * element colours. Per atom the GPU holds its position (3 floats) and 2 bytes of type (the
+ * element, for the radius, and a colour index), 14 bytes in all (16 with molecule instancing);
+ * bonds are index pairs into the same positions. A geometry shader expands each atom (bond) into
+ * a quad facing the eye; the fragment shader intersects the view ray with the sphere (cylinder)
+ * and writes the true depth and normal, so atoms and bonds intersect each other and other
+ * geometry correctly and VTK's render passes (vtkSSAOPass, vtkShadowMapPass, depth peeling) and
+ * hardware picking see real spheres and cylinders. Radius and colour come from tables on the GPU
+ * indexed by the type. For an animation (a new time step with the same atoms and bonds) only
+ * the positions are uploaded again.
+ *
+ * Styles (radii in Å, times RadiusScale):
+ * - SPACE_FILLING: atoms at their van der Waals radius (Bondi 1964 / Alvarez 2013), no bonds;
+ * - BALL_AND_STICK: atoms at BallScale x the van der Waals radius, bonds of BondRadius;
+ * - STICKS: atoms and bonds at BondRadius (licorice).
+ * Atoms without an `AtomicNumber` array (coarse-grained beads) have radius 1.0 and grey.
+ *
+ * Colours: Jmol/CPK element colours (vtkMesoElementLookupTable); or, with ScalarVisibility on,
+ * ScalarMode USE_POINT_FIELD_DATA and a colour array selected (SelectColorArray), that point
+ * array (its first component) through the LookupTable over the ScalarRange (or the table's own
+ * range with UseLookupTableScalarRange), in 255 steps; NaN takes the table's NaN colour. Bonds
+ * are split at the middle in the colours of their two atoms. The actor's colour multiplies the
+ * atom colours (white by default) and its opacity applies (translucent atoms show their back
+ * halves first).
+ *
+ * Membrane warp on the GPU: connect the output 0 of a vtkMesoMembraneMapping that ran with
+ * OutputAtoms off to the warp input (SetWarpConnection) and the membrane patch it mapped (the
+ * same input 1 of the mapping filter) to this mapper's input. The vertex stage then maps every
+ * patch atom and bond end itself, once per tile, and all k x k tiles come from the same patch
+ * buffers in one instanced draw call per pass:
+ * - POLYNOMIAL: x(s, t, h) from `PolynomialCoefficients` (30 per tile);
+ * - MOLECULE_INSTANCING: the rigid motion of the atom's molecule (`InstanceMatrices`, 16 per
+ *   molecule and tile), the molecule known by the patch's `MoleculeId` point array.
+ * DISPLACEMENT has no GPU form: map the atoms on the CPU (OutputAtoms on) and draw its output.
+ * Radii stay in RadiusScale x Å: set RadiusScale to the mapping's MembraneToMeshScale.
+ *
+ * Picking (vtkHardwareSelector, cells): atom i is cell i (its vertex), bond j is the cell of
+ * its line, as in the input; in warp mode these are the patch's ids (the tile is not reported).
+ *
+ * Errors (a warp input without usable coefficients, a patch whose atom count or molecules do
+ * not match) are reported with vtkErrorMacro and nothing is drawn.
+ */
+#ifndef vtkMesoAtomMapper_h
+#define vtkMesoAtomMapper_h
+
+#include "MesoLensRenderingModule.h"
+#include "vtkOpenGLPolyDataMapper.h"
+
+#include <memory>
+
+class MESOLENSRENDERING_EXPORT vtkMesoAtomMapper : public vtkOpenGLPolyDataMapper
+{
+public:
+  static vtkMesoAtomMapper* New();
+  vtkTypeMacro(vtkMesoAtomMapper, vtkOpenGLPolyDataMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum Styles
+  {
+    SPACE_FILLING = 0,
+    BALL_AND_STICK = 1,
+    STICKS = 2
+  };
+
+  ///@{
+  /// How atoms are drawn. Default SPACE_FILLING.
+  vtkSetClampMacro(Style, int, SPACE_FILLING, STICKS);
+  vtkGetMacro(Style, int);
+  void SetStyleToSpaceFilling()
+  {
+    this->SetStyle(SPACE_FILLING);
+  }
+  void SetStyleToBallAndStick()
+  {
+    this->SetStyle(BALL_AND_STICK);
+  }
+  void SetStyleToSticks()
+  {
+    this->SetStyle(STICKS);
+  }
+  ///@}
+
+  ///@{
+  /// Factor on all radii: scene length units per Å (1e-4 for a scene in µm). Range
+  /// [1e-12, 1e12]; default 1.
+  vtkSetClampMacro(RadiusScale, double, 1e-12, 1e12);
+  vtkGetMacro(RadiusScale, double);
+  ///@}
+
+  ///@{
+  /// BALL_AND_STICK: atom radius as a fraction of the van der Waals radius. Range [1e-3, 1];
+  /// default 0.25.
+  vtkSetClampMacro(BallScale, double, 1e-3, 1.0);
+  vtkGetMacro(BallScale, double);
+  ///@}
+
+  ///@{
+  /// Bond radius (and the atom radius of STICKS), Å times RadiusScale. Range [1e-3, 10];
+  /// default 0.2.
+  vtkSetClampMacro(BondRadius, double, 1e-3, 10.0);
+  vtkGetMacro(BondRadius, double);
+  ///@}
+
+  /// The warp input: output 0 of a vtkMesoMembraneMapping (POLYNOMIAL or MOLECULE_INSTANCING).
+  /// nullptr: draw the input's atoms where they are (default).
+  void SetWarpConnection(vtkAlgorithmOutput* output);
+
+  /// Bytes of GPU buffer per atom of the input (positions and types; after a render), 0 before.
+  double GetBufferBytesPerAtom() const;
+
+  /// Bytes uploaded by the last buffer update: the positions alone for a new time step of the
+  /// same atoms.
+  vtkIdType GetLastUploadBytes() const;
+
+  /// Model-coordinate bounds of what is drawn, padded by the largest radius (the warped tiles
+  /// in warp mode).
+  void ComputeBounds() override;
+
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+protected:
+  vtkMesoAtomMapper();
+  ~vtkMesoAtomMapper() override;
+
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  void Render(vtkRenderer* ren, vtkActor* act) override;
+  void RenderPieceDraw(vtkRenderer* ren, vtkActor* act) override;
+  void RenderPieceFinish(vtkRenderer* ren, vtkActor* act) override;
+  void BuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
+  bool GetNeedToRebuildBufferObjects(vtkRenderer* ren, vtkActor* act) override;
+  void GetShaderTemplate(std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren,
+                         vtkActor* act) override;
+  void ReplaceShaderValues(std::map<vtkShader::Type, vtkShader*> shaders, vtkRenderer* ren,
+                           vtkActor* act) override;
+  bool GetNeedToRebuildShaders(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
+  void SetCameraShaderParameters(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
+  void SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRenderer* ren, vtkActor* act) override;
+
+  int Style = SPACE_FILLING;
+  double RadiusScale = 1;
+  double BallScale = 0.25;
+  double BondRadius = 0.2;
+
+private:
+  vtkMesoAtomMapper(const vtkMesoAtomMapper&) = delete;
+  void operator=(const vtkMesoAtomMapper&) = delete;
+
+  /// The warp input's data, nullptr when none is connected.
+  vtkPolyData* WarpInput();
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
+};
+
+#endif

@@ -1,0 +1,350 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Atom impostor benchmark: frame time of vtkMesoAtomMapper against VTK's vtkOpenGLSphereMapper
+// for the same atoms, space-filling, in one process and one 1024 x 768 window, with and without
+// SSAO; bytes of GPU vertex buffer per atom of both; the cost of one animation step (new
+// positions of the same atoms); and the GPU membrane warp against drawing the same atoms mapped
+// on the CPU.
+//
+//   BenchmarkAtomMapper [--atoms 100000,1000000,4000000] [--frames 3] [--no-warp]
+//
+// The atoms are copies of the all-atom DPPC patch of Data/ (16640 atoms, waters removed) side
+// by side, a real membrane's density. Each frame turns the camera a little; times are medians.
+#include "vtkMesoAtomMapper.h"
+#include "vtkMesoAtomProperties.h"
+#include "vtkMesoElementLookupTable.h"
+#include "vtkMesoMembraneMapping.h"
+#include "vtkMesoMeshReader.h"
+#include "vtkMesoTrajectoryReader.h"
+
+#include "mesolens_test_data.h"
+
+#include <vtkActor.h>
+#include <vtkCamera.h>
+#include <vtkCellArray.h>
+#include <vtkExecutive.h>
+#include <vtkFloatArray.h>
+#include <vtkIdTypeArray.h>
+#include <vtkNew.h>
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkOpenGLRenderer.h>
+#include <vtkOpenGLSphereMapper.h>
+#include <vtkOpenGLVertexBufferObject.h>
+#include <vtkOpenGLVertexBufferObjectGroup.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkRenderStepsPass.h>
+#include <vtkRenderWindow.h>
+#include <vtkSSAOPass.h>
+#include <vtkUnsignedShortArray.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+double median(std::vector<double> values)
+{
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
+/// Copies of the patch on a grid in x and y (its cell), until `count` atoms; atoms as vertices,
+/// with AtomicNumber.
+vtkSmartPointer<vtkPolyData> membrane_atoms(vtkPolyData* patch, vtkIdType count)
+{
+  const vtkIdType n = patch->GetNumberOfPoints();
+  double bounds[6];
+  patch->GetBounds(bounds);
+  const double step_x = bounds[1] - bounds[0];
+  const double step_y = bounds[3] - bounds[2];
+  const vtkIdType copies = (count + n - 1) / n;
+  const vtkIdType columns = static_cast<vtkIdType>(std::ceil(std::sqrt(double(copies))));
+  vtkNew<vtkFloatArray> coordinates;
+  coordinates->SetNumberOfComponents(3);
+  coordinates->SetNumberOfTuples(count);
+  vtkNew<vtkUnsignedShortArray> numbers;
+  numbers->SetName("AtomicNumber");
+  numbers->SetNumberOfValues(count);
+  vtkDataArray* patch_numbers = patch->GetPointData()->GetArray("AtomicNumber");
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    const vtkIdType copy = i / n;
+    const vtkIdType atom = i % n;
+    double p[3];
+    patch->GetPoint(atom, p);
+    coordinates->SetTuple3(i, p[0] + step_x * double(copy % columns),
+                           p[1] + step_y * double(copy / columns), p[2]);
+    numbers->SetValue(i, static_cast<unsigned short>(patch_numbers->GetComponent(atom, 0)));
+  }
+  auto atoms = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  points->SetData(coordinates);
+  atoms->SetPoints(points);
+  vtkNew<vtkIdTypeArray> offsets;
+  vtkNew<vtkIdTypeArray> ids;
+  offsets->SetNumberOfValues(count + 1);
+  ids->SetNumberOfValues(count);
+  for (vtkIdType i = 0; i <= count; ++i)
+  {
+    offsets->SetValue(i, i);
+    if (i < count)
+    {
+      ids->SetValue(i, i);
+    }
+  }
+  vtkNew<vtkCellArray> vertices;
+  vertices->SetData(offsets, ids);
+  atoms->SetVerts(vertices);
+  atoms->GetPointData()->AddArray(numbers);
+  return atoms;
+}
+
+/// VTK's sphere mapper set up as the MesoLens demo does: van der Waals radii, element colours.
+struct VTKSpheres
+{
+  vtkNew<vtkMesoAtomProperties> Radii;
+  vtkNew<vtkOpenGLSphereMapper> Mapper;
+  vtkNew<vtkMesoElementLookupTable> Elements;
+
+  explicit VTKSpheres(vtkPolyData* atoms)
+  {
+    this->Radii->SetInputData(atoms);
+    this->Radii->Update();
+    this->Mapper->SetInputConnection(this->Radii->GetOutputPort());
+    this->Mapper->SetScaleArray("VanDerWaalsRadius");
+    this->Mapper->SetLookupTable(this->Elements);
+    this->Mapper->UseLookupTableScalarRangeOn();
+    this->Mapper->SetScalarModeToUsePointFieldData();
+    this->Mapper->SelectColorArray("AtomicNumber");
+    this->Mapper->SetColorModeToMapScalars();
+  }
+
+  /// Bytes of all its vertex buffers per atom.
+  double BytesPerAtom(vtkIdType atoms)
+  {
+    double bytes = 0;
+    for (const char* name : { "vertexMC", "offsetMC", "radiusMC", "scalarColor", "normalMC" })
+    {
+      if (vtkOpenGLVertexBufferObject* vbo = this->Mapper->GetVBOs()->GetVBO(name))
+      {
+        bytes += double(vbo->GetStride()) * vbo->GetNumberOfTuples();
+      }
+    }
+    return bytes / double(atoms);
+  }
+};
+
+/// A window with one renderer and one actor; the renderer's passes are plain or SSAO.
+struct Stage
+{
+  vtkSmartPointer<vtkOpenGLRenderWindow> Window =
+    vtkOpenGLRenderWindow::SafeDownCast(vtkSmartPointer<vtkRenderWindow>::New());
+  vtkSmartPointer<vtkOpenGLRenderer> Renderer =
+    vtkOpenGLRenderer::SafeDownCast(vtkSmartPointer<vtkRenderer>::New());
+  vtkNew<vtkActor> Actor;
+  vtkNew<vtkRenderStepsPass> Basic;
+  vtkNew<vtkSSAOPass> Occlusion;
+
+  Stage()
+  {
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetMultiSamples(0);
+    this->Window->SetSize(1024, 768);
+    this->Window->AddRenderer(this->Renderer);
+    this->Renderer->AddActor(this->Actor);
+    this->Renderer->SetBackground(0.1, 0.1, 0.15);
+    this->Occlusion->SetDelegatePass(this->Basic);
+    this->Occlusion->SetRadius(4.0);
+    this->Occlusion->SetBias(0.05);
+    this->Occlusion->SetKernelSize(32);
+  }
+
+  void Show(vtkMapper* mapper, bool ssao)
+  {
+    this->Actor->SetMapper(mapper);
+    this->Renderer->SetPass(ssao ? static_cast<vtkRenderPass*>(this->Occlusion) : nullptr);
+    this->Renderer->ResetCamera();
+    this->Renderer->GetActiveCamera()->Elevation(-40);
+    this->Renderer->GetActiveCamera()->Zoom(1.6);
+    this->Renderer->ResetCameraClippingRange();
+  }
+
+  double Frame()
+  {
+    const auto start = std::chrono::steady_clock::now();
+    this->Window->Render();
+    this->Window->WaitForCompletion();
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+
+  /// The first frame (buffers built and uploaded), then the median of `frames` turning ones.
+  std::pair<double, double> Time(int frames)
+  {
+    const double first = this->Frame();
+    std::vector<double> times;
+    for (int f = 0; f < frames; ++f)
+    {
+      this->Renderer->GetActiveCamera()->Azimuth(2.0);
+      times.push_back(this->Frame());
+    }
+    return { first, median(times) };
+  }
+
+  /// One animation step: the same atoms at new positions (a copy of the points, shifted).
+  double AnimationStep(vtkPolyData* atoms)
+  {
+    vtkNew<vtkPoints> moved;
+    moved->DeepCopy(atoms->GetPoints());
+    auto* values = vtkFloatArray::SafeDownCast(moved->GetData())->GetPointer(0);
+    for (vtkIdType i = 0; i < 3 * moved->GetNumberOfPoints(); i += 3)
+    {
+      values[i] += 0.01f;
+    }
+    atoms->SetPoints(moved);
+    return this->Frame();
+  }
+};
+
+void compare_mappers(Stage& stage, vtkPolyData* patch, vtkIdType count, int frames)
+{
+  vtkSmartPointer<vtkPolyData> atoms = membrane_atoms(patch, count);
+  vtkNew<vtkMesoAtomMapper> ours;
+  ours->SetInputData(atoms);
+  VTKSpheres theirs(atoms);
+  for (bool ssao : { false, true })
+  {
+    stage.Show(ours, ssao);
+    const auto mine = stage.Time(frames);
+    stage.Show(theirs.Mapper, ssao);
+    const auto vtk = stage.Time(frames);
+    std::printf("BENCH atom-mapper frame: %lld atoms space-filling%s, 1024x768 llvmpipe: "
+                "vtkMesoAtomMapper %.3f s, vtkOpenGLSphereMapper %.3f s, ratio %.3f (goal <= "
+                "0.333 at 1 M); first frame with upload %.3f s vs %.3f s\n",
+                static_cast<long long>(count), ssao ? " with SSAO" : "", mine.second, vtk.second,
+                mine.second / vtk.second, mine.first, vtk.first);
+  }
+  std::printf("BENCH atom-mapper GPU bytes per atom: %lld atoms: vtkMesoAtomMapper %.1f, "
+              "vtkOpenGLSphereMapper %.1f, ratio %.3f (goal <= 16 bytes)\n",
+              static_cast<long long>(count), ours->GetBufferBytesPerAtom(),
+              theirs.BytesPerAtom(count), ours->GetBufferBytesPerAtom() / theirs.BytesPerAtom(count));
+
+  // One animation step: only the positions go up for ours; VTK's mapper rebuilds its buffers.
+  stage.Show(ours, false);
+  stage.Time(1);
+  const double still = stage.Frame();
+  const double step = stage.AnimationStep(atoms);
+  const double uploaded = double(ours->GetLastUploadBytes());
+  stage.Show(theirs.Mapper, false);
+  stage.Time(1);
+  const double vtk_still = stage.Frame();
+  theirs.Radii->SetInputData(atoms);
+  const double vtk_step = stage.AnimationStep(atoms);
+  std::printf("BENCH atom-mapper animation step: %lld atoms, new positions: vtkMesoAtomMapper "
+              "%.3f s (still frame %.3f s, so %.3f s for the update; %.1f MB uploaded = %.1f "
+              "bytes/atom), vtkOpenGLSphereMapper %.3f s (still %.3f s, update %.3f s), ratio of "
+              "updates %.3f\n",
+              static_cast<long long>(count), step, still, step - still, uploaded / 1e6,
+              uploaded / double(count), vtk_step, vtk_still, vtk_step - vtk_still,
+              (step - still) / std::max(1e-6, vtk_step - vtk_still));
+}
+
+/// The polynomial warp evaluated on the GPU against the same tiles mapped on the CPU and drawn
+/// as they are.
+void compare_warp(Stage& stage, int tiles, int frames)
+{
+  vtkNew<vtkMesoMeshReader> surface;
+  surface->SetFileName(mesolens_test::data_file("meshes/mito5_outer_membrane.obj").c_str());
+  surface->Update();
+  vtkNew<vtkMesoTrajectoryReader> membrane;
+  membrane->SetTopologyFileName(
+    mesolens_test::data_file("membranes/dppc128_slipids_323K.gro").c_str());
+  membrane->RemoveWatersOn();
+  vtkNew<vtkMesoMembraneMapping> mapping;
+  mapping->SetSurfaceConnection(surface->GetOutputPort());
+  mapping->SetMembraneConnection(membrane->GetOutputPort());
+  mapping->SetSeedPoint(surface->GetOutput()->GetPoint(1000));
+  mapping->SetTiles(tiles);
+  mapping->SetMembraneToMeshScale(1e-4);
+  mapping->SetMappingMethodToPolynomial();
+  if (!mapping->GetExecutive()->Update())
+  {
+    std::printf("BENCH atom-mapper warp: the mapping of %d x %d tiles failed; skipped\n", tiles,
+                tiles);
+    return;
+  }
+  vtkNew<vtkPolyData> mapped;
+  mapped->ShallowCopy(mapping->GetOutput());
+  vtkNew<vtkMesoAtomMapper> cpu;
+  cpu->SetInputData(mapped);
+  cpu->SetRadiusScale(1e-4);
+  mapping->OutputAtomsOff();
+  vtkNew<vtkMesoAtomMapper> gpu;
+  gpu->SetInputConnection(membrane->GetOutputPort());
+  gpu->SetWarpConnection(mapping->GetOutputPort());
+  gpu->SetRadiusScale(1e-4);
+  stage.Show(cpu, false);
+  const auto drawn = stage.Time(frames);
+  stage.Show(gpu, false);
+  const auto warped = stage.Time(frames);
+  std::printf("BENCH atom-mapper GPU polynomial warp: %d x %d tiles of the DPPC patch, %lld "
+              "atoms, space-filling: warped on the GPU %.3f s per frame from %.1f MB, the "
+              "CPU-mapped atoms %.3f s from %.1f MB, ratio %.3f\n",
+              tiles, tiles, static_cast<long long>(mapped->GetNumberOfPoints()), warped.second,
+              gpu->GetBufferBytesPerAtom() * double(mapped->GetNumberOfPoints()) /
+                (tiles * tiles) / 1e6,
+              drawn.second,
+              cpu->GetBufferBytesPerAtom() * double(mapped->GetNumberOfPoints()) / 1e6,
+              warped.second / drawn.second);
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  std::vector<vtkIdType> sizes{ 100000, 1000000, 4000000 };
+  int frames = 3;
+  bool warp = true;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string arg = argv[i];
+    if (arg == "--atoms" && i + 1 < argc)
+    {
+      sizes.clear();
+      std::stringstream list(argv[++i]);
+      std::string item;
+      while (std::getline(list, item, ','))
+      {
+        sizes.push_back(std::atoll(item.c_str()));
+      }
+    }
+    else if (arg == "--frames" && i + 1 < argc)
+    {
+      frames = std::max(1, std::atoi(argv[++i]));
+    }
+    else if (arg == "--no-warp")
+    {
+      warp = false;
+    }
+  }
+  vtkNew<vtkMesoTrajectoryReader> reader;
+  reader->SetTopologyFileName(
+    mesolens_test::data_file("membranes/dppc128_slipids_323K.gro").c_str());
+  reader->RemoveWatersOn();
+  reader->Update();
+  Stage stage;
+  for (const vtkIdType count : sizes)
+  {
+    compare_mappers(stage, reader->GetOutput(), count, frames);
+  }
+  if (warp)
+  {
+    compare_warp(stage, 8, frames);
+  }
+  return 0;
+}

@@ -248,9 +248,9 @@ bool vtkMesoAtomGPUData::Update(vtkPolyData* atoms, vtkPolyData* warp, const Sty
     return false;
   }
   const vtkIdType n = atoms->GetNumberOfPoints();
-  if (n > std::numeric_limits<int>::max())
+  if (n > std::numeric_limits<int>::max() / 3)
   {
-    vtkErrorWithObjectMacro(mapper, "Cannot draw " << n << " atoms: at most 2^31 - 1 per mapper");
+    vtkErrorWithObjectMacro(mapper, "Cannot draw " << n << " atoms: at most 715827882 per mapper");
     return false;
   }
 

@@ -6,11 +6,11 @@
 #include "vtkMesoAtomColorFS.h"
 #include "vtkMesoAtomSphereFSDec.h"
 #include "vtkMesoAtomSphereFSImpl.h"
-#include "vtkMesoAtomSphereGS.h"
-#include "vtkMesoAtomVS.h"
+#include "vtkMesoAtomSphereVS.h"
 #include "vtkMesoBondCylinderFSDec.h"
 #include "vtkMesoBondCylinderFSImpl.h"
 #include "vtkMesoBondCylinderGS.h"
+#include "vtkMesoBondVS.h"
 #include "vtkMesoMoleculeInstancingVS.h"
 #include "vtkMesoPolynomialWarpVS.h"
 
@@ -97,6 +97,10 @@ struct vtkMesoAtomMapper::Internals
   vtkNew<vtkOpenGLBufferObject> Positions;
   vtkNew<vtkOpenGLBufferObject> Types;
   vtkNew<vtkOpenGLBufferObject> Molecules;
+  // The atom buffers seen as texture buffers by the sphere pass (vertex pulling).
+  vtkNew<vtkTextureObject> PositionTexture;
+  vtkNew<vtkTextureObject> TypeTexture;
+  vtkNew<vtkTextureObject> MoleculeTexture;
   std::vector<unsigned char> UploadedTypes;
   std::vector<unsigned short> UploadedMolecules;
   std::vector<unsigned int> UploadedBonds;
@@ -196,6 +200,16 @@ void vtkMesoAtomMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*)
     in.LastUploadBytes +=
       static_cast<vtkIdType>(sizeof(unsigned short) * data.MoleculeSlots.size());
   }
+  const auto atoms = static_cast<unsigned int>(data.AtomCount);
+  in.PositionTexture->SetContext(window);
+  in.PositionTexture->CreateTextureBuffer(atoms, 3, VTK_FLOAT, in.Positions);
+  in.TypeTexture->SetContext(window);
+  in.TypeTexture->CreateTextureBuffer(atoms, 2, VTK_UNSIGNED_CHAR, in.Types);
+  if (!data.MoleculeSlots.empty())
+  {
+    in.MoleculeTexture->SetContext(window);
+    in.MoleculeTexture->CreateTextureBuffer(atoms, 1, VTK_UNSIGNED_SHORT, in.Molecules);
+  }
   vtkOpenGLIndexBufferObject* bonds = this->Primitives[PrimitiveLines].IBO;
   if (data.Bonds != in.UploadedBonds)
   {
@@ -235,9 +249,9 @@ void vtkMesoAtomMapper::GetShaderTemplate(std::map<vtkShader::Type, vtkShader*> 
                                           vtkRenderer* ren, vtkActor* act)
 {
   this->Superclass::GetShaderTemplate(shaders, ren, act);
-  shaders[vtkShader::Vertex]->SetSource(vtkMesoAtomVS);
-  shaders[vtkShader::Geometry]->SetSource(
-    this->Internal->Current == Pass::Atoms ? vtkMesoAtomSphereGS : vtkMesoBondCylinderGS);
+  const bool atoms = this->Internal->Current == Pass::Atoms;
+  shaders[vtkShader::Vertex]->SetSource(atoms ? vtkMesoAtomSphereVS : vtkMesoBondVS);
+  shaders[vtkShader::Geometry]->SetSource(atoms ? "" : vtkMesoBondCylinderGS);
 }
 
 void vtkMesoAtomMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkShader*> shaders,
@@ -255,6 +269,15 @@ void vtkMesoAtomMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkShader*
                                    ? vtkMesoPolynomialWarpVS
                                    : vtkMesoMoleculeInstancingVS);
     position = "vertexMC = vec4(warpedPosition(atomPosition, gl_InstanceID), 1.0);\n  " + position;
+    if (atoms && warp == vtkMesoAtomGPUData::MOLECULE_INSTANCING)
+    {
+      // The sphere pass pulls the molecule slot from its buffer like the rest of the atom.
+      vtkShaderProgram::Substitute(vertex, "in float atomMolecule;",
+                                   "uniform samplerBuffer atomMolecules; // R16\n"
+                                   "float atomMolecule;");
+      position =
+        "atomMolecule = floor(texelFetch(atomMolecules, atom).x * 65535.0 + 0.5);\n  " + position;
+    }
   }
   vtkShaderProgram::Substitute(vertex, "//MESO::Warp::Impl", position);
   shaders[vtkShader::Vertex]->SetSource(vertex);
@@ -276,6 +299,13 @@ void vtkMesoAtomMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkShader*
 
   this->Superclass::ReplaceShaderValues(shaders, ren, act);
 
+  if (atoms)
+  {
+    // Point picking reports the vertex id: three vertices per atom here.
+    vertex = shaders[vtkShader::Vertex]->GetSource();
+    vtkShaderProgram::Substitute(vertex, "= gl_VertexID;", "= atom;");
+    shaders[vtkShader::Vertex]->SetSource(vertex);
+  }
   fragment = shaders[vtkShader::Fragment]->GetSource();
   vtkShaderProgram::Substitute(fragment, "//MESO::AtomColor::Impl", vtkMesoAtomColorFS);
   shaders[vtkShader::Fragment]->SetSource(fragment);
@@ -305,8 +335,9 @@ void vtkMesoAtomMapper::SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRe
   Internals& in = *this->Internal;
   const vtkMesoAtomGPUData& data = in.Data;
   vtkShaderProgram* program = cellBO.Program;
-  if (cellBO.ShaderSourceTime > cellBO.AttributeUpdateTime ||
-      in.BufferTime > cellBO.AttributeUpdateTime)
+  if (in.Current == Pass::Bonds &&
+      (cellBO.ShaderSourceTime > cellBO.AttributeUpdateTime ||
+       in.BufferTime > cellBO.AttributeUpdateTime))
   {
     cellBO.VAO->Bind();
     cellBO.VAO->AddAttributeArray(program, in.Positions, "atomPosition", 0, 3 * sizeof(float),
@@ -325,6 +356,15 @@ void vtkMesoAtomMapper::SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRe
     program->SetUniform1fv("atomRadii", static_cast<int>(data.Radii.size()), data.Radii.data());
   }
   set_uniform_int(program, "atomColorTable", in.Colors.Texture->GetTextureUnit());
+  if (in.Current == Pass::Atoms)
+  {
+    set_uniform_int(program, "atomPositions", in.PositionTexture->GetTextureUnit());
+    set_uniform_int(program, "atomTypes", in.TypeTexture->GetTextureUnit());
+    if (data.WarpMethod == vtkMesoAtomGPUData::MOLECULE_INSTANCING)
+    {
+      set_uniform_int(program, "atomMolecules", in.MoleculeTexture->GetTextureUnit());
+    }
+  }
   if (data.WarpMethod >= 0)
   {
     const char* buffer =
@@ -356,15 +396,21 @@ void vtkMesoAtomMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   }
   const GLsizei instances = static_cast<GLsizei>(data.TileCount);
   in.Colors.Texture->Activate();
+  in.PositionTexture->Activate();
+  in.TypeTexture->Activate();
   if (data.WarpMethod >= 0)
   {
     in.Warp.Texture->Activate();
+  }
+  if (data.WarpMethod == vtkMesoAtomGPUData::MOLECULE_INSTANCING)
+  {
+    in.MoleculeTexture->Activate();
   }
 
   in.Current = Pass::Atoms;
   this->PrimitiveIDOffset = 0;
   this->UpdateShaders(this->Primitives[PrimitiveTris], ren, act);
-  glDrawArraysInstanced(GL_POINTS, 0, static_cast<GLsizei>(data.AtomCount), instances);
+  glDrawArraysInstanced(GL_TRIANGLES, 0, static_cast<GLsizei>(3 * data.AtomCount), instances);
 
   vtkOpenGLHelper& bonds = this->Primitives[PrimitiveLines];
   if (this->Style != SPACE_FILLING && bonds.IBO->IndexCount > 0)
@@ -388,9 +434,13 @@ void vtkMesoAtomMapper::RenderPieceFinish(vtkRenderer* ren, vtkActor* act)
   {
     in.Colors.Texture->Deactivate();
   }
-  if (in.Warp.Texture->GetHandle() != 0)
+  for (vtkTextureObject* texture : { in.Warp.Texture.Get(), in.PositionTexture.Get(),
+                                     in.TypeTexture.Get(), in.MoleculeTexture.Get() })
   {
-    in.Warp.Texture->Deactivate();
+    if (texture->GetHandle() != 0)
+    {
+      texture->Deactivate();
+    }
   }
   this->Superclass::RenderPieceFinish(ren, act);
 }
@@ -443,6 +493,9 @@ void vtkMesoAtomMapper::ReleaseGraphicsResources(vtkWindow* window)
   in.UploadedMolecules.clear();
   in.UploadedBonds.clear();
   in.Colors.Release(window);
+  in.PositionTexture->ReleaseGraphicsResources(window);
+  in.TypeTexture->ReleaseGraphicsResources(window);
+  in.MoleculeTexture->ReleaseGraphicsResources(window);
   in.Warp.Release(window);
   this->Superclass::ReleaseGraphicsResources(window);
 }

@@ -9,9 +9,11 @@
  * vtkMesoMembraneMapping), bonds as 2-point lines, the `AtomicNumber` point array for radii and
  * element colours. Per atom the GPU holds its position (3 floats) and 2 bytes of type (the
  * element, for the radius, and a colour index), 14 bytes in all (16 with molecule instancing);
- * bonds are index pairs into the same positions. A geometry shader expands each atom (bond) into
- * a quad facing the eye; the fragment shader intersects the view ray with the sphere (cylinder)
- * and writes the true depth and normal, so atoms and bonds intersect each other and other
+ * bonds are index pairs into the same positions. Atoms are drawn without a geometry stage: the
+ * vertex stage reads each atom from those buffers (as texture buffers) for the three corners of
+ * one triangle facing the eye around its silhouette; a geometry shader expands each bond into a
+ * quad. The fragment shader intersects the view ray with the sphere (cylinder) and writes the
+ * true depth and normal, so atoms and bonds intersect each other and other
  * geometry correctly and VTK's render passes (vtkSSAOPass, vtkShadowMapPass, depth peeling) and
  * hardware picking see real spheres and cylinders. Radius and colour come from tables on the GPU
  * indexed by the type. For an animation (a new time step with the same atoms and bonds) only

@@ -13,7 +13,6 @@ uniform int cameraParallel;
 uniform mat4 VCDCMatrix;
 uniform float bondRadius;
 
-in float radiusVCVSOutput[];
 in vec4 atomColorVSOutput[];
 
 out vec4 vertexVCGSOutput;

@@ -214,6 +214,45 @@ TEST(MesoAtomMapper, PicksTheAtomTheRayMeetsFirst)
   EXPECT_GT(picking_agreement(vtkMesoAtomMapper::SPACE_FILLING), 0.97);
 }
 
+TEST(MesoAtomMapper, PointPickingReportsTheAtom)
+{
+  auto reader = mesolens_test::crambin();
+  Scene scene = make_scene(reader, vtkMesoAtomMapper::SPACE_FILLING);
+  mesolens_test::look_at(scene.Renderer, reader->GetOutput(), 55.0);
+  scene.Window->Render();
+  int compared = 0;
+  for (int association :
+       { vtkDataObject::FIELD_ASSOCIATION_CELLS, vtkDataObject::FIELD_ASSOCIATION_POINTS })
+  {
+    vtkNew<vtkHardwareSelector> selector;
+    selector->SetRenderer(scene.Renderer);
+    selector->SetFieldAssociation(association);
+    selector->SetArea(0, 0, 159, 159);
+    ASSERT_TRUE(selector->CaptureBuffers());
+    for (unsigned int y = 20; y < 140; y += 10)
+    {
+      for (unsigned int x = 20; x < 140; x += 10)
+      {
+        const unsigned int position[2] = { x, y };
+        unsigned int found[2];
+        const auto info = selector->GetPixelInformation(position, 0, found);
+        if (!info.Valid)
+        {
+          continue;
+        }
+        Vector3 origin;
+        Vector3 direction;
+        pixel_ray(scene.Renderer, int(x), int(y), origin, direction);
+        const vtkIdType cpu =
+          cpu_pick(reader->GetOutput(), vtkMesoAtomMapper::SPACE_FILLING, origin, direction);
+        EXPECT_EQ(info.AttributeID, cpu) << "pixel " << x << ", " << y;
+        ++compared;
+      }
+    }
+  }
+  EXPECT_GT(compared, 100);
+}
+
 TEST(MesoAtomMapper, PicksAtomsAndBondsInBallAndStick)
 {
   EXPECT_GT(picking_agreement(vtkMesoAtomMapper::BALL_AND_STICK), 0.95);

@@ -229,64 +229,107 @@ void vtkMesoAtomGPUData::Clear()
 {
   this->AtomCount = 0;
   this->TileCount = 1;
-  this->Positions.clear();
+  this->PositionData = nullptr;
+  this->PositionStorage.clear();
   this->Types.clear();
   this->MoleculeSlots.clear();
   this->Bonds.clear();
   this->WarpMethod = NONE;
   this->WarpTexels.clear();
+  this->TypesKey = {};
+  this->BondsKey = {};
 }
 
 bool vtkMesoAtomGPUData::Update(vtkPolyData* atoms, vtkPolyData* warp, const Style& style,
                                 vtkMapper* mapper)
 {
-  this->Clear();
   this->Radii = StyleRadii(style);
   this->BondRadius = static_cast<float>(style.BondRadius * style.RadiusScale);
+  this->TileCount = 1;
+  this->MoleculeSlots.clear();
+  this->WarpMethod = NONE;
+  this->WarpTexels.clear();
   if (!atoms || !atoms->GetPoints() || atoms->GetNumberOfPoints() == 0)
   {
+    this->Clear();
     return false;
   }
   const vtkIdType n = atoms->GetNumberOfPoints();
   if (n > std::numeric_limits<int>::max() / 3)
   {
     vtkErrorWithObjectMacro(mapper, "Cannot draw " << n << " atoms: at most 715827882 per mapper");
+    this->Clear();
     return false;
   }
+  this->AtomCount = n;
+  if (!this->UpdatePositions(atoms, mapper) || !this->UpdateBonds(atoms, mapper))
+  {
+    this->Clear();
+    return false;
+  }
+  this->UpdateTypes(atoms, mapper);
+  if (warp && !this->ReadWarp(atoms, warp, mapper))
+  {
+    this->Clear();
+    return false;
+  }
+  return true;
+}
 
-  // Positions, checked for NaN and infinities.
+bool vtkMesoAtomGPUData::UpdatePositions(vtkPolyData* atoms, vtkMapper* mapper)
+{
+  // Float coordinates go up as they are; others are converted once.
   vtkDataArray* coordinates = atoms->GetPoints()->GetData();
-  this->Positions.resize(3 * static_cast<std::size_t>(n));
+  const std::size_t values = 3 * static_cast<std::size_t>(this->AtomCount);
   if (auto* floats = vtkFloatArray::FastDownCast(coordinates))
   {
-    std::copy(floats->GetPointer(0), floats->GetPointer(0) + 3 * n, this->Positions.begin());
+    this->PositionStorage.clear();
+    this->PositionData = floats->GetPointer(0);
   }
   else
   {
-    for (vtkIdType i = 0; i < n; ++i)
+    this->PositionStorage.resize(values);
+    for (vtkIdType i = 0; i < this->AtomCount; ++i)
     {
       double p[3];
       coordinates->GetTuple(i, p);
       for (int d = 0; d < 3; ++d)
       {
-        this->Positions[std::size_t(3 * i + d)] = static_cast<float>(p[d]);
+        this->PositionStorage[std::size_t(3 * i + d)] = static_cast<float>(p[d]);
       }
     }
+    this->PositionData = this->PositionStorage.data();
   }
-  for (std::size_t i = 0; i < this->Positions.size(); ++i)
+  for (std::size_t i = 0; i < values; ++i)
   {
-    if (!std::isfinite(this->Positions[i]))
+    if (!std::isfinite(this->PositionData[i]))
     {
       vtkErrorWithObjectMacro(
         mapper, "Cannot draw the atoms: atom " << i / 3 << " has a non-finite position");
-      this->Clear();
       return false;
     }
   }
+  return true;
+}
 
-  // Types: element and colour index.
+void vtkMesoAtomGPUData::UpdateTypes(vtkPolyData* atoms, vtkMapper* mapper)
+{
   vtkDataArray* numbers = atoms->GetPointData()->GetArray("AtomicNumber");
   vtkDataArray* scalars = color_array(atoms, mapper);
+  // The same arrays, unchanged, under the same settings: the types stay (a new time step).
+  const ArrayKey key{ numbers,
+                      numbers ? numbers->GetMTime() : 0,
+                      scalars,
+                      scalars ? scalars->GetMTime() : 0,
+                      mapper->GetMTime(),
+                      this->AtomCount };
+  if (key == this->TypesKey)
+  {
+    return;
+  }
+  this->TypesKey = key;
+  ++this->TypesVersion;
+  const vtkIdType n = this->AtomCount;
   this->Types.resize(2 * static_cast<std::size_t>(n));
   this->ColorTable.assign(4 * color_count, 0.6f);
   if (scalars)
@@ -323,58 +366,61 @@ bool vtkMesoAtomGPUData::Update(vtkPolyData* atoms, vtkPolyData* warp, const Sty
       this->Types[std::size_t(2 * i)] = static_cast<unsigned char>(element_of(numbers, i));
       this->Types[std::size_t(2 * i + 1)] = static_cast<unsigned char>(bin);
     }
+    return;
   }
-  else
+  vtkNew<vtkMesoElementLookupTable> elements;
+  for (int z = 0; z <= mesolens::max_atomic_number && z < element_count; ++z)
   {
-    vtkNew<vtkMesoElementLookupTable> elements;
-    for (int z = 0; z <= mesolens::max_atomic_number && z < element_count; ++z)
+    double rgba[4];
+    elements->GetTableValue(z, rgba);
+    for (int c = 0; c < 4; ++c)
     {
-      double rgba[4];
-      elements->GetTableValue(z, rgba);
-      for (int c = 0; c < 4; ++c)
-      {
-        this->ColorTable[std::size_t(4 * z + c)] = static_cast<float>(rgba[c]);
-      }
-    }
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      const auto z = static_cast<unsigned char>(element_of(numbers, i));
-      this->Types[std::size_t(2 * i)] = z;
-      this->Types[std::size_t(2 * i + 1)] = z;
+      this->ColorTable[std::size_t(4 * z + c)] = static_cast<float>(rgba[c]);
     }
   }
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    const auto z = static_cast<unsigned char>(element_of(numbers, i));
+    this->Types[std::size_t(2 * i)] = z;
+    this->Types[std::size_t(2 * i + 1)] = z;
+  }
+}
 
-  // Bonds: every segment of the lines.
-  if (vtkCellArray* lines = atoms->GetLines())
+bool vtkMesoAtomGPUData::UpdateBonds(vtkPolyData* atoms, vtkMapper* mapper)
+{
+  vtkCellArray* lines = atoms->GetLines();
+  const ArrayKey key{ lines, lines ? lines->GetMTime() : 0, nullptr, 0, 0, this->AtomCount };
+  if (key == this->BondsKey)
   {
-    auto cells = vtk::TakeSmartPointer(lines->NewIterator());
-    for (cells->GoToFirstCell(); !cells->IsDoneWithTraversal(); cells->GoToNextCell())
-    {
-      vtkIdType size = 0;
-      const vtkIdType* ids = nullptr;
-      cells->GetCurrentCell(size, ids);
-      for (vtkIdType k = 0; k + 1 < size; ++k)
-      {
-        if (ids[k] < 0 || ids[k] >= n || ids[k + 1] < 0 || ids[k + 1] >= n)
-        {
-          vtkErrorWithObjectMacro(mapper,
-                                  "Cannot draw the bonds: line "
-                                    << cells->GetCurrentCellId() << " refers to atom "
-                                    << std::max(ids[k], ids[k + 1]) << " of " << n);
-          this->Clear();
-          return false;
-        }
-        this->Bonds.push_back(static_cast<unsigned int>(ids[k]));
-        this->Bonds.push_back(static_cast<unsigned int>(ids[k + 1]));
-      }
-    }
+    return true;
   }
-
-  this->AtomCount = n;
-  if (warp && !this->ReadWarp(atoms, warp, mapper))
+  this->BondsKey = key;
+  ++this->BondsVersion;
+  this->Bonds.clear();
+  if (!lines)
   {
-    this->Clear();
-    return false;
+    return true;
+  }
+  const vtkIdType n = this->AtomCount;
+  auto cells = vtk::TakeSmartPointer(lines->NewIterator());
+  for (cells->GoToFirstCell(); !cells->IsDoneWithTraversal(); cells->GoToNextCell())
+  {
+    vtkIdType size = 0;
+    const vtkIdType* ids = nullptr;
+    cells->GetCurrentCell(size, ids);
+    for (vtkIdType k = 0; k + 1 < size; ++k)
+    {
+      if (ids[k] < 0 || ids[k] >= n || ids[k + 1] < 0 || ids[k + 1] >= n)
+      {
+        vtkErrorWithObjectMacro(mapper,
+                                "Cannot draw the bonds: line "
+                                  << cells->GetCurrentCellId() << " refers to atom "
+                                  << std::max(ids[k], ids[k + 1]) << " of " << n);
+        return false;
+      }
+      this->Bonds.push_back(static_cast<unsigned int>(ids[k]));
+      this->Bonds.push_back(static_cast<unsigned int>(ids[k + 1]));
+    }
   }
   return true;
 }

@@ -56,13 +56,15 @@ public:
 
   vtkIdType AtomCount = 0;
   vtkIdType TileCount = 1;
-  std::vector<float> Positions;              ///< 3 per atom
+  const float* PositionData = nullptr;       ///< 3 per atom (the input's, or PositionStorage)
   std::vector<unsigned char> Types;          ///< 2 per atom
   std::vector<unsigned short> MoleculeSlots; ///< 1 per atom (instancing only)
-  std::vector<unsigned int> Bonds;           ///< 2 per bond
-  std::vector<float> Radii;                  ///< 128
-  float BondRadius = 0;                      ///< scene units
-  std::vector<float> ColorTable;             ///< 256 RGBA
+  std::vector<unsigned int> Bonds;
+  unsigned long TypesVersion = 0; ///< counts recomputations of Types, MoleculeSlots excluded
+  unsigned long BondsVersion = 0; ///< counts recomputations of Bonds           ///< 2 per bond
+  std::vector<float> Radii;       ///< 128
+  float BondRadius = 0;           ///< scene units
+  std::vector<float> ColorTable;  ///< 256 RGBA
 
   int WarpMethod = NONE;
   std::vector<float> WarpTexels; ///< RGBA texels
@@ -73,8 +75,32 @@ public:
   int MoleculesPerTile = 0;
 
 private:
+  /// What the types (bonds) were computed from; equal keys mean nothing to recompute.
+  struct ArrayKey
+  {
+    const void* Array = nullptr;
+    vtkMTimeType ArrayTime = 0;
+    const void* Scalars = nullptr;
+    vtkMTimeType ScalarsTime = 0;
+    vtkMTimeType MapperTime = 0;
+    vtkIdType Atoms = 0;
+    bool operator==(const ArrayKey& other) const
+    {
+      return this->Array == other.Array && this->ArrayTime == other.ArrayTime &&
+        this->Scalars == other.Scalars && this->ScalarsTime == other.ScalarsTime &&
+        this->MapperTime == other.MapperTime && this->Atoms == other.Atoms;
+    }
+  };
+
+  bool UpdatePositions(vtkPolyData* atoms, vtkMapper* mapper);
+  void UpdateTypes(vtkPolyData* atoms, vtkMapper* mapper);
+  bool UpdateBonds(vtkPolyData* atoms, vtkMapper* mapper);
   bool ReadWarp(vtkPolyData* atoms, vtkPolyData* warp, vtkMapper* mapper);
   void Clear();
+
+  std::vector<float> PositionStorage;
+  ArrayKey TypesKey;
+  ArrayKey BondsKey;
 };
 
 #endif

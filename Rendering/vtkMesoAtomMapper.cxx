@@ -101,9 +101,9 @@ struct vtkMesoAtomMapper::Internals
   vtkNew<vtkTextureObject> PositionTexture;
   vtkNew<vtkTextureObject> TypeTexture;
   vtkNew<vtkTextureObject> MoleculeTexture;
-  std::vector<unsigned char> UploadedTypes;
+  unsigned long UploadedTypes = 0; // TypesVersion on the GPU, 0: none
   std::vector<unsigned short> UploadedMolecules;
-  std::vector<unsigned int> UploadedBonds;
+  unsigned long UploadedBonds = 0;
   TexelBuffer Colors;
   TexelBuffer Warp;
   vtkTimeStamp BufferTime;    // the buffers behind the vertex attributes changed
@@ -185,12 +185,13 @@ void vtkMesoAtomMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*)
   vtkOpenGLRenderWindow* window = vtkOpenGLRenderWindow::SafeDownCast(ren->GetRenderWindow());
   const vtkMesoAtomGPUData& data = in.Data;
 
-  in.Positions->Upload(data.Positions, vtkOpenGLBufferObject::ArrayBuffer);
-  in.LastUploadBytes += static_cast<vtkIdType>(sizeof(float) * data.Positions.size());
-  if (data.Types != in.UploadedTypes)
+  const std::size_t position_values = 3 * static_cast<std::size_t>(data.AtomCount);
+  in.Positions->Upload(data.PositionData, position_values, vtkOpenGLBufferObject::ArrayBuffer);
+  in.LastUploadBytes += static_cast<vtkIdType>(sizeof(float) * position_values);
+  if (data.TypesVersion != in.UploadedTypes)
   {
     in.Types->Upload(data.Types, vtkOpenGLBufferObject::ArrayBuffer);
-    in.UploadedTypes = data.Types;
+    in.UploadedTypes = data.TypesVersion;
     in.LastUploadBytes += static_cast<vtkIdType>(data.Types.size());
   }
   if (!data.MoleculeSlots.empty() && data.MoleculeSlots != in.UploadedMolecules)
@@ -211,14 +212,14 @@ void vtkMesoAtomMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*)
     in.MoleculeTexture->CreateTextureBuffer(atoms, 1, VTK_UNSIGNED_SHORT, in.Molecules);
   }
   vtkOpenGLIndexBufferObject* bonds = this->Primitives[PrimitiveLines].IBO;
-  if (data.Bonds != in.UploadedBonds)
+  if (data.BondsVersion != in.UploadedBonds)
   {
     if (!data.Bonds.empty())
     {
       bonds->Upload(data.Bonds, vtkOpenGLBufferObject::ElementArrayBuffer);
       in.LastUploadBytes += static_cast<vtkIdType>(sizeof(unsigned int) * data.Bonds.size());
     }
-    in.UploadedBonds = data.Bonds;
+    in.UploadedBonds = data.BondsVersion;
   }
   bonds->IndexCount = data.Bonds.size();
   this->Primitives[PrimitiveTris].IBO->IndexCount = static_cast<size_t>(data.AtomCount);
@@ -473,7 +474,7 @@ double vtkMesoAtomMapper::GetBufferBytesPerAtom() const
   {
     return 0;
   }
-  const double bytes = sizeof(float) * data.Positions.size() + data.Types.size() +
+  const double bytes = 3.0 * sizeof(float) * double(data.AtomCount) + data.Types.size() +
     sizeof(unsigned short) * data.MoleculeSlots.size();
   return bytes / static_cast<double>(data.AtomCount);
 }
@@ -489,9 +490,9 @@ void vtkMesoAtomMapper::ReleaseGraphicsResources(vtkWindow* window)
   in.Positions->ReleaseGraphicsResources();
   in.Types->ReleaseGraphicsResources();
   in.Molecules->ReleaseGraphicsResources();
-  in.UploadedTypes.clear();
+  in.UploadedTypes = 0;
   in.UploadedMolecules.clear();
-  in.UploadedBonds.clear();
+  in.UploadedBonds = 0;
   in.Colors.Release(window);
   in.PositionTexture->ReleaseGraphicsResources(window);
   in.TypeTexture->ReleaseGraphicsResources(window);

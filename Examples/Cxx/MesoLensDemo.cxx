@@ -1,34 +1,27 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The MesoLens demo: real molecules from Data/ read by MesoLens and drawn with VTK's stock
-// mappers. Left: ubiquitin (1UBQ) as balls and sticks coloured by element; right: an all-atom
+// The MesoLens demo: real molecules from Data/ read by MesoLens and drawn by its ray-cast atom
+// impostors. Left: ubiquitin (1UBQ) as balls and sticks coloured by element; right: an all-atom
 // DPPC bilayer patch (Slipids, 128 lipids, waters removed) space-filling.
 //
 //   MesoLensDemo [--data DIR] [--output FILE.png] [--size WIDTHxHEIGHT] [--atom-scale S]
 //                [--interactive]
 //
 // Writes the PNG; with --interactive (and a display) it then opens the window.
-#include "vtkMesoAtomProperties.h"
-#include "vtkMesoElementLookupTable.h"
+#include "vtkMesoAtomMapper.h"
 #include "vtkMesoStructureReader.h"
 #include "vtkMesoTrajectoryReader.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkExecutive.h>
-#include <vtkGlyph3DMapper.h>
 #include <vtkNew.h>
-#include <vtkOpenGLSphereMapper.h>
 #include <vtkPNGWriter.h>
 #include <vtkPolyData.h>
-#include <vtkPolyDataMapper.h>
-#include <vtkProperty.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderWindowInteractor.h>
 #include <vtkRenderer.h>
-#include <vtkSphereSource.h>
 #include <vtkTextActor.h>
 #include <vtkTextProperty.h>
-#include <vtkTubeFilter.h>
 #include <vtkWindowToImageFilter.h>
 
 #include <cstdlib>
@@ -75,16 +68,6 @@ bool parse(int argc, char* argv[], Options& options)
   return options.width > 0 && options.height > 0 && options.atom_scale > 0;
 }
 
-void colour_by_element(vtkMapper* mapper, vtkLookupTable* elements)
-{
-  mapper->SetLookupTable(elements);
-  mapper->UseLookupTableScalarRangeOn();
-  mapper->SetScalarModeToUsePointFieldData();
-  mapper->SelectColorArray("AtomicNumber");
-  mapper->SetColorModeToMapScalars();
-  mapper->ScalarVisibilityOn();
-}
-
 void add_title(vtkRenderer* renderer, const std::string& text, int font_size)
 {
   vtkNew<vtkTextActor> title;
@@ -102,64 +85,40 @@ std::string counts(vtkPolyData* atoms)
     std::to_string(atoms->GetNumberOfLines()) + " bonds";
 }
 
-/// Ubiquitin, balls (0.25 x van der Waals radius) and sticks.
-bool add_protein(vtkRenderer* renderer, const Options& options, vtkLookupTable* elements)
+/// Ubiquitin, balls (0.25 x van der Waals radius) and sticks, ray-cast impostors.
+bool add_protein(vtkRenderer* renderer, const Options& options)
 {
   vtkNew<vtkMesoStructureReader> reader;
   reader->SetFileName((options.data + "/proteins/1ubq.pdb").c_str());
   reader->RemoveWatersOn();
-  vtkNew<vtkMesoAtomProperties> properties;
-  properties->SetInputConnection(reader->GetOutputPort());
-  if (!properties->GetExecutive()->Update())
+  if (!reader->GetExecutive()->Update())
     return false;
-
-  vtkNew<vtkSphereSource> ball;
-  ball->SetThetaResolution(16);
-  ball->SetPhiResolution(16);
-  vtkNew<vtkGlyph3DMapper> balls;
-  balls->SetInputConnection(properties->GetOutputPort());
-  balls->SetSourceConnection(ball->GetOutputPort());
-  balls->SetScaleArray("VanDerWaalsRadius");
-  balls->SetScaleModeToScaleByMagnitude();
-  balls->SetScaleFactor(2.0 * 0.25 * options.atom_scale); // the source sphere has diameter 1
-  colour_by_element(balls, elements);
-  vtkNew<vtkActor> ball_actor;
-  ball_actor->SetMapper(balls);
-  renderer->AddActor(ball_actor);
-
-  vtkNew<vtkTubeFilter> sticks;
-  sticks->SetInputConnection(reader->GetOutputPort());
-  sticks->SetRadius(0.15);
-  sticks->SetNumberOfSides(10);
-  vtkNew<vtkPolyDataMapper> stick_mapper;
-  stick_mapper->SetInputConnection(sticks->GetOutputPort());
-  colour_by_element(stick_mapper, elements);
-  vtkNew<vtkActor> stick_actor;
-  stick_actor->SetMapper(stick_mapper);
-  renderer->AddActor(stick_actor);
-  add_title(renderer, "ubiquitin (1UBQ): " + counts(properties->GetOutput()), options.width / 60);
+  vtkNew<vtkMesoAtomMapper> atoms;
+  atoms->SetInputConnection(reader->GetOutputPort());
+  atoms->SetStyleToBallAndStick();
+  atoms->SetRadiusScale(options.atom_scale);
+  vtkNew<vtkActor> actor;
+  actor->SetMapper(atoms);
+  renderer->AddActor(actor);
+  add_title(renderer, "ubiquitin (1UBQ): " + counts(reader->GetOutput()), options.width / 60);
   return true;
 }
 
-/// The Slipids DPPC bilayer, space-filling with VTK's sphere impostors.
-bool add_membrane(vtkRenderer* renderer, const Options& options, vtkLookupTable* elements)
+/// The Slipids DPPC bilayer, space-filling.
+bool add_membrane(vtkRenderer* renderer, const Options& options)
 {
   vtkNew<vtkMesoTrajectoryReader> reader;
   reader->SetTopologyFileName((options.data + "/membranes/dppc128_slipids_323K.gro").c_str());
   reader->RemoveWatersOn();
-  vtkNew<vtkMesoAtomProperties> properties;
-  properties->SetInputConnection(reader->GetOutputPort());
-  if (!properties->GetExecutive()->Update())
+  if (!reader->GetExecutive()->Update())
     return false;
-  vtkNew<vtkOpenGLSphereMapper> spheres;
-  spheres->SetInputConnection(properties->GetOutputPort());
-  spheres->SetScaleArray("VanDerWaalsRadius");
-  spheres->SetRadius(static_cast<float>(options.atom_scale));
-  colour_by_element(spheres, elements);
+  vtkNew<vtkMesoAtomMapper> atoms;
+  atoms->SetInputConnection(reader->GetOutputPort());
+  atoms->SetRadiusScale(options.atom_scale);
   vtkNew<vtkActor> actor;
-  actor->SetMapper(spheres);
+  actor->SetMapper(atoms);
   renderer->AddActor(actor);
-  add_title(renderer, "DPPC bilayer, 128 lipids: " + counts(properties->GetOutput()),
+  add_title(renderer, "DPPC bilayer, 128 lipids: " + counts(reader->GetOutput()),
             options.width / 60);
   return true;
 }
@@ -174,14 +133,13 @@ int main(int argc, char* argv[])
                  "[--atom-scale S] [--interactive]\n";
     return 2;
   }
-  vtkNew<vtkMesoElementLookupTable> elements;
   vtkNew<vtkRenderer> protein;
   protein->SetViewport(0.0, 0.0, 0.5, 1.0);
   protein->SetBackground(0.10, 0.11, 0.14);
   vtkNew<vtkRenderer> membrane;
   membrane->SetViewport(0.5, 0.0, 1.0, 1.0);
   membrane->SetBackground(0.12, 0.13, 0.17);
-  if (!add_protein(protein, options, elements) || !add_membrane(membrane, options, elements))
+  if (!add_protein(protein, options) || !add_membrane(membrane, options))
   {
     std::cerr << "MesoLensDemo: cannot read the data in " << options.data << "\n";
     return 1;

@@ -17,6 +17,7 @@ uniform mat4 MCVCMatrix;
 uniform mat4 VCDCMatrix;
 uniform int cameraParallel;
 
+// Named like the bond pass's geometry-stage outputs: both passes share the fragment code.
 out vec4 vertexVCGSOutput;
 flat out float radiusVCGSOutput;
 flat out vec3 centerVCGSOutput;

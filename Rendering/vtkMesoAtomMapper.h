@@ -44,6 +44,10 @@
  * DISPLACEMENT has no GPU form: map the atoms on the CPU (OutputAtoms on) and draw its output.
  * Radii stay in RadiusScale x Å: set RadiusScale to the mapping's MembraneToMeshScale.
  *
+ * VTK 9.1's vtkSSAOPass draws black in a renderer whose viewport does not start at the window's
+ * origin (with any mapper, VTK's sphere mapper too): give ambient occlusion to the renderer at
+ * the lower left, or to a renderer that fills the window.
+ *
  * Picking (vtkHardwareSelector, cells): atom i is cell i (its vertex), bond j is the cell of
  * its line, as in the input; in warp mode these are the patch's ids (the tile is not reported).
  *

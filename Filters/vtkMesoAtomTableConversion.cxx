@@ -61,6 +61,24 @@ std::vector<std::string> as_strings(const std::vector<char>& codes)
 }
 } // namespace
 
+void SetAtomVertices(vtkPolyData* output)
+{
+  const vtkIdType n = output->GetNumberOfPoints();
+  vtkNew<vtkIdTypeArray> offsets;
+  vtkNew<vtkIdTypeArray> ids;
+  offsets->SetNumberOfValues(n + 1);
+  ids->SetNumberOfValues(n);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    offsets->SetValue(i, i);
+    ids->SetValue(i, i);
+  }
+  offsets->SetValue(n, n);
+  vtkNew<vtkCellArray> vertices;
+  vertices->SetData(offsets, ids);
+  output->SetVerts(vertices);
+}
+
 void ToPolyData(const mesolens::AtomTable& table, double length_scale, vtkPolyData* output)
 {
   output->Initialize();
@@ -70,20 +88,7 @@ void ToPolyData(const mesolens::AtomTable& table, double length_scale, vtkPolyDa
   output->SetPoints(points);
   SetPositions(table.positions, {}, length_scale, output);
 
-  // Atoms are vertices: a vtkPolyData without cells has no bounds and renders nothing.
-  vtkNew<vtkIdTypeArray> vertex_offsets;
-  vtkNew<vtkIdTypeArray> vertex_ids;
-  vertex_offsets->SetNumberOfValues(n + 1);
-  vertex_ids->SetNumberOfValues(n);
-  for (vtkIdType i = 0; i < n; ++i)
-  {
-    vertex_offsets->SetValue(i, i);
-    vertex_ids->SetValue(i, i);
-  }
-  vertex_offsets->SetValue(n, n);
-  vtkNew<vtkCellArray> vertices;
-  vertices->SetData(vertex_offsets, vertex_ids);
-  output->SetVerts(vertices);
+  SetAtomVertices(output);
 
   const vtkIdType bond_count = static_cast<vtkIdType>(table.bonds.size());
   vtkNew<vtkIdTypeArray> line_offsets;

@@ -25,6 +25,10 @@ void ToPolyData(const mesolens::AtomTable& table, double length_scale, vtkPolyDa
 void SetPositions(const std::vector<float>& positions, const std::vector<std::size_t>& kept,
                   double length_scale, vtkPolyData* output);
 
+/// Makes every point of `output` a vertex cell (vertex i holds point i), replacing its verts:
+/// a vtkPolyData without cells has no bounds and renders nothing.
+void SetAtomVertices(vtkPolyData* output);
+
 /// Adds (or replaces) the field-data array "PeriodicBoxVectors" (9 doubles, rows a, b, c, in
 /// output length units); removes it when the box is not set.
 void SetPeriodicBox(const mesolens::PeriodicBox& box, double length_scale, vtkPolyData* output);

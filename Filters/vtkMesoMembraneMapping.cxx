@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoMembraneMapping.h"
 
+#include "vtkMesoAtomTableConversion.h"
+
 #include "vtkMesoParallelFor.h"
 #include "vtkMesoSurfaceConversion.h"
 
@@ -165,21 +167,7 @@ void build_atoms(vtkPolyData* atoms, const PatchData& data, const mesolens::Mapp
   points->SetData(coordinates);
   output->SetPoints(points);
 
-  vtkNew<vtkIdTypeArray> vertex_offsets;
-  vtkNew<vtkIdTypeArray> vertex_ids;
-  vertex_offsets->SetNumberOfValues(total + 1);
-  vertex_ids->SetNumberOfValues(total);
-  for (vtkIdType i = 0; i <= total; ++i)
-  {
-    vertex_offsets->SetValue(i, i);
-    if (i < total)
-    {
-      vertex_ids->SetValue(i, i);
-    }
-  }
-  vtkNew<vtkCellArray> vertices;
-  vertices->SetData(vertex_offsets, vertex_ids);
-  output->SetVerts(vertices);
+  vtkMesoAtomTableConversion::SetAtomVertices(output);
   const vtkIdType bonds = static_cast<vtkIdType>(data.bonds.size());
   vtkNew<vtkIdTypeArray> line_offsets;
   vtkNew<vtkIdTypeArray> line_ids;

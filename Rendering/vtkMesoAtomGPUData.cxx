@@ -316,6 +316,12 @@ void vtkMesoAtomGPUData::UpdateTypes(vtkPolyData* atoms, vtkMapper* mapper)
 {
   vtkDataArray* numbers = atoms->GetPointData()->GetArray("AtomicNumber");
   vtkDataArray* scalars = color_array(atoms, mapper);
+  vtkScalarsToColors* table = scalars ? mapper->GetLookupTable() : nullptr;
+  if (table && !mapper->GetUseLookupTableScalarRange())
+  {
+    // Before the key: setting the range modifies the table, and so the mapper's time.
+    table->SetRange(mapper->GetScalarRange());
+  }
   // The same arrays, unchanged, under the same settings: the types stay (a new time step).
   const ArrayKey key{ numbers,
                       numbers ? numbers->GetMTime() : 0,
@@ -332,13 +338,8 @@ void vtkMesoAtomGPUData::UpdateTypes(vtkPolyData* atoms, vtkMapper* mapper)
   const vtkIdType n = this->AtomCount;
   this->Types.resize(2 * static_cast<std::size_t>(n));
   this->ColorTable.assign(4 * color_count, 0.6f);
-  if (scalars)
+  if (table)
   {
-    vtkScalarsToColors* table = mapper->GetLookupTable();
-    if (!mapper->GetUseLookupTableScalarRange())
-    {
-      table->SetRange(mapper->GetScalarRange());
-    }
     const double* range = table->GetRange();
     const double low = range[0];
     const double width = range[1] > range[0] ? range[1] - range[0] : 1.0;
@@ -526,6 +527,7 @@ bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp, vtkMapp
     return false;
   }
   this->WarpMethod = method;
+  ++this->WarpVersion;
   return true;
 }
 

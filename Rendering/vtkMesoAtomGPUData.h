@@ -60,7 +60,7 @@ public:
   std::vector<unsigned char> Types;          ///< 2 per atom
   std::vector<unsigned short> MoleculeSlots; ///< 1 per atom (instancing only)
   std::vector<unsigned int> Bonds;
-  unsigned long TypesVersion = 0; ///< counts recomputations of Types, MoleculeSlots excluded
+  unsigned long TypesVersion = 0; ///< counts recomputations of Types and ColorTable
   unsigned long BondsVersion = 0; ///< counts recomputations of Bonds           ///< 2 per bond
   std::vector<float> Radii;       ///< 128
   float BondRadius = 0;           ///< scene units
@@ -68,6 +68,7 @@ public:
 
   int WarpMethod = NONE;
   std::vector<float> WarpTexels; ///< RGBA texels
+  unsigned long WarpVersion = 0; ///< counts readings of the warp (WarpTexels, MoleculeSlots)
   float PatchOrigin[2] = { 0, 0 };
   float PatchToFractional[4] = { 1, 0, 0, 1 }; ///< column-major 2 x 2
   float PatchCentreHeight = 0;

@@ -66,11 +66,12 @@ struct TexelBuffer
 {
   vtkNew<vtkOpenGLBufferObject> Buffer;
   vtkNew<vtkTextureObject> Texture;
-  std::vector<float> Uploaded;
+  unsigned long UploadedVersion = 0; // the texels' version on the GPU, 0: none
 
-  void Upload(vtkOpenGLRenderWindow* window, const std::vector<float>& texels)
+  void Upload(vtkOpenGLRenderWindow* window, const std::vector<float>& texels,
+              unsigned long version)
   {
-    if (texels == this->Uploaded && this->Texture->GetHandle() != 0)
+    if (version == this->UploadedVersion && this->Texture->GetHandle() != 0)
     {
       return;
     }
@@ -79,14 +80,14 @@ struct TexelBuffer
     this->Buffer->Upload(texels, vtkOpenGLBufferObject::TextureBuffer);
     this->Texture->CreateTextureBuffer(static_cast<unsigned int>(texels.size() / 4), 4, VTK_FLOAT,
                                        this->Buffer);
-    this->Uploaded = texels;
+    this->UploadedVersion = version;
   }
 
   void Release(vtkWindow* window)
   {
     this->Texture->ReleaseGraphicsResources(window);
     this->Buffer->ReleaseGraphicsResources();
-    this->Uploaded.clear();
+    this->UploadedVersion = 0;
   }
 };
 } // namespace
@@ -101,8 +102,8 @@ struct vtkMesoAtomMapper::Internals
   vtkNew<vtkTextureObject> PositionTexture;
   vtkNew<vtkTextureObject> TypeTexture;
   vtkNew<vtkTextureObject> MoleculeTexture;
-  unsigned long UploadedTypes = 0; // TypesVersion on the GPU, 0: none
-  std::vector<unsigned short> UploadedMolecules;
+  unsigned long UploadedTypes = 0;     // TypesVersion on the GPU, 0: none
+  unsigned long UploadedMolecules = 0; // WarpVersion of the molecule slots on the GPU
   unsigned long UploadedBonds = 0;
   TexelBuffer Colors;
   TexelBuffer Warp;
@@ -110,8 +111,8 @@ struct vtkMesoAtomMapper::Internals
   vtkTimeStamp ShaderKeyTime; // the warp method changed
   int ShaderWarpMethod = -1;
   vtkIdType LastUploadBytes = 0;
-  double LargestRadius = 0;
-  vtkMTimeType LargestRadiusTime = 0;
+  double Bounds[6] = { 0, 0, 0, 0, 0, 0 }; // the last ComputeBounds
+  vtkMTimeType BoundsTime = 0;             // of the inputs and settings at this time
   Pass Current = Pass::Atoms;
   bool Inverted = false;
 };
@@ -194,10 +195,10 @@ void vtkMesoAtomMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*)
     in.UploadedTypes = data.TypesVersion;
     in.LastUploadBytes += static_cast<vtkIdType>(data.Types.size());
   }
-  if (!data.MoleculeSlots.empty() && data.MoleculeSlots != in.UploadedMolecules)
+  if (!data.MoleculeSlots.empty() && data.WarpVersion != in.UploadedMolecules)
   {
     in.Molecules->Upload(data.MoleculeSlots, vtkOpenGLBufferObject::ArrayBuffer);
-    in.UploadedMolecules = data.MoleculeSlots;
+    in.UploadedMolecules = data.WarpVersion;
     in.LastUploadBytes +=
       static_cast<vtkIdType>(sizeof(unsigned short) * data.MoleculeSlots.size());
   }
@@ -225,10 +226,10 @@ void vtkMesoAtomMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*)
   this->Primitives[PrimitiveTris].IBO->IndexCount = static_cast<size_t>(data.AtomCount);
   this->Primitives[PrimitivePoints].IBO->IndexCount = 0;
   this->Primitives[PrimitiveTriStrips].IBO->IndexCount = 0;
-  in.Colors.Upload(window, data.ColorTable);
+  in.Colors.Upload(window, data.ColorTable, data.TypesVersion);
   if (!data.WarpTexels.empty())
   {
-    in.Warp.Upload(window, data.WarpTexels);
+    in.Warp.Upload(window, data.WarpTexels, data.WarpVersion);
   }
   if (data.WarpMethod != in.ShaderWarpMethod)
   {
@@ -269,16 +270,12 @@ void vtkMesoAtomMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkShader*
                                  warp == vtkMesoAtomGPUData::POLYNOMIAL
                                    ? vtkMesoPolynomialWarpVS
                                    : vtkMesoMoleculeInstancingVS);
-    position = "vertexMC = vec4(warpedPosition(atomPosition, gl_InstanceID), 1.0);\n  " + position;
-    if (atoms && warp == vtkMesoAtomGPUData::MOLECULE_INSTANCING)
-    {
-      // The sphere pass pulls the molecule slot from its buffer like the rest of the atom.
-      vtkShaderProgram::Substitute(vertex, "in float atomMolecule;",
-                                   "uniform samplerBuffer atomMolecules; // R16\n"
-                                   "float atomMolecule;");
-      position =
-        "atomMolecule = floor(texelFetch(atomMolecules, atom).x * 65535.0 + 0.5);\n  " + position;
-    }
+    // Bonds read the molecule slot as an attribute, atoms pull it like the rest of the atom.
+    const std::string slot = warp != vtkMesoAtomGPUData::MOLECULE_INSTANCING ? "0.0"
+      : atoms ? "floor(texelFetch(atomMolecules, atom).x * 65535.0 + 0.5)"
+              : "atomMolecule";
+    position = "vertexMC = vec4(warpedPosition(atomPosition, " + slot +
+      ", gl_InstanceID), 1.0);\n  " + position;
   }
   vtkShaderProgram::Substitute(vertex, "//MESO::Warp::Impl", position);
   shaders[vtkShader::Vertex]->SetSource(vertex);
@@ -454,23 +451,29 @@ void vtkMesoAtomMapper::RenderPieceFinish(vtkRenderer* ren, vtkActor* act)
 
 void vtkMesoAtomMapper::ComputeBounds()
 {
-  this->Superclass::ComputeBounds();
-  // The largest radius takes a pass over the atoms: keep it while atoms and style stay.
+  // The padding (largest radius) and the warped tiles take passes over the atoms: keep the
+  // bounds while the atoms, the warp and the style stay (the renderer asks every frame).
   Internals& in = *this->Internal;
   vtkPolyData* atoms = this->GetInput();
+  vtkPolyData* warp = this->WarpInput();
+  const vtkMTimeType key =
+    std::max({ atoms ? atoms->GetMTime() : 0, this->GetMTime(), warp ? warp->GetMTime() : 0 });
+  if (atoms && key == in.BoundsTime)
+  {
+    std::copy(in.Bounds, in.Bounds + 6, this->Bounds);
+    return;
+  }
+  this->Superclass::ComputeBounds();
   if (!atoms)
   {
     return;
   }
-  const vtkMTimeType key = std::max(atoms->GetMTime(), this->GetMTime());
-  if (key != in.LargestRadiusTime)
-  {
-    vtkMesoAtomGPUData::Style style{ this->Style, this->RadiusScale, this->BallScale,
-                                     this->BondRadius };
-    in.LargestRadius = vtkMesoAtomGPUData::LargestRadius(atoms, style);
-    in.LargestRadiusTime = key;
-  }
-  vtkMesoAtomGPUData::PaddedBounds(atoms, this->WarpInput(), in.LargestRadius, this->Bounds);
+  vtkMesoAtomGPUData::Style style{ this->Style, this->RadiusScale, this->BallScale,
+                                   this->BondRadius };
+  vtkMesoAtomGPUData::PaddedBounds(atoms, warp, vtkMesoAtomGPUData::LargestRadius(atoms, style),
+                                   this->Bounds);
+  std::copy(this->Bounds, this->Bounds + 6, in.Bounds);
+  in.BoundsTime = key;
 }
 
 double vtkMesoAtomMapper::GetBufferBytesPerAtom() const
@@ -497,7 +500,7 @@ void vtkMesoAtomMapper::ReleaseGraphicsResources(vtkWindow* window)
   in.Types->ReleaseGraphicsResources();
   in.Molecules->ReleaseGraphicsResources();
   in.UploadedTypes = 0;
-  in.UploadedMolecules.clear();
+  in.UploadedMolecules = 0;
   in.UploadedBonds = 0;
   in.Colors.Release(window);
   in.PositionTexture->ReleaseGraphicsResources(window);

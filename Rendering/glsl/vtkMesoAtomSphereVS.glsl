@@ -11,6 +11,7 @@
 
 uniform samplerBuffer atomPositions; // RGB32F, the vertex buffer itself
 uniform samplerBuffer atomTypes;     // RG8: element, colour index (normalised)
+uniform samplerBuffer atomMolecules; // R16: molecule slot (normalised), molecule instancing only
 uniform samplerBuffer atomColorTable;
 uniform float atomRadii[128];
 uniform mat4 MCVCMatrix;

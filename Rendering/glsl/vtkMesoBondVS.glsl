@@ -6,6 +6,7 @@
 
 in vec3 atomPosition;
 in vec2 atomType; // (element, colour index)
+in float atomMolecule; // molecule slot, molecule instancing only
 
 uniform mat4 MCVCMatrix;
 uniform samplerBuffer atomColorTable;

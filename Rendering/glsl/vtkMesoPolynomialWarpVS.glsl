@@ -11,7 +11,7 @@ uniform vec4 patchToFractional; // the 2 x 2 inverse of the cell (a, b), column-
 uniform float patchCentreHeight;
 uniform float inverseLayerHalfThickness;
 
-vec3 warpedPosition(vec3 patchPosition, int tile)
+vec3 warpedPosition(vec3 patchPosition, float moleculeSlot, int tile) // slot unused
 {
   vec2 st = 2.0 * (mat2(patchToFractional) * (patchPosition.xy - patchOrigin)) - 1.0;
   float h = (patchPosition.z - patchCentreHeight) * inverseLayerHalfThickness;

@@ -11,6 +11,7 @@
 // by side, a real membrane's density. Each frame turns the camera a little; times are medians.
 #include "vtkMesoAtomMapper.h"
 #include "vtkMesoAtomProperties.h"
+#include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoElementLookupTable.h"
 #include "vtkMesoMembraneMapping.h"
 #include "vtkMesoMeshReader.h"
@@ -20,10 +21,8 @@
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
-#include <vtkCellArray.h>
 #include <vtkExecutive.h>
 #include <vtkFloatArray.h>
-#include <vtkIdTypeArray.h>
 #include <vtkNew.h>
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLRenderer.h>
@@ -86,21 +85,7 @@ vtkSmartPointer<vtkPolyData> membrane_atoms(vtkPolyData* patch, vtkIdType count)
   vtkNew<vtkPoints> points;
   points->SetData(coordinates);
   atoms->SetPoints(points);
-  vtkNew<vtkIdTypeArray> offsets;
-  vtkNew<vtkIdTypeArray> ids;
-  offsets->SetNumberOfValues(count + 1);
-  ids->SetNumberOfValues(count);
-  for (vtkIdType i = 0; i <= count; ++i)
-  {
-    offsets->SetValue(i, i);
-    if (i < count)
-    {
-      ids->SetValue(i, i);
-    }
-  }
-  vtkNew<vtkCellArray> vertices;
-  vertices->SetData(offsets, ids);
-  atoms->SetVerts(vertices);
+  vtkMesoAtomTableConversion::SetAtomVertices(atoms);
   atoms->GetPointData()->AddArray(numbers);
   return atoms;
 }

@@ -329,7 +329,6 @@ TEST(MesoAtomMapper, EmptyInputDrawsNothing)
 {
   vtkNew<vtkPolyData> empty;
   Scene scene = make_scene(empty, vtkMesoAtomMapper::BALL_AND_STICK);
-  mesolens_test::EventRecorder events(scene.Mapper);
   scene.Window->Render();
   EXPECT_FALSE(drew_something(scene.Window));
   EXPECT_EQ(scene.Mapper->GetBufferBytesPerAtom(), 0.0);

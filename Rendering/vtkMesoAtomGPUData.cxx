@@ -231,6 +231,9 @@ void vtkMesoAtomGPUData::Clear()
   this->TileCount = 1;
   this->PositionData = nullptr;
   this->PositionStorage.clear();
+  this->Cells = {};
+  this->SlotOfAtom.clear();
+  this->CellBoxes.clear();
   this->Types.clear();
   this->MoleculeSlots.clear();
   this->Bonds.clear();
@@ -241,7 +244,7 @@ void vtkMesoAtomGPUData::Clear()
 }
 
 bool vtkMesoAtomGPUData::Update(vtkPolyData* atoms, vtkPolyData* warp, const Style& style,
-                                vtkMapper* mapper)
+                                vtkMapper* mapper, std::size_t atoms_per_cell)
 {
   this->Radii = StyleRadii(style);
   this->BondRadius = static_cast<float>(style.BondRadius * style.RadiusScale);
@@ -262,12 +265,19 @@ bool vtkMesoAtomGPUData::Update(vtkPolyData* atoms, vtkPolyData* warp, const Sty
     return false;
   }
   this->AtomCount = n;
-  if (!this->UpdatePositions(atoms, mapper) || !this->UpdateBonds(atoms, mapper))
+  if (!this->UpdatePositions(atoms, mapper, warp ? 0 : atoms_per_cell) ||
+      !this->UpdateBonds(atoms, mapper))
   {
     this->Clear();
     return false;
   }
   this->UpdateTypes(atoms, mapper);
+  this->LargestPresentRadius = 0;
+  for (std::size_t z = 0; z < this->ElementPresent.size(); ++z)
+  {
+    this->LargestPresentRadius =
+      std::max(this->LargestPresentRadius, this->ElementPresent[z] ? this->Radii[z] : 0.0f);
+  }
   if (warp && !this->ReadWarp(atoms, warp, mapper))
   {
     this->Clear();
@@ -276,39 +286,85 @@ bool vtkMesoAtomGPUData::Update(vtkPolyData* atoms, vtkPolyData* warp, const Sty
   return true;
 }
 
-bool vtkMesoAtomGPUData::UpdatePositions(vtkPolyData* atoms, vtkMapper* mapper)
+bool vtkMesoAtomGPUData::UpdatePositions(vtkPolyData* atoms, vtkMapper* mapper,
+                                         std::size_t atoms_per_cell)
 {
-  // Float coordinates go up as they are; others are converted once.
+  // Float coordinates go up as they are (when not regrouped); others are converted once.
   vtkDataArray* coordinates = atoms->GetPoints()->GetData();
   const std::size_t values = 3 * static_cast<std::size_t>(this->AtomCount);
+  const float* input = nullptr;
+  std::vector<float> converted;
   if (auto* floats = vtkFloatArray::FastDownCast(coordinates))
   {
-    this->PositionStorage.clear();
-    this->PositionData = floats->GetPointer(0);
+    input = floats->GetPointer(0);
   }
   else
   {
-    this->PositionStorage.resize(values);
+    converted.resize(values);
     for (vtkIdType i = 0; i < this->AtomCount; ++i)
     {
       double p[3];
       coordinates->GetTuple(i, p);
       for (int d = 0; d < 3; ++d)
       {
-        this->PositionStorage[std::size_t(3 * i + d)] = static_cast<float>(p[d]);
+        converted[std::size_t(3 * i + d)] = static_cast<float>(p[d]);
       }
     }
-    this->PositionData = this->PositionStorage.data();
+    input = converted.data();
   }
   for (std::size_t i = 0; i < values; ++i)
   {
-    if (!std::isfinite(this->PositionData[i]))
+    if (!std::isfinite(input[i]))
     {
       vtkErrorWithObjectMacro(
         mapper, "Cannot draw the atoms: atom " << i / 3 << " has a non-finite position");
       return false;
     }
   }
+  if (atoms_per_cell == 0)
+  {
+    this->Cells = {};
+    this->SlotOfAtom.clear();
+    this->CellBoxes.clear();
+    if (converted.empty())
+    {
+      this->PositionStorage.clear();
+      this->PositionData = input;
+    }
+    else
+    {
+      this->PositionStorage = std::move(converted);
+      this->PositionData = this->PositionStorage.data();
+    }
+    return true;
+  }
+  // New cells for new atoms, or when a trajectory's atoms have spread their cells by half.
+  const auto n = static_cast<std::size_t>(this->AtomCount);
+  this->PositionStorage.resize(values);
+  bool regroup = this->Cells.atom_of_slot.size() != n;
+  if (!regroup)
+  {
+    mesolens::gather_cell_positions(input, this->Cells, this->PositionStorage.data(),
+                                    this->CellBoxes);
+    regroup = mesolens::total_cell_diagonal(this->CellBoxes) > 1.5 * this->GroupedDiagonal;
+  }
+  if (regroup)
+  {
+    this->Cells = mesolens::group_atoms_into_cells(input, n, atoms_per_cell);
+    this->SlotOfAtom.resize(n);
+    for (std::size_t slot = 0; slot < n; ++slot)
+    {
+      this->SlotOfAtom[this->Cells.atom_of_slot[slot]] = static_cast<std::uint32_t>(slot);
+    }
+    mesolens::gather_cell_positions(input, this->Cells, this->PositionStorage.data(),
+                                    this->CellBoxes);
+    this->GroupedDiagonal = mesolens::total_cell_diagonal(this->CellBoxes);
+    ++this->CellsVersion;
+    // The per-atom tables follow the new slot order.
+    this->TypesKey = {};
+    this->BondsKey = {};
+  }
+  this->PositionData = this->PositionStorage.data();
   return true;
 }
 
@@ -337,6 +393,7 @@ void vtkMesoAtomGPUData::UpdateTypes(vtkPolyData* atoms, vtkMapper* mapper)
   ++this->TypesVersion;
   const vtkIdType n = this->AtomCount;
   this->Types.resize(2 * static_cast<std::size_t>(n));
+  this->ElementPresent.assign(element_count, false);
   this->ColorTable.assign(4 * color_count, 0.6f);
   if (table)
   {
@@ -364,8 +421,11 @@ void vtkMesoAtomGPUData::UpdateTypes(vtkPolyData* atoms, vtkMapper* mapper)
         bin = static_cast<int>(
           std::clamp((value - low) / width * (color_count - 1), 0.0, double(color_count - 2)));
       }
-      this->Types[std::size_t(2 * i)] = static_cast<unsigned char>(element_of(numbers, i));
-      this->Types[std::size_t(2 * i + 1)] = static_cast<unsigned char>(bin);
+      const std::size_t slot = this->SlotOf(i);
+      const int z = element_of(numbers, i);
+      this->ElementPresent[std::size_t(z)] = true;
+      this->Types[2 * slot] = static_cast<unsigned char>(z);
+      this->Types[2 * slot + 1] = static_cast<unsigned char>(bin);
     }
     return;
   }
@@ -381,9 +441,11 @@ void vtkMesoAtomGPUData::UpdateTypes(vtkPolyData* atoms, vtkMapper* mapper)
   }
   for (vtkIdType i = 0; i < n; ++i)
   {
+    const std::size_t slot = this->SlotOf(i);
     const auto z = static_cast<unsigned char>(element_of(numbers, i));
-    this->Types[std::size_t(2 * i)] = z;
-    this->Types[std::size_t(2 * i + 1)] = z;
+    this->ElementPresent[z] = true;
+    this->Types[2 * slot] = z;
+    this->Types[2 * slot + 1] = z;
   }
 }
 
@@ -419,8 +481,8 @@ bool vtkMesoAtomGPUData::UpdateBonds(vtkPolyData* atoms, vtkMapper* mapper)
                                   << std::max(ids[k], ids[k + 1]) << " of " << n);
         return false;
       }
-      this->Bonds.push_back(static_cast<unsigned int>(ids[k]));
-      this->Bonds.push_back(static_cast<unsigned int>(ids[k + 1]));
+      this->Bonds.push_back(static_cast<unsigned int>(this->SlotOf(ids[k])));
+      this->Bonds.push_back(static_cast<unsigned int>(this->SlotOf(ids[k + 1])));
     }
   }
   return true;

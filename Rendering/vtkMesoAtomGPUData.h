@@ -8,12 +8,19 @@
  * Tables: 128 radii (scene units, by element), 256 RGBA colours (elements 0..127, or 255 steps
  * of a lookup table plus its NaN colour at 255). Warp: the per-tile polynomial (10 texels per
  * tile) or the per-molecule rigid motions (3 texels each) and the patch frame uniforms.
+ *
+ * For occlusion culling the atoms may be grouped into spatial cells (GroupIntoCells): then
+ * every per-atom buffer and the bond indices are in "slot" order, the atoms of each cell
+ * adjacent (mesolens::AtomCells), and CellBoxes holds each cell's box of atom centres.
  */
 #ifndef vtkMesoAtomGPUData_h
 #define vtkMesoAtomGPUData_h
 
+#include "mesolens/atom_cells.h"
+
 #include <vtkType.h>
 
+#include <cstdint>
 #include <vector>
 
 class vtkMapper;
@@ -40,9 +47,12 @@ public:
   };
 
   /// Recomputes everything from the atoms, the optional warp input and the mapper's colouring
-  /// settings. Returns false, with an error reported on `mapper` and AtomCount 0, for inputs it
-  /// cannot draw.
-  bool Update(vtkPolyData* atoms, vtkPolyData* warp, const Style& style, vtkMapper* mapper);
+  /// settings. With `atoms_per_cell` > 0 and no warp, the atoms are grouped into cells of about
+  /// that many atoms (kept for new positions of the same atoms while the cells stay compact).
+  /// Returns false, with an error reported on `mapper` and AtomCount 0, for inputs it cannot
+  /// draw.
+  bool Update(vtkPolyData* atoms, vtkPolyData* warp, const Style& style, vtkMapper* mapper,
+              std::size_t atoms_per_cell = 0);
 
   /// Bounds of what is drawn (warped tiles in warp mode), padded by `pad`. Leaves `bounds` as
   /// it is when there is nothing to draw.
@@ -57,6 +67,11 @@ public:
   vtkIdType AtomCount = 0;
   vtkIdType TileCount = 1;
   const float* PositionData = nullptr;       ///< 3 per atom (the input's, or PositionStorage)
+  mesolens::AtomCells Cells;                 ///< empty: not grouped, slot = input index
+  std::vector<std::uint32_t> SlotOfAtom;     ///< input index -> slot (grouped only)
+  std::vector<float> CellBoxes;              ///< 6 per cell: box of the atom centres
+  unsigned long CellsVersion = 0;            ///< counts groupings (SlotOfAtom changes)
+  float LargestPresentRadius = 0;            ///< of the elements present, scene units
   std::vector<unsigned char> Types;          ///< 2 per atom
   std::vector<unsigned short> MoleculeSlots; ///< 1 per atom (instancing only)
   std::vector<unsigned int> Bonds;
@@ -93,13 +108,21 @@ private:
     }
   };
 
-  bool UpdatePositions(vtkPolyData* atoms, vtkMapper* mapper);
+  /// Where atom `atom` of the input is in the buffers.
+  std::size_t SlotOf(vtkIdType atom) const
+  {
+    return this->SlotOfAtom.empty() ? static_cast<std::size_t>(atom)
+                                    : this->SlotOfAtom[static_cast<std::size_t>(atom)];
+  }
+  bool UpdatePositions(vtkPolyData* atoms, vtkMapper* mapper, std::size_t atoms_per_cell);
   void UpdateTypes(vtkPolyData* atoms, vtkMapper* mapper);
   bool UpdateBonds(vtkPolyData* atoms, vtkMapper* mapper);
   bool ReadWarp(vtkPolyData* atoms, vtkPolyData* warp, vtkMapper* mapper);
   void Clear();
 
   std::vector<float> PositionStorage;
+  std::vector<bool> ElementPresent;
+  double GroupedDiagonal = 0; ///< total_cell_diagonal when the cells were made
   ArrayKey TypesKey;
   ArrayKey BondsKey;
 };

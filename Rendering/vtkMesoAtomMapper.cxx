@@ -11,10 +11,17 @@
 #include "vtkMesoBondCylinderFSImpl.h"
 #include "vtkMesoBondCylinderGS.h"
 #include "vtkMesoBondVS.h"
+#include "vtkMesoCellBoxFS.h"
+#include "vtkMesoCellBoxVS.h"
 #include "vtkMesoMoleculeInstancingVS.h"
 #include "vtkMesoPolynomialWarpVS.h"
 
-#include <vtkActor.h>
+#include "mesolens/atom_cells.h"
+
+#include <vtkHardwareSelector.h>
+#include <vtkOpenGLActor.h>
+#include <vtkOpenGLShaderCache.h>
+#include <vtkOpenGLState.h>
 #include <vtkAlgorithmOutput.h>
 #include <vtkExecutive.h>
 #include <vtkInformation.h>
@@ -35,6 +42,8 @@
 #include <vtk_glew.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <unordered_map>
 
 vtkStandardNewMacro(vtkMesoAtomMapper);
 
@@ -44,6 +53,10 @@ enum class Pass
   Atoms,
   Bonds
 };
+
+/// With automatic cells, inputs smaller than this are drawn whole: culling would not pay for its
+/// queries.
+constexpr vtkIdType minimum_culled_atoms = 8192;
 
 void set_uniform_int(vtkShaderProgram* program, const char* name, int value)
 {
@@ -92,6 +105,14 @@ struct TexelBuffer
 };
 } // namespace
 
+/// Which cells a camera saw in its last frame.
+struct CellHistory
+{
+  unsigned long CellsVersion = 0;
+  bool Known = false;
+  std::vector<unsigned char> Visible; // per cell
+};
+
 struct vtkMesoAtomMapper::Internals
 {
   vtkMesoAtomGPUData Data;
@@ -107,6 +128,84 @@ struct vtkMesoAtomMapper::Internals
   unsigned long UploadedBonds = 0;
   TexelBuffer Colors;
   TexelBuffer Warp;
+  TexelBuffer CellBoxes;                // 2 texels per cell: min, max corner
+  unsigned long CellBoxesVersion = 0;   // counts position updates of grouped atoms
+  std::vector<unsigned int> Queries;    // one occlusion query per cell of a wave
+  vtkNew<vtkOpenGLBufferObject> Slots;  // picking: the slot of each input atom
+  vtkNew<vtkTextureObject> SlotTexture; // ... as an R32UI texture buffer
+  unsigned long UploadedSlots = 0;      // CellsVersion of the slots on the GPU, 0: none
+  vtkIdType LastDrawnAtoms = 0;
+  // Keyed by camera: only compared, never dereferenced (a stale entry costs time, not pixels).
+  std::unordered_map<const vtkCamera*, CellHistory> Histories;
+
+  CellHistory& History(const vtkCamera* camera, unsigned long version, std::size_t cells)
+  {
+    if (this->Histories.size() > 16 && !this->Histories.count(camera))
+    {
+      this->Histories.clear();
+    }
+    CellHistory& history = this->Histories[camera];
+    if (history.CellsVersion != version || history.Visible.size() != cells)
+    {
+      history = CellHistory{ version, false, std::vector<unsigned char>(cells, 0) };
+    }
+    return history;
+  }
+
+  void ReserveQueries(std::size_t count)
+  {
+    if (this->Queries.size() < count)
+    {
+      const std::size_t old = this->Queries.size();
+      this->Queries.resize(count);
+      glGenQueries(static_cast<GLsizei>(count - old), this->Queries.data() + old);
+    }
+  }
+
+  /// The cells `cells[tested[...]]` whose boxes (grown by `padding`) pass the depth test
+  /// somewhere; nothing is written to the framebuffer.
+  std::vector<std::uint32_t> TestBoxes(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc,
+                                       double padding,
+                                       const std::vector<mesolens::CellInView>& cells,
+                                       const std::vector<std::size_t>& tested)
+  {
+    std::vector<std::uint32_t> visible;
+    if (tested.empty())
+    {
+      return visible;
+    }
+    this->ReserveQueries(tested.size());
+    {
+      vtkOpenGLState* state = window->GetState();
+      vtkOpenGLState::ScopedglColorMask colors(state);
+      vtkOpenGLState::ScopedglDepthMask depths(state);
+      vtkOpenGLState::ScopedglEnableDisable culling(state, GL_CULL_FACE);
+      state->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+      state->vtkglDepthMask(GL_FALSE);
+      state->vtkglDisable(GL_CULL_FACE);
+      vtkShaderProgram* boxes =
+        window->GetShaderCache()->ReadyShaderProgram(vtkMesoCellBoxVS, vtkMesoCellBoxFS, "");
+      boxes->SetUniformMatrix("MCDCMatrix", mcdc);
+      boxes->SetUniformf("cellPadding", static_cast<float>(padding));
+      boxes->SetUniformi("cellBoxes", this->CellBoxes.Texture->GetTextureUnit());
+      for (std::size_t q = 0; q < tested.size(); ++q)
+      {
+        glBeginQuery(GL_SAMPLES_PASSED, this->Queries[q]);
+        glDrawArrays(GL_TRIANGLES, static_cast<GLint>(36 * cells[tested[q]].cell), 36);
+        glEndQuery(GL_SAMPLES_PASSED);
+      }
+    }
+    for (std::size_t q = 0; q < tested.size(); ++q)
+    {
+      GLuint samples = 0;
+      glGetQueryObjectuiv(this->Queries[q], GL_QUERY_RESULT, &samples);
+      if (samples > 0)
+      {
+        visible.push_back(cells[tested[q]].cell);
+      }
+    }
+    return visible;
+  }
   vtkTimeStamp BufferTime;    // the buffers behind the vertex attributes changed
   vtkTimeStamp ShaderKeyTime; // the warp method changed
   int ShaderWarpMethod = -1;
@@ -178,7 +277,17 @@ void vtkMesoAtomMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*)
   in.LastUploadBytes = 0;
   vtkMesoAtomGPUData::Style style{ this->Style, this->RadiusScale, this->BallScale,
                                    this->BondRadius };
-  if (!in.Data.Update(this->CurrentInput, this->WarpInput(), style, this))
+  std::size_t atoms_per_cell = 0;
+  const vtkIdType input_atoms = this->CurrentInput ? this->CurrentInput->GetNumberOfPoints() : 0;
+  if (this->OcclusionCulling && this->AtomsPerCell > 0)
+  {
+    atoms_per_cell = static_cast<std::size_t>(this->AtomsPerCell);
+  }
+  else if (this->OcclusionCulling && input_atoms >= minimum_culled_atoms)
+  {
+    atoms_per_cell = static_cast<std::size_t>(std::clamp<vtkIdType>(input_atoms / 1024, 256, 2048));
+  }
+  if (!in.Data.Update(this->CurrentInput, this->WarpInput(), style, this, atoms_per_cell))
   {
     this->VBOBuildTime.Modified();
     return;
@@ -227,6 +336,16 @@ void vtkMesoAtomMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*)
   this->Primitives[PrimitivePoints].IBO->IndexCount = 0;
   this->Primitives[PrimitiveTriStrips].IBO->IndexCount = 0;
   in.Colors.Upload(window, data.ColorTable, data.TypesVersion);
+  if (!data.CellBoxes.empty())
+  {
+    std::vector<float> texels(8 * data.Cells.cell_count(), 0.0f);
+    for (std::size_t c = 0; c < data.Cells.cell_count(); ++c)
+    {
+      std::copy_n(&data.CellBoxes[6 * c], 3, &texels[8 * c]);
+      std::copy_n(&data.CellBoxes[6 * c + 3], 3, &texels[8 * c + 4]);
+    }
+    in.CellBoxes.Upload(window, texels, ++in.CellBoxesVersion);
+  }
   if (!data.WarpTexels.empty())
   {
     in.Warp.Upload(window, data.WarpTexels, data.WarpVersion);
@@ -272,12 +391,20 @@ void vtkMesoAtomMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkShader*
                                    : vtkMesoMoleculeInstancingVS);
     // Bonds read the molecule slot as an attribute, atoms pull it like the rest of the atom.
     const std::string slot = warp != vtkMesoAtomGPUData::MOLECULE_INSTANCING ? "0.0"
-      : atoms ? "floor(texelFetch(atomMolecules, atom).x * 65535.0 + 0.5)"
+      : atoms ? "floor(texelFetch(atomMolecules, slot).x * 65535.0 + 0.5)"
               : "atomMolecule";
     position = "vertexMC = vec4(warpedPosition(atomPosition, " + slot +
       ", gl_InstanceID), 1.0);\n  " + position;
   }
   vtkShaderProgram::Substitute(vertex, "//MESO::Warp::Impl", position);
+  // Picking draws the atoms in input order: each finds its slot in the cell order.
+  if (atoms && ren->GetSelector() && !this->Internal->Data.Cells.cell_start.empty())
+  {
+    vtkShaderProgram::Substitute(vertex, "//MESO::AtomSlot::Dec",
+                                 "uniform usamplerBuffer atomSlots;");
+    vtkShaderProgram::Substitute(vertex, "//MESO::AtomSlot::Impl",
+                                 "slot = int(texelFetch(atomSlots, atom).r);");
+  }
   shaders[vtkShader::Vertex]->SetSource(vertex);
 
   std::string fragment = shaders[vtkShader::Fragment]->GetSource();
@@ -358,6 +485,10 @@ void vtkMesoAtomMapper::SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRe
   {
     set_uniform_int(program, "atomPositions", in.PositionTexture->GetTextureUnit());
     set_uniform_int(program, "atomTypes", in.TypeTexture->GetTextureUnit());
+    if (program->IsUniformUsed("atomSlots"))
+    {
+      program->SetUniformi("atomSlots", in.SlotTexture->GetTextureUnit());
+    }
     if (data.WarpMethod == vtkMesoAtomGPUData::MOLECULE_INSTANCING)
     {
       set_uniform_int(program, "atomMolecules", in.MoleculeTexture->GetTextureUnit());
@@ -410,11 +541,44 @@ void vtkMesoAtomMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   {
     in.MoleculeTexture->Activate();
   }
+  const bool grouped = !data.Cells.cell_start.empty();
+  const bool picking = ren->GetSelector() != nullptr;
+  if (grouped && picking)
+  {
+    if (in.UploadedSlots != data.CellsVersion || in.SlotTexture->GetHandle() == 0)
+    {
+      in.Slots->Upload(data.SlotOfAtom, vtkOpenGLBufferObject::TextureBuffer);
+      in.SlotTexture->SetContext(static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow()));
+      // Integer texels: VTK would pick a float format for VTK_UNSIGNED_INT.
+      in.SlotTexture->SetInternalFormat(GL_R32UI);
+      in.SlotTexture->CreateTextureBuffer(static_cast<unsigned int>(data.AtomCount), 1,
+                                          VTK_UNSIGNED_INT, in.Slots);
+      in.UploadedSlots = data.CellsVersion;
+    }
+    in.SlotTexture->Activate();
+  }
+  else if (in.UploadedSlots != 0)
+  {
+    // The slot table is for picking only.
+    in.SlotTexture->ReleaseGraphicsResources(ren->GetRenderWindow());
+    in.Slots->ReleaseGraphicsResources();
+    in.UploadedSlots = 0;
+  }
 
   in.Current = Pass::Atoms;
   this->PrimitiveIDOffset = 0;
-  this->UpdateShaders(this->Primitives[PrimitiveTris], ren, act);
-  glDrawArraysInstanced(GL_TRIANGLES, 0, static_cast<GLsizei>(3 * data.AtomCount), instances);
+  vtkOpenGLHelper& spheres = this->Primitives[PrimitiveTris];
+  this->UpdateShaders(spheres, ren, act);
+  const bool translucent = act->GetProperty()->GetOpacity() < 1.0;
+  if (grouped && this->OcclusionCulling && !picking && !translucent)
+  {
+    this->DrawVisibleCells(ren, act, spheres.Program);
+  }
+  else
+  {
+    glDrawArraysInstanced(GL_TRIANGLES, 0, static_cast<GLsizei>(3 * data.AtomCount), instances);
+    in.LastDrawnAtoms = data.AtomCount * data.TileCount;
+  }
 
   vtkOpenGLHelper& bonds = this->Primitives[PrimitiveLines];
   if (this->Style != SPACE_FILLING && bonds.IBO->IndexCount > 0)
@@ -431,6 +595,127 @@ void vtkMesoAtomMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   }
 }
 
+void vtkMesoAtomMapper::DrawVisibleCells(vtkRenderer* ren, vtkActor* act, vtkShaderProgram* spheres)
+{
+  Internals& in = *this->Internal;
+  const vtkMesoAtomGPUData& data = in.Data;
+  auto* window = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  vtkOpenGLShaderCache* programs = window->GetShaderCache();
+
+  // Model to clip coordinates, as the shaders see it (VTK keeps its matrices transposed).
+  vtkMatrix4x4* wcvc = nullptr;
+  vtkMatrix3x3* normals = nullptr;
+  vtkMatrix4x4* vcdc = nullptr;
+  vtkMatrix4x4* wcdc = nullptr;
+  vtkCamera* camera = ren->GetActiveCamera();
+  static_cast<vtkOpenGLCamera*>(camera)->GetKeyMatrices(ren, wcvc, normals, vcdc, wcdc);
+  vtkNew<vtkMatrix4x4> mcdc;
+  mcdc->DeepCopy(wcdc);
+  if (!act->GetIsIdentity())
+  {
+    vtkMatrix4x4* mcwc = nullptr;
+    vtkMatrix3x3* actor_normals = nullptr;
+    static_cast<vtkOpenGLActor*>(act)->GetKeyMatrices(mcwc, actor_normals);
+    vtkMatrix4x4::Multiply4x4(mcwc, wcdc, mcdc);
+  }
+  double model_to_clip[16];
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      model_to_clip[4 * r + c] = mcdc->GetElement(c, r);
+    }
+  }
+  const double padding = 1.01 * data.LargestPresentRadius;
+  const std::vector<mesolens::CellInView> cells =
+    mesolens::cells_in_view(data.CellBoxes, padding, model_to_clip);
+
+  // What each camera saw last time (the shadow pass's light camera sees other cells).
+  CellHistory& history = in.History(camera, data.CellsVersion, data.Cells.cell_count());
+  const bool known = history.Known;
+  in.CellBoxes.Texture->Activate();
+  in.LastDrawnAtoms = 0;
+  std::vector<std::size_t> tested;
+  std::vector<std::size_t> drawn;
+  auto draw_cell = [&](std::uint32_t cell) {
+    const std::uint32_t first = data.Cells.cell_start[cell];
+    const std::uint32_t count = data.Cells.cell_start[cell + 1] - first;
+    glDrawArrays(GL_TRIANGLES, static_cast<GLint>(3 * first), static_cast<GLsizei>(3 * count));
+    in.LastDrawnAtoms += count;
+  };
+
+  if (known)
+  {
+    // The cells seen last time first, each inside a query: one that draws no fragment is hidden
+    // by nearer ones and will be tested, not drawn, next time.
+    for (std::size_t k = 0; k < cells.size(); ++k)
+    {
+      if (cells[k].must_draw || history.Visible[cells[k].cell])
+      {
+        drawn.push_back(k);
+      }
+      else
+      {
+        tested.push_back(k);
+      }
+    }
+    in.ReserveQueries(drawn.size());
+    programs->ReadyShaderProgram(spheres);
+    for (std::size_t q = 0; q < drawn.size(); ++q)
+    {
+      glBeginQuery(GL_SAMPLES_PASSED, in.Queries[q]);
+      draw_cell(cells[drawn[q]].cell);
+      glEndQuery(GL_SAMPLES_PASSED);
+    }
+    std::fill(history.Visible.begin(), history.Visible.end(), 0);
+    for (std::size_t q = 0; q < drawn.size(); ++q)
+    {
+      GLuint samples = 0;
+      glGetQueryObjectuiv(in.Queries[q], GL_QUERY_RESULT, &samples);
+      history.Visible[cells[drawn[q]].cell] = samples > 0 ? 1 : 0;
+    }
+    // Then the others whose boxes show past that depth.
+    for (std::uint32_t cell : in.TestBoxes(window, mcdc, padding, cells, tested))
+    {
+      programs->ReadyShaderProgram(spheres);
+      draw_cell(cell);
+      history.Visible[cell] = 1;
+    }
+  }
+  else
+  {
+    // No history: waves, nearest first, doubling in size; each wave's boxes are tested against
+    // the depth of the waves before it.
+    std::fill(history.Visible.begin(), history.Visible.end(), 0);
+    std::size_t wave = std::max<std::size_t>(8, cells.size() / 32);
+    for (std::size_t begin = 0; begin < cells.size(); begin += wave, wave *= 2)
+    {
+      tested.clear();
+      for (std::size_t k = begin; k < std::min(cells.size(), begin + wave); ++k)
+      {
+        if (cells[k].must_draw)
+        {
+          programs->ReadyShaderProgram(spheres);
+          draw_cell(cells[k].cell);
+          history.Visible[cells[k].cell] = 1;
+        }
+        else
+        {
+          tested.push_back(k);
+        }
+      }
+      for (std::uint32_t cell : in.TestBoxes(window, mcdc, padding, cells, tested))
+      {
+        programs->ReadyShaderProgram(spheres);
+        draw_cell(cell);
+        history.Visible[cell] = 1;
+      }
+    }
+    history.Known = true;
+  }
+  programs->ReadyShaderProgram(spheres);
+}
+
 void vtkMesoAtomMapper::RenderPieceFinish(vtkRenderer* ren, vtkActor* act)
 {
   Internals& in = *this->Internal;
@@ -438,8 +723,9 @@ void vtkMesoAtomMapper::RenderPieceFinish(vtkRenderer* ren, vtkActor* act)
   {
     in.Colors.Texture->Deactivate();
   }
-  for (vtkTextureObject* texture : { in.Warp.Texture.Get(), in.PositionTexture.Get(),
-                                     in.TypeTexture.Get(), in.MoleculeTexture.Get() })
+  for (vtkTextureObject* texture :
+       { in.Warp.Texture.Get(), in.PositionTexture.Get(), in.TypeTexture.Get(),
+         in.MoleculeTexture.Get(), in.CellBoxes.Texture.Get(), in.SlotTexture.Get() })
   {
     if (texture->GetHandle() != 0)
     {
@@ -488,6 +774,11 @@ double vtkMesoAtomMapper::GetBufferBytesPerAtom() const
   return bytes / static_cast<double>(data.AtomCount);
 }
 
+vtkIdType vtkMesoAtomMapper::GetLastDrawnAtomCount() const
+{
+  return this->Internal->LastDrawnAtoms;
+}
+
 vtkIdType vtkMesoAtomMapper::GetLastUploadBytes() const
 {
   return this->Internal->LastUploadBytes;
@@ -507,6 +798,20 @@ void vtkMesoAtomMapper::ReleaseGraphicsResources(vtkWindow* window)
   in.TypeTexture->ReleaseGraphicsResources(window);
   in.MoleculeTexture->ReleaseGraphicsResources(window);
   in.Warp.Release(window);
+  in.CellBoxes.Release(window);
+  in.SlotTexture->ReleaseGraphicsResources(window);
+  in.Slots->ReleaseGraphicsResources();
+  in.UploadedSlots = 0;
+  if (!in.Queries.empty())
+  {
+    // Query objects belong to the context of the window being released.
+    if (auto* context = vtkOpenGLRenderWindow::SafeDownCast(window))
+    {
+      context->MakeCurrent();
+      glDeleteQueries(static_cast<GLsizei>(in.Queries.size()), in.Queries.data());
+    }
+    in.Queries.clear();
+  }
   this->Superclass::ReleaseGraphicsResources(window);
 }
 
@@ -518,5 +823,7 @@ void vtkMesoAtomMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RadiusScale: " << this->RadiusScale << "\n";
   os << indent << "BallScale: " << this->BallScale << "\n";
   os << indent << "BondRadius: " << this->BondRadius << "\n";
+  os << indent << "OcclusionCulling: " << (this->OcclusionCulling ? "on" : "off") << "\n";
+  os << indent << "AtomsPerCell: " << this->AtomsPerCell << "\n";
   os << indent << "Warp: " << (this->GetNumberOfInputConnections(1) ? "connected" : "none") << "\n";
 }

@@ -44,6 +44,18 @@
  * DISPLACEMENT has no GPU form: map the atoms on the CPU (OutputAtoms on) and draw its output.
  * Radii stay in RadiusScale x Å: set RadiusScale to the mapping's MembraneToMeshScale.
  *
+ * Occlusion culling (OcclusionCulling, on by default; for inputs of at least 8192 atoms, or any
+ * input when AtomsPerCell is set, drawn without a warp): the atoms are grouped once into compact
+ * spatial cells of about AtomsPerCell atoms (their buffers are kept in cell order). Each frame,
+ * cells outside the view are skipped and the others are drawn nearest first in a few waves; before
+ * each wave, the box of every cell in it is tested against the depth drawn so far (an occlusion
+ * query, no colour or depth written) and hidden cells are skipped (after Grottel et al., EuroVis
+ * 2010). The picture does not change: a skipped cell has no visible pixel. Translucent atoms,
+ * picking and warped membranes draw every atom. For a new time step the cells stay while the atoms
+ * stay near them (they are regrouped when the boxes have grown by half). Picking draws the atoms in
+ * input order through a table of their cell-order slots (4 bytes per atom, uploaded for the pick
+ * and released at the next plain frame).
+ *
  * VTK 9.1's vtkSSAOPass draws black in a renderer whose viewport does not start at the window's
  * origin (with any mapper, VTK's sphere mapper too): give ambient occlusion to the renderer at
  * the lower left, or to a renderer that fills the window.
@@ -119,6 +131,24 @@ public:
   /// nullptr: draw the input's atoms where they are (default).
   void SetWarpConnection(vtkAlgorithmOutput* output);
 
+  ///@{
+  /// Skip cells of atoms that are out of view or hidden (see above). Default on.
+  vtkSetMacro(OcclusionCulling, bool);
+  vtkGetMacro(OcclusionCulling, bool);
+  vtkBooleanMacro(OcclusionCulling, bool);
+  ///@}
+
+  ///@{
+  /// Atoms per culling cell; 0 (default): automatic, n / 1024 clamped to [256, 2048], and only
+  /// for inputs of 8192 atoms or more. Range [0, 1e6].
+  vtkSetClampMacro(AtomsPerCell, int, 0, 1000000);
+  vtkGetMacro(AtomsPerCell, int);
+  ///@}
+
+  /// Atoms drawn by the last render (times the tiles in warp mode): fewer than the input's when
+  /// culling skipped cells.
+  vtkIdType GetLastDrawnAtomCount() const;
+
   /// Bytes of GPU buffer per atom of the input (positions and types; after a render), 0 before.
   double GetBufferBytesPerAtom() const;
 
@@ -155,6 +185,8 @@ protected:
   double RadiusScale = 1;
   double BallScale = 0.25;
   double BondRadius = 0.2;
+  bool OcclusionCulling = true;
+  int AtomsPerCell = 0;
 
 private:
   vtkMesoAtomMapper(const vtkMesoAtomMapper&) = delete;
@@ -162,6 +194,9 @@ private:
 
   /// The warp input's data, nullptr when none is connected.
   vtkPolyData* WarpInput();
+
+  /// Draws the visible cells' atoms with the sphere program `spheres` (bound).
+  void DrawVisibleCells(vtkRenderer* ren, vtkActor* act, vtkShaderProgram* spheres);
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

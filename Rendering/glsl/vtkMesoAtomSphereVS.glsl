@@ -7,12 +7,15 @@
 // sphere's silhouette (in perspective the tangent cone's circle, of radius r d / sqrt(d² - r²)
 // at distance d). One triangle, not a quad: for the many small atoms of a large scene the cost
 // per primitive outweighs the pixels. The atom's radius and colour come from tables indexed by
-// its type; atom i is primitive i, which picking reports.
+// its type. The buffers hold the atoms in slot order (grouped into cells for culling, drawn
+// cell by cell); picking draws them in input order, so that atom i is primitive i, and finds
+// each atom's slot in atomSlots.
 
 uniform samplerBuffer atomPositions; // RGB32F, the vertex buffer itself
 uniform samplerBuffer atomTypes;     // RG8: element, colour index (normalised)
 uniform samplerBuffer atomMolecules; // R16: molecule slot (normalised), molecule instancing only
 uniform samplerBuffer atomColorTable;
+//MESO::AtomSlot::Dec
 uniform float atomRadii[128];
 uniform mat4 MCVCMatrix;
 uniform mat4 VCDCMatrix;
@@ -40,8 +43,10 @@ void main()
 {
   int atom = gl_VertexID / 3;
   int corner = gl_VertexID - 3 * atom;
-  vec3 atomPosition = texelFetch(atomPositions, atom).xyz;
-  vec2 type = floor(texelFetch(atomTypes, atom).xy * 255.0 + 0.5);
+  int slot = atom;
+  //MESO::AtomSlot::Impl
+  vec3 atomPosition = texelFetch(atomPositions, slot).xyz;
+  vec2 type = floor(texelFetch(atomTypes, slot).xy * 255.0 + 0.5);
   float radius = atomRadii[min(int(type.x), 127)];
   atomColorGSOutput = texelFetch(atomColorTable, int(type.y));
   vec4 vertexMC = vec4(atomPosition, 1.0);

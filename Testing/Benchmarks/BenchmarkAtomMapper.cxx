@@ -5,10 +5,11 @@
 // positions of the same atoms); and the GPU membrane warp against drawing the same atoms mapped
 // on the CPU.
 //
-//   BenchmarkAtomMapper [--atoms 100000,1000000,4000000] [--frames 3] [--no-warp]
+//   BenchmarkAtomMapper [--atoms 100000,1000000,4000000] [--frames 3] [--atoms-per-cell 0]
+//                       [--no-warp]
 //
-// The atoms are copies of the all-atom DPPC patch of Data/ (16640 atoms, waters removed) side
-// by side, a real membrane's density. Each frame turns the camera a little; times are medians.
+// The atoms are copies of the all-atom DPPC patch of Data/ (16640 atoms, waters removed), one
+// periodic cell apart: a continuous membrane of a real membrane's density. Each frame turns the camera a little; times are medians.
 #include "vtkMesoAtomMapper.h"
 #include "vtkMesoAtomProperties.h"
 #include "vtkMesoAtomTableConversion.h"
@@ -22,6 +23,7 @@
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkExecutive.h>
+#include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkNew.h>
 #include <vtkOpenGLRenderWindow.h>
@@ -53,15 +55,20 @@ double median(std::vector<double> values)
   return values[values.size() / 2];
 }
 
-/// Copies of the patch on a grid in x and y (its cell), until `count` atoms; atoms as vertices,
-/// with AtomicNumber.
+/// Copies of the patch on a grid in x and y, one periodic cell apart (a continuous membrane, as
+/// the periodic system it was simulated as), until `count` atoms; atoms as vertices, with
+/// AtomicNumber.
 vtkSmartPointer<vtkPolyData> membrane_atoms(vtkPolyData* patch, vtkIdType count)
 {
   const vtkIdType n = patch->GetNumberOfPoints();
-  double bounds[6];
-  patch->GetBounds(bounds);
-  const double step_x = bounds[1] - bounds[0];
-  const double step_y = bounds[3] - bounds[2];
+  vtkDataArray* box = patch->GetFieldData()->GetArray("PeriodicBoxVectors");
+  if (!box || box->GetNumberOfComponents() != 9)
+  {
+    std::fprintf(stderr, "The membrane patch has no periodic box\n");
+    std::exit(1);
+  }
+  const double step_x = box->GetComponent(0, 0);
+  const double step_y = box->GetComponent(0, 4);
   const vtkIdType copies = (count + n - 1) / n;
   const vtkIdType columns = static_cast<vtkIdType>(std::ceil(std::sqrt(double(copies))));
   vtkNew<vtkFloatArray> coordinates;
@@ -196,16 +203,27 @@ struct Stage
   }
 };
 
-void compare_mappers(Stage& stage, Stage& small, vtkPolyData* patch, vtkIdType count, int frames)
+void compare_mappers(Stage& stage, Stage& small, vtkPolyData* patch, vtkIdType count, int frames,
+                     int atoms_per_cell)
 {
   vtkSmartPointer<vtkPolyData> atoms = membrane_atoms(patch, count);
   vtkNew<vtkMesoAtomMapper> ours;
   ours->SetInputData(atoms);
+  ours->SetAtomsPerCell(atoms_per_cell);
   VTKSpheres theirs(atoms);
   for (bool ssao : { false, true })
   {
     stage.Show(ours, ssao);
     const auto mine = stage.Time(frames);
+    const vtkIdType drawn = ours->GetLastDrawnAtomCount();
+    ours->OcclusionCullingOff();
+    const auto whole = stage.Time(frames);
+    ours->OcclusionCullingOn();
+    std::printf("BENCH atom-mapper culling: %lld atoms%s: %lld drawn (%.1f %%), frame %.3f s "
+                "culled vs %.3f s all drawn, ratio %.3f\n",
+                static_cast<long long>(count), ssao ? " with SSAO" : "",
+                static_cast<long long>(drawn), 100.0 * double(drawn) / double(count), mine.second,
+                whole.second, mine.second / whole.second);
     stage.Show(theirs.Mapper, ssao);
     const auto vtk = stage.Time(frames);
     std::printf("BENCH atom-mapper frame: %lld atoms space-filling%s, 1024x768 llvmpipe: "
@@ -308,6 +326,7 @@ int main(int argc, char* argv[])
   std::vector<vtkIdType> sizes{ 100000, 1000000, 4000000 };
   int frames = 3;
   bool warp = true;
+  int atoms_per_cell = 0;
   for (int i = 1; i < argc; ++i)
   {
     const std::string arg = argv[i];
@@ -325,6 +344,10 @@ int main(int argc, char* argv[])
     {
       frames = std::max(1, std::atoi(argv[++i]));
     }
+    else if (arg == "--atoms-per-cell" && i + 1 < argc)
+    {
+      atoms_per_cell = std::max(0, std::atoi(argv[++i]));
+    }
     else if (arg == "--no-warp")
     {
       warp = false;
@@ -339,7 +362,7 @@ int main(int argc, char* argv[])
   Stage small(64, 48);
   for (const vtkIdType count : sizes)
   {
-    compare_mappers(stage, small, reader->GetOutput(), count, frames);
+    compare_mappers(stage, small, reader->GetOutput(), count, frames, atoms_per_cell);
   }
   if (warp)
   {

@@ -7,6 +7,9 @@
 #include "mesolens/elements.h"
 #include "mesolens/impostor_geometry.h"
 
+#include "vtkMesoAtomTableConversion.h"
+
+#include <vtkCamera.h>
 #include <vtkCellArray.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
@@ -21,7 +24,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <limits>
+#include <random>
+#include <vector>
 #include <optional>
 
 namespace {
@@ -136,11 +142,12 @@ vtkIdType cpu_pick(vtkPolyData* atoms, int style, const Vector3& origin, const V
 }
 
 /// Hardware picks on a grid of pixels against the CPU ray cast: the fraction that agree among
-/// the pixels where either finds something.
-double picking_agreement(int style)
+/// the pixels where either finds something. `atoms_per_cell` > 0: the atoms are drawn in cells.
+double picking_agreement(int style, int atoms_per_cell = 0)
 {
   auto reader = mesolens_test::crambin();
   Scene scene = make_scene(reader, style);
+  scene.Mapper->SetAtomsPerCell(atoms_per_cell);
   mesolens_test::look_at(scene.Renderer, reader->GetOutput(), 55.0);
   scene.Window->Render();
   vtkNew<vtkHardwareSelector> selector;
@@ -207,6 +214,79 @@ bool drew_something(vtkRenderWindow* window)
   }
   return false;
 }
+
+/// A simple cubic block of side^3 carbon atoms 1.5 Å apart, as vertices.
+vtkSmartPointer<vtkPolyData> carbon_block(int side)
+{
+  auto atoms = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkUnsignedCharArray> numbers;
+  numbers->SetName("AtomicNumber");
+  for (int i = 0; i < side * side * side; ++i)
+  {
+    points->InsertNextPoint(1.5 * (i % side), 1.5 * (i / side % side), 1.5 * (i / (side * side)));
+    numbers->InsertNextValue(i % 7 == 0 ? 8 : 6); // some oxygens, for colour
+  }
+  atoms->SetPoints(points);
+  atoms->GetPointData()->AddArray(numbers);
+  vtkMesoAtomTableConversion::SetAtomVertices(atoms);
+  return atoms;
+}
+
+std::vector<unsigned char> capture(vtkRenderWindow* window)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->Update();
+  vtkDataArray* pixels = grab->GetOutput()->GetPointData()->GetScalars();
+  std::vector<unsigned char> values(static_cast<std::size_t>(pixels->GetNumberOfValues()));
+  for (vtkIdType i = 0; i < pixels->GetNumberOfValues(); ++i)
+  {
+    values[std::size_t(i)] = static_cast<unsigned char>(pixels->GetVariantValue(i).ToInt());
+  }
+  return values;
+}
+
+/// Pixels (RGB) of which a channel differs by more than 2.
+int differing_pixels(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
+{
+  int count = 0;
+  for (std::size_t i = 0; i + 2 < a.size() && i + 2 < b.size(); i += 3)
+  {
+    bool differs = false;
+    for (std::size_t c = 0; c < 3; ++c)
+    {
+      differs = differs || std::abs(int(a[i + c]) - int(b[i + c])) > 2;
+    }
+    count += differs ? 1 : 0;
+  }
+  return count;
+}
+
+/// The same atoms drawn with culling and without, by the same camera.
+struct CullingPair
+{
+  Scene Culled = empty_scene(vtkMesoAtomMapper::SPACE_FILLING, 200);
+  Scene Whole = empty_scene(vtkMesoAtomMapper::SPACE_FILLING, 200);
+
+  explicit CullingPair(vtkPolyData* atoms)
+  {
+    this->Culled.Mapper->SetInputData(atoms);
+    this->Whole.Mapper->SetInputData(atoms);
+    this->Whole.Mapper->OcclusionCullingOff();
+    this->Culled.Renderer->ResetCamera();
+    this->Whole.Renderer->SetActiveCamera(this->Culled.Renderer->GetActiveCamera());
+  }
+
+  /// Renders both; the number of pixels that differ.
+  int Render()
+  {
+    this->Culled.Renderer->ResetCameraClippingRange();
+    this->Culled.Window->Render();
+    this->Whole.Window->Render();
+    return differing_pixels(capture(this->Culled.Window), capture(this->Whole.Window));
+  }
+};
 } // namespace
 
 TEST(MesoAtomMapper, PicksTheAtomTheRayMeetsFirst)
@@ -219,11 +299,15 @@ TEST(MesoAtomMapper, PointPickingReportsTheAtom)
   auto reader = mesolens_test::crambin();
   Scene scene = make_scene(reader, vtkMesoAtomMapper::SPACE_FILLING);
   mesolens_test::look_at(scene.Renderer, reader->GetOutput(), 55.0);
-  scene.Window->Render();
   int compared = 0;
+  int pass = 0;
+  // Atoms in input order, then in cells of 16 (buffers in cell order).
   for (int association :
-       { vtkDataObject::FIELD_ASSOCIATION_CELLS, vtkDataObject::FIELD_ASSOCIATION_POINTS })
+       { vtkDataObject::FIELD_ASSOCIATION_CELLS, vtkDataObject::FIELD_ASSOCIATION_POINTS,
+         vtkDataObject::FIELD_ASSOCIATION_CELLS, vtkDataObject::FIELD_ASSOCIATION_POINTS })
   {
+    scene.Mapper->SetAtomsPerCell(pass++ < 2 ? 0 : 16);
+    scene.Window->Render();
     vtkNew<vtkHardwareSelector> selector;
     selector->SetRenderer(scene.Renderer);
     selector->SetFieldAssociation(association);
@@ -250,12 +334,116 @@ TEST(MesoAtomMapper, PointPickingReportsTheAtom)
       }
     }
   }
-  EXPECT_GT(compared, 100);
+  EXPECT_GT(compared, 200);
 }
 
 TEST(MesoAtomMapper, PicksAtomsAndBondsInBallAndStick)
 {
   EXPECT_GT(picking_agreement(vtkMesoAtomMapper::BALL_AND_STICK), 0.95);
+}
+
+TEST(MesoAtomMapper, PicksInputIdsWhenAtomsAreDrawnInCells)
+{
+  // Crambin in cells of 16 atoms: the buffers are in cell order, picking reports input ids.
+  EXPECT_GT(picking_agreement(vtkMesoAtomMapper::SPACE_FILLING, 16), 0.97);
+  EXPECT_GT(picking_agreement(vtkMesoAtomMapper::BALL_AND_STICK, 16), 0.95);
+}
+
+TEST(MesoAtomMapper, CullingSkipsHiddenCellsAndKeepsThePicture)
+{
+  auto block = carbon_block(30); // 27000 atoms: cells of 256
+  CullingPair pair(block);
+  vtkCamera* camera = pair.Culled.Renderer->GetActiveCamera();
+  camera->Azimuth(30);
+  camera->Elevation(20);
+  for (int frame = 0; frame < 4; ++frame)
+  {
+    EXPECT_LT(pair.Render(), 40) << "frame " << frame; // of 40000 pixels
+    EXPECT_EQ(pair.Whole.Mapper->GetLastDrawnAtomCount(), 27000);
+    EXPECT_LT(pair.Culled.Mapper->GetLastDrawnAtomCount(), 27000 / 2) << "frame " << frame;
+    EXPECT_GT(pair.Culled.Mapper->GetLastDrawnAtomCount(), 27000 / 20) << "frame " << frame;
+    camera->Azimuth(10);
+  }
+  // Close up on a corner: the cells out of view are skipped too.
+  const vtkIdType far = pair.Culled.Mapper->GetLastDrawnAtomCount();
+  camera->Zoom(4);
+  EXPECT_LT(pair.Render(), 40);
+  EXPECT_LT(pair.Culled.Mapper->GetLastDrawnAtomCount(), far / 2);
+  // From inside the block, cells reach the eye and the near plane: drawn without a test.
+  camera->SetPosition(20, 20, 20);
+  camera->SetFocalPoint(40, 30, 35);
+  EXPECT_LT(pair.Render(), 40);
+  // Translucent atoms are all drawn.
+  pair.Culled.Actor->GetProperty()->SetOpacity(0.5);
+  pair.Whole.Actor->GetProperty()->SetOpacity(0.5);
+  camera->SetPosition(-40, -30, -50);
+  pair.Render();
+  EXPECT_EQ(pair.Culled.Mapper->GetLastDrawnAtomCount(), 27000);
+}
+
+TEST(MesoAtomMapper, CulledPictureIsExactForScatteredAtoms)
+{
+  // 12000 atoms at random in a slab, in cells of 8: many cells half hidden behind others, whose
+  // atoms reach past their boxes of centres by their radius.
+  auto atoms = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkUnsignedCharArray> numbers;
+  numbers->SetName("AtomicNumber");
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int i = 0; i < 12000; ++i)
+  {
+    points->InsertNextPoint(80 * unit(random), 80 * unit(random), 12 * unit(random));
+    numbers->InsertNextValue(i % 3 == 0 ? 16 : 6);
+  }
+  atoms->SetPoints(points);
+  atoms->GetPointData()->AddArray(numbers);
+  vtkMesoAtomTableConversion::SetAtomVertices(atoms);
+  CullingPair pair(atoms);
+  pair.Culled.Mapper->SetAtomsPerCell(8);
+  vtkCamera* camera = pair.Culled.Renderer->GetActiveCamera();
+  camera->Elevation(-50);
+  for (int frame = 0; frame < 3; ++frame)
+  {
+    EXPECT_LT(pair.Render(), 20) << "frame " << frame;
+    camera->Azimuth(25);
+  }
+  EXPECT_LT(pair.Culled.Mapper->GetLastDrawnAtomCount(), 12000);
+}
+
+TEST(MesoAtomMapper, CellsStayForANewFrameUntilTheAtomsSpread)
+{
+  auto block = carbon_block(24); // 13824 atoms
+  const vtkIdType n = block->GetNumberOfPoints();
+  CullingPair pair(block);
+  pair.Culled.Renderer->GetActiveCamera()->Elevation(30);
+  EXPECT_LT(pair.Render(), 40);
+  // A small step: positions only (in the cells' order), the cells stay.
+  vtkNew<vtkPoints> step;
+  step->DeepCopy(block->GetPoints());
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    step->GetPoint(i, p);
+    step->SetPoint(i, p[0] + 0.3, p[1], p[2] - 0.2);
+  }
+  block->SetPoints(step);
+  EXPECT_LT(pair.Render(), 40);
+  EXPECT_EQ(pair.Culled.Mapper->GetLastUploadBytes(), 12 * n);
+  // Every other atom jumps 40 Å away: the cells are remade and the types follow the new order.
+  vtkNew<vtkPoints> spread;
+  spread->DeepCopy(block->GetPoints());
+  for (vtkIdType i = 0; i < n; i += 2)
+  {
+    double p[3];
+    spread->GetPoint(i, p);
+    spread->SetPoint(i, p[0] + 40.0, p[1], p[2]);
+  }
+  block->SetPoints(spread);
+  pair.Culled.Renderer->ResetCamera();
+  EXPECT_LT(pair.Render(), 40);
+  EXPECT_EQ(pair.Culled.Mapper->GetLastUploadBytes(), 14 * n);
+  EXPECT_LT(pair.Culled.Mapper->GetLastDrawnAtomCount(), n);
 }
 
 TEST(MesoAtomMapper, FourteenBytesPerAtomAndOnlyPositionsForANewFrame)

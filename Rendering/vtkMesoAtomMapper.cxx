@@ -162,14 +162,13 @@ struct vtkMesoAtomMapper::Internals
     }
   }
 
-  /// The cells `cells[tested[...]]` whose boxes (grown by `padding`) pass the depth test
-  /// somewhere; nothing is written to the framebuffer.
-  std::vector<std::uint32_t> TestBoxes(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc,
-                                       double padding,
-                                       const std::vector<mesolens::CellInView>& cells,
-                                       const std::vector<std::size_t>& tested)
+  /// The entries of `tested` (indices into `cells`) whose boxes, grown by `padding`, pass the
+  /// depth test somewhere; nothing is written to the framebuffer.
+  std::vector<std::size_t> TestBoxes(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc,
+                                     double padding, const std::vector<mesolens::CellInView>& cells,
+                                     const std::vector<std::size_t>& tested)
   {
-    std::vector<std::uint32_t> visible;
+    std::vector<std::size_t> visible;
     if (tested.empty())
     {
       return visible;
@@ -201,7 +200,7 @@ struct vtkMesoAtomMapper::Internals
       glGetQueryObjectuiv(this->Queries[q], GL_QUERY_RESULT, &samples);
       if (samples > 0)
       {
-        visible.push_back(cells[tested[q]].cell);
+        visible.push_back(tested[q]);
       }
     }
     return visible;
@@ -635,58 +634,55 @@ void vtkMesoAtomMapper::DrawVisibleCells(vtkRenderer* ren, vtkActor* act, vtkSha
   const bool known = history.Known;
   in.CellBoxes.Texture->Activate();
   in.LastDrawnAtoms = 0;
-  std::vector<std::size_t> tested;
+  std::vector<std::size_t> tested; // indices into cells
   std::vector<std::size_t> drawn;
-  auto draw_cell = [&](std::uint32_t cell) {
+  std::vector<GLint> firsts;
+  std::vector<GLsizei> counts;
+  auto add = [&](std::size_t k) {
+    const std::uint32_t cell = cells[k].cell;
     const std::uint32_t first = data.Cells.cell_start[cell];
     const std::uint32_t count = data.Cells.cell_start[cell + 1] - first;
-    glDrawArrays(GL_TRIANGLES, static_cast<GLint>(3 * first), static_cast<GLsizei>(3 * count));
+    firsts.push_back(static_cast<GLint>(3 * first));
+    counts.push_back(static_cast<GLsizei>(3 * count));
     in.LastDrawnAtoms += count;
+    drawn.push_back(k);
+  };
+  auto draw = [&]() {
+    if (!firsts.empty())
+    {
+      programs->ReadyShaderProgram(spheres);
+      glMultiDrawArrays(GL_TRIANGLES, firsts.data(), counts.data(),
+                        static_cast<GLsizei>(firsts.size()));
+      firsts.clear();
+      counts.clear();
+    }
   };
 
   if (known)
   {
-    // The cells seen last time first, each inside a query: one that draws no fragment is hidden
-    // by nearer ones and will be tested, not drawn, next time.
+    // The cells seen last time first, then the others whose boxes show past that depth.
     for (std::size_t k = 0; k < cells.size(); ++k)
     {
       if (cells[k].must_draw || history.Visible[cells[k].cell])
       {
-        drawn.push_back(k);
+        add(k);
       }
       else
       {
         tested.push_back(k);
       }
     }
-    in.ReserveQueries(drawn.size());
-    programs->ReadyShaderProgram(spheres);
-    for (std::size_t q = 0; q < drawn.size(); ++q)
+    draw();
+    for (std::size_t k : in.TestBoxes(window, mcdc, padding, cells, tested))
     {
-      glBeginQuery(GL_SAMPLES_PASSED, in.Queries[q]);
-      draw_cell(cells[drawn[q]].cell);
-      glEndQuery(GL_SAMPLES_PASSED);
+      add(k);
     }
-    std::fill(history.Visible.begin(), history.Visible.end(), 0);
-    for (std::size_t q = 0; q < drawn.size(); ++q)
-    {
-      GLuint samples = 0;
-      glGetQueryObjectuiv(in.Queries[q], GL_QUERY_RESULT, &samples);
-      history.Visible[cells[drawn[q]].cell] = samples > 0 ? 1 : 0;
-    }
-    // Then the others whose boxes show past that depth.
-    for (std::uint32_t cell : in.TestBoxes(window, mcdc, padding, cells, tested))
-    {
-      programs->ReadyShaderProgram(spheres);
-      draw_cell(cell);
-      history.Visible[cell] = 1;
-    }
+    draw();
   }
   else
   {
     // No history: waves, nearest first, doubling in size; each wave's boxes are tested against
     // the depth of the waves before it.
-    std::fill(history.Visible.begin(), history.Visible.end(), 0);
     std::size_t wave = std::max<std::size_t>(8, cells.size() / 32);
     for (std::size_t begin = 0; begin < cells.size(); begin += wave, wave *= 2)
     {
@@ -695,24 +691,29 @@ void vtkMesoAtomMapper::DrawVisibleCells(vtkRenderer* ren, vtkActor* act, vtkSha
       {
         if (cells[k].must_draw)
         {
-          programs->ReadyShaderProgram(spheres);
-          draw_cell(cells[k].cell);
-          history.Visible[cells[k].cell] = 1;
+          add(k);
         }
         else
         {
           tested.push_back(k);
         }
       }
-      for (std::uint32_t cell : in.TestBoxes(window, mcdc, padding, cells, tested))
+      for (std::size_t k : in.TestBoxes(window, mcdc, padding, cells, tested))
       {
-        programs->ReadyShaderProgram(spheres);
-        draw_cell(cell);
-        history.Visible[cell] = 1;
+        add(k);
       }
+      draw();
     }
-    history.Known = true;
   }
+  // What the next frame draws first: the drawn cells whose boxes still show past the final
+  // depth (a cell hidden by cells drawn after it drops out). A wrong guess costs time only: the
+  // cells left out are tested next time.
+  std::fill(history.Visible.begin(), history.Visible.end(), 0);
+  for (std::size_t k : in.TestBoxes(window, mcdc, padding, cells, drawn))
+  {
+    history.Visible[cells[k].cell] = 1;
+  }
+  history.Known = true;
   programs->ReadyShaderProgram(spheres);
 }
 

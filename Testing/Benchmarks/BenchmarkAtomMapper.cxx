@@ -161,9 +161,14 @@ struct Stage
   {
     this->Actor->SetMapper(mapper);
     this->Renderer->SetPass(ssao ? static_cast<vtkRenderPass*>(this->Occlusion) : nullptr);
+    // The same view every time: down the membrane normal, then 40 degrees off it.
+    vtkCamera* camera = this->Renderer->GetActiveCamera();
+    camera->SetFocalPoint(0, 0, 0);
+    camera->SetPosition(0, 0, 1);
+    camera->SetViewUp(0, 1, 0);
     this->Renderer->ResetCamera();
-    this->Renderer->GetActiveCamera()->Elevation(-40);
-    this->Renderer->GetActiveCamera()->Zoom(1.6);
+    camera->Elevation(-40);
+    camera->Zoom(1.6);
     this->Renderer->ResetCameraClippingRange();
   }
 

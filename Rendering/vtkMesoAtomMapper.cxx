@@ -11,12 +11,11 @@
 #include "vtkMesoBondCylinderFSImpl.h"
 #include "vtkMesoBondCylinderGS.h"
 #include "vtkMesoBondVS.h"
-#include "vtkMesoCellBoxFS.h"
-#include "vtkMesoCellBoxVS.h"
 #include "vtkMesoMoleculeInstancingVS.h"
 #include "vtkMesoPolynomialWarpVS.h"
 
 #include "mesolens/atom_cells.h"
+#include "mesolens/depth_pyramid.h"
 
 #include <vtkHardwareSelector.h>
 #include <vtkOpenGLActor.h>
@@ -35,6 +34,7 @@
 #include <vtkOpenGLVertexArrayObject.h>
 #include <vtkPolyData.h>
 #include <vtkProperty.h>
+#include <vtkSMPTools.h>
 #include <vtkRenderer.h>
 #include <vtkShaderProgram.h>
 #include <vtkTextureObject.h>
@@ -42,6 +42,7 @@
 #include <vtk_glew.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <unordered_map>
 
@@ -105,13 +106,24 @@ struct TexelBuffer
 };
 } // namespace
 
-/// Which cells a camera saw in its last frame.
-struct CellHistory
+/// What a camera saw in its last frame: per atom (slot) the mesolens::AtomVisibility bits, per
+/// cell whether any of its atoms was seen.
+struct ViewHistory
 {
   unsigned long CellsVersion = 0;
-  bool Known = false;
-  std::vector<unsigned char> Visible; // per cell
+  std::vector<std::uint8_t> Flags;
+  std::vector<std::uint8_t> Seen;
 };
+
+/// Core's loops run through vtkSMPTools.
+mesolens::ParallelFor smp_parallel_for()
+{
+  return [](std::size_t count, const mesolens::RangeKernel& kernel) {
+    vtkSMPTools::For(0, static_cast<vtkIdType>(count), [&kernel](vtkIdType begin, vtkIdType end) {
+      kernel(static_cast<std::size_t>(begin), static_cast<std::size_t>(end));
+    });
+  };
+}
 
 struct vtkMesoAtomMapper::Internals
 {
@@ -128,91 +140,133 @@ struct vtkMesoAtomMapper::Internals
   unsigned long UploadedBonds = 0;
   TexelBuffer Colors;
   TexelBuffer Warp;
-  TexelBuffer CellBoxes;                // 2 texels per cell: min, max corner
-  unsigned long CellBoxesVersion = 0;   // counts position updates of grouped atoms
-  std::vector<unsigned int> Queries;    // one occlusion query per cell of a wave
+  // Culling: the slots of the atoms drawn first, and of those drawn after the test (4 bytes
+  // per drawn atom, as R32UI texture buffers).
+  std::array<vtkNew<vtkOpenGLBufferObject>, 2> DrawLists;
+  std::array<vtkNew<vtkTextureObject>, 2> DrawListTextures;
+  std::vector<std::uint32_t> DrawList;
+  std::size_t DrawListBytes = 0;
+  std::vector<float> Depth; // culling: the depth image read back
+  mesolens::DepthPyramid Pyramid;
   vtkNew<vtkOpenGLBufferObject> Slots;  // picking: the slot of each input atom
   vtkNew<vtkTextureObject> SlotTexture; // ... as an R32UI texture buffer
   unsigned long UploadedSlots = 0;      // CellsVersion of the slots on the GPU, 0: none
   vtkIdType LastDrawnAtoms = 0;
-  // Keyed by camera: only compared, never dereferenced (a stale entry costs time, not pixels).
-  std::unordered_map<const vtkCamera*, CellHistory> Histories;
-
-  CellHistory& History(const vtkCamera* camera, unsigned long version, std::size_t cells)
-  {
-    if (this->Histories.size() > 16 && !this->Histories.count(camera))
-    {
-      this->Histories.clear();
-    }
-    CellHistory& history = this->Histories[camera];
-    if (history.CellsVersion != version || history.Visible.size() != cells)
-    {
-      history = CellHistory{ version, false, std::vector<unsigned char>(cells, 0) };
-    }
-    return history;
-  }
-
-  void ReserveQueries(std::size_t count)
-  {
-    if (this->Queries.size() < count)
-    {
-      const std::size_t old = this->Queries.size();
-      this->Queries.resize(count);
-      glGenQueries(static_cast<GLsizei>(count - old), this->Queries.data() + old);
-    }
-  }
-
-  /// The entries of `tested` (indices into `cells`) whose boxes, grown by `padding`, pass the
-  /// depth test somewhere; nothing is written to the framebuffer.
-  std::vector<std::size_t> TestBoxes(vtkOpenGLRenderWindow* window, vtkMatrix4x4* mcdc,
-                                     double padding, const std::vector<mesolens::CellInView>& cells,
-                                     const std::vector<std::size_t>& tested)
-  {
-    std::vector<std::size_t> visible;
-    if (tested.empty())
-    {
-      return visible;
-    }
-    this->ReserveQueries(tested.size());
-    {
-      vtkOpenGLState* state = window->GetState();
-      vtkOpenGLState::ScopedglColorMask colors(state);
-      vtkOpenGLState::ScopedglDepthMask depths(state);
-      vtkOpenGLState::ScopedglEnableDisable culling(state, GL_CULL_FACE);
-      state->vtkglColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-      state->vtkglDepthMask(GL_FALSE);
-      state->vtkglDisable(GL_CULL_FACE);
-      vtkShaderProgram* boxes =
-        window->GetShaderCache()->ReadyShaderProgram(vtkMesoCellBoxVS, vtkMesoCellBoxFS, "");
-      boxes->SetUniformMatrix("MCDCMatrix", mcdc);
-      boxes->SetUniformf("cellPadding", static_cast<float>(padding));
-      boxes->SetUniformi("cellBoxes", this->CellBoxes.Texture->GetTextureUnit());
-      for (std::size_t q = 0; q < tested.size(); ++q)
-      {
-        glBeginQuery(GL_SAMPLES_PASSED, this->Queries[q]);
-        glDrawArrays(GL_TRIANGLES, static_cast<GLint>(36 * cells[tested[q]].cell), 36);
-        glEndQuery(GL_SAMPLES_PASSED);
-      }
-    }
-    for (std::size_t q = 0; q < tested.size(); ++q)
-    {
-      GLuint samples = 0;
-      glGetQueryObjectuiv(this->Queries[q], GL_QUERY_RESULT, &samples);
-      if (samples > 0)
-      {
-        visible.push_back(tested[q]);
-      }
-    }
-    return visible;
-  }
   vtkTimeStamp BufferTime;    // the buffers behind the vertex attributes changed
-  vtkTimeStamp ShaderKeyTime; // the warp method changed
+  vtkTimeStamp ShaderKeyTime; // the warp method or the grouping into cells changed
   int ShaderWarpMethod = -1;
   vtkIdType LastUploadBytes = 0;
   double Bounds[6] = { 0, 0, 0, 0, 0, 0 }; // the last ComputeBounds
   vtkMTimeType BoundsTime = 0;             // of the inputs and settings at this time
   Pass Current = Pass::Atoms;
   bool Inverted = false;
+  // Keyed by camera: only compared, never dereferenced (a stale entry costs time, not pixels).
+  std::unordered_map<const vtkCamera*, ViewHistory> Histories;
+
+  ViewHistory& History(const vtkCamera* camera, unsigned long version, std::size_t atoms,
+                       std::size_t cells)
+  {
+    if (this->Histories.size() > 16 && !this->Histories.count(camera))
+    {
+      this->Histories.clear();
+    }
+    ViewHistory& history = this->Histories[camera];
+    if (history.CellsVersion != version || history.Flags.size() != atoms ||
+        history.Seen.size() != cells)
+    {
+      history = ViewHistory{ version, std::vector<std::uint8_t>(atoms, 0),
+                             std::vector<std::uint8_t>(cells, 0) };
+    }
+    return history;
+  }
+
+  /// Puts `slots` in draw list `which` and its texture.
+  void UploadDrawList(vtkOpenGLRenderWindow* window, int which,
+                      const std::vector<std::uint32_t>& slots)
+  {
+    this->DrawLists[which]->Upload(slots, vtkOpenGLBufferObject::TextureBuffer);
+    vtkTextureObject* texture = this->DrawListTextures[which];
+    texture->SetContext(window);
+    texture->SetInternalFormat(GL_R32UI);
+    texture->CreateTextureBuffer(static_cast<unsigned int>(slots.size()), 1, VTK_UNSIGNED_INT,
+                                 this->DrawLists[which]);
+  }
+
+  /// Draws, through draw list `which`, the atoms of the listed cells whose visibility bits
+  /// include `bit` (the sphere program `spheres` bound). Returns how many.
+  std::size_t DrawAtoms(vtkOpenGLRenderWindow* window, vtkShaderProgram* spheres, int which,
+                        const std::vector<std::uint8_t>& flags, std::uint8_t bit,
+                        const std::vector<mesolens::CellInView>& cells,
+                        const std::vector<std::uint8_t>& cell_listed)
+  {
+    const mesolens::AtomCells& grouping = this->Data.Cells;
+    this->DrawList.clear();
+    for (const mesolens::CellInView& viewed : cells)
+    {
+      if (!cell_listed[viewed.cell])
+      {
+        continue;
+      }
+      for (std::uint32_t slot = grouping.cell_start[viewed.cell];
+           slot < grouping.cell_start[viewed.cell + 1]; ++slot)
+      {
+        if (flags[slot] & bit)
+        {
+          this->DrawList.push_back(slot);
+        }
+      }
+    }
+    this->DrawListBytes += sizeof(std::uint32_t) * this->DrawList.size();
+    if (this->DrawList.empty())
+    {
+      return 0;
+    }
+    this->UploadDrawList(window, which, this->DrawList);
+    vtkTextureObject* texture = this->DrawListTextures[which];
+    texture->Activate();
+    spheres->SetUniformi("atomDrawList", texture->GetTextureUnit());
+    spheres->SetUniformi("useDrawList", 1);
+    glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(3 * this->DrawList.size()));
+    spheres->SetUniformi("useDrawList", 0);
+    texture->Deactivate();
+    return this->DrawList.size();
+  }
+
+  /// Reads the depth of the current viewport of the framebuffer being drawn into Depth. False
+  /// where it cannot be read as it is (multisampled, or a pixel buffer bound for reading).
+  bool ReadDepth(vtkOpenGLRenderWindow* window, int& width, int& height)
+  {
+    GLint viewport[4] = { 0, 0, 0, 0 };
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    GLint samples = 0;
+    glGetIntegerv(GL_SAMPLE_BUFFERS, &samples);
+    GLint pack_buffer = 0;
+    glGetIntegerv(GL_PIXEL_PACK_BUFFER_BINDING, &pack_buffer);
+    if (samples != 0 || pack_buffer != 0 || viewport[2] <= 0 || viewport[3] <= 0)
+    {
+      return false;
+    }
+    width = viewport[2];
+    height = viewport[3];
+    this->Depth.resize(std::size_t(width) * std::size_t(height));
+    GLint draw = 0;
+    GLint read = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read);
+    vtkOpenGLState* state = window->GetState();
+    if (draw != read)
+    {
+      state->PushReadFramebufferBinding();
+      state->vtkglBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<unsigned int>(draw));
+    }
+    glReadPixels(viewport[0], viewport[1], width, height, GL_DEPTH_COMPONENT, GL_FLOAT,
+                 this->Depth.data());
+    if (draw != read)
+    {
+      state->PopReadFramebufferBinding();
+    }
+    return true;
+  }
 };
 
 vtkMesoAtomMapper::vtkMesoAtomMapper()
@@ -335,16 +389,6 @@ void vtkMesoAtomMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*)
   this->Primitives[PrimitivePoints].IBO->IndexCount = 0;
   this->Primitives[PrimitiveTriStrips].IBO->IndexCount = 0;
   in.Colors.Upload(window, data.ColorTable, data.TypesVersion);
-  if (!data.CellBoxes.empty())
-  {
-    std::vector<float> texels(8 * data.Cells.cell_count(), 0.0f);
-    for (std::size_t c = 0; c < data.Cells.cell_count(); ++c)
-    {
-      std::copy_n(&data.CellBoxes[6 * c], 3, &texels[8 * c]);
-      std::copy_n(&data.CellBoxes[6 * c + 3], 3, &texels[8 * c + 4]);
-    }
-    in.CellBoxes.Upload(window, texels, ++in.CellBoxesVersion);
-  }
   if (!data.WarpTexels.empty())
   {
     in.Warp.Upload(window, data.WarpTexels, data.WarpVersion);
@@ -396,6 +440,15 @@ void vtkMesoAtomMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkShader*
       ", gl_InstanceID), 1.0);\n  " + position;
   }
   vtkShaderProgram::Substitute(vertex, "//MESO::Warp::Impl", position);
+  // Culling draws lists of the atoms' slots.
+  if (atoms && !ren->GetSelector() && !this->Internal->Data.Cells.cell_start.empty())
+  {
+    vtkShaderProgram::Substitute(vertex, "//MESO::AtomSlot::Dec",
+                                 "uniform usamplerBuffer atomDrawList;\nuniform int useDrawList;");
+    vtkShaderProgram::Substitute(vertex, "//MESO::AtomSlot::Impl",
+                                 "if (useDrawList != 0)\n  {\n    slot = "
+                                 "int(texelFetch(atomDrawList, drawn).r);\n    atom = slot;\n  }");
+  }
   // Picking draws the atoms in input order: each finds its slot in the cell order.
   if (atoms && ren->GetSelector() && !this->Internal->Data.Cells.cell_start.empty())
   {
@@ -488,6 +541,12 @@ void vtkMesoAtomMapper::SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRe
     {
       program->SetUniformi("atomSlots", in.SlotTexture->GetTextureUnit());
     }
+    if (program->IsUniformUsed("atomDrawList"))
+    {
+      program->SetUniformi("atomDrawList", in.DrawListTextures[0]->GetTextureUnit());
+      program->SetUniformi("useDrawList", 0);
+    }
+
     if (data.WarpMethod == vtkMesoAtomGPUData::MOLECULE_INSTANCING)
     {
       set_uniform_int(program, "atomMolecules", in.MoleculeTexture->GetTextureUnit());
@@ -564,6 +623,17 @@ void vtkMesoAtomMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
     in.UploadedSlots = 0;
   }
 
+  if (grouped && !picking)
+  {
+    // The shader reads a draw list only when culling, but its sampler needs a texture.
+    if (in.DrawListTextures[0]->GetHandle() == 0)
+    {
+      in.UploadDrawList(static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow()), 0,
+                        std::vector<std::uint32_t>(1, 0));
+    }
+    in.DrawListTextures[0]->Activate();
+  }
+
   in.Current = Pass::Atoms;
   this->PrimitiveIDOffset = 0;
   vtkOpenGLHelper& spheres = this->Primitives[PrimitiveTris];
@@ -571,6 +641,7 @@ void vtkMesoAtomMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   const bool translucent = act->GetProperty()->GetOpacity() < 1.0;
   if (grouped && this->OcclusionCulling && !picking && !translucent)
   {
+    in.DrawListTextures[0]->Deactivate();
     this->DrawVisibleCells(ren, act, spheres.Program);
   }
   else
@@ -599,7 +670,6 @@ void vtkMesoAtomMapper::DrawVisibleCells(vtkRenderer* ren, vtkActor* act, vtkSha
   Internals& in = *this->Internal;
   const vtkMesoAtomGPUData& data = in.Data;
   auto* window = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
-  vtkOpenGLShaderCache* programs = window->GetShaderCache();
 
   // Model to clip coordinates, as the shaders see it (VTK keeps its matrices transposed).
   vtkMatrix4x4* wcvc = nullptr;
@@ -608,113 +678,67 @@ void vtkMesoAtomMapper::DrawVisibleCells(vtkRenderer* ren, vtkActor* act, vtkSha
   vtkMatrix4x4* wcdc = nullptr;
   vtkCamera* camera = ren->GetActiveCamera();
   static_cast<vtkOpenGLCamera*>(camera)->GetKeyMatrices(ren, wcvc, normals, vcdc, wcdc);
-  vtkNew<vtkMatrix4x4> mcdc;
-  mcdc->DeepCopy(wcdc);
+  vtkNew<vtkMatrix4x4> mcvc;
+  mcvc->DeepCopy(wcvc);
   if (!act->GetIsIdentity())
   {
     vtkMatrix4x4* mcwc = nullptr;
     vtkMatrix3x3* actor_normals = nullptr;
     static_cast<vtkOpenGLActor*>(act)->GetKeyMatrices(mcwc, actor_normals);
-    vtkMatrix4x4::Multiply4x4(mcwc, wcdc, mcdc);
+    vtkMatrix4x4::Multiply4x4(mcwc, wcvc, mcvc);
   }
-  double model_to_clip[16];
+  mesolens::ViewTransform view;
   for (int r = 0; r < 4; ++r)
   {
     for (int c = 0; c < 4; ++c)
     {
-      model_to_clip[4 * r + c] = mcdc->GetElement(c, r);
+      view.model_to_view[4 * r + c] = mcvc->GetElement(c, r);
+      view.view_to_clip[4 * r + c] = vcdc->GetElement(c, r);
     }
   }
+  view.Complete();
   const double padding = 1.01 * data.LargestPresentRadius;
   const std::vector<mesolens::CellInView> cells =
-    mesolens::cells_in_view(data.CellBoxes, padding, model_to_clip);
+    mesolens::cells_in_view(data.CellBoxes, padding, view.model_to_clip);
 
-  // What each camera saw last time (the shadow pass's light camera sees other cells).
-  CellHistory& history = in.History(camera, data.CellsVersion, data.Cells.cell_count());
-  const bool known = history.Known;
-  in.CellBoxes.Texture->Activate();
-  in.LastDrawnAtoms = 0;
-  std::vector<std::size_t> tested; // indices into cells
-  std::vector<std::size_t> drawn;
-  std::vector<GLint> firsts;
-  std::vector<GLsizei> counts;
-  auto add = [&](std::size_t k) {
-    const std::uint32_t cell = cells[k].cell;
-    const std::uint32_t first = data.Cells.cell_start[cell];
-    const std::uint32_t count = data.Cells.cell_start[cell + 1] - first;
-    firsts.push_back(static_cast<GLint>(3 * first));
-    counts.push_back(static_cast<GLsizei>(3 * count));
-    in.LastDrawnAtoms += count;
-    drawn.push_back(k);
-  };
-  auto draw = [&]() {
-    if (!firsts.empty())
-    {
-      programs->ReadyShaderProgram(spheres);
-      glMultiDrawArrays(GL_TRIANGLES, firsts.data(), counts.data(),
-                        static_cast<GLsizei>(firsts.size()));
-      firsts.clear();
-      counts.clear();
-    }
-  };
+  // What this camera saw last time (a shadow pass's light camera sees other atoms).
+  const std::size_t atom_count = static_cast<std::size_t>(data.AtomCount);
+  ViewHistory& history = in.History(camera, data.CellsVersion, atom_count, data.Cells.cell_count());
 
-  if (known)
+  // 1. The atoms seen last time; with none (a first frame, a jump), the nearest quarter of the
+  // cells in view, whole.
+  if (std::find(history.Seen.begin(), history.Seen.end(), 1) == history.Seen.end())
   {
-    // The cells seen last time first, then the others whose boxes show past that depth.
-    for (std::size_t k = 0; k < cells.size(); ++k)
+    for (std::size_t k = 0; k < cells.size() && (k < 8 || 4 * k < cells.size()); ++k)
     {
-      if (cells[k].must_draw || history.Visible[cells[k].cell])
-      {
-        add(k);
-      }
-      else
-      {
-        tested.push_back(k);
-      }
+      const std::uint32_t cell = cells[k].cell;
+      history.Seen[cell] = 1;
+      std::fill(history.Flags.begin() + data.Cells.cell_start[cell],
+                history.Flags.begin() + data.Cells.cell_start[cell + 1],
+                std::uint8_t(mesolens::SEEN));
     }
-    draw();
-    for (std::size_t k : in.TestBoxes(window, mcdc, padding, cells, tested))
-    {
-      add(k);
-    }
-    draw();
+  }
+  in.DrawListBytes = 0;
+  in.DrawAtoms(window, spheres, 0, history.Flags, mesolens::SEEN, cells, history.Seen);
+
+  // 2. Every atom in view tested against that depth; those that show and were not drawn yet
+  // are drawn now. Where the depth cannot be read, everything in view counts as shown.
+  int width = 0;
+  int height = 0;
+  if (in.ReadDepth(window, width, height))
+  {
+    in.Pyramid.Build(in.Depth.data(), width, height);
   }
   else
   {
-    // No history: waves, nearest first, doubling in size; each wave's boxes are tested against
-    // the depth of the waves before it.
-    std::size_t wave = std::max<std::size_t>(8, cells.size() / 32);
-    for (std::size_t begin = 0; begin < cells.size(); begin += wave, wave *= 2)
-    {
-      tested.clear();
-      for (std::size_t k = begin; k < std::min(cells.size(), begin + wave); ++k)
-      {
-        if (cells[k].must_draw)
-        {
-          add(k);
-        }
-        else
-        {
-          tested.push_back(k);
-        }
-      }
-      for (std::size_t k : in.TestBoxes(window, mcdc, padding, cells, tested))
-      {
-        add(k);
-      }
-      draw();
-    }
+    in.Pyramid.Build(nullptr, 0, 0);
   }
-  // What the next frame draws first: the drawn cells whose boxes still show past the final
-  // depth (a cell hidden by cells drawn after it drops out). A wrong guess costs time only: the
-  // cells left out are tested next time.
-  std::fill(history.Visible.begin(), history.Visible.end(), 0);
-  for (std::size_t k : in.TestBoxes(window, mcdc, padding, cells, drawn))
-  {
-    history.Visible[cells[k].cell] = 1;
-  }
-  history.Known = true;
-  programs->ReadyShaderProgram(spheres);
+  const mesolens::CellVisibility found = mesolens::test_atom_visibility(
+    in.Pyramid, view, data.PositionData, data.Types.data(), 2, data.Radii.data(), data.Cells,
+    data.CellBoxes, cells, padding, history.Flags, smp_parallel_for());
+  in.DrawAtoms(window, spheres, 1, history.Flags, mesolens::NEWLY_SEEN, cells, found.newly_seen);
+  in.LastDrawnAtoms = static_cast<vtkIdType>(found.drawn_first + found.drawn_after);
+  history.Seen = found.seen;
 }
 
 void vtkMesoAtomMapper::RenderPieceFinish(vtkRenderer* ren, vtkActor* act)
@@ -726,7 +750,7 @@ void vtkMesoAtomMapper::RenderPieceFinish(vtkRenderer* ren, vtkActor* act)
   }
   for (vtkTextureObject* texture :
        { in.Warp.Texture.Get(), in.PositionTexture.Get(), in.TypeTexture.Get(),
-         in.MoleculeTexture.Get(), in.CellBoxes.Texture.Get(), in.SlotTexture.Get() })
+         in.MoleculeTexture.Get(), in.SlotTexture.Get() })
   {
     if (texture->GetHandle() != 0)
     {
@@ -775,6 +799,12 @@ double vtkMesoAtomMapper::GetBufferBytesPerAtom() const
   return bytes / static_cast<double>(data.AtomCount);
 }
 
+double vtkMesoAtomMapper::GetLastDrawListBytesPerAtom() const
+{
+  const vtkIdType atoms = this->Internal->Data.AtomCount;
+  return atoms > 0 ? double(this->Internal->DrawListBytes) / double(atoms) : 0.0;
+}
+
 vtkIdType vtkMesoAtomMapper::GetLastDrawnAtomCount() const
 {
   return this->Internal->LastDrawnAtoms;
@@ -799,20 +829,12 @@ void vtkMesoAtomMapper::ReleaseGraphicsResources(vtkWindow* window)
   in.TypeTexture->ReleaseGraphicsResources(window);
   in.MoleculeTexture->ReleaseGraphicsResources(window);
   in.Warp.Release(window);
-  in.CellBoxes.Release(window);
-  in.SlotTexture->ReleaseGraphicsResources(window);
-  in.Slots->ReleaseGraphicsResources();
-  in.UploadedSlots = 0;
-  if (!in.Queries.empty())
+  for (int which = 0; which < 2; ++which)
   {
-    // Query objects belong to the context of the window being released.
-    if (auto* context = vtkOpenGLRenderWindow::SafeDownCast(window))
-    {
-      context->MakeCurrent();
-      glDeleteQueries(static_cast<GLsizei>(in.Queries.size()), in.Queries.data());
-    }
-    in.Queries.clear();
+    in.DrawListTextures[which]->ReleaseGraphicsResources(window);
+    in.DrawLists[which]->ReleaseGraphicsResources();
   }
+  in.Histories.clear();
   this->Superclass::ReleaseGraphicsResources(window);
 }
 

@@ -45,16 +45,23 @@
  * Radii stay in RadiusScale x Å: set RadiusScale to the mapping's MembraneToMeshScale.
  *
  * Occlusion culling (OcclusionCulling, on by default; for inputs of at least 8192 atoms, or any
- * input when AtomsPerCell is set, drawn without a warp): the atoms are grouped once into compact
- * spatial cells of about AtomsPerCell atoms (their buffers are kept in cell order). Each frame,
- * cells outside the view are skipped and the others are drawn nearest first in a few waves; before
- * each wave, the box of every cell in it is tested against the depth drawn so far (an occlusion
- * query, no colour or depth written) and hidden cells are skipped (after Grottel et al., EuroVis
- * 2010). The picture does not change: a skipped cell has no visible pixel. Translucent atoms,
- * picking and warped membranes draw every atom. For a new time step the cells stay while the atoms
- * stay near them (they are regrouped when the boxes have grown by half). Picking draws the atoms in
- * input order through a table of their cell-order slots (4 bytes per atom, uploaded for the pick
- * and released at the next plain frame).
+ * input when AtomsPerCell is set, drawn without a warp), after Grottel et al., EuroVis 2010: the
+ * atoms are grouped once into compact spatial cells of about AtomsPerCell atoms (their buffers
+ * are kept in cell order). Each frame, per camera:
+ * 1. the atoms that were visible in this camera's last frame are drawn (cells out of view are
+ *    skipped; a first frame draws the nearest quarter of the cells);
+ * 2. the depth buffer is read back and reduced to a pyramid of farthest depths, and every atom
+ *    of the cells in view is tested against it on the CPU (whole cells first, by their boxes):
+ *    the exact outline of its sphere and the depth of its nearest point against the pixels that
+ *    outline covers;
+ * 3. the atoms that may show and were not drawn in 1 are drawn; what showed is remembered.
+ * The picture does not change: an atom left out has no pixel in front of what is drawn. Atoms
+ * are drawn from lists of their slots (4 bytes per drawn atom, GetLastDrawListBytesPerAtom).
+ * Translucent atoms, picking, warped membranes and multisampled framebuffers (whose depth cannot
+ * be read back as it is) draw every atom in view. For a new time step the cells stay while the
+ * atoms stay near them (they are regrouped when the boxes have grown by half). Picking draws the
+ * atoms in input order through a table of their cell-order slots (4 bytes per atom, uploaded for
+ * the pick and released at the next plain frame).
  *
  * VTK 9.1's vtkSSAOPass draws black in a renderer whose viewport does not start at the window's
  * origin (with any mapper, VTK's sphere mapper too): give ambient occlusion to the renderer at
@@ -149,6 +156,10 @@ public:
   /// culling skipped cells.
   vtkIdType GetLastDrawnAtomCount() const;
 
+  /// Bytes per input atom of the draw lists of the last culled render (4 per drawn atom); 0
+  /// without culling.
+  double GetLastDrawListBytesPerAtom() const;
+
   /// Bytes of GPU buffer per atom of the input (positions and types; after a render), 0 before.
   double GetBufferBytesPerAtom() const;
 
@@ -195,7 +206,8 @@ private:
   /// The warp input's data, nullptr when none is connected.
   vtkPolyData* WarpInput();
 
-  /// Draws the visible cells' atoms with the sphere program `spheres` (bound).
+  /// Draws the atoms that may be visible with the sphere program `spheres` (bound): see
+  /// Occlusion culling.
   void DrawVisibleCells(vtkRenderer* ren, vtkActor* act, vtkShaderProgram* spheres);
 
   struct Internals;

@@ -9,7 +9,7 @@
 // per primitive outweighs the pixels. The atom's radius and colour come from tables indexed by
 // its type. The buffers hold the atoms in slot order (grouped into cells for culling, drawn
 // cell by cell); picking draws them in input order, so that atom i is primitive i, and finds
-// each atom's slot in atomSlots.
+// each atom's slot in atomSlots. Culling draws lists of the slots of the atoms that may show.
 
 uniform samplerBuffer atomPositions; // RGB32F, the vertex buffer itself
 uniform samplerBuffer atomTypes;     // RG8: element, colour index (normalised)
@@ -41,8 +41,9 @@ const vec2 triangleCorners[3] = vec2[3](vec2(-1.7320508, -1.0), vec2(1.7320508, 
 
 void main()
 {
-  int atom = gl_VertexID / 3;
-  int corner = gl_VertexID - 3 * atom;
+  int drawn = gl_VertexID / 3;
+  int corner = gl_VertexID - 3 * drawn;
+  int atom = drawn;
   int slot = atom;
   //MESO::AtomSlot::Impl
   vec3 atomPosition = texelFetch(atomPositions, slot).xyz;

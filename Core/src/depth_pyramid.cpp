@@ -59,6 +59,56 @@ void transform(const double m[16], const double p[3], double out[4])
     out[r] = m[4 * r] * p[0] + m[4 * r + 1] * p[1] + m[4 * r + 2] * p[2] + m[4 * r + 3];
   }
 }
+/// floor and ceil clamped to [-2^30, 2^30], inline (the library calls dominate otherwise).
+int floor_int(double x)
+{
+  x = std::clamp(x, -1073741824.0, 1073741824.0);
+  const int truncated = static_cast<int>(x);
+  return truncated > x ? truncated - 1 : truncated;
+}
+
+int ceil_int(double x)
+{
+  return -floor_int(-x);
+}
+
+/// A rectangle of texels of one level, inclusive.
+struct TexelRange
+{
+  int i0 = 0;
+  int j0 = 0;
+  int i1 = 0;
+  int j1 = 0;
+
+  /// Halves it until it spans fewer than `most` texels both ways (or `levels` run out); the
+  /// level reached.
+  std::size_t Coarsen(int most, std::size_t levels)
+  {
+    std::size_t level = 0;
+    while (level + 1 < levels && (i1 - i0 >= most || j1 - j0 >= most))
+    {
+      i0 >>= 1;
+      i1 >>= 1;
+      j0 >>= 1;
+      j1 >>= 1;
+      ++level;
+    }
+    return level;
+  }
+};
+
+/// The pixels of a width x height image whose centres lie in the footprint's rectangle: only
+/// they can get fragments (the impostors discard the rest), and parts outside the image are not
+/// drawn. False when there are none.
+bool pixel_range(const ScreenFootprint& footprint, int width, int height, TexelRange& range)
+{
+  constexpr double slack = 1e-3; // pixels: rounding between this and the GPU
+  range.i0 = std::max(0, ceil_int(footprint.x0 - 0.5 - slack));
+  range.j0 = std::max(0, ceil_int(footprint.y0 - 0.5 - slack));
+  range.i1 = std::min(width - 1, floor_int(footprint.x1 - 0.5 + slack));
+  range.j1 = std::min(height - 1, floor_int(footprint.y1 - 0.5 + slack));
+  return range.i0 <= range.i1 && range.j0 <= range.j1;
+}
 } // namespace
 
 void ViewTransform::Complete()
@@ -82,12 +132,17 @@ void ViewTransform::Complete()
 }
 
 bool sphere_footprint(const double centre[3], double radius, const ViewTransform& view, int width,
-                      int height, ScreenFootprint& footprint)
+                      int height, ScreenFootprint& footprint, EyeSphere* eye)
 {
   const double* p = view.view_to_clip;
   double c[4];
   transform(view.model_to_view, centre, c);
   const double r = radius * view.view_per_model;
+  if (eye)
+  {
+    std::copy(c, c + 3, eye->centre);
+    eye->radius = r;
+  }
   // The nearest point of the sphere in depth: its eye-space z is the centre's plus r.
   const double nearest[3] = { c[0], c[1], c[2] + r };
   double clip[4];
@@ -206,50 +261,164 @@ void DepthPyramid::Build(const float* depth, int width, int height)
   }
 }
 
-bool DepthPyramid::Hidden(const ScreenFootprint& footprint) const
+bool DepthPyramid::Covered(std::size_t level, int i0, int j0, int i1, int j1,
+                           double visible_from) const
+{
+  const std::vector<float>& texels = this->Levels[level];
+  const int w = this->Sizes[level][0];
+  for (int j = j0; j <= j1; ++j)
+  {
+    const float* row = texels.data() + std::size_t(j) * w;
+    for (int i = i0; i <= i1; ++i)
+    {
+      if (double(row[i]) >= visible_from)
+      {
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+int DepthPyramid::HiddenCoarse(const ScreenFootprint& footprint, int pixels[4]) const
+{
+  if (this->Levels.empty())
+  {
+    return 0;
+  }
+  TexelRange range;
+  if (!pixel_range(footprint, this->Sizes[0][0], this->Sizes[0][1], range))
+  {
+    return 1; // no pixel of the image to draw
+  }
+  pixels[0] = range.i0;
+  pixels[1] = range.j0;
+  pixels[2] = range.i1;
+  pixels[3] = range.j1;
+  // The level where the rectangle spans at most 2 x 2 texels: most hidden atoms end there.
+  const std::size_t level = range.Coarsen(2, this->Levels.size());
+  if (this->Covered(level, range.i0, range.j0, range.i1, range.j1, footprint.depth - depth_margin))
+  {
+    return 1;
+  }
+  return level == 0 ? 0 : -1;
+}
+
+bool DepthPyramid::Hidden(const ScreenFootprint& footprint, int most_texels) const
+{
+  int pixels[4];
+  const int coarse = this->HiddenCoarse(footprint, pixels);
+  if (coarse >= 0)
+  {
+    return coarse == 1;
+  }
+  // Up to (2 most_texels)^2 pixels one by one, or most_texels^2 texels of a coarser level.
+  TexelRange range{ pixels[0], pixels[1], pixels[2], pixels[3] };
+  const double visible_from = footprint.depth - depth_margin;
+  if (range.i1 - range.i0 < 2 * most_texels && range.j1 - range.j0 < 2 * most_texels)
+  {
+    return this->Covered(0, range.i0, range.j0, range.i1, range.j1, visible_from);
+  }
+  const std::size_t level = range.Coarsen(most_texels, this->Levels.size());
+  return this->Covered(level, range.i0, range.j0, range.i1, range.j1, visible_from);
+}
+
+double DepthPyramid::Farthest(const ScreenFootprint& footprint, int most_texels) const
+{
+  if (this->Levels.empty())
+  {
+    return 1.0;
+  }
+  TexelRange range;
+  if (!pixel_range(footprint, this->Sizes[0][0], this->Sizes[0][1], range))
+  {
+    return 0.0;
+  }
+  std::size_t level = 0;
+  if (range.i1 - range.i0 >= 2 * most_texels || range.j1 - range.j0 >= 2 * most_texels)
+  {
+    level = range.Coarsen(most_texels, this->Levels.size());
+  }
+  const std::vector<float>& texels = this->Levels[level];
+  const int w = this->Sizes[level][0];
+  float farthest = 0;
+  for (int j = range.j0; j <= range.j1; ++j)
+  {
+    for (int i = range.i0; i <= range.i1; ++i)
+    {
+      farthest = std::max(farthest, texels[std::size_t(j) * w + i]);
+    }
+  }
+  return double(farthest);
+}
+
+bool DepthPyramid::SphereHidden(const ScreenFootprint& footprint, const EyeSphere& sphere,
+                                const double view_to_clip[16]) const
 {
   if (this->Levels.empty())
   {
     return false;
   }
+  int pixels[4];
+  if (this->HiddenCoarse(footprint, pixels) == 1)
+  {
+    return true;
+  }
+  const int i0 = pixels[0];
+  const int j0 = pixels[1];
+  const int i1 = pixels[2];
+  const int j1 = pixels[3];
+  if (i1 - i0 >= 16 || j1 - j0 >= 16)
+  {
+    return this->Hidden(footprint);
+  }
   const int width = this->Sizes[0][0];
   const int height = this->Sizes[0][1];
-  // Only pixels whose centres lie inside the outline get fragments (the impostors discard the
-  // rest), so only those under the rectangle count; parts outside the image are not drawn.
-  constexpr double slack = 1e-3; // pixels: rounding between this and the GPU
-  int i0 = std::max(0, static_cast<int>(std::ceil(footprint.x0 - 0.5 - slack)));
-  int j0 = std::max(0, static_cast<int>(std::ceil(footprint.y0 - 0.5 - slack)));
-  int i1 = std::min(width - 1, static_cast<int>(std::floor(footprint.x1 - 0.5 + slack)));
-  int j1 = std::min(height - 1, static_cast<int>(std::floor(footprint.y1 - 0.5 + slack)));
-  if (i0 > i1 || j0 > j1)
-  {
-    return true; // no pixel of the image to draw
-  }
-  // Up to 8 x 8 pixels are read one by one; larger rectangles at the level where they span at
-  // most 4 x 4 texels.
-  std::size_t level = 0;
-  if (i1 - i0 >= 8 || j1 - j0 >= 8)
-  {
-    while (level + 1 < this->Levels.size() && (i1 - i0 > 3 || j1 - j0 > 3))
-    {
-      i0 >>= 1;
-      i1 >>= 1;
-      j0 >>= 1;
-      j1 >>= 1;
-      ++level;
-    }
-  }
-  const std::vector<float>& texels = this->Levels[level];
-  const int w = this->Sizes[level][0];
-  float farthest = 0;
+  // The sphere shows at a pixel when the ray through its centre meets the sphere and what is
+  // drawn there lies no nearer than the sphere's nearest point (a hit is never nearer).
+  const double* p = view_to_clip;
+  const bool perspective = p[14] != 0;
+  const double* c = sphere.centre;
+  // A slightly larger sphere: whatever the GPU's rounding, its pixels are among these.
+  const double r = sphere.radius * (1.0 + 1e-4);
+  const double visible_from = footprint.depth - depth_margin;
+  const double beyond = c[0] * c[0] + c[1] * c[1] + c[2] * c[2] - r * r; // |c|² - r²
+  const std::vector<float>& depth = this->Levels[0];
   for (int j = j0; j <= j1; ++j)
   {
+    const double y_ndc = 2.0 * (j + 0.5) / height - 1.0;
+    const float* row = depth.data() + std::size_t(j) * width;
     for (int i = i0; i <= i1; ++i)
     {
-      farthest = std::max(farthest, texels[std::size_t(j) * w + i]);
+      if (double(row[i]) < visible_from)
+      {
+        continue; // something nearer than any point of the sphere
+      }
+      const double x_ndc = 2.0 * (i + 0.5) / width - 1.0;
+      bool meets = false;
+      if (perspective)
+      {
+        // The ray from the eye along d = (u, v, -1), u = x / -z (ndc x = p0 u - p2), meets the
+        // sphere when (c.d)² >= (|c|² - r²) |d|², c.d > 0.
+        const double u = (x_ndc + p[2]) / p[0];
+        const double v = (y_ndc + p[6]) / p[5];
+        const double along = u * c[0] + v * c[1] - c[2];
+        meets = along > 0 && along * along >= beyond * (u * u + v * v + 1.0);
+      }
+      else
+      {
+        // Parallel rays down -z through (x, y): ndc x = p0 x + p3.
+        const double x = (x_ndc - p[3]) / p[0] - c[0];
+        const double y = (y_ndc - p[7]) / p[5] - c[1];
+        meets = x * x + y * y <= r * r;
+      }
+      if (meets)
+      {
+        return false;
+      }
     }
   }
-  return footprint.depth > double(farthest) + depth_margin;
+  return true;
 }
 
 CellVisibility test_atom_visibility(const DepthPyramid& pyramid, const ViewTransform& view,
@@ -278,6 +447,7 @@ CellVisibility test_atom_visibility(const DepthPyramid& pyramid, const ViewTrans
       const std::uint32_t last = cells.cell_start[cell + 1];
       // 0: the whole cell hidden; 1: test each atom; 2: every atom visible.
       int mode = 2;
+      double cell_farthest = 1.0; // the farthest depth drawn over the cell's footprint
       if (!in_view[k].must_draw)
       {
         const float* box = boxes.data() + 6 * std::size_t(cell);
@@ -286,7 +456,8 @@ CellVisibility test_atom_visibility(const DepthPyramid& pyramid, const ViewTrans
         ScreenFootprint footprint;
         if (box_footprint(low, high, model_to_clip, width, height, footprint))
         {
-          mode = pyramid.Hidden(footprint) ? 0 : 1;
+          mode = pyramid.Hidden(footprint, 8) ? 0 : 1;
+          cell_farthest = pyramid.Farthest(footprint, 8);
         }
       }
       bool seen = false;
@@ -300,10 +471,22 @@ CellVisibility test_atom_visibility(const DepthPyramid& pyramid, const ViewTrans
         {
           const float* p = slot_xyz + 3 * std::size_t(slot);
           const double r = radius_of_element[element_of_slot[slot * element_stride]];
-          const double position[3] = { p[0], p[1], p[2] };
-          ScreenFootprint footprint;
-          visible = !sphere_footprint(position, r, view, width, height, footprint) ||
-            !pyramid.Hidden(footprint);
+          // Behind everything drawn over its cell's footprint: hidden, without its outline.
+          const double* m = view.model_to_view;
+          const double z =
+            m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11] + r * view.view_per_model;
+          const double* q = view.view_to_clip;
+          const double w = q[14] * z + q[15];
+          const bool behind =
+            w > 0 && ((q[10] * z + q[11]) / w + 1.0) * 0.5 > cell_farthest + depth_margin;
+          if (!behind)
+          {
+            const double position[3] = { p[0], p[1], p[2] };
+            ScreenFootprint footprint;
+            EyeSphere eye;
+            visible = !sphere_footprint(position, r, view, width, height, footprint, &eye) ||
+              !pyramid.SphereHidden(footprint, eye, view.view_to_clip);
+          }
         }
         const bool drawn_first = (flags[slot] & SEEN) != 0;
         const bool fresh = visible && !drawn_first;

@@ -132,6 +132,39 @@ TEST(DepthPyramid, LevelsHoldTheFarthestDepth)
   EXPECT_FALSE(empty.Hidden({ 0, 0, 1, 1, 1 }));
 }
 
+TEST(DepthPyramid, SphereHiddenLooksOnlyAtThePixelsItCovers)
+{
+  // A wall at depth 0.2 with one far pixel (12, 12); a sphere of radius 2.5 pixels centred on
+  // pixel (10, 10) behind the wall. The far pixel is inside the outline's rectangle but its
+  // centre (12.5, 12.5) is 2.83 pixels from the sphere's centre: outside its outline.
+  std::vector<float> depth(400, 0.2f);
+  depth[12 * 20 + 12] = 1.0f;
+  mesolens::DepthPyramid pyramid;
+  pyramid.Build(depth.data(), 20, 20);
+  const auto projection = orthographic();
+  const auto view = view_of(projection);
+  const double centre[3] = { 0.5, 0.5, -8.0 }; // pixel (10.5, 10.5), nearest depth > 0.45
+  mesolens::ScreenFootprint footprint;
+  mesolens::EyeSphere eye;
+  ASSERT_TRUE(mesolens::sphere_footprint(centre, 2.5, view, 20, 20, footprint, &eye));
+  EXPECT_FALSE(pyramid.Hidden(footprint));
+  EXPECT_TRUE(pyramid.SphereHidden(footprint, eye, view.view_to_clip));
+  // Larger, the sphere covers the far pixel's centre and shows there.
+  ASSERT_TRUE(mesolens::sphere_footprint(centre, 3.0, view, 20, 20, footprint, &eye));
+  EXPECT_FALSE(pyramid.SphereHidden(footprint, eye, view.view_to_clip));
+  // In front of the wall: visible; in perspective too.
+  const double front[3] = { 0.5, 0.5, -2.0 };
+  ASSERT_TRUE(mesolens::sphere_footprint(front, 0.5, view, 20, 20, footprint, &eye));
+  EXPECT_FALSE(pyramid.SphereHidden(footprint, eye, view.view_to_clip));
+  const auto seen = view_of(perspective());
+  const double ahead[3] = { 0.0, 0.0, -1.15 }; // the wall is 1.25 from the eye
+  ASSERT_TRUE(mesolens::sphere_footprint(ahead, 0.05, seen, 20, 20, footprint, &eye));
+  EXPECT_FALSE(pyramid.SphereHidden(footprint, eye, seen.view_to_clip)); // depth < 0.2
+  const double behind[3] = { 0.0, 0.0, -30.0 };
+  ASSERT_TRUE(mesolens::sphere_footprint(behind, 1.0, seen, 20, 20, footprint, &eye));
+  EXPECT_TRUE(pyramid.SphereHidden(footprint, eye, seen.view_to_clip));
+}
+
 TEST(DepthPyramid, BoxFootprintInAnOrthographicView)
 {
   const auto m = orthographic();
@@ -164,22 +197,22 @@ TEST(DepthPyramid, AtomsBehindAWallAreHiddenOthersStay)
   pyramid.Build(depth.data(), 20, 20);
   const auto m = orthographic();
   const auto view = view_of(m);
-  // Atoms (radius 0.5): behind the wall, in front of it, to the right, and one that was drawn
+  // Atoms (radius 1.2): behind the wall, in front of it, to the right, and one that was drawn
   // first and is still visible.
   const std::vector<float> xyz = { -5, 0, -8, -5, 0, -3, 5, 0, -8, 5, 5, -8 };
   const std::vector<std::uint8_t> elements = { 1, 1, 1, 1 };
-  const float radii[2] = { 0.5f, 0.5f };
+  const float radii[2] = { 1.2f, 1.2f }; // 2.4 pixels across: over some pixel centres
   mesolens::AtomCells cells;
   cells.atom_of_slot = { 0, 1, 2, 3 };
   cells.cell_start = { 0, 2, 4 }; // two cells of two atoms
   std::vector<float> slot_xyz(12);
   std::vector<float> boxes;
   mesolens::gather_cell_positions(xyz.data(), cells, slot_xyz.data(), boxes);
-  const auto in_view = mesolens::cells_in_view(boxes, 0.5, m.data());
+  const auto in_view = mesolens::cells_in_view(boxes, 1.2, m.data());
   ASSERT_EQ(in_view.size(), 2u);
   std::vector<std::uint8_t> flags = { 0, 0, 0, mesolens::SEEN };
   const auto result = mesolens::test_atom_visibility(
-    pyramid, view, slot_xyz.data(), elements.data(), 1, radii, cells, boxes, in_view, 0.5, flags);
+    pyramid, view, slot_xyz.data(), elements.data(), 1, radii, cells, boxes, in_view, 1.2, flags);
   EXPECT_EQ(flags[0], 0);
   EXPECT_EQ(flags[1], mesolens::SEEN | mesolens::NEWLY_SEEN);
   EXPECT_EQ(flags[2], mesolens::SEEN | mesolens::NEWLY_SEEN);
@@ -195,7 +228,7 @@ TEST(DepthPyramid, AtomsBehindAWallAreHiddenOthersStay)
   flags = { mesolens::SEEN, mesolens::SEEN, 0, 0 };
   const auto behind = mesolens::test_atom_visibility(
     pyramid, view, slot_xyz.data(), elements.data(), 1, radii, cells, boxes,
-    mesolens::cells_in_view(boxes, 0.5, m.data()), 0.5, flags);
+    mesolens::cells_in_view(boxes, 1.2, m.data()), 1.2, flags);
   EXPECT_EQ(flags[0], 0);
   EXPECT_EQ(flags[1], 0);
   EXPECT_EQ(behind.seen[0], 0);
@@ -203,7 +236,7 @@ TEST(DepthPyramid, AtomsBehindAWallAreHiddenOthersStay)
   flags = { mesolens::SEEN, mesolens::SEEN, mesolens::SEEN, mesolens::SEEN };
   std::vector<mesolens::CellInView> only_first = { { 0, 0.5, false } };
   mesolens::test_atom_visibility(pyramid, view, slot_xyz.data(), elements.data(), 1, radii, cells,
-                                 boxes, only_first, 0.5, flags);
+                                 boxes, only_first, 1.2, flags);
   EXPECT_EQ(flags[2], 0);
   EXPECT_EQ(flags[3], 0);
 }

@@ -44,11 +44,19 @@ struct ViewTransform
   void Complete();
 };
 
+/// A sphere in eye coordinates.
+struct EyeSphere
+{
+  double centre[3] = { 0, 0, 0 };
+  double radius = 0;
+};
+
 /// The footprint of a sphere (centre and radius in model units): the exact extent of its
 /// outline in x and y and the depth of its nearest point, in both perspective and parallel
-/// projections. False when it reaches the eye's plane or the near plane.
+/// projections; the sphere in eye coordinates in `eye` if given. False when it reaches the eye's
+/// plane or the near plane.
 bool sphere_footprint(const double centre[3], double radius, const ViewTransform& view, int width,
-                      int height, ScreenFootprint& footprint);
+                      int height, ScreenFootprint& footprint, EyeSphere* eye = nullptr);
 
 /// Farthest-depth pyramid of one depth image.
 class DepthPyramid
@@ -61,8 +69,22 @@ public:
 
   /// Whether the footprint is hidden: everything drawn at the pixels of the image whose centres
   /// lie in its rectangle is nearer than its depth (only those pixels can get its fragments;
-  /// none at all: hidden). Reads up to 8 x 8 pixels, or 4 x 4 texels of a coarser level.
-  bool Hidden(const ScreenFootprint& footprint) const;
+  /// none at all: hidden). Reads 2 x 2 texels of a coarse level first, then up to
+  /// (2 most_texels)^2 pixels one by one, or most_texels^2 texels of the level where the
+  /// rectangle spans that many (more texels: a sharper answer for more reads).
+  bool Hidden(const ScreenFootprint& footprint, int most_texels = 4) const;
+
+  /// The farthest depth drawn at the pixels of the image whose centres lie in the footprint's
+  /// rectangle, or an upper bound of it from a coarser level (as Hidden reads them); 0 when
+  /// there are none, 1 for an empty pyramid.
+  double Farthest(const ScreenFootprint& footprint, int most_texels = 4) const;
+
+  /// Whether a sphere (its footprint, and itself in eye coordinates seen through
+  /// `view_to_clip`) is hidden: Hidden, or, over at most 16 x 16 pixels, at every pixel whose
+  /// ray meets the sphere (the impostors' own test, with a little slack) something nearer than
+  /// the sphere's nearest point is drawn.
+  bool SphereHidden(const ScreenFootprint& footprint, const EyeSphere& sphere,
+                    const double view_to_clip[16]) const;
 
   int Width() const
   {
@@ -74,6 +96,12 @@ public:
   }
 
 private:
+  /// Whether every texel of the rectangle (inclusive) of `level` is nearer than visible_from.
+  bool Covered(std::size_t level, int i0, int j0, int i1, int j1, double visible_from) const;
+  /// The first, coarse test of Hidden: 1 hidden, 0 visible, -1 undecided; the footprint's pixel
+  /// rectangle (i0, j0, i1, j1) in `pixels` when it has one.
+  int HiddenCoarse(const ScreenFootprint& footprint, int pixels[4]) const;
+
   std::vector<std::vector<float>> Levels;
   std::vector<std::array<int, 2>> Sizes;
 };

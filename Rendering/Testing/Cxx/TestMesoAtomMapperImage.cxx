@@ -263,14 +263,24 @@ int main(int argc, char* argv[])
 {
   if (argc < 3)
   {
-    std::cerr << "usage: TestMesoAtomMapperImage SCENE OUTPUT.png [--radius-factor F]\n";
+    std::cerr << "usage: TestMesoAtomMapperImage SCENE OUTPUT.png [--radius-factor F] "
+                 "[--cells N]\n";
     return 2;
   }
   const std::string scene = argv[1];
   const std::string output = argv[2];
-  if (argc == 5 && std::string(argv[3]) == "--radius-factor")
+  int atoms_per_cell = 0;
+  for (int i = 3; i + 1 < argc; i += 2)
   {
-    radius_factor = std::atof(argv[4]);
+    const std::string option = argv[i];
+    if (option == "--radius-factor")
+    {
+      radius_factor = std::atof(argv[i + 1]);
+    }
+    else if (option == "--cells")
+    {
+      atoms_per_cell = std::atoi(argv[i + 1]);
+    }
   }
   const std::map<std::string, std::function<vtkSmartPointer<vtkRenderWindow>()>> scenes{
     { "space_filling", [] { return protein(vtkMesoAtomMapper::SPACE_FILLING); } },
@@ -296,6 +306,26 @@ int main(int argc, char* argv[])
     return 2;
   }
   vtkSmartPointer<vtkRenderWindow> window = found->second();
+  if (atoms_per_cell > 0)
+  {
+    // Occlusion culling for the small test molecules: cells of that many atoms. Two frames:
+    // the first learns what shows, the second draws from what it learnt.
+    vtkRenderer* renderer = nullptr;
+    auto renderers = window->GetRenderers();
+    for (renderers->InitTraversal(); (renderer = renderers->GetNextItem());)
+    {
+      vtkActor* actor = nullptr;
+      auto actors = renderer->GetActors();
+      for (actors->InitTraversal(); (actor = actors->GetNextActor());)
+      {
+        if (auto* atoms = vtkMesoAtomMapper::SafeDownCast(actor->GetMapper()))
+        {
+          atoms->SetAtomsPerCell(atoms_per_cell);
+        }
+      }
+    }
+    window->Render();
+  }
   window->Render();
   vtkNew<vtkWindowToImageFilter> capture;
   capture->SetInput(window);

@@ -44,7 +44,8 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
-#include <unordered_map>
+#include <map>
+#include <tuple>
 
 vtkStandardNewMacro(vtkMesoAtomMapper);
 
@@ -160,17 +161,20 @@ struct vtkMesoAtomMapper::Internals
   vtkMTimeType BoundsTime = 0;             // of the inputs and settings at this time
   Pass Current = Pass::Atoms;
   bool Inverted = false;
-  // Keyed by camera: only compared, never dereferenced (a stale entry costs time, not pixels).
-  std::unordered_map<const vtkCamera*, ViewHistory> Histories;
+  // Keyed by renderer and viewport size: a shadow map (another size) keeps its own; cameras
+  // are no key, as VTK renders through temporary copies of them (image capture). The renderer
+  // is only compared, never dereferenced: a stale entry costs time, not pixels.
+  using ViewKey = std::tuple<const vtkRenderer*, int, int>;
+  std::map<ViewKey, ViewHistory> Histories;
 
-  ViewHistory& History(const vtkCamera* camera, unsigned long version, std::size_t atoms,
+  ViewHistory& History(const ViewKey& key, unsigned long version, std::size_t atoms,
                        std::size_t cells)
   {
-    if (this->Histories.size() > 16 && !this->Histories.count(camera))
+    if (this->Histories.size() > 16 && !this->Histories.count(key))
     {
       this->Histories.clear();
     }
-    ViewHistory& history = this->Histories[camera];
+    ViewHistory& history = this->Histories[key];
     if (history.CellsVersion != version || history.Flags.size() != atoms ||
         history.Seen.size() != cells)
     {
@@ -701,9 +705,12 @@ void vtkMesoAtomMapper::DrawVisibleCells(vtkRenderer* ren, vtkActor* act, vtkSha
   const std::vector<mesolens::CellInView> cells =
     mesolens::cells_in_view(data.CellBoxes, padding, view.model_to_clip);
 
-  // What this camera saw last time (a shadow pass's light camera sees other atoms).
+  // What this renderer saw last time at this viewport size.
+  GLint viewport[4] = { 0, 0, 0, 0 };
+  glGetIntegerv(GL_VIEWPORT, viewport);
   const std::size_t atom_count = static_cast<std::size_t>(data.AtomCount);
-  ViewHistory& history = in.History(camera, data.CellsVersion, atom_count, data.Cells.cell_count());
+  ViewHistory& history = in.History({ ren, viewport[2], viewport[3] }, data.CellsVersion,
+                                    atom_count, data.Cells.cell_count());
 
   // 1. The atoms seen last time; with none (a first frame, a jump), the nearest quarter of the
   // cells in view, whole.

@@ -385,6 +385,21 @@ TEST(MesoAtomMapper, CullingSkipsHiddenCellsAndKeepsThePicture)
   EXPECT_EQ(pair.Culled.Mapper->GetLastDrawnAtomCount(), 27000);
 }
 
+TEST(MesoAtomMapper, MultisampledWindowsDrawEveryAtomInView)
+{
+  // A multisampled depth buffer cannot be read back as it is: no atom is left out.
+  auto block = carbon_block(21); // 9261 atoms: cells
+  CullingPair pair(block);
+  pair.Culled.Window->SetMultiSamples(4);
+  pair.Whole.Window->SetMultiSamples(4);
+  pair.Culled.Renderer->GetActiveCamera()->Azimuth(30);
+  for (int frame = 0; frame < 2; ++frame)
+  {
+    EXPECT_LT(pair.Render(), 5);
+    EXPECT_EQ(pair.Culled.Mapper->GetLastDrawnAtomCount(), 9261);
+  }
+}
+
 TEST(MesoAtomMapper, CulledPictureIsExactForScatteredAtoms)
 {
   // 12000 atoms at random in a slab, in cells of 8: many cells half hidden behind others, whose

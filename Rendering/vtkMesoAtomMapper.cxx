@@ -34,7 +34,6 @@
 #include <vtkOpenGLVertexArrayObject.h>
 #include <vtkPolyData.h>
 #include <vtkProperty.h>
-#include <vtkSMPTools.h>
 #include <vtkRenderer.h>
 #include <vtkShaderProgram.h>
 #include <vtkTextureObject.h>
@@ -115,16 +114,6 @@ struct ViewHistory
   std::vector<std::uint8_t> Flags;
   std::vector<std::uint8_t> Seen;
 };
-
-/// Core's loops run through vtkSMPTools.
-mesolens::ParallelFor smp_parallel_for()
-{
-  return [](std::size_t count, const mesolens::RangeKernel& kernel) {
-    vtkSMPTools::For(0, static_cast<vtkIdType>(count), [&kernel](vtkIdType begin, vtkIdType end) {
-      kernel(static_cast<std::size_t>(begin), static_cast<std::size_t>(end));
-    });
-  };
-}
 
 struct vtkMesoAtomMapper::Internals
 {
@@ -742,7 +731,7 @@ void vtkMesoAtomMapper::DrawVisibleCells(vtkRenderer* ren, vtkActor* act, vtkSha
   }
   const mesolens::CellVisibility found = mesolens::test_atom_visibility(
     in.Pyramid, view, data.PositionData, data.Types.data(), 2, data.Radii.data(), data.Cells,
-    data.CellBoxes, cells, padding, history.Flags, smp_parallel_for());
+    data.CellBoxes, cells, padding, history.Flags, vtkMesoAtomGPUData::SMPParallelFor());
   in.DrawAtoms(window, spheres, 1, history.Flags, mesolens::NEWLY_SEEN, cells, found.newly_seen);
   in.LastDrawnAtoms = static_cast<vtkIdType>(found.drawn_first + found.drawn_after);
   history.Seen = found.seen;

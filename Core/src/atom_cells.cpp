@@ -139,28 +139,30 @@ AtomCells group_atoms_into_cells(const float* xyz, std::size_t atom_count,
 }
 
 void gather_cell_positions(const float* xyz, const AtomCells& cells, float* slot_xyz,
-                           std::vector<float>& boxes)
+                           std::vector<float>& boxes, const ParallelFor& parallel_for)
 {
   const std::size_t count = cells.cell_count();
   boxes.assign(6 * count, 0.0f);
-  for (std::size_t c = 0; c < count; ++c)
-  {
-    float box[6] = { std::numeric_limits<float>::max(),    std::numeric_limits<float>::max(),
-                     std::numeric_limits<float>::max(),    std::numeric_limits<float>::lowest(),
-                     std::numeric_limits<float>::lowest(), std::numeric_limits<float>::lowest() };
-    for (std::uint32_t slot = cells.cell_start[c]; slot < cells.cell_start[c + 1]; ++slot)
+  run_parallel(parallel_for, count, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c)
     {
-      const float* p = xyz + 3 * std::size_t(cells.atom_of_slot[slot]);
-      float* q = slot_xyz + 3 * std::size_t(slot);
-      for (int d = 0; d < 3; ++d)
+      float box[6] = { std::numeric_limits<float>::max(),    std::numeric_limits<float>::max(),
+                       std::numeric_limits<float>::max(),    std::numeric_limits<float>::lowest(),
+                       std::numeric_limits<float>::lowest(), std::numeric_limits<float>::lowest() };
+      for (std::uint32_t slot = cells.cell_start[c]; slot < cells.cell_start[c + 1]; ++slot)
       {
-        q[d] = p[d];
-        box[d] = std::min(box[d], p[d]);
-        box[3 + d] = std::max(box[3 + d], p[d]);
+        const float* p = xyz + 3 * std::size_t(cells.atom_of_slot[slot]);
+        float* q = slot_xyz + 3 * std::size_t(slot);
+        for (int d = 0; d < 3; ++d)
+        {
+          q[d] = p[d];
+          box[d] = std::min(box[d], p[d]);
+          box[3 + d] = std::max(box[3 + d], p[d]);
+        }
       }
+      std::copy(box, box + 6, boxes.begin() + std::ptrdiff_t(6 * c));
     }
-    std::copy(box, box + 6, boxes.begin() + std::ptrdiff_t(6 * c));
-  }
+  });
 }
 
 double total_cell_diagonal(const std::vector<float>& boxes)

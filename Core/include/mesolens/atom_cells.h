@@ -4,6 +4,8 @@
 // "Coherent culling and shading for large molecular dynamics visualization", EuroVis 2010).
 #pragma once
 
+#include "mesolens/parallel_for.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -35,7 +37,7 @@ AtomCells group_atoms_into_cells(const float* xyz, std::size_t atom_count,
 /// atom centres (`boxes`, 6 per cell: min x, y, z, max x, y, z). For a new time step of the same
 /// atoms the grouping stays and only this runs.
 void gather_cell_positions(const float* xyz, const AtomCells& cells, float* slot_xyz,
-                           std::vector<float>& boxes);
+                           std::vector<float>& boxes, const ParallelFor& parallel_for = {});
 
 /// The summed box diagonals: how spread the cells are (it grows as the atoms of a trajectory
 /// drift from the cells they were grouped into).

@@ -70,14 +70,15 @@ endfunction()
 add_executable(mesolens_compare_images "${CMAKE_SOURCE_DIR}/Testing/Support/mesolens_compare_images.cxx")
 target_link_libraries(mesolens_compare_images PRIVATE VTK::IOImage VTK::CommonDataModel)
 
-# mesolens_add_image_test(<name> BASELINE <png> COMMAND <program> <args>... [WILL_FAIL]
+# mesolens_add_image_test(<name> BASELINE <png> COMMAND <program> <args>... [WILL_FAIL] [PYTHON]
 #                         [THRESHOLDS <pixel threshold> <max fraction>])
 # Runs the program, which must write ${MESOLENS_TEST_OUTPUT_DIR}/<name>.png (pass it with
 # @IMAGE@ in the arguments), then compares that image with Testing/Baseline/<png> (by default
 # strictly: 16 levels per pixel, 0.2 % of the pixels; THRESHOLDS loosens that for pictures drawn
-# by a different method).
+# by a different method). PYTHON: the program runs the wrapped modules in Debian's Python (which
+# needs the sanitizer runtime preloaded in a sanitizer build).
 function(mesolens_add_image_test name)
-  cmake_parse_arguments(arg "WILL_FAIL" "BASELINE;LABEL" "COMMAND;THRESHOLDS" ${ARGN})
+  cmake_parse_arguments(arg "WILL_FAIL;PYTHON" "BASELINE;LABEL" "COMMAND;THRESHOLDS" ${ARGN})
   if (NOT arg_LABEL)
     set(arg_LABEL render)
   endif ()
@@ -93,6 +94,10 @@ function(mesolens_add_image_test name)
   if (MESOLENS_ENABLE_SANITIZERS)
     # Mesa's GL driver, loaded and unloaded at run time, leaks a few hundred bytes that
     # LeakSanitizer cannot attribute to a module; leak checks stay on for the other tests.
-    set_tests_properties(${name} PROPERTIES ENVIRONMENT "ASAN_OPTIONS=detect_leaks=0")
+    set(environment "ASAN_OPTIONS=detect_leaks=0")
+    if (arg_PYTHON)
+      list(APPEND environment "LD_PRELOAD=${MESOLENS_SANITIZER_PRELOAD}")
+    endif ()
+    set_tests_properties(${name} PROPERTIES ENVIRONMENT "${environment}")
   endif ()
 endfunction()

@@ -1,0 +1,97 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The mesolens command: it renders, writes animation frames, and refuses bad input with one
+clear line and a non-zero exit status, never a traceback.
+
+    test_mesolens_command.py MESOLENS_COMMAND
+"""
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+COMMAND = sys.argv.pop(1) if len(sys.argv) > 1 else "mesolens"
+DATA = os.environ.get("MESOLENS_DATA_DIR", "Data")
+MESH = os.path.join(DATA, "meshes", "mito5_outer_membrane.obj")
+PATCH = os.path.join(DATA, "membranes", "dppc128_slipids_323K.gro")
+YIIP = os.path.join(DATA, "membranes", "yiip_popepopg.gro")
+YIIP_XTC = os.path.join(DATA, "membranes", "yiip_popepopg.xtc")
+
+
+def run(*arguments):
+    result = subprocess.run([COMMAND, *arguments], capture_output=True, text=True, timeout=300,
+                            check=False)
+    return result.returncode, result.stderr
+
+
+class MesolensCommand(unittest.TestCase):
+    def setUp(self):
+        self.folder = tempfile.TemporaryDirectory()
+        self.output = os.path.join(self.folder.name, "out.png")
+
+    def tearDown(self):
+        self.folder.cleanup()
+
+    def refused(self, expected_status, message, *arguments):
+        status, errors = run(*arguments)
+        self.assertEqual(status, expected_status, errors)
+        self.assertIn(message, errors)
+        self.assertNotIn("Traceback", errors)
+        self.assertFalse(os.path.exists(self.output))
+
+    def render(self, *arguments):
+        return ("render", "--mesh", MESH, "--membrane", PATCH, "--size", "64x48", "--quiet",
+                "-o", self.output, *arguments)
+
+    def test_renders_each_method_and_style(self):
+        for method in ("polynomial", "instancing", "displacement"):
+            for style in ("space-filling", "ball-and-stick"):
+                status, errors = run(*self.render("--vertex", "1000", "--tiles", "2",
+                                                  "--method", method, "--style", style))
+                self.assertEqual(status, 0, errors)
+                self.assertGreater(os.path.getsize(self.output), 100)
+                os.remove(self.output)
+
+    def test_writes_a_frame_per_time_step(self):
+        status, errors = run("render", "--mesh", MESH, "--membrane", YIIP, "--trajectory",
+                             YIIP_XTC, "--vertex", "1000", "--tiles", "1", "--frames", "2",
+                             "--size", "64x48", "--quiet", "-o", self.output)
+        self.assertEqual(status, 0, errors)
+        frames = [os.path.join(self.folder.name, f"out_{i:04d}.png") for i in range(2)]
+        for frame in frames:
+            self.assertTrue(os.path.isfile(frame), frame)
+
+    def test_missing_and_unreadable_files(self):
+        self.refused(1, "mesh '/nowhere/cell.obj' does not exist", "render", "--mesh",
+                     "/nowhere/cell.obj", "--membrane", PATCH, "--vertex", "0", "-o", self.output)
+        self.refused(1, "membrane '/nowhere/patch.gro' does not exist", "render", "--mesh", MESH,
+                     "--membrane", "/nowhere/patch.gro", "--vertex", "0", "-o", self.output)
+        garbage = os.path.join(self.folder.name, "garbage.obj")
+        with open(garbage, "wb") as file:
+            file.write(bytes(range(256)) * 8)
+        self.refused(1, "mesh", "render", "--mesh", garbage, "--membrane", PATCH,
+                     "--vertex", "0", "-o", self.output)
+        truncated = os.path.join(self.folder.name, "truncated.gro")
+        with open(PATCH, encoding="ascii") as source, open(truncated, "w", encoding="ascii") as copy:
+            copy.write(source.read()[:5000])
+        self.refused(1, "cannot read the membrane", "render", "--mesh", MESH, "--membrane",
+                     truncated, "--vertex", "0", "-o", self.output)
+
+    def test_centre_off_the_surface_gives_the_mapping_reason(self):
+        self.refused(1, "the membrane cannot be mapped there:", *self.render("--center", "50,50,50"))
+
+    def test_out_of_range_arguments(self):
+        self.refused(1, "tiles must be between 1 and 15", *self.render("--vertex", "0", "--tiles", "0"))
+        self.refused(1, "is not a vertex of the mesh", *self.render("--vertex", "99999999"))
+        self.refused(2, "expected X,Y,Z", *self.render("--center", "1,2"))
+        self.refused(2, "WIDTHxHEIGHT", *self.render("--vertex", "0", "--size", "0x0"))
+        self.refused(1, "--frames needs a trajectory", *self.render("--vertex", "1000", "--frames", "2"))
+        status, errors = run("render", "--mesh", MESH, "--membrane", PATCH, "--vertex", "1000",
+                             "--quiet", "-o", "/nowhere/out.png")
+        self.assertEqual(status, 1, errors)
+        self.assertIn("no folder", errors)
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,243 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The MesoLens scene: a cell surface with a membrane patch mapped onto it around a point.
+
+``MembraneLens`` reads a cell-component mesh and a membrane patch (a structure or topology file,
+optionally with a trajectory), maps the patch onto the surface around a centre point with
+``vtkMesoMembraneMapping`` and draws both: the surface Phong-shaded, the atoms through
+``vtkMesoAtomMapper`` (warped on the GPU for the polynomial and instancing methods, mapped on the
+CPU for displacement). The ``mesolens`` command is built on it.
+
+Units: the mesh in ``mesh_unit_angstrom`` Å per unit (1e4 for µm, the default; 10 for nm); the
+membrane in Å (GROMACS files are converted by the reader).
+"""
+import os
+
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.vtkConstants import VTK_STRING
+from vtkmodules.vtkCommonCore import vtkCommand
+from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
+from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderer
+
+from .MesoLensFilters import (vtkMesoMembraneMapping, vtkMesoMeshReader,
+                              vtkMesoStructureReader, vtkMesoTrajectoryReader)
+from .MesoLensRendering import vtkMesoAtomMapper
+
+METHODS = {"displacement": vtkMesoMembraneMapping.DISPLACEMENT,
+           "instancing": vtkMesoMembraneMapping.MOLECULE_INSTANCING,
+           "polynomial": vtkMesoMembraneMapping.POLYNOMIAL}
+STYLES = {"space-filling": vtkMesoAtomMapper.SPACE_FILLING,
+          "ball-and-stick": vtkMesoAtomMapper.BALL_AND_STICK}
+TRAJECTORY_SUFFIXES = (".xtc", ".trr")
+
+
+class LensError(RuntimeError):
+    """A lens that cannot be built or placed, with the reason in words."""
+
+
+class _ErrorCatcher:
+    """Collects the error messages an algorithm reports (its ErrorEvent) instead of printing."""
+
+    def __init__(self, algorithm):
+        self.messages = []
+        algorithm.AddObserver(vtkCommand.ErrorEvent, self._record)
+        algorithm.GetExecutive().AddObserver(vtkCommand.ErrorEvent, self._record)
+
+    @calldata_type(VTK_STRING)
+    def _record(self, _caller, _event, message=None):
+        if message:
+            # VTK's text is "ERROR: In file, line N\nclass (address): reason"; the executive's
+            # "returned failure for request" follows every failure and says nothing more.
+            reason = message.strip().split("): ", 1)[-1].split("\n", 1)[0]
+            if "returned failure for request" not in reason:
+                self.messages.append(reason)
+
+    def take(self):
+        text = "; ".join(dict.fromkeys(self.messages))
+        self.messages = []
+        return text
+
+
+def _require_file(path, what):
+    if not path:
+        raise LensError(f"no {what} given")
+    if not os.path.isfile(path):
+        raise LensError(f"{what} {path!r} does not exist or is not a file")
+    if not os.access(path, os.R_OK):
+        raise LensError(f"{what} {path!r} is not readable")
+
+
+class MembraneLens:
+    """A cell surface and a membrane patch mapped onto it; see the module's description.
+
+    mesh, membrane: file names (mesh: OBJ, PLY, STL, VTP, OFF; membrane: PDB, mmCIF or GRO).
+    trajectory: XTC or TRR file over the membrane's topology, or None.
+    Raises LensError with the reason when a file cannot be read.
+    """
+
+    def __init__(self, mesh, membrane, trajectory=None, mesh_unit_angstrom=1e4, progress=None):
+        _require_file(mesh, "mesh")
+        _require_file(membrane, "membrane")
+        if trajectory:
+            _require_file(trajectory, "trajectory")
+        self._progress = progress or (lambda text: None)
+        self.scale = 1.0 / mesh_unit_angstrom  # mesh units per Å
+
+        self._progress(f"reading the mesh {mesh}")
+        self.surface = vtkMesoMeshReader()
+        self.surface.SetFileName(mesh)
+        self._read(self.surface, "mesh", mesh)
+        if self.surface.GetOutput().GetNumberOfCells() == 0:
+            raise LensError(f"mesh {mesh!r} has no triangles")
+
+        self._progress(f"reading the membrane {membrane}")
+        if membrane.lower().endswith(".gro") or trajectory:
+            self.membrane = vtkMesoTrajectoryReader()
+            self.membrane.SetTopologyFileName(membrane)
+            if trajectory:
+                self.membrane.SetTrajectoryFileName(trajectory)
+        else:
+            self.membrane = vtkMesoStructureReader()
+            self.membrane.SetFileName(membrane)
+        self.membrane.RemoveWatersOn()
+        self._read(self.membrane, "membrane", trajectory or membrane)
+        if self.membrane.GetOutput().GetNumberOfPoints() == 0:
+            raise LensError(f"membrane {membrane!r} has no atoms (once waters are removed)")
+
+        self.mapping = vtkMesoMembraneMapping()
+        self.mapping.SetSurfaceConnection(self.surface.GetOutputPort())
+        self.mapping.SetMembraneConnection(self.membrane.GetOutputPort())
+        self.mapping.SetMembraneToMeshScale(self.scale)
+        self._mapping_errors = _ErrorCatcher(self.mapping)
+
+        self.atoms = vtkMesoAtomMapper()
+        self.atoms.SetRadiusScale(self.scale)
+        self.atom_actor = vtkActor()
+        self.atom_actor.SetMapper(self.atoms)
+        # Smooth normals for Phong shading (the meshes are coarse next to the atoms).
+        self.normals = vtkPolyDataNormals()
+        self.normals.SetInputConnection(self.surface.GetOutputPort())
+        self.normals.SplittingOff()
+        self.normals.ConsistencyOn()
+        surface_mapper = vtkPolyDataMapper()
+        surface_mapper.SetInputConnection(self.normals.GetOutputPort())
+        surface_mapper.ScalarVisibilityOff()
+        self.surface_actor = vtkActor()
+        self.surface_actor.SetMapper(surface_mapper)
+        surface_property = self.surface_actor.GetProperty()
+        surface_property.SetInterpolationToPhong()
+        surface_property.SetColor(0.78, 0.74, 0.68)
+        surface_property.SetSpecular(0.3)
+        surface_property.SetSpecularPower(30)
+        self.renderer = vtkRenderer()
+        self.renderer.SetBackground(0.09, 0.10, 0.13)
+        self.renderer.AddActor(self.surface_actor)
+        self.renderer.AddActor(self.atom_actor)
+        self.method = "polynomial"
+        self.style = "space-filling"
+        self.centre = None
+        self.set_tiles(3)
+
+    def _read(self, reader, what, path):
+        errors = _ErrorCatcher(reader)
+        reader.Update()
+        message = errors.take()
+        if message:
+            raise LensError(f"cannot read the {what} {path!r}: {message}")
+
+    def time_steps(self):
+        """The membrane's time steps (ps), empty without a trajectory."""
+        info = self.membrane.GetOutputInformation(0)
+        from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
+        return list(info.Get(sddp.TIME_STEPS()) or [])
+
+    def set_time(self, time):
+        """Shows the membrane at `time` (ps)."""
+        self.membrane.UpdateTimeStep(time)
+
+    def set_tiles(self, tiles):
+        """k x k tiles of the patch, k in [1, 15]."""
+        if not 1 <= int(tiles) <= 15:
+            raise LensError(f"tiles must be between 1 and 15, not {tiles}")
+        self.tiles = int(tiles)
+        self.mapping.SetTiles(self.tiles)
+
+    def set_method(self, method):
+        """'displacement', 'instancing' or 'polynomial'."""
+        if method not in METHODS:
+            raise LensError(f"unknown mapping method {method!r}: use one of {', '.join(METHODS)}")
+        self.method = method
+
+    def set_style(self, style):
+        """'space-filling' or 'ball-and-stick'."""
+        if style not in STYLES:
+            raise LensError(f"unknown style {style!r}: use one of {', '.join(STYLES)}")
+        self.style = style
+        self.atoms.SetStyle(STYLES[style])
+
+    def place(self, centre):
+        """Maps the patch around the surface point nearest `centre` (mesh units) with the current
+        tiles and method. Raises LensError with the mapping's reason when it fails (a point off
+        the surface, a disk that is no disk, ...)."""
+        self.mapping.SetSeedPoint(*centre)
+        self.mapping.SetMappingMethod(METHODS[self.method])
+        on_gpu = self.method != "displacement"
+        self.mapping.SetOutputAtoms(not on_gpu)
+        self._progress(f"mapping {self.tiles} x {self.tiles} tiles by {self.method} around "
+                       f"({centre[0]:.4g}, {centre[1]:.4g}, {centre[2]:.4g})")
+        ok = self.mapping.GetExecutive().Update()
+        message = self._mapping_errors.take()
+        if not ok or message:
+            self.atom_actor.VisibilityOff()
+            raise LensError(f"the membrane cannot be mapped there: {message or 'no reason given'}")
+        if on_gpu:
+            self.atoms.SetInputConnection(self.membrane.GetOutputPort())
+            self.atoms.SetWarpConnection(self.mapping.GetOutputPort())
+        else:
+            self.atoms.SetInputConnection(self.mapping.GetOutputPort())
+            self.atoms.SetWarpConnection(None)
+        self.atom_actor.VisibilityOn()
+        self.centre = tuple(centre)
+
+    def atom_count(self):
+        """Atoms drawn: the patch's atoms times the tiles."""
+        return self.membrane.GetOutput().GetNumberOfPoints() * self.tiles * self.tiles
+
+    def look_at_patch(self, renderer=None, distance_factor=3.0, elevation=25.0):
+        """Points the camera of `renderer` (default: the lens's) at the mapped patch from
+        outside the surface, the patch filling about 1/distance_factor of the view."""
+        renderer = renderer or self.renderer
+        bounds = self.atoms.GetBounds()
+        centre = [(bounds[2 * d] + bounds[2 * d + 1]) / 2 for d in range(3)]
+        organelle = self.surface.GetOutput().GetCenter()
+        outward = [centre[d] - organelle[d] for d in range(3)]
+        length = sum(v * v for v in outward) ** 0.5 or 1.0
+        extent = max(bounds[2 * d + 1] - bounds[2 * d] for d in range(3))
+        camera = renderer.GetActiveCamera()
+        camera.SetFocalPoint(centre)
+        camera.SetPosition([centre[d] + distance_factor * extent * outward[d] / length
+                            for d in range(3)])
+        camera.SetViewUp(0, 0, 1)
+        camera.OrthogonalizeViewUp()
+        camera.Elevation(elevation)
+        camera.OrthogonalizeViewUp()
+        renderer.ResetCameraClippingRange()
+
+    def whole_view(self):
+        """A second renderer that shows the whole surface with the patch (the same actors),
+        seen from the patch's side."""
+        renderer = vtkRenderer()
+        renderer.SetBackground(*self.renderer.GetBackground())
+        renderer.AddActor(self.surface_actor)
+        renderer.AddActor(self.atom_actor)
+        self.look_at_patch(renderer, distance_factor=1.0, elevation=0.0)
+        camera = renderer.GetActiveCamera()
+        bounds = self.surface.GetOutput().GetBounds()
+        organelle = self.surface.GetOutput().GetCenter()
+        direction = [camera.GetPosition()[d] - camera.GetFocalPoint()[d] for d in range(3)]
+        length = sum(v * v for v in direction) ** 0.5 or 1.0
+        diagonal = sum((bounds[2 * d + 1] - bounds[2 * d]) ** 2 for d in range(3)) ** 0.5
+        camera.SetFocalPoint(organelle)
+        camera.SetPosition([organelle[d] + 1.6 * diagonal * direction[d] / length
+                            for d in range(3)])
+        renderer.ResetCameraClippingRange()
+        return renderer

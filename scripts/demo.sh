@@ -7,9 +7,9 @@ cd "$(dirname "$0")/.."
 ./scripts/setup.sh
 BUILD_DIR=${BUILD_DIR:-build}
 if [ -n "${DISPLAY:-}" ]; then
-  "$BUILD_DIR/bin/MesoLensDemo" --output mesolens-demo.png --interactive
+  "$BUILD_DIR/bin/mesolens" demo --output mesolens-demo.png
 else
   # Debian's VTK renders through GLX only: without a display, use a virtual one.
   xvfb-run -a -s "-noreset -screen 0 1280x1024x24" \
-    "$BUILD_DIR/bin/MesoLensDemo" --output mesolens-demo.png
+    "$BUILD_DIR/bin/mesolens" demo --no-window --output mesolens-demo.png
 fi

@@ -19,9 +19,9 @@ YIIP = os.path.join(DATA, "membranes", "yiip_popepopg.gro")
 YIIP_XTC = os.path.join(DATA, "membranes", "yiip_popepopg.xtc")
 
 
-def run(*arguments):
+def run(*arguments, environment=None):
     result = subprocess.run([COMMAND, *arguments], capture_output=True, text=True, timeout=300,
-                            check=False)
+                            check=False, env=environment)
     return result.returncode, result.stderr
 
 
@@ -77,6 +77,13 @@ class MesolensCommand(unittest.TestCase):
             copy.write(source.read()[:5000])
         self.refused(1, "cannot read the membrane", "render", "--mesh", MESH, "--membrane",
                      truncated, "--vertex", "0", "-o", self.output)
+
+    def test_view_without_a_display_says_so(self):
+        environment = {k: v for k, v in os.environ.items() if k != "DISPLAY"}
+        status, errors = run("view", "--mesh", MESH, "--membrane", PATCH, environment=environment)
+        self.assertEqual(status, 1, errors)
+        self.assertIn("view needs a display", errors)
+        self.assertNotIn("Traceback", errors)
 
     def test_centre_off_the_surface_gives_the_mapping_reason(self):
         self.refused(1, "the membrane cannot be mapped there:", *self.render("--center", "50,50,50"))

@@ -5,13 +5,17 @@
                     [--tiles K] [--method polynomial|instancing|displacement]
                     [--style space-filling|ball-and-stick] [--ssao] [--size WxH]
                     [--camera FILE] [--frames N] -o OUT.png
-    mesolens demo [-o mesolens-demo.png] [--size WxH]
+    mesolens view --mesh CELL --membrane PATCH [--trajectory XTC] [--center X,Y,Z | --vertex I]
+    mesolens demo [-o mesolens-demo.png] [--size WxH] [--no-window]
 
+``view`` opens the interactive magnifier (mesolens.viewer): click the surface to map the patch
+there; keys change the tiles, the method, the style, SSAO, play the trajectory, take screenshots.
 ``render`` draws offscreen (no window; under Xvfb without a display). With --frames N and a
 trajectory it writes OUT_0000.png ... for N time steps. --camera reads a camera saved as
 "position x y z", "focal x y z", "up x y z", "angle degrees" lines; without it the camera looks
 at the patch from outside the surface. ``demo`` renders the embedded data (the outer membrane of
-a mitochondrion from electron tomography and the all-atom DPPC patch) the same way.
+a mitochondrion from electron tomography and the all-atom DPPC patch) the same way, the whole
+organelle beside the close-up, then opens the magnifier on it where a display exists.
 
 Errors (a missing or unreadable file, a centre off the surface, a mapping that fails, with the
 mapping's reason) are one line on stderr and exit status 1; wrong arguments exit with 2.
@@ -132,10 +136,8 @@ def _progress(quiet):
     return report
 
 
-def render(args):
-    """Builds the lens from the arguments and writes the PNG(s)."""
-    if args.frames and not args.trajectory:
-        raise LensError("--frames needs a trajectory (--trajectory) with time steps")
+def _lens(args):
+    """The lens of the arguments, placed at --center or --vertex when one is given."""
     lens = MembraneLens(args.mesh, args.membrane, args.trajectory,
                         mesh_unit_angstrom=args.mesh_unit, progress=_progress(args.quiet))
     lens.set_tiles(args.tiles)
@@ -145,10 +147,28 @@ def render(args):
         points = lens.surface.GetOutput().GetNumberOfPoints()
         if not 0 <= args.vertex < points:
             raise LensError(f"--vertex {args.vertex} is not a vertex of the mesh (0 to {points - 1})")
-        centre = lens.surface.GetOutput().GetPoint(args.vertex)
-    else:
-        centre = args.center
-    lens.place(centre)
+        lens.place(lens.surface.GetOutput().GetPoint(args.vertex))
+    elif args.center is not None:
+        lens.place(args.center)
+    return lens
+
+
+def view(args):
+    """Opens the interactive magnifier."""
+    if not os.environ.get("DISPLAY"):
+        raise LensError("view needs a display (an X server): run it on a desktop, or draw "
+                        "pictures with 'mesolens render'")
+    from .viewer import LensViewer
+    lens = _lens(args)
+    LensViewer(lens, args.size).start()
+    return 0
+
+
+def render(args):
+    """Builds the lens from the arguments and writes the PNG(s)."""
+    if args.frames and not args.trajectory:
+        raise LensError("--frames needs a trajectory (--trajectory) with time steps")
+    lens = _lens(args)
     if args.camera:
         _read_camera(args.camera, lens.renderer.GetActiveCamera())
         lens.renderer.ResetCameraClippingRange()
@@ -189,23 +209,32 @@ def _parser():
         sub.add_argument("--view", choices=("close", "both"), default=default_view,
                          help="the patch close up, or the whole component beside it")
 
+    def inputs(sub, placed):
+        sub.add_argument("--mesh", required=True, help="cell-component surface")
+        sub.add_argument("--membrane", required=True, help="membrane patch (GRO/PDB/mmCIF)")
+        sub.add_argument("--trajectory", help="XTC/TRR over the membrane's topology")
+        sub.add_argument("--mesh-unit", type=float, default=1e4,
+                         help="Å per mesh unit (1e4: µm, the default; 10: nm)")
+        where = sub.add_mutually_exclusive_group(required=placed)
+        where.add_argument("--center", type=_triple, help="X,Y,Z near the surface (mesh units)")
+        where.add_argument("--vertex", type=int, help="a vertex of the mesh as the centre")
+
+    view_command = commands.add_parser("view", help="the interactive magnifier")
+    inputs(view_command, False)
+    common(view_command, "close")
+
     render_command = commands.add_parser("render", help="draw a mapped membrane to PNG")
-    render_command.add_argument("--mesh", required=True, help="cell-component surface")
-    render_command.add_argument("--membrane", required=True, help="membrane patch (GRO/PDB/mmCIF)")
-    render_command.add_argument("--trajectory", help="XTC/TRR over the membrane's topology")
-    render_command.add_argument("--mesh-unit", type=float, default=1e4,
-                                help="Å per mesh unit (1e4: µm, the default; 10: nm)")
-    where = render_command.add_mutually_exclusive_group(required=True)
-    where.add_argument("--center", type=_triple, help="X,Y,Z near the surface (mesh units)")
-    where.add_argument("--vertex", type=int, help="a vertex of the mesh as the centre")
+    inputs(render_command, True)
     render_command.add_argument("--camera", help="camera file (position/focal/up/angle lines)")
     render_command.add_argument("--frames", type=int, default=0,
                                 help="write this many time steps as OUT_0000.png ...")
     render_command.add_argument("-o", "--output", required=True, help="PNG file")
     common(render_command, "close")
 
-    demo_command = commands.add_parser("demo", help="the embedded data, to PNG")
+    demo_command = commands.add_parser("demo", help="the embedded data, to PNG and a window")
     demo_command.add_argument("-o", "--output", default="mesolens-demo.png")
+    demo_command.add_argument("--no-window", action="store_true",
+                              help="only the PNG, even where a display exists")
     common(demo_command, "both")
     return parser
 
@@ -224,6 +253,15 @@ def main(argv=None):
             args.center = None
             args.camera = None
             args.frames = 0
+            status = render(args)
+            if os.environ.get("DISPLAY") and not args.no_window:
+                from .viewer import LensViewer
+                args.view = "close"
+                args.quiet = True
+                LensViewer(_lens(args), args.size).start()
+            return status
+        if args.command == "view":
+            return view(args)
         return render(args)
     except LensError as error:
         print(f"mesolens: error: {error}", file=sys.stderr)

@@ -123,6 +123,13 @@ class Trajectory(unittest.TestCase):
         viewer.step()
         self.assertEqual(viewer.time_index, 1)
         self.assertIn("t = ", viewer.status.GetInput())
+        # Refinement level 1: a frame between each two, 9 in all.
+        self.assertEqual(len(lens.time_steps()), 5)
+        press_key(viewer, "l")
+        self.assertEqual(lens.refinement_level, 1)
+        self.assertEqual(len(lens.time_steps()), 9)
+        viewer.step()
+        self.assertIn("t = 10000 ps", viewer.status.GetInput())
         press_key(viewer, "space")
         self.assertFalse(viewer.playing)
 

@@ -19,7 +19,8 @@ from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
 from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderer
 
 from .MesoLensFilters import (vtkMesoMembraneMapping, vtkMesoMeshReader,
-                              vtkMesoStructureReader, vtkMesoTrajectoryReader)
+                              vtkMesoStructureReader, vtkMesoTrajectoryReader,
+                              vtkMesoTrajectoryRefinement)
 from .MesoLensRendering import vtkMesoAtomMapper
 
 METHODS = {"displacement": vtkMesoMembraneMapping.DISPLACEMENT,
@@ -79,6 +80,7 @@ class MembraneLens:
         _require_file(membrane, "membrane")
         if trajectory:
             _require_file(trajectory, "trajectory")
+        self.has_trajectory = bool(trajectory)
         self._progress = progress or (lambda text: None)
         self.scale = 1.0 / mesh_unit_angstrom  # mesh units per Å
 
@@ -103,9 +105,14 @@ class MembraneLens:
         if self.membrane.GetOutput().GetNumberOfPoints() == 0:
             raise LensError(f"membrane {membrane!r} has no atoms (once waters are removed)")
 
+        # Frames between the trajectory's frames (refinement level 0: the frames as they are).
+        self.refinement = vtkMesoTrajectoryRefinement()
+        self.refinement.SetInputConnection(self.membrane.GetOutputPort())
+        self.refinement.SetRefinementLevels(0)
+        self.refinement_level = 0
         self.mapping = vtkMesoMembraneMapping()
         self.mapping.SetSurfaceConnection(self.surface.GetOutputPort())
-        self.mapping.SetMembraneConnection(self.membrane.GetOutputPort())
+        self.mapping.SetMembraneConnection(self._patch_port())
         self.mapping.SetMembraneToMeshScale(self.scale)
         self._mapping_errors = _ErrorCatcher(self.mapping)
 
@@ -144,15 +151,35 @@ class MembraneLens:
         if message:
             raise LensError(f"cannot read the {what} {path!r}: {message}")
 
+    def _patch_port(self):
+        """Where the patch's atoms come from: the reader, or the refinement of its frames."""
+        if self.refinement_level > 0:
+            return self.refinement.GetOutputPort()
+        return self.membrane.GetOutputPort()
+
+    def _patch_source(self):
+        return self.refinement if self.refinement_level > 0 else self.membrane
+
     def time_steps(self):
-        """The membrane's time steps (ps), empty without a trajectory."""
-        info = self.membrane.GetOutputInformation(0)
+        """The membrane's time steps (ps; with the refined frames), empty without a trajectory."""
+        source = self._patch_source()
+        source.UpdateInformation()
+        info = source.GetOutputInformation(0)
         from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline as sddp
-        return list(info.Get(sddp.TIME_STEPS()) or [])
+        return list(info.Get(sddp.TIME_STEPS()) or []) if self.has_trajectory else []
 
     def set_time(self, time):
         """Shows the membrane at `time` (ps)."""
-        self.membrane.UpdateTimeStep(time)
+        self._patch_source().UpdateTimeStep(time)
+
+    def set_refinement(self, level):
+        """2^level - 1 frames interpolated between the trajectory's frames, level in [0, 4]
+        (0: the frames as they are). Takes effect at the next place()."""
+        if not 0 <= int(level) <= 4:
+            raise LensError(f"refinement level must be between 0 and 4, not {level}")
+        self.refinement_level = int(level)
+        self.refinement.SetRefinementLevels(max(1, self.refinement_level))
+        self.mapping.SetMembraneConnection(self._patch_port())
 
     def set_tiles(self, tiles):
         """k x k tiles of the patch, k in [1, 15]."""
@@ -190,7 +217,7 @@ class MembraneLens:
             self.atom_actor.VisibilityOff()
             raise LensError(f"the membrane cannot be mapped there: {message or 'no reason given'}")
         if on_gpu:
-            self.atoms.SetInputConnection(self.membrane.GetOutputPort())
+            self.atoms.SetInputConnection(self._patch_port())
             self.atoms.SetWarpConnection(self.mapping.GetOutputPort())
         else:
             self.atoms.SetInputConnection(self.mapping.GetOutputPort())

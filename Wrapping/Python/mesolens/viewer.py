@@ -7,7 +7,8 @@ point. Keys:
 
     + / -   more / fewer tiles (k x k, 1..15)     m   next mapping method
     s       space-filling / ball-and-stick        a   ambient occlusion (SSAO) on / off
-    space   play / pause the trajectory           c   screenshot (mesolens-NNNN.png)
+    space   play / pause the trajectory           l   refinement level (frames in between)
+    c       screenshot (mesolens-NNNN.png)
     q       quit
 
 A line at the bottom shows the atom count, the last frame time and the settings; messages (a
@@ -110,6 +111,10 @@ class LensViewer:
             self._toggle_ssao()
         elif name == "space":
             self._toggle_play()
+        elif name == "l":
+            lens.set_refinement((lens.refinement_level + 1) % 4)
+            self.time_index = 0
+            self._replace()
         elif name == "c":
             self.screenshot()
 
@@ -194,7 +199,7 @@ class LensViewer:
         if moved <= CLICK_TOLERANCE:
             self.click(x, y)
 
-    KEYS = ("plus", "equal", "KP_Add", "minus", "KP_Subtract", "m", "s", "a", "space", "c")
+    KEYS = ("plus", "equal", "KP_Add", "minus", "KP_Subtract", "m", "s", "a", "space", "c", "l")
 
     def _on_char(self, _caller, _event):
         # Ours replace VTK's defaults for these keys (s: surface, a: actor mode, c: camera
@@ -218,7 +223,8 @@ class LensViewer:
         else:
             frame = lens.renderer.GetLastRenderTimeInSeconds()
             steps = lens.time_steps()
-            when = f", t = {steps[self.time_index]:.0f} ps" if steps else ""
+            when = (f", t = {steps[self.time_index]:.0f} ps, refinement {lens.refinement_level} (l)"
+                    if steps else "")
             text = (f"{lens.atom_count():,} atoms, {frame * 1000:.0f} ms | {lens.tiles} x "
                     f"{lens.tiles} tiles (+/-), {lens.method} (m), {lens.style} (s), SSAO "
                     f"{'on' if self.ssao else 'off'} (a){when}"

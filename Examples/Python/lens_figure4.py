@@ -14,11 +14,10 @@ diagonal.
 import argparse
 import os
 
-from vtkmodules.vtkIOImage import vtkPNGWriter
-from vtkmodules.vtkRenderingCore import vtkRenderWindow, vtkWindowToImageFilter
+from vtkmodules.vtkRenderingCore import vtkRenderWindow
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 
-from mesolens.lens import MembraneLens
+from mesolens.lens import MembraneLens, write_png
 
 DATA = os.environ.get("MESOLENS_DATA_DIR",
                       os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Data"))
@@ -59,12 +58,7 @@ def main():
             lenses.append(lens)
             print(f"{mesh}: {method}, {lens.atom_count()} atoms")
     window.Render()
-    capture = vtkWindowToImageFilter()
-    capture.SetInput(window)
-    writer = vtkPNGWriter()
-    writer.SetFileName(args.output)
-    writer.SetInputConnection(capture.GetOutputPort())
-    writer.Write()
+    write_png(window, args.output)
     print(f"wrote {args.output}")
 
 

@@ -25,7 +25,7 @@ import os
 import sys
 import time
 
-from .lens import METHODS, STYLES, LensError, MembraneLens
+from .lens import METHODS, STYLES, LensError, MembraneLens, write_png
 
 DEFAULT_DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "..",
                             "share", "mesolens", "Data")
@@ -109,24 +109,6 @@ def _window(lens, size, ssao, view):
     return window
 
 
-def _write_png(window, path):
-    from vtkmodules.vtkIOImage import vtkPNGWriter
-    from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
-
-    directory = os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(directory):
-        raise LensError(f"cannot write {path!r}: no folder {directory!r}")
-    capture = vtkWindowToImageFilter()
-    capture.SetInput(window)
-    capture.ReadFrontBufferOff()
-    writer = vtkPNGWriter()
-    writer.SetFileName(path)
-    writer.SetInputConnection(capture.GetOutputPort())
-    writer.Write()
-    if not os.path.isfile(path):
-        raise LensError(f"cannot write {path!r}")
-
-
 def _progress(quiet):
     start = time.monotonic()
 
@@ -184,11 +166,11 @@ def render(args):
         for index, step in enumerate(steps[:args.frames]):
             lens.set_time(step)
             window.Render()
-            _write_png(window, f"{stem}_{index:04d}{suffix or '.png'}")
+            write_png(window, f"{stem}_{index:04d}{suffix or '.png'}")
         report(f"wrote {min(args.frames, len(steps))} frames {stem}_0000{suffix or '.png'} ...")
     else:
         window.Render()
-        _write_png(window, args.output)
+        write_png(window, args.output)
         report(f"wrote {args.output}: {lens.atom_count()} atoms, {args.tiles} x {args.tiles} "
                f"tiles, {args.method}, {args.style}")
     return 0

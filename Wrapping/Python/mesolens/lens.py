@@ -58,6 +58,26 @@ class _ErrorCatcher:
         return text
 
 
+def write_png(window, path):
+    """Writes what `window` (a vtkRenderWindow) shows to the PNG file `path`. Raises LensError
+    when the folder does not exist or the file cannot be written."""
+    from vtkmodules.vtkIOImage import vtkPNGWriter
+    from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
+
+    directory = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(directory):
+        raise LensError(f"cannot write {path!r}: no folder {directory!r}")
+    capture = vtkWindowToImageFilter()
+    capture.SetInput(window)
+    capture.ReadFrontBufferOff()
+    writer = vtkPNGWriter()
+    writer.SetFileName(path)
+    writer.SetInputConnection(capture.GetOutputPort())
+    writer.Write()
+    if not os.path.isfile(path):
+        raise LensError(f"cannot write {path!r}")
+
+
 def _require_file(path, what):
     if not path:
         raise LensError(f"no {what} given")

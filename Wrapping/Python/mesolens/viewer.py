@@ -23,7 +23,7 @@ from vtkmodules.vtkRenderingOpenGL2 import vtkRenderStepsPass, vtkSSAOPass
 import vtkmodules.vtkRenderingFreeType  # noqa: F401 (text)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL factory)
 
-from .lens import METHODS, LensError
+from .lens import METHODS, LensError, write_png
 
 CLICK_TOLERANCE = 3  # pixels a click may move and still be a click
 
@@ -166,20 +166,16 @@ class LensViewer:
 
     def screenshot(self, path=None):
         """Writes the window to `path` (default mesolens-NNNN.png in the working folder)."""
-        from vtkmodules.vtkIOImage import vtkPNGWriter
-        from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
         if path is None:
             path = f"mesolens-{self.screenshots:04d}.png"
             self.screenshots += 1
-        capture = vtkWindowToImageFilter()
-        capture.SetInput(self.window)
-        capture.ReadFrontBufferOff()
-        writer = vtkPNGWriter()
-        writer.SetFileName(path)
-        writer.SetInputConnection(capture.GetOutputPort())
-        writer.Write()
-        self.message = f"wrote {os.path.abspath(path)}" if os.path.isfile(path) else \
-            f"could not write {path}"
+        try:
+            write_png(self.window, path)
+        except LensError as error:
+            self.message = str(error)
+            self.window.Render()
+            return None
+        self.message = f"wrote {os.path.abspath(path)}"
         self.window.Render()
         return path
 

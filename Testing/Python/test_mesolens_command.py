@@ -53,6 +53,26 @@ class MesolensCommand(unittest.TestCase):
                 self.assertGreater(os.path.getsize(self.output), 100)
                 os.remove(self.output)
 
+    def test_ambient_occlusion_and_shadows(self):
+        for effects in (["--ssao"], ["--shadows"], ["--ssao", "--shadows"]):
+            status, errors = run(*self.render("--vertex", "1000", "--tiles", "1", *effects))
+            self.assertEqual(status, 0, errors)
+            self.assertGreater(os.path.getsize(self.output), 100)
+            os.remove(self.output)
+
+    def test_camera_file(self):
+        camera = os.path.join(self.folder.name, "camera.txt")
+        with open(camera, "w", encoding="ascii") as file:
+            file.write("# a view of vertex 1000 from outside\nposition 4.0 0.8 0.7\n"
+                       "focal 1.97 0.77 0.71\nup 0 0 1\nangle 20\n")
+        status, errors = run(*self.render("--vertex", "1000", "--camera", camera))
+        self.assertEqual(status, 0, errors)
+        os.remove(self.output)
+        with open(camera, "a", encoding="ascii") as file:
+            file.write("zoom 2\n")
+        self.refused(1, "line 6: cannot read 'zoom 2'",
+                     *self.render("--vertex", "1000", "--camera", camera))
+
     def test_writes_a_frame_per_time_step(self):
         status, errors = run("render", "--mesh", MESH, "--membrane", YIIP, "--trajectory",
                              YIIP_XTC, "--vertex", "1000", "--tiles", "1", "--frames", "2",

@@ -75,9 +75,8 @@ def _read_camera(path, camera):
         raise LensError(f"cannot read the camera file {path!r}: {error}") from None
 
 
-def _window(lens, size, ssao, view):
+def _window(lens, size, ssao, shadows, view):
     from vtkmodules.vtkRenderingCore import vtkRenderWindow
-    from vtkmodules.vtkRenderingOpenGL2 import vtkRenderStepsPass, vtkSSAOPass
     import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL factory)
 
     window = vtkRenderWindow()
@@ -93,19 +92,9 @@ def _window(lens, size, ssao, view):
         lens.renderer.SetViewport(0.4, 0.0, 1.0, 1.0)
         window.AddRenderer(whole)
         lens._whole = whole
-        ssao = False
-    if ssao:
-        basic = vtkRenderStepsPass()
-        occlusion = vtkSSAOPass()
-        occlusion.SetDelegatePass(basic)
-        extent = max(lens.atoms.GetBounds()[2 * d + 1] - lens.atoms.GetBounds()[2 * d]
-                     for d in range(3))
-        occlusion.SetRadius(0.02 * extent)
-        occlusion.SetBias(0.002 * extent)
-        occlusion.SetKernelSize(32)
-        occlusion.BlurOn()
-        lens.renderer.SetPass(occlusion)
-        lens._passes = (basic, occlusion)  # kept alive with the lens
+        ssao = shadows = False
+    if ssao or shadows:
+        lens.set_effects(ssao=ssao, shadows=shadows)
     return window
 
 
@@ -156,7 +145,7 @@ def render(args):
         lens.renderer.ResetCameraClippingRange()
     else:
         lens.look_at_patch()
-    window = _window(lens, args.size, args.ssao, args.view)
+    window = _window(lens, args.size, args.ssao, args.shadows, args.view)
     report = _progress(args.quiet)
     if args.frames:
         steps = lens.time_steps() if args.trajectory else []
@@ -186,6 +175,7 @@ def _parser():
         sub.add_argument("--method", choices=sorted(METHODS), default="polynomial")
         sub.add_argument("--style", choices=sorted(STYLES), default="space-filling")
         sub.add_argument("--ssao", action="store_true", help="screen-space ambient occlusion")
+        sub.add_argument("--shadows", action="store_true", help="shadows from a light above the patch")
         sub.add_argument("--size", type=_size, default=(1024, 768), help="WIDTHxHEIGHT (1024x768)")
         sub.add_argument("--quiet", action="store_true", help="no progress lines")
         sub.add_argument("--view", choices=("close", "both"), default=default_view,

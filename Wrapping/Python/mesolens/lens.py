@@ -162,6 +162,8 @@ class MembraneLens:
         self.method = "polynomial"
         self.style = "space-filling"
         self.centre = None
+        self.ssao = False
+        self.shadows = False
         self.set_tiles(3)
 
     def _read(self, reader, what, path):
@@ -244,6 +246,68 @@ class MembraneLens:
             self.atoms.SetWarpConnection(None)
         self.atom_actor.VisibilityOn()
         self.centre = tuple(centre)
+
+    def set_effects(self, ssao=False, shadows=False):
+        """Ambient occlusion (vtkSSAOPass, sized to the patch) and shadows (vtkShadowMapPass,
+        from a light above the patch, beside the headlight) on or off. Both need the renderer
+        to start at the window's origin (VTK 9.1's SSAO pass draws black elsewhere)."""
+        from vtkmodules.vtkRenderingCore import vtkLight
+        from vtkmodules.vtkRenderingOpenGL2 import (vtkCameraPass, vtkRenderPassCollection,
+                                                    vtkRenderStepsPass, vtkSequencePass,
+                                                    vtkShadowMapPass, vtkSSAOPass)
+        self.ssao = bool(ssao)
+        self.shadows = bool(shadows)
+        self.renderer.RemoveAllLights()  # back to VTK's headlight
+        extent, centre, outward = self._patch_frame()
+        keep = []
+        if self.shadows:
+            headlight = vtkLight()
+            headlight.SetLightTypeToHeadlight()
+            headlight.SetIntensity(0.5)
+            sun = vtkLight()
+            sun.SetLightTypeToSceneLight()
+            sun.SetFocalPoint(centre)
+            sun.SetPosition([centre[d] + 4 * extent * outward[d] for d in range(3)])
+            sun.PositionalOn()
+            sun.SetConeAngle(45)
+            sun.SetIntensity(0.7)
+            self.renderer.AddLight(headlight)
+            self.renderer.AddLight(sun)
+            shadow = vtkShadowMapPass()
+            passes = vtkRenderPassCollection()
+            passes.AddItem(shadow.GetShadowMapBakerPass())
+            passes.AddItem(shadow)
+            sequence = vtkSequencePass()
+            sequence.SetPasses(passes)
+            base = vtkCameraPass()
+            base.SetDelegatePass(sequence)
+            keep += [headlight, sun, shadow, passes, sequence]
+        else:
+            base = vtkRenderStepsPass()
+        top = base if self.shadows else None
+        if self.ssao:
+            occlusion = vtkSSAOPass()
+            occlusion.SetDelegatePass(base)
+            occlusion.SetRadius(0.05 * extent)
+            occlusion.SetBias(0.005 * extent)
+            occlusion.SetKernelSize(32)
+            occlusion.BlurOn()
+            top = occlusion
+        self._effects = keep + [base, top]  # VTK holds passes weakly from Python's side
+        self.renderer.SetPass(top)
+
+    def _patch_frame(self):
+        """The patch's size, centre and outward direction (or the surface's, before place())."""
+        source = self.atoms if self.centre is not None else self.surface.GetOutput()
+        bounds = source.GetBounds()
+        centre = [(bounds[2 * d] + bounds[2 * d + 1]) / 2 for d in range(3)]
+        organelle = self.surface.GetOutput().GetCenter()
+        outward = [centre[d] - organelle[d] for d in range(3)]
+        length = sum(v * v for v in outward) ** 0.5 or 1.0
+        extent = max(bounds[2 * d + 1] - bounds[2 * d] for d in range(3))
+        if self.centre is None:
+            extent *= 0.05
+        return extent, centre, [v / length for v in outward]
 
     def atom_count(self):
         """Atoms drawn: the patch's atoms times the tiles."""

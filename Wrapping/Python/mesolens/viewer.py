@@ -7,6 +7,7 @@ point. Keys:
 
     + / -   more / fewer tiles (k x k, 1..15)     m   next mapping method
     s       space-filling / ball-and-stick        a   ambient occlusion (SSAO) on / off
+    h       shadows on / off
     space   play / pause the trajectory           l   refinement level (frames in between)
     c       screenshot (mesolens-NNNN.png)
     q       quit
@@ -19,7 +20,6 @@ import os
 from vtkmodules.vtkRenderingCore import vtkCellPicker, vtkRenderWindow, vtkRenderWindowInteractor
 from vtkmodules.vtkRenderingCore import vtkTextActor
 from vtkmodules.vtkInteractionStyle import vtkInteractorStyleTrackballCamera
-from vtkmodules.vtkRenderingOpenGL2 import vtkRenderStepsPass, vtkSSAOPass
 import vtkmodules.vtkRenderingFreeType  # noqa: F401 (text)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL factory)
 
@@ -58,7 +58,6 @@ class LensViewer:
         self.playing = False
         self.time_index = 0
         self.screenshots = 0
-        self.ssao = None
         self._press = None
         self._timer = None
         # Observers on the style replace its own handling of these events (the style holds the
@@ -108,7 +107,11 @@ class LensViewer:
             lens.set_style("ball-and-stick" if lens.style == "space-filling" else "space-filling")
             self.window.Render()
         elif name == "a":
-            self._toggle_ssao()
+            lens.set_effects(ssao=not lens.ssao, shadows=lens.shadows)
+            self.window.Render()
+        elif name == "h":
+            lens.set_effects(ssao=lens.ssao, shadows=not lens.shadows)
+            self.window.Render()
         elif name == "space":
             self._toggle_play()
         elif name == "l":
@@ -123,24 +126,6 @@ class LensViewer:
             self._place(self.lens.centre)
         else:
             self.window.Render()
-
-    def _toggle_ssao(self):
-        if self.ssao is None:
-            basic = vtkRenderStepsPass()
-            occlusion = vtkSSAOPass()
-            occlusion.SetDelegatePass(basic)
-            bounds = self.lens.surface.GetOutput().GetBounds()
-            extent = max(bounds[2 * d + 1] - bounds[2 * d] for d in range(3))
-            occlusion.SetRadius(0.002 * extent)
-            occlusion.SetBias(0.0002 * extent)
-            occlusion.SetKernelSize(32)
-            occlusion.BlurOn()
-            self.ssao = (basic, occlusion)
-            self.lens.renderer.SetPass(occlusion)
-        else:
-            self.ssao = None
-            self.lens.renderer.SetPass(None)
-        self.window.Render()
 
     def _toggle_play(self):
         steps = self.lens.time_steps()
@@ -195,7 +180,7 @@ class LensViewer:
         if moved <= CLICK_TOLERANCE:
             self.click(x, y)
 
-    KEYS = ("plus", "equal", "KP_Add", "minus", "KP_Subtract", "m", "s", "a", "space", "c", "l")
+    KEYS = ("plus", "equal", "KP_Add", "minus", "KP_Subtract", "m", "s", "a", "h", "space", "c", "l")
 
     def _on_char(self, _caller, _event):
         # Ours replace VTK's defaults for these keys (s: surface, a: actor mode, c: camera
@@ -223,7 +208,7 @@ class LensViewer:
                     if steps else "")
             text = (f"{lens.atom_count():,} atoms, {frame * 1000:.0f} ms | {lens.tiles} x "
                     f"{lens.tiles} tiles (+/-), {lens.method} (m), {lens.style} (s), SSAO "
-                    f"{'on' if self.ssao else 'off'} (a){when}"
+                    f"{'on' if lens.ssao else 'off'} (a), shadows {'on' if lens.shadows else 'off'} (h){when}"
                     f"{' playing' if self.playing else ''} (space) | c: screenshot")
         if self.status.GetInput() != text:
             self.status.SetInput(text)

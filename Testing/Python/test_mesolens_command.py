@@ -72,6 +72,10 @@ class MesolensCommand(unittest.TestCase):
             file.write("zoom 2\n")
         self.refused(1, "line 6: cannot read 'zoom 2'",
                      *self.render("--vertex", "1000", "--camera", camera))
+        with open(camera, "w", encoding="ascii") as file:
+            file.write("position nan 0 0\n")
+        self.refused(1, "line 1: not a finite number",
+                     *self.render("--vertex", "1000", "--camera", camera))
 
     def test_writes_a_frame_per_time_step(self):
         status, errors = run("render", "--mesh", MESH, "--membrane", YIIP, "--trajectory",

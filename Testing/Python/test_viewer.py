@@ -109,6 +109,16 @@ class Viewer(unittest.TestCase):
         with tempfile.TemporaryDirectory() as folder:
             path = self.viewer.screenshot(os.path.join(folder, "shot.png"))
             self.assertGreater(os.path.getsize(path), 1000)
+            # The saved camera is one the render command reads back.
+            saved = self.viewer.save_camera(os.path.join(folder, "camera.txt"))
+            from mesolens.lens import read_camera_file
+            from vtkmodules.vtkRenderingCore import vtkCamera
+            camera = vtkCamera()
+            read_camera_file(saved, camera)
+            original = self.lens.renderer.GetActiveCamera()
+            for got, want in zip(camera.GetPosition(), original.GetPosition()):
+                self.assertAlmostEqual(got, want, places=9)
+            self.assertAlmostEqual(camera.GetViewAngle(), original.GetViewAngle())
 
     def test_space_without_a_trajectory_says_so(self):
         press_key(self.viewer, "space")

@@ -25,7 +25,7 @@ import os
 import sys
 import time
 
-from .lens import METHODS, STYLES, LensError, MembraneLens, write_png
+from .lens import METHODS, STYLES, LensError, MembraneLens, read_camera_file, write_png
 
 DEFAULT_DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "..",
                             "share", "mesolens", "Data")
@@ -54,25 +54,6 @@ def _size(text):
     if not (16 <= width <= 8192 and 16 <= height <= 8192):
         raise argparse.ArgumentTypeError(f"expected WIDTHxHEIGHT of 16 to 8192 pixels, not {text!r}")
     return width, height
-
-
-def _read_camera(path, camera):
-    keys = {"position": camera.SetPosition, "focal": camera.SetFocalPoint,
-            "up": camera.SetViewUp}
-    try:
-        with open(path, encoding="utf-8") as lines:
-            for number, line in enumerate(lines, 1):
-                words = line.split()
-                if not words or words[0].startswith("#"):
-                    continue
-                if words[0] in keys and len(words) == 4:
-                    keys[words[0]](*[float(w) for w in words[1:]])
-                elif words[0] == "angle" and len(words) == 2:
-                    camera.SetViewAngle(float(words[1]))
-                else:
-                    raise LensError(f"camera file {path!r}, line {number}: cannot read {line.strip()!r}")
-    except (OSError, ValueError) as error:
-        raise LensError(f"cannot read the camera file {path!r}: {error}") from None
 
 
 def _window(lens, size, ssao, shadows, view):
@@ -141,7 +122,7 @@ def render(args):
         raise LensError("--frames needs a trajectory (--trajectory) with time steps")
     lens = _lens(args)
     if args.camera:
-        _read_camera(args.camera, lens.renderer.GetActiveCamera())
+        read_camera_file(args.camera, lens.renderer.GetActiveCamera())
         lens.renderer.ResetCameraClippingRange()
     else:
         lens.look_at_patch()

@@ -10,6 +10,7 @@ CPU for displacement). The ``mesolens`` command is built on it.
 Units: the mesh in ``mesh_unit_angstrom`` Å per unit (1e4 for µm, the default; 10 for nm); the
 membrane in Å (GROMACS files are converted by the reader).
 """
+import math
 import os
 
 from vtkmodules.util.misc import calldata_type
@@ -76,6 +77,39 @@ def write_png(window, path):
     writer.Write()
     if not os.path.isfile(path):
         raise LensError(f"cannot write {path!r}")
+
+
+def read_camera_file(path, camera):
+    """Sets `camera` (a vtkCamera) from a file of "position x y z", "focal x y z", "up x y z" and
+    "angle degrees" lines (# comments; what write_camera_file writes). Raises LensError naming
+    the line it cannot read."""
+    keys = {"position": camera.SetPosition, "focal": camera.SetFocalPoint,
+            "up": camera.SetViewUp}
+    try:
+        with open(path, encoding="utf-8") as lines:
+            for number, line in enumerate(lines, 1):
+                words = line.split()
+                if not words or words[0].startswith("#"):
+                    continue
+                if not all(math.isfinite(float(w)) for w in words[1:]):
+                    raise LensError(f"camera file {path!r}, line {number}: not a finite number")
+                if words[0] in keys and len(words) == 4:
+                    keys[words[0]](*[float(w) for w in words[1:]])
+                elif words[0] == "angle" and len(words) == 2:
+                    camera.SetViewAngle(float(words[1]))
+                else:
+                    raise LensError(f"camera file {path!r}, line {number}: cannot read {line.strip()!r}")
+    except (OSError, ValueError) as error:
+        raise LensError(f"cannot read the camera file {path!r}: {error}") from None
+
+
+def write_camera_file(path, camera):
+    """Writes `camera` (a vtkCamera) as the lines read_camera_file reads."""
+    with open(path, "w", encoding="ascii") as file:
+        file.write("position {} {} {}\n".format(*camera.GetPosition()))
+        file.write("focal {} {} {}\n".format(*camera.GetFocalPoint()))
+        file.write("up {} {} {}\n".format(*camera.GetViewUp()))
+        file.write(f"angle {camera.GetViewAngle()}\n")
 
 
 def _require_file(path, what):

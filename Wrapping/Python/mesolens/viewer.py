@@ -9,7 +9,8 @@ point. Keys:
     s       space-filling / ball-and-stick        a   ambient occlusion (SSAO) on / off
     h       shadows on / off
     space   play / pause the trajectory           l   refinement level (frames in between)
-    c       screenshot (mesolens-NNNN.png)
+    c       screenshot (mesolens-NNNN.png)        v   save the camera (mesolens-camera.txt, for
+                                                      mesolens render --camera)
     q       quit
 
 A line at the bottom shows the atom count, the last frame time and the settings; messages (a
@@ -23,7 +24,7 @@ from vtkmodules.vtkInteractionStyle import vtkInteractorStyleTrackballCamera
 import vtkmodules.vtkRenderingFreeType  # noqa: F401 (text)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL factory)
 
-from .lens import METHODS, LensError, write_png
+from .lens import METHODS, LensError, write_camera_file, write_png
 
 CLICK_TOLERANCE = 3  # pixels a click may move and still be a click
 
@@ -120,6 +121,8 @@ class LensViewer:
             self._replace()
         elif name == "c":
             self.screenshot()
+        elif name == "v":
+            self.save_camera()
 
     def _replace(self):
         if self.lens.centre is not None:
@@ -164,6 +167,17 @@ class LensViewer:
         self.window.Render()
         return path
 
+    def save_camera(self, path="mesolens-camera.txt"):
+        """Writes the camera as the lines `mesolens render --camera` reads."""
+        camera = self.lens.renderer.GetActiveCamera()
+        try:
+            write_camera_file(path, camera)
+            self.message = f"wrote {os.path.abspath(path)}"
+        except OSError as error:
+            self.message = f"cannot write {path}: {error}"
+        self.window.Render()
+        return path
+
     # Events --------------------------------------------------------------------------------
 
     def _on_press(self, _caller, _event):
@@ -180,7 +194,8 @@ class LensViewer:
         if moved <= CLICK_TOLERANCE:
             self.click(x, y)
 
-    KEYS = ("plus", "equal", "KP_Add", "minus", "KP_Subtract", "m", "s", "a", "h", "space", "c", "l")
+    KEYS = ("plus", "equal", "KP_Add", "minus", "KP_Subtract", "m", "s", "a", "h", "space", "c",
+            "l", "v")
 
     def _on_char(self, _caller, _event):
         # Ours replace VTK's defaults for these keys (s: surface, a: actor mode, c: camera

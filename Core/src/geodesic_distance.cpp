@@ -3,10 +3,7 @@
 
 #include "mesolens/errors.h"
 
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
-#include <CGAL/AABB_triangle_primitive.h>
-#include <CGAL/Simple_cartesian.h>
+#include "mesolens/surface_locator.h"
 
 #include <algorithm>
 #include <cmath>
@@ -18,11 +15,6 @@
 namespace mesolens {
 
 namespace {
-using Kernel = CGAL::Simple_cartesian<double>;
-using CgalTriangle = Kernel::Triangle_3;
-using Primitive = CGAL::AABB_triangle_primitive<Kernel, std::vector<CgalTriangle>::const_iterator>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<Kernel, Primitive>>;
-
 constexpr double infinity = std::numeric_limits<double>::infinity();
 constexpr int max_unfolding_steps = 10;
 
@@ -110,9 +102,8 @@ struct GeodesicSolver::Impl
   std::vector<std::uint8_t> Boundary; // per vertex: on a boundary edge
   double LongestEdge = 0;
 
-  mutable std::once_flag TreeBuilt;
-  mutable std::vector<CgalTriangle> TreeTriangles;
-  mutable std::unique_ptr<Tree> SearchTree;
+  mutable std::once_flag LocatorBuilt;
+  mutable std::unique_ptr<SurfaceLocator> Locator;
 
   // Work arrays reused between marches; only touched entries are reset.
   mutable std::vector<double> Distance;
@@ -359,49 +350,9 @@ SurfacePoint GeodesicSolver::closest_point(const std::array<double, 3>& point,
                                            double* distance) const
 {
   Impl& impl = *this->Internal;
-  std::call_once(impl.TreeBuilt, [&impl] {
-    const TriangleMesh& m = impl.Mesh;
-    impl.TreeTriangles.reserve(m.triangle_count());
-    for (std::size_t t = 0; t < m.triangle_count(); ++t)
-    {
-      const auto a = m.point(m.triangles[3 * t]);
-      const auto b = m.point(m.triangles[3 * t + 1]);
-      const auto c = m.point(m.triangles[3 * t + 2]);
-      impl.TreeTriangles.emplace_back(Kernel::Point_3(a[0], a[1], a[2]),
-                                      Kernel::Point_3(b[0], b[1], b[2]),
-                                      Kernel::Point_3(c[0], c[1], c[2]));
-    }
-    impl.SearchTree = std::make_unique<Tree>(impl.TreeTriangles.begin(), impl.TreeTriangles.end());
-    impl.SearchTree->accelerate_distance_queries();
-  });
-  if (!std::isfinite(point[0]) || !std::isfinite(point[1]) || !std::isfinite(point[2]))
-  {
-    throw InvalidInput("the query point has a non-finite coordinate");
-  }
-  const Kernel::Point_3 query(point[0], point[1], point[2]);
-  const auto closest = impl.SearchTree->closest_point_and_primitive(query);
-  SurfacePoint result;
-  result.triangle = std::int64_t(closest.second - impl.TreeTriangles.begin());
-  result.position = { closest.first.x(), closest.first.y(), closest.first.z() };
-  // Barycentric coordinates of the closest point (it lies in the triangle's plane).
-  const CgalTriangle& t = *closest.second;
-  const Kernel::Vector_3 v0 = t[1] - t[0];
-  const Kernel::Vector_3 v1 = t[2] - t[0];
-  const Kernel::Vector_3 v2 = closest.first - t[0];
-  const double d00 = v0 * v0;
-  const double d01 = v0 * v1;
-  const double d11 = v1 * v1;
-  const double d20 = v2 * v0;
-  const double d21 = v2 * v1;
-  const double denominator = d00 * d11 - d01 * d01;
-  const double b1 = denominator > 0 ? (d11 * d20 - d01 * d21) / denominator : 0.0;
-  const double b2 = denominator > 0 ? (d00 * d21 - d01 * d20) / denominator : 0.0;
-  result.barycentric = { 1.0 - b1 - b2, b1, b2 };
-  if (distance)
-  {
-    *distance = std::sqrt(CGAL::squared_distance(query, closest.first));
-  }
-  return result;
+  std::call_once(impl.LocatorBuilt,
+                 [&impl] { impl.Locator = std::make_unique<SurfaceLocator>(impl.Mesh); });
+  return impl.Locator->closest_point(point, distance);
 }
 
 GeodesicField GeodesicSolver::distances(const SurfacePoint& seed, double stop_distance) const

@@ -135,6 +135,14 @@ std::vector<std::uint8_t> StructuredCutaway::visibility(const CutRegion& cut,
                                                         const CutawaySettings& settings,
                                                         const double* centres) const
 {
+  return this->visibility([&cut](const std::array<double, 3>& p) { return cut.contains(p); },
+                          settings, centres);
+}
+
+std::vector<std::uint8_t> StructuredCutaway::visibility(
+  const std::function<bool(const std::array<double, 3>&)>& inside_cut,
+  const CutawaySettings& settings, const double* centres) const
+{
   require_fraction(settings.fraction_hidden, "the fraction hidden");
   for (const auto& [type, fraction] : settings.fraction_by_type)
   {
@@ -149,7 +157,7 @@ std::vector<std::uint8_t> StructuredCutaway::visibility(const CutRegion& cut,
   std::map<int, std::vector<std::uint32_t>> inside;
   for (std::size_t m = 0; m < count; ++m)
   {
-    if (cut.contains({ at[3 * m], at[3 * m + 1], at[3 * m + 2] }))
+    if (inside_cut({ at[3 * m], at[3 * m + 1], at[3 * m + 2] }))
     {
       inside[this->Types[m]].push_back(static_cast<std::uint32_t>(m));
     }

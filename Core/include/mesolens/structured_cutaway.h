@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <vector>
 
@@ -105,6 +106,11 @@ public:
   /// InvalidInput for settings out of range.
   std::vector<std::uint8_t> visibility(const CutRegion& cut, const CutawaySettings& settings,
                                        const double* centres = nullptr) const;
+
+  /// The same with the cut given as a test of a point (true: inside the cut).
+  std::vector<std::uint8_t> visibility(
+    const std::function<bool(const std::array<double, 3>&)>& inside_cut,
+    const CutawaySettings& settings, const double* centres = nullptr) const;
 
 private:
   std::vector<double> Centres;

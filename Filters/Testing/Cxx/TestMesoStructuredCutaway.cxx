@@ -1,0 +1,216 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoStructuredCutaway.h"
+
+#include "mesolens_vtk_test_utilities.h"
+
+#include <vtkCellArray.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkIntArray.h>
+#include <vtkNew.h>
+#include <vtkPlane.h>
+#include <vtkPlatonicSolidSource.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSphere.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace {
+/// Two atoms per molecule, the molecules just outside the icosahedron: first the 20 over its
+/// triangle centres, then the 30 over its edge midpoints.
+vtkSmartPointer<vtkPolyData> molecules_over(vtkPolyData* solid)
+{
+  std::vector<std::array<double, 3>> directions;
+  for (vtkIdType t = 0; t < solid->GetNumberOfCells(); ++t)
+  {
+    vtkIdType size = 0;
+    const vtkIdType* ids = nullptr;
+    solid->GetPolys()->GetCellAtId(t, size, ids);
+    std::array<double, 3> c{ 0, 0, 0 };
+    for (vtkIdType k = 0; k < size; ++k)
+    {
+      double p[3];
+      solid->GetPoint(ids[k], p);
+      for (int d = 0; d < 3; ++d)
+        c[d] += p[d] / double(size);
+    }
+    directions.push_back(c);
+  }
+  std::vector<std::pair<vtkIdType, vtkIdType>> edges;
+  for (vtkIdType t = 0; t < solid->GetNumberOfCells(); ++t)
+  {
+    vtkIdType size = 0;
+    const vtkIdType* ids = nullptr;
+    solid->GetPolys()->GetCellAtId(t, size, ids);
+    for (vtkIdType k = 0; k < size; ++k)
+    {
+      const vtkIdType a = ids[k];
+      const vtkIdType b = ids[(k + 1) % size];
+      if (a < b)
+        edges.emplace_back(a, b);
+    }
+  }
+  for (const auto& [a, b] : edges)
+  {
+    double p[3];
+    double q[3];
+    solid->GetPoint(a, p);
+    solid->GetPoint(b, q);
+    directions.push_back({ (p[0] + q[0]) / 2, (p[1] + q[1]) / 2, (p[2] + q[2]) / 2 });
+  }
+  auto atoms = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkIntArray> molecule;
+  molecule->SetName("MoleculeId");
+  for (std::size_t m = 0; m < directions.size(); ++m)
+  {
+    const auto& d = directions[m];
+    const double length = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+    for (double offset : { -0.001, 0.001 })
+    {
+      points->InsertNextPoint(1.1 * d[0] / length + offset, 1.1 * d[1] / length,
+                              1.1 * d[2] / length);
+      molecule->InsertNextValue(int(100 + m));
+    }
+  }
+  atoms->SetPoints(points);
+  atoms->GetPointData()->AddArray(molecule);
+  return atoms;
+}
+
+struct Scene
+{
+  vtkNew<vtkPlatonicSolidSource> Solid;
+  vtkSmartPointer<vtkPolyData> Atoms;
+  vtkNew<vtkMesoStructuredCutaway> Cutaway;
+  vtkNew<vtkSphere> Everything;
+
+  Scene()
+  {
+    this->Solid->SetSolidTypeToIcosahedron();
+    this->Solid->Update();
+    this->Atoms = molecules_over(this->Solid->GetOutput());
+    this->Cutaway->SetInputData(this->Atoms);
+    this->Cutaway->SetStructureConnection(this->Solid->GetOutputPort());
+    this->Everything->SetRadius(100);
+    this->Cutaway->SetCutFunction(this->Everything);
+  }
+
+  /// Visible flag of molecule m (its first atom).
+  int Visible(int m)
+  {
+    return int(this->Cutaway->GetOutput()->GetPointData()->GetArray("Visible")->GetTuple1(2 * m));
+  }
+
+  vtkIdType Field(const char* name)
+  {
+    return vtkIdType(this->Cutaway->GetOutput()->GetFieldData()->GetArray(name)->GetTuple1(0));
+  }
+};
+} // namespace
+
+TEST(vtkMesoStructuredCutaway, CentresFirstEdgesLastWithoutReassigning)
+{
+  Scene scene;
+  scene.Cutaway->SetFractionHidden(0.4);
+  scene.Cutaway->Update();
+  ASSERT_EQ(scene.Cutaway->GetOutput()->GetNumberOfPoints(), 100);
+  for (int m = 0; m < 50; ++m)
+    EXPECT_EQ(scene.Visible(m), m < 20 ? 0 : 1) << m;
+  EXPECT_EQ(scene.Field("MoleculesInCut"), 50);
+  EXPECT_EQ(scene.Field("MoleculesHidden"), 20);
+  vtkDataArray* priority = scene.Cutaway->GetOutput()->GetPointData()->GetArray("RemovalPriority");
+  EXPECT_NEAR(priority->GetTuple1(0), 1.0, 1e-6);
+  EXPECT_NEAR(priority->GetTuple1(40), 0.0, 1e-6);
+  // Inverted, another k and fraction, then random order: the assignment stays.
+  scene.Cutaway->InvertedOn();
+  scene.Cutaway->SetFractionHidden(0.6);
+  scene.Cutaway->SetK(-0.5);
+  scene.Cutaway->Update();
+  for (int m = 0; m < 50; ++m)
+    EXPECT_EQ(scene.Visible(m), m < 20 ? 1 : 0) << m;
+  scene.Cutaway->RandomOrderOn();
+  scene.Cutaway->Update();
+  EXPECT_EQ(scene.Field("MoleculesHidden"), 30);
+  EXPECT_EQ(scene.Cutaway->GetNumberOfAssignments(), 1);
+}
+
+TEST(vtkMesoStructuredCutaway, PlaneCutLeavesTheOtherSide)
+{
+  Scene scene;
+  vtkNew<vtkPlane> plane; // the cut: z <= 0
+  plane->SetNormal(0, 0, 1);
+  scene.Cutaway->SetCutFunction(plane);
+  scene.Cutaway->SetFractionHidden(1.0);
+  scene.Cutaway->Update();
+  vtkPolyData* output = scene.Cutaway->GetOutput();
+  vtkDataArray* visible = output->GetPointData()->GetArray("Visible");
+  vtkIdType hidden = 0;
+  for (vtkIdType a = 0; a < output->GetNumberOfPoints(); a += 2)
+  {
+    double p[3];
+    output->GetPoint(a, p);
+    EXPECT_EQ(visible->GetTuple1(a), p[2] > 0.001 ? 1 : 0);
+    hidden += visible->GetTuple1(a) == 0;
+  }
+  EXPECT_EQ(scene.Field("MoleculesHidden"), hidden);
+  // Moving the plane only reorders.
+  plane->SetOrigin(0, 0, 0.5);
+  scene.Cutaway->Update();
+  EXPECT_GT(scene.Field("MoleculesHidden"), hidden);
+  EXPECT_EQ(scene.Cutaway->GetNumberOfAssignments(), 1);
+  // No cut: nothing hidden.
+  scene.Cutaway->SetCutFunction(nullptr);
+  scene.Cutaway->Update();
+  EXPECT_EQ(scene.Field("MoleculesHidden"), 0);
+}
+
+TEST(vtkMesoStructuredCutaway, BadInputsGiveAnErrorAndNoOutput)
+{
+  {
+    Scene scene;
+    vtkNew<vtkMesoStructuredCutaway> alone;
+    alone->SetInputData(scene.Atoms);
+    mesolens_test::EventRecorder events(alone);
+    alone->Update();
+    EXPECT_NE(events.AllErrors().find("No structure mesh"), std::string::npos);
+    EXPECT_EQ(alone->GetOutput()->GetNumberOfPoints(), 0);
+  }
+  {
+    Scene scene;
+    vtkNew<vtkPolyData> lines; // a structure without triangles
+    vtkNew<vtkPoints> points;
+    points->InsertNextPoint(0, 0, 0);
+    points->InsertNextPoint(1, 0, 0);
+    lines->SetPoints(points);
+    vtkNew<vtkCellArray> cells;
+    cells->InsertNextCell({ 0, 1 });
+    lines->SetLines(cells);
+    scene.Cutaway->SetInputData(1, lines);
+    mesolens_test::EventRecorder events(scene.Cutaway);
+    scene.Cutaway->Update();
+    EXPECT_NE(events.AllErrors().find("Cannot cut the molecules away"), std::string::npos)
+      << events.AllErrors();
+    EXPECT_EQ(scene.Cutaway->GetOutput()->GetNumberOfPoints(), 0);
+  }
+  {
+    Scene scene;
+    scene.Atoms->GetPoints()->SetPoint(7, std::nan(""), 0, 0);
+    mesolens_test::EventRecorder events(scene.Cutaway);
+    scene.Cutaway->Update();
+    EXPECT_NE(events.AllErrors().find("atom 7 has a non-finite position"), std::string::npos)
+      << events.AllErrors();
+    EXPECT_EQ(scene.Cutaway->GetOutput()->GetNumberOfPoints(), 0);
+  }
+  {
+    vtkNew<vtkMesoStructuredCutaway> cutaway;
+    cutaway->SetK(5);
+    EXPECT_DOUBLE_EQ(cutaway->GetK(), 0.99);
+    cutaway->SetFractionHidden(-1);
+    EXPECT_DOUBLE_EQ(cutaway->GetFractionHidden(), 0.0);
+  }
+}

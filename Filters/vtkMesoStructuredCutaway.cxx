@@ -4,9 +4,11 @@
 #include "vtkMesoSurfaceConversion.h"
 
 #include "mesolens/errors.h"
+#include "mesolens/structure_mesh.h"
 #include "mesolens/structured_cutaway.h"
 
 #include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkIdTypeArray.h>
@@ -76,6 +78,8 @@ struct Molecules
 struct vtkMesoStructuredCutaway::Internals
 {
   std::unique_ptr<mesolens::StructuredCutaway> Solver;
+  vtkNew<vtkPolyData> Structure; // made from the molecules when none is connected
+  int StructureVertices = 0;
   // What the solver was built from.
   vtkMTimeType StructureTime = 0;
   const void* StructureData = nullptr;
@@ -89,6 +93,7 @@ vtkMesoStructuredCutaway::vtkMesoStructuredCutaway()
   : Internal(std::make_unique<Internals>())
 {
   this->SetNumberOfInputPorts(2);
+  this->SetNumberOfOutputPorts(2);
 }
 
 vtkMesoStructuredCutaway::~vtkMesoStructuredCutaway()
@@ -127,13 +132,10 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
 {
   vtkPolyData* atoms = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* structure = vtkPolyData::GetData(inputVector[1]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
+  vtkPolyData* structure_output = vtkPolyData::GetData(outputVector, 1);
   output->Initialize();
-  if (!structure)
-  {
-    vtkErrorMacro("No structure mesh: connect one with SetStructureConnection.");
-    return 0;
-  }
+  structure_output->Initialize();
   if (!atoms || atoms->GetNumberOfPoints() == 0)
   {
     vtkErrorMacro("No atoms to cut away.");
@@ -144,6 +146,34 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
   {
     vtkDataArray* ids = atoms->GetPointData()->GetArray("MoleculeId");
     const Molecules molecules(atoms, ids);
+    if (!structure)
+    {
+      // The structure from the molecules' centres, kept with the assignment.
+      const bool same_molecules = in.Solver && in.IdArray == ids &&
+        in.IdTime == (ids ? ids->GetMTime() : 0) && in.AtomCount == atoms->GetNumberOfPoints();
+      if (!same_molecules || in.StructureVertices != this->StructureVertices)
+      {
+        mesolens::MeshQuality quality;
+        const mesolens::TriangleMesh mesh = mesolens::structure_mesh(
+          molecules.Centres, { static_cast<std::size_t>(this->StructureVertices), 0.0 }, &quality);
+        vtkNew<vtkPolyData> made;
+        vtkMesoSurfaceConversion::FromTriangleMesh(mesh, made);
+        for (const auto& [name, value] :
+             { std::pair<const char*, double>{ "MinAngle", quality.min_angle },
+               std::pair<const char*, double>{ "MaxAngle", quality.max_angle },
+               std::pair<const char*, double>{ "MeanEdge", quality.mean_edge },
+               std::pair<const char*, double>{ "EdgeSpread", quality.edge_spread } })
+        {
+          vtkNew<vtkDoubleArray> field;
+          field->SetName(name);
+          field->InsertNextValue(value);
+          made->GetFieldData()->AddArray(field);
+        }
+        in.Structure->ShallowCopy(made);
+        in.StructureVertices = this->StructureVertices;
+      }
+      structure = in.Structure;
+    }
     // A new assignment only for a new structure or a new set of molecules.
     if (!in.Solver || in.StructureData != structure || in.StructureTime != structure->GetMTime() ||
         in.IdArray != ids || in.IdTime != (ids ? ids->GetMTime() : 0) ||
@@ -196,6 +226,7 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
       priority_atoms->SetValue(a, static_cast<float>(priority[m]));
     }
     output->GetPointData()->AddArray(visible_atoms);
+    structure_output->ShallowCopy(structure);
     output->GetPointData()->AddArray(priority_atoms);
     std::size_t hidden = 0;
     for (std::uint8_t v : visible)
@@ -215,6 +246,7 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
   catch (const mesolens::Error& error)
   {
     output->Initialize();
+    structure_output->Initialize();
     vtkErrorMacro("Cannot cut the molecules away: " << error.what());
     return 0;
   }
@@ -230,5 +262,6 @@ void vtkMesoStructuredCutaway::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Inverted: " << this->Inverted << "\n";
   os << indent << "RandomOrder: " << this->RandomOrder << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
+  os << indent << "StructureVertices: " << this->StructureVertices << "\n";
   os << indent << "Assignments: " << this->Internal->Assignments << "\n";
 }

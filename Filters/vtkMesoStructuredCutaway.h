@@ -7,8 +7,11 @@
  * The SirTom thesis' structured cutaway (mesolens::StructuredCutaway). Input 0: atoms (a
  * MesoLens reader's output or any polydata of points), grouped into molecules by the
  * `MoleculeId` point array (without it, every atom is a molecule). Input 1
- * (SetStructureConnection): the structure's triangle mesh, e.g. a surface through the molecules'
- * centres, in the atoms' units.
+ * (SetStructureConnection, optional): the structure's triangle mesh in the atoms' units. Without
+ * it the structure is made from the molecules' centres (mesolens::structure_mesh: advancing-front
+ * reconstruction, small holes closed, isotropic remeshing to about StructureVertices vertices);
+ * it is output 1 either way, a made one with its quality in field data `MinAngle`, `MaxAngle`
+ * (degrees), `MeanEdge` and `EdgeSpread`.
  *
  * Every molecule is assigned once to its nearest triangle (exact closest point); its removal
  * priority comes from the smallest barycentric coordinate x of that point, (f(6 x - 1, K) + 1)
@@ -28,8 +31,8 @@
  * `RemovalPriority` (float, the atom's molecule's), and field data `MoleculesInCut` and
  * `MoleculesHidden`.
  *
- * Errors (no structure, a structure without triangles, a non-finite atom, settings out of
- * range) are reported with vtkErrorMacro and give an empty output.
+ * Errors (a structure without triangles, molecules whose centres describe no surface, a
+ * non-finite atom) are reported with vtkErrorMacro and give empty outputs.
  */
 #ifndef vtkMesoStructuredCutaway_h
 #define vtkMesoStructuredCutaway_h
@@ -92,6 +95,13 @@ public:
   vtkGetMacro(Seed, int);
   ///@}
 
+  ///@{
+  /// Vertices of the structure mesh made from the molecules when no structure is connected:
+  /// [4, 1e6]; default 500.
+  vtkSetClampMacro(StructureVertices, int, 4, 1000000);
+  vtkGetMacro(StructureVertices, int);
+  ///@}
+
   /// How many times molecules were assigned to the structure (each costs a closest-point
   /// search per molecule): once for a structure and a set of molecules.
   int GetNumberOfAssignments() const;
@@ -112,6 +122,7 @@ protected:
   bool Inverted = false;
   bool RandomOrder = false;
   int Seed = 1;
+  int StructureVertices = 500;
 
 private:
   vtkMesoStructuredCutaway(const vtkMesoStructuredCutaway&) = delete;

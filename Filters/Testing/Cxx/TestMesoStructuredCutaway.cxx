@@ -172,13 +172,20 @@ TEST(vtkMesoStructuredCutaway, PlaneCutLeavesTheOtherSide)
 TEST(vtkMesoStructuredCutaway, BadInputsGiveAnErrorAndNoOutput)
 {
   {
-    Scene scene;
+    // Molecules on a line describe no surface to make a structure from.
+    vtkNew<vtkPolyData> line;
+    vtkNew<vtkPoints> points;
+    for (int i = 0; i < 50; ++i)
+      points->InsertNextPoint(i, 0, 0);
+    line->SetPoints(points);
     vtkNew<vtkMesoStructuredCutaway> alone;
-    alone->SetInputData(scene.Atoms);
+    alone->SetInputData(line);
     mesolens_test::EventRecorder events(alone);
     alone->Update();
-    EXPECT_NE(events.AllErrors().find("No structure mesh"), std::string::npos);
+    EXPECT_NE(events.AllErrors().find("describe no surface"), std::string::npos)
+      << events.AllErrors();
     EXPECT_EQ(alone->GetOutput()->GetNumberOfPoints(), 0);
+    EXPECT_EQ(alone->GetOutput(1)->GetNumberOfCells(), 0);
   }
   {
     Scene scene;
@@ -213,4 +220,54 @@ TEST(vtkMesoStructuredCutaway, BadInputsGiveAnErrorAndNoOutput)
     cutaway->SetFractionHidden(-1);
     EXPECT_DOUBLE_EQ(cutaway->GetFractionHidden(), 0.0);
   }
+}
+
+TEST(vtkMesoStructuredCutaway, MakesTheStructureFromTheMoleculesWhenNoneIsGiven)
+{
+  // 2000 molecules of one atom on a sphere of radius 30: the structure is made from them.
+  vtkNew<vtkPolyData> atoms;
+  vtkNew<vtkPoints> points;
+  const double golden = 3.14159265358979 * (3 - std::sqrt(5.0));
+  for (int i = 0; i < 2000; ++i)
+  {
+    const double z = 1 - 2 * (i + 0.5) / 2000;
+    const double r = std::sqrt(1 - z * z);
+    points->InsertNextPoint(30 * r * std::cos(golden * i), 30 * r * std::sin(golden * i), 30 * z);
+  }
+  atoms->SetPoints(points);
+  vtkNew<vtkMesoStructuredCutaway> cutaway;
+  cutaway->SetInputData(atoms);
+  cutaway->SetStructureVertices(200);
+  vtkNew<vtkSphere> everything;
+  everything->SetRadius(100);
+  cutaway->SetCutFunction(everything);
+  cutaway->SetFractionHidden(0.25);
+  cutaway->Update();
+  vtkPolyData* structure = cutaway->GetOutput(1);
+  const vtkIdType made_vertices = structure->GetNumberOfPoints();
+  EXPECT_GT(structure->GetNumberOfPoints(), 120);
+  EXPECT_LT(structure->GetNumberOfPoints(), 320);
+  EXPECT_GT(structure->GetFieldData()->GetArray("MinAngle")->GetTuple1(0), 15.0);
+  EXPECT_EQ(cutaway->GetOutput()->GetFieldData()->GetArray("MoleculesHidden")->GetTuple1(0), 500);
+  // The hidden molecules are those nearest their triangles' centres.
+  vtkDataArray* priority = cutaway->GetOutput()->GetPointData()->GetArray("RemovalPriority");
+  vtkDataArray* visible = cutaway->GetOutput()->GetPointData()->GetArray("Visible");
+  double lowest_hidden = 1;
+  double highest_visible = 0;
+  for (vtkIdType a = 0; a < 2000; ++a)
+  {
+    if (visible->GetTuple1(a) == 0)
+      lowest_hidden = std::min(lowest_hidden, priority->GetTuple1(a));
+    else
+      highest_visible = std::max(highest_visible, priority->GetTuple1(a));
+  }
+  EXPECT_GE(lowest_hidden, highest_visible);
+  // A new vertex count makes a new structure and a new assignment; the fraction does not.
+  cutaway->SetFractionHidden(0.5);
+  cutaway->Update();
+  EXPECT_EQ(cutaway->GetNumberOfAssignments(), 1);
+  cutaway->SetStructureVertices(100);
+  cutaway->Update();
+  EXPECT_EQ(cutaway->GetNumberOfAssignments(), 2);
+  EXPECT_LT(cutaway->GetOutput(1)->GetNumberOfPoints(), made_vertices);
 }

@@ -4,6 +4,7 @@
 #include "vtkMesoSurfaceConversion.h"
 
 #include "mesolens/errors.h"
+#include "mesolens/molecule_pbc.h"
 #include "mesolens/structure_mesh.h"
 #include "mesolens/structured_cutaway.h"
 
@@ -17,6 +18,7 @@
 #include <vtkInformationVector.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkUnsignedCharArray.h>
 
@@ -34,6 +36,20 @@ struct Molecules
 {
   std::vector<std::uint32_t> OfAtom;
   std::vector<double> Centres;
+  std::vector<std::array<double, 3>> Shifts; ///< per molecule, to make the assembly whole
+
+  /// Moves each molecule by the box vectors that gather the assembly in `box`.
+  void MakeWhole(const mesolens::PeriodicBox& box)
+  {
+    this->Shifts = mesolens::assembly_shifts(this->Centres, box);
+    for (std::size_t m = 0; m < this->Shifts.size(); ++m)
+    {
+      for (int d = 0; d < 3; ++d)
+      {
+        this->Centres[3 * m + d] += this->Shifts[m][d];
+      }
+    }
+  }
 
   Molecules(vtkPolyData* atoms, vtkDataArray* ids)
   {
@@ -145,7 +161,18 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
   try
   {
     vtkDataArray* ids = atoms->GetPointData()->GetArray("MoleculeId");
-    const Molecules molecules(atoms, ids);
+    Molecules molecules(atoms, ids);
+    vtkDataArray* box_vectors = atoms->GetFieldData()->GetArray("PeriodicBoxVectors");
+    if (this->MakeAssemblyWhole && box_vectors && box_vectors->GetNumberOfComponents() == 9 &&
+        box_vectors->GetNumberOfTuples() > 0)
+    {
+      mesolens::PeriodicBox box;
+      for (int k = 0; k < 9; ++k)
+      {
+        box.vectors[k / 3][k % 3] = box_vectors->GetComponent(0, k);
+      }
+      molecules.MakeWhole(box);
+    }
     if (!structure)
     {
       // The structure from the molecules' centres, kept with the assignment.
@@ -213,6 +240,20 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
 
     output->ShallowCopy(atoms);
     const vtkIdType n = atoms->GetNumberOfPoints();
+    if (!molecules.Shifts.empty())
+    {
+      vtkNew<vtkPoints> moved;
+      moved->SetDataTypeToFloat();
+      moved->SetNumberOfPoints(n);
+      for (vtkIdType a = 0; a < n; ++a)
+      {
+        double p[3];
+        atoms->GetPoint(a, p);
+        const auto& shift = molecules.Shifts[molecules.OfAtom[static_cast<std::size_t>(a)]];
+        moved->SetPoint(a, p[0] + shift[0], p[1] + shift[1], p[2] + shift[2]);
+      }
+      output->SetPoints(moved);
+    }
     vtkNew<vtkUnsignedCharArray> visible_atoms;
     visible_atoms->SetName("Visible");
     visible_atoms->SetNumberOfValues(n);
@@ -263,5 +304,6 @@ void vtkMesoStructuredCutaway::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RandomOrder: " << this->RandomOrder << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "StructureVertices: " << this->StructureVertices << "\n";
+  os << indent << "MakeAssemblyWhole: " << this->MakeAssemblyWhole << "\n";
   os << indent << "Assignments: " << this->Internal->Assignments << "\n";
 }

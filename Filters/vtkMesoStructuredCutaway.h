@@ -96,6 +96,16 @@ public:
   ///@}
 
   ///@{
+  /// With a periodic box (field data `PeriodicBoxVectors`, as the trajectory reader gives),
+  /// move whole molecules by box vectors so that the assembly (a vesicle split by the box's
+  /// faces) is in one piece around its periodic mean (mesolens::assembly_shifts); the output
+  /// atoms are moved too. Default on.
+  vtkSetMacro(MakeAssemblyWhole, bool);
+  vtkGetMacro(MakeAssemblyWhole, bool);
+  vtkBooleanMacro(MakeAssemblyWhole, bool);
+  ///@}
+
+  ///@{
   /// Vertices of the structure mesh made from the molecules when no structure is connected:
   /// [4, 1e6]; default 500.
   vtkSetClampMacro(StructureVertices, int, 4, 1000000);
@@ -123,6 +133,7 @@ protected:
   bool RandomOrder = false;
   int Seed = 1;
   int StructureVertices = 500;
+  bool MakeAssemblyWhole = true;
 
 private:
   vtkMesoStructuredCutaway(const vtkMesoStructuredCutaway&) = delete;

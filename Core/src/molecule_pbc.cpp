@@ -195,4 +195,56 @@ void MoleculeContinuity::shift_atoms(const std::vector<std::int32_t>& shifts, fl
   }
 }
 
+std::vector<std::array<double, 3>> assembly_shifts(const std::vector<double>& centres,
+                                                   const PeriodicBox& box)
+{
+  const std::size_t count = centres.size() / 3;
+  std::vector<std::array<double, 3>> shifts(count, { 0, 0, 0 });
+  if (!box.is_set() || count == 0)
+  {
+    return shifts;
+  }
+  // Cartesian = M^T f with the box vectors as the rows of M.
+  Eigen::Matrix3d cell;
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      cell(c, r) = box.vectors[r][c];
+    }
+  }
+  const Eigen::Matrix3d to_fractional = cell.inverse();
+  std::vector<Eigen::Vector3d> fractional(count);
+  double sines[3] = { 0, 0, 0 };
+  double cosines[3] = { 0, 0, 0 };
+  constexpr double turn = 2 * 3.14159265358979323846;
+  for (std::size_t m = 0; m < count; ++m)
+  {
+    fractional[m] =
+      to_fractional * Eigen::Vector3d(centres[3 * m], centres[3 * m + 1], centres[3 * m + 2]);
+    for (int d = 0; d < 3; ++d)
+    {
+      sines[d] += std::sin(turn * fractional[m][d]);
+      cosines[d] += std::cos(turn * fractional[m][d]);
+    }
+  }
+  double middle[3];
+  for (int d = 0; d < 3; ++d)
+  {
+    middle[d] = std::atan2(sines[d], cosines[d]) / turn;
+  }
+  for (std::size_t m = 0; m < count; ++m)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      const double images = std::round(middle[d] - fractional[m][d]);
+      for (int c = 0; c < 3; ++c)
+      {
+        shifts[m][c] += images * box.vectors[d][c];
+      }
+    }
+  }
+  return shifts;
+}
+
 } // namespace mesolens

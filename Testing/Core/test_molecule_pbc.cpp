@@ -101,3 +101,48 @@ TEST(MoleculePbc, ContinuityAcrossCheckpoints)
     EXPECT_FLOAT_EQ(p[3], 5.0f);
   }
 }
+
+TEST(AssemblyShifts, GathersAVesicleSplitByTheBoxFaces)
+{
+  // Points on a sphere of radius 10 around a box corner, wrapped into the box [0, 50)^3 (so the
+  // sphere is in eight pieces), in an orthorhombic and in a triclinic box.
+  for (bool triclinic : { false, true })
+  {
+    mesolens::PeriodicBox box;
+    box.vectors = { { { 50, 0, 0 }, { triclinic ? 10.0 : 0.0, 50, 0 }, { 0, 0, 50 } } };
+    std::vector<double> centres;
+    const double golden = 3.14159265358979 * (3 - std::sqrt(5.0));
+    for (int i = 0; i < 400; ++i)
+    {
+      const double z = 1 - 2 * (i + 0.5) / 400;
+      const double r = std::sqrt(1 - z * z);
+      std::array<double, 3> p{ 10 * r * std::cos(golden * i), 10 * r * std::sin(golden * i),
+                               10 * z };
+      // Into the box: subtract whole box vectors (fractional coordinates floored).
+      const double fz = std::floor(p[2] / 50);
+      const double fy = std::floor(p[1] / 50);
+      p[0] -= fy * box.vectors[1][0];
+      const double fx = std::floor(p[0] / 50);
+      centres.insert(centres.end(), { p[0] - fx * 50, p[1] - fy * 50, p[2] - fz * 50 });
+    }
+    const auto shifts = mesolens::assembly_shifts(centres, box);
+    ASSERT_EQ(shifts.size(), 400u);
+    std::array<double, 3> mean{ 0, 0, 0 };
+    for (std::size_t m = 0; m < 400; ++m)
+      for (int d = 0; d < 3; ++d)
+        mean[d] += (centres[3 * m + d] + shifts[m][d]) / 400;
+    for (std::size_t m = 0; m < 400; ++m)
+    {
+      double squared = 0;
+      for (int d = 0; d < 3; ++d)
+      {
+        const double v = centres[3 * m + d] + shifts[m][d] - mean[d];
+        squared += v * v;
+      }
+      EXPECT_NEAR(std::sqrt(squared), 10.0, 0.01) << (triclinic ? "triclinic " : "") << m;
+    }
+  }
+  // No box: no shifts.
+  const auto none = mesolens::assembly_shifts({ 1, 2, 3 }, mesolens::PeriodicBox());
+  EXPECT_EQ(none[0][0], 0.0);
+}

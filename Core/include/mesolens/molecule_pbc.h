@@ -68,4 +68,11 @@ private:
   std::vector<double> PreviousCentroids;              ///< shifted centroids, last known frame
 };
 
+/// Whole box-vector shifts (Å, one per point) that gather `centres` (3 per point, Å) into one
+/// piece around their periodic (circular) mean in each fractional coordinate of `box`: for an
+/// assembly split by the box's faces, such as a vesicle, that spans less than the box in every
+/// direction. Zero shifts when the box is not set.
+std::vector<std::array<double, 3>> assembly_shifts(const std::vector<double>& centres,
+                                                   const PeriodicBox& box);
+
 } // namespace mesolens

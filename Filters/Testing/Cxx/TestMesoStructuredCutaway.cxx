@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoStructuredCutaway.h"
 
+#include "mesolens_test_data.h"
 #include "mesolens_vtk_test_utilities.h"
+#include "vtkMesoTrajectoryReader.h"
 
 #include <vtkCellArray.h>
 #include <vtkDataArray.h>
@@ -17,7 +19,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <set>
 
 namespace {
 /// Two atoms per molecule, the molecules just outside the icosahedron: first the 20 over its
@@ -270,4 +274,78 @@ TEST(vtkMesoStructuredCutaway, MakesTheStructureFromTheMoleculesWhenNoneIsGiven)
   cutaway->Update();
   EXPECT_EQ(cutaway->GetNumberOfAssignments(), 2);
   EXPECT_LT(cutaway->GetOutput(1)->GetNumberOfPoints(), made_vertices);
+}
+
+TEST(vtkMesoStructuredCutaway, MartiniVesicleCutOpenAndStableOverFrames)
+{
+  // 3072 DPPC lipids of a Martini vesicle split by its periodic box: gathered whole, the
+  // structure made from the lipids' centres, cut by the plane x <= centre.
+  vtkNew<vtkMesoTrajectoryReader> vesicle;
+  vesicle->SetTopologyFileName(
+    mesolens_test::data_file("membranes/martini_dppc_vesicle.gro").c_str());
+  vesicle->SetTrajectoryFileName(
+    mesolens_test::data_file("membranes/martini_dppc_vesicle.xtc").c_str());
+  vtkNew<vtkMesoStructuredCutaway> cutaway;
+  cutaway->SetInputConnection(vesicle->GetOutputPort());
+  cutaway->SetStructureVertices(300);
+  cutaway->SetFractionHidden(0.5);
+  mesolens_test::EventRecorder events(cutaway);
+  cutaway->Update();
+  ASSERT_TRUE(events.Errors.empty()) << events.AllErrors();
+  // Gathered: the beads lie in a shell around their mean, not across the box.
+  vtkPolyData* atoms = cutaway->GetOutput();
+  double centre[3] = { 0, 0, 0 };
+  const vtkIdType n = atoms->GetNumberOfPoints();
+  for (vtkIdType a = 0; a < n; ++a)
+  {
+    double p[3];
+    atoms->GetPoint(a, p);
+    for (int d = 0; d < 3; ++d)
+      centre[d] += p[d] / double(n);
+  }
+  std::vector<double> radii;
+  for (vtkIdType a = 0; a < n; ++a)
+  {
+    double p[3];
+    atoms->GetPoint(a, p);
+    radii.push_back(std::hypot(p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]));
+  }
+  std::sort(radii.begin(), radii.end());
+  EXPECT_LT(radii[radii.size() * 95 / 100], 130.0); // Å; split across the box it was ~300
+  EXPECT_GT(radii[radii.size() * 5 / 100], 50.0);
+
+  vtkNew<vtkPlane> plane;
+  plane->SetOrigin(centre);
+  plane->SetNormal(1, 0, 0);
+  cutaway->SetCutFunction(plane);
+  cutaway->Update();
+  auto field = [&](const char* name) {
+    return vtkIdType(cutaway->GetOutput()->GetFieldData()->GetArray(name)->GetTuple1(0));
+  };
+  const vtkIdType in_cut = field("MoleculesInCut");
+  EXPECT_GT(in_cut, 1300); // about half of 3072
+  EXPECT_LT(in_cut, 1800);
+  EXPECT_EQ(field("MoleculesHidden"), std::llround(0.5 * double(in_cut)));
+  EXPECT_GT(cutaway->GetOutput(1)->GetNumberOfPoints(), 200);
+
+  // Over the next frames the order holds: of the molecules hidden in frame 0, nearly all stay
+  // hidden, and the molecules are not assigned again.
+  auto hidden_molecules = [&]() {
+    std::set<long long> hidden;
+    vtkPolyData* output = cutaway->GetOutput();
+    vtkDataArray* visible = output->GetPointData()->GetArray("Visible");
+    vtkDataArray* ids = output->GetPointData()->GetArray("MoleculeId");
+    for (vtkIdType a = 0; a < output->GetNumberOfPoints(); ++a)
+      if (visible->GetTuple1(a) == 0)
+        hidden.insert((long long)ids->GetTuple1(a));
+    return hidden;
+  };
+  const std::set<long long> first = hidden_molecules();
+  cutaway->UpdateTimeStep(1000.0); // ps
+  const std::set<long long> later = hidden_molecules();
+  std::size_t kept = 0;
+  for (long long m : first)
+    kept += later.count(m);
+  EXPECT_GT(double(kept) / double(first.size()), 0.9);
+  EXPECT_EQ(cutaway->GetNumberOfAssignments(), 1);
 }

@@ -17,9 +17,7 @@
 #include "mesolens/atom_cells.h"
 #include "mesolens/depth_pyramid.h"
 
-#include <vtkHardwareSelector.h>
 #include <vtkOpenGLActor.h>
-#include <vtkOpenGLShaderCache.h>
 #include <vtkOpenGLState.h>
 #include <vtkAlgorithmOutput.h>
 #include <vtkExecutive.h>

@@ -2,6 +2,7 @@
 #include "vtkMesoAtomGPUData.h"
 
 #include "vtkMesoElementLookupTable.h"
+#include "vtkMesoParallelFor.h"
 
 #include "mesolens/elements.h"
 #include "mesolens/membrane_mapping.h"
@@ -17,7 +18,6 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkScalarsToColors.h>
-#include <vtkSMPTools.h>
 #include <vtkSmartPointer.h>
 
 #include <algorithm>
@@ -207,15 +207,6 @@ bool molecule_slots(vtkPolyData* atoms, vtkPolyData* warp, std::vector<unsigned 
 }
 } // namespace
 
-mesolens::ParallelFor vtkMesoAtomGPUData::SMPParallelFor()
-{
-  return [](std::size_t count, const mesolens::RangeKernel& kernel) {
-    vtkSMPTools::For(0, static_cast<vtkIdType>(count), [&kernel](vtkIdType begin, vtkIdType end) {
-      kernel(static_cast<std::size_t>(begin), static_cast<std::size_t>(end));
-    });
-  };
-}
-
 std::vector<float> vtkMesoAtomGPUData::StyleRadii(const Style& style)
 {
   std::vector<float> radii(element_count);
@@ -355,7 +346,7 @@ bool vtkMesoAtomGPUData::UpdatePositions(vtkPolyData* atoms, vtkMapper* mapper,
   if (!regroup)
   {
     mesolens::gather_cell_positions(input, this->Cells, this->PositionStorage.data(),
-                                    this->CellBoxes, SMPParallelFor());
+                                    this->CellBoxes, vtkMesoParallelFor::Get());
     regroup = mesolens::total_cell_diagonal(this->CellBoxes) > 1.5 * this->GroupedDiagonal;
   }
   if (regroup)
@@ -367,7 +358,7 @@ bool vtkMesoAtomGPUData::UpdatePositions(vtkPolyData* atoms, vtkMapper* mapper,
       this->SlotOfAtom[this->Cells.atom_of_slot[slot]] = static_cast<std::uint32_t>(slot);
     }
     mesolens::gather_cell_positions(input, this->Cells, this->PositionStorage.data(),
-                                    this->CellBoxes, SMPParallelFor());
+                                    this->CellBoxes, vtkMesoParallelFor::Get());
     this->GroupedDiagonal = mesolens::total_cell_diagonal(this->CellBoxes);
     ++this->CellsVersion;
     // The per-atom tables follow the new slot order.

@@ -58,9 +58,6 @@ public:
   /// it is when there is nothing to draw.
   static void PaddedBounds(vtkPolyData* atoms, vtkPolyData* warp, double pad, double bounds[6]);
 
-  /// Core's loops run through vtkSMPTools.
-  static mesolens::ParallelFor SMPParallelFor();
-
   /// The largest radius of the elements present among the atoms, scene units.
   static double LargestRadius(vtkPolyData* atoms, const Style& style);
 

@@ -2,6 +2,7 @@
 #include "vtkMesoAtomMapper.h"
 
 #include "vtkMesoAtomGPUData.h"
+#include "vtkMesoParallelFor.h"
 
 #include "vtkMesoAtomColorFS.h"
 #include "vtkMesoAtomSphereFSDec.h"
@@ -729,7 +730,7 @@ void vtkMesoAtomMapper::DrawVisibleCells(vtkRenderer* ren, vtkActor* act, vtkSha
   }
   const mesolens::CellVisibility found = mesolens::test_atom_visibility(
     in.Pyramid, view, data.PositionData, data.Types.data(), 2, data.Radii.data(), data.Cells,
-    data.CellBoxes, cells, padding, history.Flags, vtkMesoAtomGPUData::SMPParallelFor());
+    data.CellBoxes, cells, padding, history.Flags, vtkMesoParallelFor::Get());
   in.DrawAtoms(window, spheres, 1, history.Flags, mesolens::NEWLY_SEEN, cells, found.newly_seen);
   in.LastDrawnAtoms = static_cast<vtkIdType>(found.drawn_first + found.drawn_after);
   history.Seen = found.seen;

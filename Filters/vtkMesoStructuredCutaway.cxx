@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoStructuredCutaway.h"
 
+#include "vtkMesoParallelFor.h"
 #include "vtkMesoSurfaceConversion.h"
 
 #include "mesolens/errors.h"
@@ -12,6 +13,9 @@
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkIdList.h>
 #include <vtkIdTypeArray.h>
 #include <vtkImplicitFunction.h>
 #include <vtkInformation.h>
@@ -19,10 +23,20 @@
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
+#include <vtkIntArray.h>
 #include <vtkPolyData.h>
+#include <vtkSMPTools.h>
+#include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
 #include <vtkUnsignedCharArray.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
+#include <numeric>
+#include <string>
+#include <tuple>
 #include <unordered_map>
 #include <vector>
 
@@ -30,46 +44,78 @@ vtkStandardNewMacro(vtkMesoStructuredCutaway);
 vtkCxxSetObjectMacro(vtkMesoStructuredCutaway, CutFunction, vtkImplicitFunction);
 
 namespace {
-/// Atoms grouped into molecules: the molecule of each atom (dense, in order of first appearance)
-/// and each molecule's centre (mean of its atoms).
+/// Atoms grouped into molecules (dense ids in order of first appearance), their types and
+/// centres, and the shifts that make the assembly whole.
 struct Molecules
 {
   std::vector<std::uint32_t> OfAtom;
-  std::vector<double> Centres;
-  std::vector<std::array<double, 3>> Shifts; ///< per molecule, to make the assembly whole
+  std::vector<int> Types;                    ///< per molecule, an index into TypeNames
+  std::vector<std::string> TypeNames;        ///< residue names, in order of first appearance
+  std::vector<double> Centres;               ///< 3 per molecule, after the shifts
+  std::vector<std::array<double, 3>> Shifts; ///< per molecule; empty: none
+  std::size_t Count = 0;
 
-  /// Moves each molecule by the box vectors that gather the assembly in `box`.
-  void MakeWhole(const mesolens::PeriodicBox& box)
+  /// Groups the atoms by `ids` (nullptr: one molecule per atom); types from `names`.
+  void Group(vtkIdType atoms, vtkDataArray* ids, vtkStringArray* names)
   {
-    this->Shifts = mesolens::assembly_shifts(this->Centres, box);
-    for (std::size_t m = 0; m < this->Shifts.size(); ++m)
+    this->OfAtom.assign(static_cast<std::size_t>(atoms), 0);
+    this->Types.clear();
+    this->TypeNames.clear();
+    std::unordered_map<long long, std::uint32_t> index;
+    std::unordered_map<std::string, int> type_index;
+    vtkIntArray* int_ids = vtkIntArray::SafeDownCast(ids);
+    long long previous = 0;
+    std::uint32_t current = 0;
+    for (vtkIdType a = 0; a < atoms; ++a)
     {
-      for (int d = 0; d < 3; ++d)
+      const long long id = int_ids ? int_ids->GetValue(a)
+        : ids                      ? static_cast<long long>(ids->GetComponent(a, 0))
+                                   : a;
+      // Atoms of a molecule are usually consecutive: look the id up only when it changes.
+      if (a == 0 || id != previous)
       {
-        this->Centres[3 * m + d] += this->Shifts[m][d];
+        const auto found = index.emplace(id, static_cast<std::uint32_t>(index.size()));
+        current = found.first->second;
+        previous = id;
+        if (found.second)
+        {
+          const std::string name = names ? names->GetValue(a) : std::string();
+          const auto type = type_index.emplace(name, static_cast<int>(this->TypeNames.size()));
+          if (type.second)
+          {
+            this->TypeNames.push_back(name);
+          }
+          this->Types.push_back(type.first->second);
+        }
       }
+      this->OfAtom[static_cast<std::size_t>(a)] = current;
     }
+    this->Count = index.size();
   }
 
-  Molecules(vtkPolyData* atoms, vtkDataArray* ids)
+  /// The molecules' centres (mean of their atoms), moved by the box vectors that gather the
+  /// assembly in `box` when it is given.
+  void Centre(vtkPoints* points, const mesolens::PeriodicBox* box)
   {
-    const vtkIdType n = atoms->GetNumberOfPoints();
-    this->OfAtom.resize(static_cast<std::size_t>(n));
-    std::unordered_map<long long, std::uint32_t> index;
-    std::vector<double> counts;
+    this->Centres.assign(3 * this->Count, 0.0);
+    std::vector<double> counts(this->Count, 0.0);
+    const vtkIdType n = points->GetNumberOfPoints();
+    vtkFloatArray* floats = vtkFloatArray::SafeDownCast(points->GetData());
     for (vtkIdType a = 0; a < n; ++a)
     {
-      const long long id = ids ? static_cast<long long>(ids->GetComponent(a, 0)) : a;
-      const auto found = index.emplace(id, static_cast<std::uint32_t>(counts.size()));
-      if (found.second)
-      {
-        counts.push_back(0);
-        this->Centres.insert(this->Centres.end(), { 0, 0, 0 });
-      }
-      const std::uint32_t m = found.first->second;
-      this->OfAtom[static_cast<std::size_t>(a)] = m;
       double p[3];
-      atoms->GetPoint(a, p);
+      if (floats)
+      {
+        const float* f = floats->GetPointer(3 * a);
+        p[0] = f[0];
+        p[1] = f[1];
+        p[2] = f[2];
+      }
+      else
+      {
+        points->GetPoint(a, p);
+      }
+      const std::uint32_t m = this->OfAtom[static_cast<std::size_t>(a)];
       for (int d = 0; d < 3; ++d)
       {
         if (!std::isfinite(p[d]))
@@ -80,29 +126,170 @@ struct Molecules
       }
       counts[m] += 1;
     }
-    for (std::size_t m = 0; m < counts.size(); ++m)
+    for (std::size_t m = 0; m < this->Count; ++m)
     {
       for (int d = 0; d < 3; ++d)
       {
         this->Centres[3 * m + d] /= counts[m];
       }
     }
+    this->Shifts.clear();
+    if (box)
+    {
+      this->Shifts = mesolens::assembly_shifts(this->Centres, *box);
+      for (std::size_t m = 0; m < this->Shifts.size(); ++m)
+      {
+        for (int d = 0; d < 3; ++d)
+        {
+          this->Centres[3 * m + d] += this->Shifts[m][d];
+        }
+      }
+    }
+  }
+
+  /// The atoms moved with their molecules' shifts (nullptr when there are none).
+  vtkSmartPointer<vtkPoints> MovedAtoms(vtkPoints* atoms) const
+  {
+    if (this->Shifts.empty())
+    {
+      return nullptr;
+    }
+    auto moved = vtkSmartPointer<vtkPoints>::New();
+    moved->SetDataTypeToFloat();
+    moved->SetNumberOfPoints(atoms->GetNumberOfPoints());
+    vtkSMPTools::For(0, atoms->GetNumberOfPoints(), [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType a = begin; a < end; ++a)
+      {
+        double p[3];
+        atoms->GetPoint(a, p);
+        const auto& shift = this->Shifts[this->OfAtom[static_cast<std::size_t>(a)]];
+        moved->SetPoint(a, p[0] + shift[0], p[1] + shift[1], p[2] + shift[2]);
+      }
+    });
+    return moved;
   }
 };
+
+/// What an object was when a result was made from it: the same pointer and modification time
+/// mean the result still holds.
+struct Stamp
+{
+  const void* Object = nullptr;
+  vtkMTimeType Time = 0;
+  static Stamp Of(vtkObject* object)
+  {
+    return { object, object ? object->GetMTime() : 0 };
+  }
+  bool operator==(const Stamp& other) const
+  {
+    return this->Object == other.Object && this->Time == other.Time;
+  }
+};
+
+/// The atoms whose `visible` is non-zero, with their point data, and the vertices and bonds
+/// whose atoms are all visible, with their cell data.
+void ExtractAtoms(vtkPolyData* atoms, const vtkUnsignedCharArray* visible, vtkPolyData* output)
+{
+  const vtkIdType n = atoms->GetNumberOfPoints();
+  std::vector<vtkIdType> new_id(static_cast<std::size_t>(n), -1);
+  vtkNew<vtkIdList> kept;
+  for (vtkIdType a = 0; a < n; ++a)
+  {
+    if (visible->GetValue(a))
+    {
+      new_id[static_cast<std::size_t>(a)] = kept->GetNumberOfIds();
+      kept->InsertNextId(a);
+    }
+  }
+  vtkNew<vtkPoints> points;
+  points->SetDataType(atoms->GetPoints()->GetDataType());
+  atoms->GetPoints()->GetPoints(kept, points);
+  output->SetPoints(points);
+  vtkNew<vtkIdList> order;
+  order->SetNumberOfIds(kept->GetNumberOfIds());
+  std::iota(order->begin(), order->end(), 0);
+  output->GetPointData()->CopyAllocate(atoms->GetPointData(), kept->GetNumberOfIds());
+  output->GetPointData()->CopyData(atoms->GetPointData(), kept, order);
+  output->GetFieldData()->ShallowCopy(atoms->GetFieldData());
+  // Vertices first, then lines: the cell data of polydata is in that order.
+  output->GetCellData()->CopyAllocate(atoms->GetCellData());
+  vtkIdType cell = 0;
+  vtkIdType kept_cells = 0;
+  vtkNew<vtkIdList> ids;
+  for (vtkCellArray* source : { atoms->GetVerts(), atoms->GetLines() })
+  {
+    vtkNew<vtkCellArray> cells;
+    const vtkIdType count = source ? source->GetNumberOfCells() : 0;
+    for (vtkIdType c = 0; c < count; ++c, ++cell)
+    {
+      source->GetCellAtId(c, ids);
+      bool all = true;
+      for (vtkIdType k = 0; k < ids->GetNumberOfIds() && all; ++k)
+      {
+        const vtkIdType mapped = new_id[static_cast<std::size_t>(ids->GetId(k))];
+        all = mapped >= 0;
+        ids->SetId(k, mapped);
+      }
+      if (all)
+      {
+        cells->InsertNextCell(ids);
+        output->GetCellData()->CopyData(atoms->GetCellData(), cell, kept_cells++);
+      }
+    }
+    if (source == atoms->GetVerts())
+    {
+      output->SetVerts(cells);
+    }
+    else
+    {
+      output->SetLines(cells);
+    }
+  }
+}
+
+void AddFieldValue(vtkFieldData* field, const char* name, double value)
+{
+  vtkNew<vtkDoubleArray> array;
+  array->SetName(name);
+  array->InsertNextValue(value);
+  field->AddArray(array);
+}
 } // namespace
 
 struct vtkMesoStructuredCutaway::Internals
 {
-  std::unique_ptr<mesolens::StructuredCutaway> Solver;
-  vtkNew<vtkPolyData> Structure; // made from the molecules when none is connected
+  // The molecules, kept while the input's points, ids, names and box stay.
+  Molecules Groups;
+  std::array<Stamp, 4> GroupsFrom; // ids, names, points, box
+  bool GroupsWhole = false;
+  vtkSmartPointer<vtkPoints> MovedAtoms;
+  int CentresVersion = 0;
+
+  // The structure made from the molecules when none is connected.
+  vtkNew<vtkPolyData> Structure;
   int StructureVertices = 0;
-  // What the solver was built from.
-  vtkMTimeType StructureTime = 0;
-  const void* StructureData = nullptr;
-  const void* IdArray = nullptr;
-  vtkMTimeType IdTime = 0;
-  vtkIdType AtomCount = -1;
+  double StructureRadius = -1;
+  int StructureFromCentres = -1;
+
+  // The assignment: kept while the structure and the molecules' grouping stay.
+  std::unique_ptr<mesolens::StructuredCutaway> Solver;
+  Stamp SolverStructure;
+  std::array<Stamp, 2> SolverGroups; // ids, names
+  vtkIdType SolverAtoms = -1;
   int Assignments = 0;
+
+  // The removal order: kept while the cut, the order settings and the centres stay.
+  mesolens::RemovalOrder Order;
+  std::tuple<double, bool, bool, int, Stamp, int, int> OrderFrom{};
+  bool HasOrder = false;
+  int Orderings = 0;
+
+  // The atoms' priorities for one K and assignment.
+  vtkSmartPointer<vtkFloatArray> AtomPriority;
+  std::vector<double> MoleculePriority;
+  std::pair<double, int> PriorityFrom{ 2.0, -1 };
+
+  std::map<std::string, double> ResidueFractions;
 };
 
 vtkMesoStructuredCutaway::vtkMesoStructuredCutaway()
@@ -138,9 +325,33 @@ vtkMTimeType vtkMesoStructuredCutaway::GetMTime()
   return time;
 }
 
+void vtkMesoStructuredCutaway::SetFractionHiddenOfResidue(const char* residue, double fraction)
+{
+  if (!residue)
+  {
+    return;
+  }
+  this->Internal->ResidueFractions[residue] = std::clamp(fraction, 0.0, 1.0);
+  this->Modified();
+}
+
+void vtkMesoStructuredCutaway::RemoveAllResidueFractions()
+{
+  if (!this->Internal->ResidueFractions.empty())
+  {
+    this->Internal->ResidueFractions.clear();
+    this->Modified();
+  }
+}
+
 int vtkMesoStructuredCutaway::GetNumberOfAssignments() const
 {
   return this->Internal->Assignments;
+}
+
+int vtkMesoStructuredCutaway::GetNumberOfOrderings() const
+{
+  return this->Internal->Orderings;
 }
 
 int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector** inputVector,
@@ -161,121 +372,190 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
   try
   {
     vtkDataArray* ids = atoms->GetPointData()->GetArray("MoleculeId");
-    Molecules molecules(atoms, ids);
+    auto* names =
+      vtkStringArray::SafeDownCast(atoms->GetPointData()->GetAbstractArray("ResidueName"));
     vtkDataArray* box_vectors = atoms->GetFieldData()->GetArray("PeriodicBoxVectors");
-    if (this->MakeAssemblyWhole && box_vectors && box_vectors->GetNumberOfComponents() == 9 &&
-        box_vectors->GetNumberOfTuples() > 0)
+    if (!box_vectors || box_vectors->GetNumberOfComponents() != 9 ||
+        box_vectors->GetNumberOfTuples() == 0)
     {
-      mesolens::PeriodicBox box;
-      for (int k = 0; k < 9; ++k)
-      {
-        box.vectors[k / 3][k % 3] = box_vectors->GetComponent(0, k);
-      }
-      molecules.MakeWhole(box);
+      box_vectors = nullptr;
     }
+    const vtkIdType n = atoms->GetNumberOfPoints();
+
+    // 1. The molecules and their centres.
+    const std::array<Stamp, 4> groups_from{ Stamp::Of(ids), Stamp::Of(names),
+                                            Stamp::Of(atoms->GetPoints()->GetData()),
+                                            Stamp::Of(box_vectors) };
+    const bool same_grouping = in.GroupsFrom[0] == groups_from[0] &&
+      in.GroupsFrom[1] == groups_from[1] && in.Groups.OfAtom.size() == std::size_t(n);
+    if (!same_grouping)
+    {
+      in.Groups.Group(n, ids, names);
+    }
+    if (!same_grouping || !(in.GroupsFrom[2] == groups_from[2]) ||
+        !(in.GroupsFrom[3] == groups_from[3]) || in.GroupsWhole != this->MakeAssemblyWhole)
+    {
+      in.GroupsFrom = {}; // stays invalid if Centre throws
+      mesolens::PeriodicBox box;
+      if (box_vectors)
+      {
+        for (int k = 0; k < 9; ++k)
+        {
+          box.vectors[k / 3][k % 3] = box_vectors->GetComponent(0, k);
+        }
+      }
+      in.Groups.Centre(atoms->GetPoints(), this->MakeAssemblyWhole && box_vectors ? &box : nullptr);
+      in.MovedAtoms = in.Groups.MovedAtoms(atoms->GetPoints());
+      in.GroupsFrom = groups_from;
+      in.GroupsWhole = this->MakeAssemblyWhole;
+      ++in.CentresVersion;
+    }
+    const Molecules& molecules = in.Groups;
+
+    // 2. The structure.
     if (!structure)
     {
-      // The structure from the molecules' centres, kept with the assignment.
-      const bool same_molecules = in.Solver && in.IdArray == ids &&
-        in.IdTime == (ids ? ids->GetMTime() : 0) && in.AtomCount == atoms->GetNumberOfPoints();
-      if (!same_molecules || in.StructureVertices != this->StructureVertices)
+      // Made from the molecules' centres once, kept with the assignment over later frames.
+      const bool same_molecules = in.Solver && in.SolverGroups[0] == groups_from[0] &&
+        in.SolverGroups[1] == groups_from[1] && in.SolverAtoms == n;
+      if (!same_molecules || in.StructureVertices != this->StructureVertices ||
+          in.StructureRadius != this->StructureMidSurfaceRadius)
       {
         mesolens::MeshQuality quality;
-        const mesolens::TriangleMesh mesh = mesolens::structure_mesh(
-          molecules.Centres, { static_cast<std::size_t>(this->StructureVertices), 0.0 }, &quality);
+        const mesolens::TriangleMesh mesh =
+          mesolens::structure_mesh(molecules.Centres,
+                                   { static_cast<std::size_t>(this->StructureVertices), 0.0,
+                                     this->StructureMidSurfaceRadius },
+                                   &quality, vtkMesoParallelFor::Get());
         vtkNew<vtkPolyData> made;
         vtkMesoSurfaceConversion::FromTriangleMesh(mesh, made);
-        for (const auto& [name, value] :
-             { std::pair<const char*, double>{ "MinAngle", quality.min_angle },
-               std::pair<const char*, double>{ "MaxAngle", quality.max_angle },
-               std::pair<const char*, double>{ "MeanEdge", quality.mean_edge },
-               std::pair<const char*, double>{ "EdgeSpread", quality.edge_spread } })
-        {
-          vtkNew<vtkDoubleArray> field;
-          field->SetName(name);
-          field->InsertNextValue(value);
-          made->GetFieldData()->AddArray(field);
-        }
+        AddFieldValue(made->GetFieldData(), "MinAngle", quality.min_angle);
+        AddFieldValue(made->GetFieldData(), "MaxAngle", quality.max_angle);
+        AddFieldValue(made->GetFieldData(), "MeanEdge", quality.mean_edge);
+        AddFieldValue(made->GetFieldData(), "EdgeSpread", quality.edge_spread);
+        AddFieldValue(made->GetFieldData(), "BoundaryEdges", double(quality.boundary_edges));
         in.Structure->ShallowCopy(made);
+        in.Structure->Modified();
         in.StructureVertices = this->StructureVertices;
+        in.StructureRadius = this->StructureMidSurfaceRadius;
       }
       structure = in.Structure;
     }
-    // A new assignment only for a new structure or a new set of molecules.
-    if (!in.Solver || in.StructureData != structure || in.StructureTime != structure->GetMTime() ||
-        in.IdArray != ids || in.IdTime != (ids ? ids->GetMTime() : 0) ||
-        in.AtomCount != atoms->GetNumberOfPoints())
+
+    // 3. The assignment, only for a new structure or a new set of molecules.
+    if (!in.Solver || !(in.SolverStructure == Stamp::Of(structure)) ||
+        !(in.SolverGroups[0] == groups_from[0]) || !(in.SolverGroups[1] == groups_from[1]) ||
+        in.SolverAtoms != n)
     {
       in.Solver.reset();
+      in.HasOrder = false;
       const mesolens::TriangleMesh mesh = vtkMesoSurfaceConversion::ToTriangleMesh(structure);
-      in.Solver = std::make_unique<mesolens::StructuredCutaway>(mesh, molecules.Centres);
-      in.StructureData = structure;
-      in.StructureTime = structure->GetMTime();
-      in.IdArray = ids;
-      in.IdTime = ids ? ids->GetMTime() : 0;
-      in.AtomCount = atoms->GetNumberOfPoints();
+      in.Solver = std::make_unique<mesolens::StructuredCutaway>(
+        mesh, molecules.Centres, molecules.Types, vtkMesoParallelFor::Get());
+      in.SolverStructure = Stamp::Of(structure);
+      in.SolverGroups = { groups_from[0], groups_from[1] };
+      in.SolverAtoms = n;
       ++in.Assignments;
     }
-    if (in.Solver->molecule_count() * 3 != molecules.Centres.size())
-    {
-      throw mesolens::InvalidInput("the molecules changed; the structure must be assigned again");
-    }
+
+    // 4. The removal order, kept while only the fractions change.
     mesolens::CutawaySettings settings;
     settings.k = this->K;
     settings.fraction_hidden = this->FractionHidden;
     settings.inverted = this->Inverted;
     settings.random = this->RandomOrder;
     settings.seed = static_cast<std::uint64_t>(this->Seed);
-    std::size_t in_cut = 0;
-    vtkImplicitFunction* cut = this->CutFunction;
-    const auto visible = in.Solver->visibility(
-      [cut, &in_cut](const std::array<double, 3>& p) {
-        double x[3] = { p[0], p[1], p[2] };
-        const bool inside = cut && cut->FunctionValue(x) <= 0;
-        in_cut += inside ? 1 : 0;
-        return inside;
-      },
-      settings, molecules.Centres.data());
-    const std::vector<double> priority = in.Solver->priorities(this->K);
-
-    output->ShallowCopy(atoms);
-    const vtkIdType n = atoms->GetNumberOfPoints();
-    if (!molecules.Shifts.empty())
+    for (std::size_t t = 0; t < molecules.TypeNames.size(); ++t)
     {
-      vtkNew<vtkPoints> moved;
-      moved->SetDataTypeToFloat();
-      moved->SetNumberOfPoints(n);
-      for (vtkIdType a = 0; a < n; ++a)
+      const auto found = in.ResidueFractions.find(molecules.TypeNames[t]);
+      if (found != in.ResidueFractions.end())
       {
-        double p[3];
-        atoms->GetPoint(a, p);
-        const auto& shift = molecules.Shifts[molecules.OfAtom[static_cast<std::size_t>(a)]];
-        moved->SetPoint(a, p[0] + shift[0], p[1] + shift[1], p[2] + shift[2]);
+        settings.fraction_by_type[static_cast<int>(t)] = found->second;
       }
-      output->SetPoints(moved);
+    }
+    const auto order_from =
+      std::make_tuple(this->K, this->Inverted, this->RandomOrder, this->Seed,
+                      Stamp::Of(this->CutFunction), in.CentresVersion, in.Assignments);
+    if (!in.HasOrder || in.OrderFrom != order_from)
+    {
+      vtkImplicitFunction* cut = this->CutFunction;
+      in.Order = in.Solver->removal_order(
+        [cut](const std::array<double, 3>& p) {
+          double x[3] = { p[0], p[1], p[2] };
+          return cut && cut->FunctionValue(x) <= 0;
+        },
+        settings, molecules.Centres.data());
+      in.OrderFrom = order_from;
+      in.HasOrder = true;
+      ++in.Orderings;
+    }
+    const std::vector<std::uint8_t> visible = in.Solver->visibility(in.Order, settings);
+
+    // 5. Per-atom arrays: the priorities once per K, the mask every time.
+    if (in.PriorityFrom != std::make_pair(this->K, in.Assignments) || !in.AtomPriority ||
+        in.AtomPriority->GetNumberOfValues() != n)
+    {
+      in.MoleculePriority = in.Solver->priorities(this->K);
+      in.AtomPriority = vtkSmartPointer<vtkFloatArray>::New();
+      in.AtomPriority->SetName("RemovalPriority");
+      in.AtomPriority->SetNumberOfValues(n);
+      float* out = in.AtomPriority->GetPointer(0);
+      vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+        for (vtkIdType a = begin; a < end; ++a)
+        {
+          out[a] =
+            static_cast<float>(in.MoleculePriority[molecules.OfAtom[static_cast<std::size_t>(a)]]);
+        }
+      });
+      in.PriorityFrom = { this->K, in.Assignments };
     }
     vtkNew<vtkUnsignedCharArray> visible_atoms;
     visible_atoms->SetName("Visible");
     visible_atoms->SetNumberOfValues(n);
-    vtkNew<vtkFloatArray> priority_atoms;
-    priority_atoms->SetName("RemovalPriority");
-    priority_atoms->SetNumberOfValues(n);
-    for (vtkIdType a = 0; a < n; ++a)
+    unsigned char* mask = visible_atoms->GetPointer(0);
+    vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType a = begin; a < end; ++a)
+      {
+        mask[a] = visible[molecules.OfAtom[static_cast<std::size_t>(a)]];
+      }
+    });
+
+    vtkNew<vtkPolyData> all;
+    all->ShallowCopy(atoms);
+    if (in.MovedAtoms)
     {
-      const std::uint32_t m = molecules.OfAtom[static_cast<std::size_t>(a)];
-      visible_atoms->SetValue(a, visible[m]);
-      priority_atoms->SetValue(a, static_cast<float>(priority[m]));
+      all->SetPoints(in.MovedAtoms); // the same object while the input stays: no new upload
     }
-    output->GetPointData()->AddArray(visible_atoms);
+    all->GetPointData()->AddArray(visible_atoms);
+    all->GetPointData()->AddArray(in.AtomPriority);
+    if (this->ExtractVisibleAtoms)
+    {
+      ExtractAtoms(all, visible_atoms, output);
+    }
+    else
+    {
+      output->ShallowCopy(all);
+    }
     structure_output->ShallowCopy(structure);
-    output->GetPointData()->AddArray(priority_atoms);
+
     std::size_t hidden = 0;
-    for (std::uint8_t v : visible)
+    vtkNew<vtkUnsignedCharArray> molecule_visible;
+    molecule_visible->SetName("MoleculeVisible");
+    molecule_visible->SetNumberOfValues(static_cast<vtkIdType>(visible.size()));
+    vtkNew<vtkFloatArray> molecule_priority;
+    molecule_priority->SetName("MoleculeRemovalPriority");
+    molecule_priority->SetNumberOfValues(static_cast<vtkIdType>(visible.size()));
+    for (std::size_t m = 0; m < visible.size(); ++m)
     {
-      hidden += v ? 0 : 1;
+      hidden += visible[m] ? 0 : 1;
+      molecule_visible->SetValue(static_cast<vtkIdType>(m), visible[m]);
+      molecule_priority->SetValue(static_cast<vtkIdType>(m),
+                                  static_cast<float>(in.MoleculePriority[m]));
     }
+    output->GetFieldData()->AddArray(molecule_visible);
+    output->GetFieldData()->AddArray(molecule_priority);
     for (const auto& [name, value] :
-         { std::pair<const char*, std::size_t>{ "MoleculesInCut", in_cut },
+         { std::pair<const char*, std::size_t>{ "MoleculesInCut", in.Order.in_cut() },
            std::pair<const char*, std::size_t>{ "MoleculesHidden", hidden } })
     {
       vtkNew<vtkIdTypeArray> field;
@@ -304,6 +584,9 @@ void vtkMesoStructuredCutaway::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RandomOrder: " << this->RandomOrder << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "StructureVertices: " << this->StructureVertices << "\n";
+  os << indent << "StructureMidSurfaceRadius: " << this->StructureMidSurfaceRadius << "\n";
+  os << indent << "ExtractVisibleAtoms: " << this->ExtractVisibleAtoms << "\n";
+  os << indent << "Orderings: " << this->Internal->Orderings << "\n";
   os << indent << "MakeAssemblyWhole: " << this->MakeAssemblyWhole << "\n";
   os << indent << "Assignments: " << this->Internal->Assignments << "\n";
 }

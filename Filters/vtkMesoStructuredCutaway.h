@@ -11,7 +11,9 @@
  * it the structure is made from the molecules' centres (mesolens::structure_mesh: advancing-front
  * reconstruction, small holes closed, isotropic remeshing to about StructureVertices vertices);
  * it is output 1 either way, a made one with its quality in field data `MinAngle`, `MaxAngle`
- * (degrees), `MeanEdge` and `EdgeSpread`.
+ * (degrees), `MeanEdge`, `EdgeSpread` and `BoundaryEdges`. The made structure passes through
+ * the middle of the molecules (both leaflets of a bilayer meet on one sheet; see
+ * StructureMidSurfaceRadius), with stray molecules left out.
  *
  * Every molecule is assigned once to its nearest triangle (exact closest point); its removal
  * priority comes from the smallest barycentric coordinate x of that point, (f(6 x - 1, K) + 1)
@@ -27,9 +29,20 @@
  * Equalizer's removal), ties broken by the seeded key: the same settings give the same mask
  * every frame. Without a CutFunction nothing is hidden.
  *
- * Output: the atoms (shallow copy) with point arrays `Visible` (unsigned char, 1 visible) and
- * `RemovalPriority` (float, the atom's molecule's), and field data `MoleculesInCut` and
- * `MoleculesHidden`.
+ * Molecule types: with a `ResidueName` point array, a molecule's type is the residue name of
+ * its first atom (DPPC, CHOL, ...); the fraction applies per type (round(f x count) of each type
+ * in the cut), and SetFractionHiddenOfResidue gives a type its own fraction.
+ *
+ * Output 0: the atoms (shallow copy; with ExtractVisibleAtoms, the visible atoms only, their
+ * bonds among them kept) with point arrays `Visible` (unsigned char, 1 visible; vtkMesoAtomMapper
+ * hides the others without uploading positions again) and `RemovalPriority` (float, the atom's
+ * molecule's), and field data `MoleculesInCut`, `MoleculesHidden`, and per molecule (in order of
+ * first appearance) `MoleculeVisible` and `MoleculeRemovalPriority`.
+ *
+ * What is kept between updates: the molecules and their centres while the input points stay;
+ * the assignment while the structure and the molecules stay; the removal order while the cut,
+ * K, Inverted, RandomOrder, Seed and the centres stay. A new FractionHidden then costs O(atoms),
+ * and the output keeps the same points object, so a mapper uploads nothing but the mask.
  *
  * Errors (a structure without triangles, molecules whose centres describe no surface, a
  * non-finite atom) are reported with vtkErrorMacro and give empty outputs.
@@ -112,9 +125,35 @@ public:
   vtkGetMacro(StructureVertices, int);
   ///@}
 
+  ///@{
+  /// Radius (atom units, e.g. Å) over which molecule centres are averaged onto the middle sheet
+  /// of the made structure: more than half the structure's thickness (a bilayer's lipid
+  /// centres: about 25-30 Å). 0 (default): 4 times the centres' median spacing.
+  vtkSetClampMacro(StructureMidSurfaceRadius, double, 0.0, 1e6);
+  vtkGetMacro(StructureMidSurfaceRadius, double);
+  ///@}
+
+  ///@{
+  /// Output only the visible atoms (and the bonds between them) instead of all atoms with the
+  /// `Visible` mask. Default off (the mask suits vtkMesoAtomMapper best: no new positions).
+  vtkSetMacro(ExtractVisibleAtoms, bool);
+  vtkGetMacro(ExtractVisibleAtoms, bool);
+  vtkBooleanMacro(ExtractVisibleAtoms, bool);
+  ///@}
+
+  /// Molecules whose first atom has residue name `residue` (e.g. "CHOL") get their own
+  /// fraction hidden, [0, 1] (clamped), instead of FractionHidden.
+  void SetFractionHiddenOfResidue(const char* residue, double fraction);
+  /// Forgets every per-residue fraction.
+  void RemoveAllResidueFractions();
+
   /// How many times molecules were assigned to the structure (each costs a closest-point
   /// search per molecule): once for a structure and a set of molecules.
   int GetNumberOfAssignments() const;
+
+  /// How many times the removal order was made (a sort of the molecules in the cut): once per
+  /// cut, K, inversion, mode, seed and frame; a new FractionHidden reuses it.
+  int GetNumberOfOrderings() const;
 
   vtkMTimeType GetMTime() override;
 
@@ -133,7 +172,9 @@ protected:
   bool RandomOrder = false;
   int Seed = 1;
   int StructureVertices = 500;
+  double StructureMidSurfaceRadius = 0;
   bool MakeAssemblyWhole = true;
+  bool ExtractVisibleAtoms = false;
 
 private:
   vtkMesoStructuredCutaway(const vtkMesoStructuredCutaway&) = delete;

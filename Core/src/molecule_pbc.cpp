@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <unordered_map>
 
 namespace mesolens {
@@ -228,19 +229,33 @@ std::vector<std::array<double, 3>> assembly_shifts(const std::vector<double>& ce
       cosines[d] += std::cos(turn * fractional[m][d]);
     }
   }
-  double middle[3];
   for (int d = 0; d < 3; ++d)
   {
-    middle[d] = std::atan2(sines[d], cosines[d]) / turn;
-  }
-  for (std::size_t m = 0; m < count; ++m)
-  {
-    for (int d = 0; d < 3; ++d)
+    // An assembly spread over (nearly) the whole period, such as a flat membrane that crosses
+    // the box, has no middle along that axis: it stays as it is.
+    const double resultant = std::hypot(sines[d], cosines[d]) / double(count);
+    if (resultant < 0.25)
     {
-      const double images = std::round(middle[d] - fractional[m][d]);
+      continue;
+    }
+    const double middle = std::atan2(sines[d], cosines[d]) / turn;
+    std::vector<long> images(count);
+    std::map<long, std::size_t> votes;
+    for (std::size_t m = 0; m < count; ++m)
+    {
+      images[m] = std::lround(middle - fractional[m][d]);
+      ++votes[images[m]];
+    }
+    // The largest group stays where it is; the others join it.
+    const long staying =
+      std::max_element(votes.begin(), votes.end(), [](const auto& a, const auto& b) {
+        return a.second < b.second;
+      })->first;
+    for (std::size_t m = 0; m < count; ++m)
+    {
       for (int c = 0; c < 3; ++c)
       {
-        shifts[m][c] += images * box.vectors[d][c];
+        shifts[m][c] += double(images[m] - staying) * box.vectors[d][c];
       }
     }
   }

@@ -2,15 +2,18 @@
 #include "mesolens/structure_mesh.h"
 
 #include "mesolens/errors.h"
+#include "mesolens/surface_sampling.h"
 
 #include <CGAL/Advancing_front_surface_reconstruction.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
+#include <CGAL/Polygon_mesh_processing/connected_components.h>
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
 #include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Polygon_mesh_processing/repair.h>
+#include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 #include <CGAL/Surface_mesh.h>
 
@@ -105,26 +108,54 @@ MeshQuality mesh_quality(const TriangleMesh& mesh)
 }
 
 TriangleMesh structure_mesh(const std::vector<double>& points, const StructureMeshSize& size,
-                            MeshQuality* quality)
+                            MeshQuality* quality, const ParallelFor& parallel_for)
 {
   if (points.size() % 3 != 0 || points.size() < 12)
   {
     throw InvalidInput("a structure mesh needs at least 4 points (3 coordinates each); got " +
                        std::to_string(points.size()) + " values");
   }
-  if (size.edge_length < 0 || (size.edge_length == 0 && size.vertices < 4))
+  if (size.edge_length < 0 || (size.edge_length == 0 && size.vertices < 4) ||
+      !std::isfinite(size.edge_length) || !std::isfinite(size.mid_surface_radius))
   {
     throw InvalidInput("a structure mesh needs a target edge length > 0 or at least 4 vertices");
   }
-  std::vector<Point> cloud;
-  cloud.reserve(points.size() / 3);
-  for (std::size_t i = 0; i < points.size(); i += 3)
+  for (std::size_t i = 0; i < points.size(); ++i)
   {
-    if (!std::isfinite(points[i]) || !std::isfinite(points[i + 1]) || !std::isfinite(points[i + 2]))
+    if (!std::isfinite(points[i]))
     {
       throw InvalidInput("point " + std::to_string(i / 3) + " of the structure is not finite");
     }
-    cloud.emplace_back(points[i], points[i + 1], points[i + 2]);
+  }
+
+  // One even sheet of points through the middle of the cloud, as sparse as the target edge
+  // length allows: the reconstruction then meets neither two leaflets nor noise, and stays fast.
+  const double radius =
+    size.mid_surface_radius > 0 ? size.mid_surface_radius : 4.0 * median_spacing(points);
+  const double spacing = 0.5 * radius;
+  std::vector<double> sheet =
+    poisson_disk_subset(mid_surface_points(points, spacing, radius, 4, parallel_for), spacing);
+  double edge = size.edge_length;
+  if (edge <= 0)
+  {
+    // A Poisson-disk set has about 0.7 / spacing^2 points per unit area; two triangles per
+    // vertex of area (sqrt(3) / 4) L^2 each.
+    const double area = double(sheet.size() / 3) * spacing * spacing / 0.7;
+    edge = std::sqrt(2.0 * area / (std::sqrt(3.0) * double(size.vertices)));
+  }
+  if (0.5 * edge > spacing)
+  {
+    sheet = poisson_disk_subset(sheet, 0.5 * edge);
+  }
+  if (sheet.size() < 12)
+  {
+    sheet = points; // too few for a sheet: reconstruct through the points themselves
+  }
+  std::vector<Point> cloud;
+  cloud.reserve(sheet.size() / 3);
+  for (std::size_t i = 0; i < sheet.size(); i += 3)
+  {
+    cloud.emplace_back(sheet[i], sheet[i + 1], sheet[i + 2]);
   }
 
   std::vector<std::array<std::size_t, 3>> facets;
@@ -143,9 +174,22 @@ TriangleMesh structure_mesh(const std::vector<double>& points, const StructureMe
   PMP::orient_polygon_soup(cloud, polygons);
   SurfaceMesh mesh;
   PMP::polygon_soup_to_polygon_mesh(cloud, polygons, mesh);
+  // The remeshing needs a valid 2-manifold without degenerate triangles; crumbs of a few
+  // triangles (left by stray points) are no part of the structure.
+  PMP::duplicate_non_manifold_vertices(mesh);
+  PMP::remove_degenerate_faces(mesh);
+  PMP::keep_large_connected_components(mesh,
+                                       std::max<std::size_t>(4, mesh.number_of_faces() / 100));
   PMP::remove_isolated_vertices(mesh);
   mesh.collect_garbage();
   close_small_holes(mesh, std::max<std::size_t>(20, mesh.number_of_vertices() / 20));
+  PMP::remove_degenerate_faces(mesh);
+  mesh.collect_garbage();
+  if (mesh.number_of_faces() == 0 || !CGAL::is_valid_polygon_mesh(mesh))
+  {
+    throw TopologyError("the surface reconstructed through the " + std::to_string(cloud.size()) +
+                        " points is not a valid 2-manifold");
+  }
 
   double target = size.edge_length;
   if (target <= 0)

@@ -29,6 +29,15 @@ void require_fraction(double fraction, const std::string& what)
   }
 }
 
+void require_fractions(const CutawaySettings& settings)
+{
+  require_fraction(settings.fraction_hidden, "the fraction hidden");
+  for (const auto& [type, fraction] : settings.fraction_by_type)
+  {
+    require_fraction(fraction, "the fraction hidden of type " + std::to_string(type));
+  }
+}
+
 double dot(const std::array<double, 3>& a, const std::array<double, 3>& b)
 {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -82,7 +91,8 @@ bool CutRegion::contains(const std::array<double, 3>& point) const
 }
 
 StructuredCutaway::StructuredCutaway(const TriangleMesh& structure,
-                                     const std::vector<double>& centres, std::vector<int> types)
+                                     const std::vector<double>& centres, std::vector<int> types,
+                                     const ParallelFor& parallel_for)
   : Centres(centres)
   , Types(std::move(types))
 {
@@ -111,14 +121,16 @@ StructuredCutaway::StructuredCutaway(const TriangleMesh& structure,
   const SurfaceLocator locator(structure);
   this->MinimalBarycentric.resize(count);
   this->Triangles.resize(count);
-  for (std::size_t m = 0; m < count; ++m)
-  {
-    const SurfacePoint nearest =
-      locator.closest_point({ centres[3 * m], centres[3 * m + 1], centres[3 * m + 2] });
-    const auto& b = nearest.barycentric;
-    this->MinimalBarycentric[m] = std::clamp(std::min({ b[0], b[1], b[2] }), 0.0, 1.0 / 3.0);
-    this->Triangles[m] = nearest.triangle;
-  }
+  run_parallel(parallel_for, count, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t m = begin; m < end; ++m)
+    {
+      const SurfacePoint nearest =
+        locator.closest_point({ centres[3 * m], centres[3 * m + 1], centres[3 * m + 2] });
+      const auto& b = nearest.barycentric;
+      this->MinimalBarycentric[m] = std::clamp(std::min({ b[0], b[1], b[2] }), 0.0, 1.0 / 3.0);
+      this->Triangles[m] = nearest.triangle;
+    }
+  });
 }
 
 std::vector<double> StructuredCutaway::priorities(double k) const
@@ -143,37 +155,71 @@ std::vector<std::uint8_t> StructuredCutaway::visibility(
   const std::function<bool(const std::array<double, 3>&)>& inside_cut,
   const CutawaySettings& settings, const double* centres) const
 {
-  require_fraction(settings.fraction_hidden, "the fraction hidden");
-  for (const auto& [type, fraction] : settings.fraction_by_type)
-  {
-    require_fraction(fraction, "the fraction hidden of type " + std::to_string(type));
-  }
+  require_fractions(settings);
+  return this->visibility(this->removal_order(inside_cut, settings, centres), settings);
+}
+
+RemovalOrder StructuredCutaway::removal_order(
+  const std::function<bool(const std::array<double, 3>&)>& inside_cut,
+  const CutawaySettings& settings, const double* centres) const
+{
   const std::vector<double> priority = this->priorities(settings.k);
   const double* at = centres ? centres : this->Centres.data();
   const std::size_t count = this->molecule_count();
-  std::vector<std::uint8_t> visible(count, 1);
 
-  // The molecules inside the cut, per type, in removal order.
-  std::map<int, std::vector<std::uint32_t>> inside;
+  // Sort keys made once: the priority (negated to go first, unless inverted; none when
+  // random), then the seeded random key, then the index.
+  struct Key
+  {
+    double priority;
+    std::uint64_t random;
+    std::uint32_t molecule;
+    bool operator<(const Key& other) const
+    {
+      if (this->priority != other.priority)
+        return this->priority < other.priority;
+      if (this->random != other.random)
+        return this->random < other.random;
+      return this->molecule < other.molecule;
+    }
+  };
+  std::map<int, std::vector<Key>> inside;
   for (std::size_t m = 0; m < count; ++m)
   {
     if (inside_cut({ at[3 * m], at[3 * m + 1], at[3 * m + 2] }))
     {
-      inside[this->Types[m]].push_back(static_cast<std::uint32_t>(m));
+      const double p = settings.random ? 0.0 : settings.inverted ? priority[m] : -priority[m];
+      inside[this->Types[m]].push_back(
+        { p, random_key(settings.seed, m), static_cast<std::uint32_t>(m) });
     }
   }
-  for (auto& [type, molecules] : inside)
+  RemovalOrder order;
+  order.molecule_count = count;
+  for (auto& [type, keys] : inside)
   {
-    auto before = [&](std::uint32_t a, std::uint32_t b) {
-      if (!settings.random && priority[a] != priority[b])
-      {
-        return settings.inverted ? priority[a] < priority[b] : priority[a] > priority[b];
-      }
-      const std::uint64_t ka = random_key(settings.seed, a);
-      const std::uint64_t kb = random_key(settings.seed, b);
-      return ka != kb ? ka < kb : a < b;
-    };
-    std::sort(molecules.begin(), molecules.end(), before);
+    std::sort(keys.begin(), keys.end());
+    std::vector<std::uint32_t>& molecules = order.by_type[type];
+    molecules.reserve(keys.size());
+    for (const Key& key : keys)
+    {
+      molecules.push_back(key.molecule);
+    }
+  }
+  return order;
+}
+
+std::vector<std::uint8_t> StructuredCutaway::visibility(const RemovalOrder& order,
+                                                        const CutawaySettings& settings) const
+{
+  require_fractions(settings);
+  if (order.molecule_count != this->molecule_count())
+  {
+    throw InvalidInput("the removal order is for " + std::to_string(order.molecule_count) +
+                       " molecules, not " + std::to_string(this->molecule_count()));
+  }
+  std::vector<std::uint8_t> visible(order.molecule_count, 1);
+  for (const auto& [type, molecules] : order.by_type)
+  {
     const auto found = settings.fraction_by_type.find(type);
     const double fraction =
       found != settings.fraction_by_type.end() ? found->second : settings.fraction_hidden;
@@ -184,6 +230,16 @@ std::vector<std::uint8_t> StructuredCutaway::visibility(
     }
   }
   return visible;
+}
+
+std::size_t RemovalOrder::in_cut() const
+{
+  std::size_t count = 0;
+  for (const auto& [type, molecules] : this->by_type)
+  {
+    count += molecules.size();
+  }
+  return count;
 }
 
 } // namespace mesolens

@@ -102,6 +102,29 @@ TEST(MoleculePbc, ContinuityAcrossCheckpoints)
   }
 }
 
+TEST(AssemblyShifts, WholeAssembliesAndMembranesAcrossTheBoxStay)
+{
+  mesolens::PeriodicBox box;
+  box.vectors = { { { 100, 0, 0 }, { 0, 100, 0 }, { 0, 0, 100 } } };
+  // A whole ball of points past the box's middle (its periodic mean is at 0.8 of the box, the
+  // same place as -0.2 of it): nothing moves.
+  std::vector<double> ball;
+  for (int i = 0; i < 200; ++i)
+    ball.insert(ball.end(),
+                { 80.0 + 10 * std::sin(i * 0.7), 80.0 + 10 * std::cos(i * 1.3),
+                  60.0 + 10 * std::sin(i * 2.1) });
+  for (const auto& shift : mesolens::assembly_shifts(ball, box))
+    EXPECT_EQ(shift, (std::array<double, 3>{ 0, 0, 0 }));
+  // A flat periodic membrane crossing the box in x and y, around z = 55: nothing moves either.
+  std::vector<double> membrane;
+  for (int i = 0; i < 20; ++i)
+    for (int j = 0; j < 20; ++j)
+      for (double z : { 40.0, 70.0 })
+        membrane.insert(membrane.end(), { 5.0 * i + 1, 5.0 * j + 2, z });
+  for (const auto& shift : mesolens::assembly_shifts(membrane, box))
+    EXPECT_EQ(shift, (std::array<double, 3>{ 0, 0, 0 }));
+}
+
 TEST(AssemblyShifts, GathersAVesicleSplitByTheBoxFaces)
 {
   // Points on a sphere of radius 10 around a box corner, wrapped into the box [0, 50)^3 (so the

@@ -62,6 +62,31 @@ TEST(StructureMesh, ClosedEvenMeshOfTheRequestedSizeThroughASphereOfPoints)
   EXPECT_NEAR(quality.mean_edge, 4.0, 1.2);
 }
 
+TEST(StructureMesh, ABilayerVesicleGivesOneMeshThroughItsMiddle)
+{
+  // Lipid centres of both leaflets, 24 apart, 8 apart in each: one closed sheet at the
+  // middle, not two.
+  auto points = sphere_points(700, 60.0);
+  const auto outer = sphere_points(1400, 84.0);
+  points.insert(points.end(), outer.begin(), outer.end());
+  mesolens::MeshQuality quality;
+  const auto mesh = mesolens::structure_mesh(points, { 200, 0 }, &quality);
+  const std::size_t v = mesh.vertex_count();
+  const std::size_t f = mesh.triangle_count();
+  EXPECT_GT(v, 120u);
+  EXPECT_LT(v, 320u);
+  EXPECT_EQ(quality.boundary_edges, 0u);
+  EXPECT_EQ(long(v) - long(3 * f / 2) + long(f), 2);
+  EXPECT_GT(quality.min_angle, 25.0);
+  EXPECT_LT(quality.max_angle, 115.0);
+  EXPECT_LT(quality.edge_spread, 0.25);
+  for (std::size_t i = 0; i < v; ++i)
+  {
+    const auto p = mesh.point(std::int64_t(i));
+    EXPECT_NEAR(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]), 72.0 - 3.0, 2.5);
+  }
+}
+
 TEST(StructureMesh, AnOpenPatchKeepsItsBorder)
 {
   std::vector<double> plane;

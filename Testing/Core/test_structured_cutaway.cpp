@@ -189,6 +189,45 @@ TEST(StructuredCutaway, ExactFractionInsideNothingOutsideNested)
   }
 }
 
+TEST(StructuredCutaway, AKeptOrderGivesTheSameMasksForEveryFraction)
+{
+  const auto mesh = icosahedron();
+  const auto centres = molecules_over(mesh);
+  std::vector<int> types(50, 0);
+  std::fill(types.begin() + 30, types.end(), 4);
+  const auto run_in_halves = [](std::size_t count, const mesolens::RangeKernel& kernel) {
+    kernel(0, count / 2);
+    kernel(count / 2, count);
+  };
+  const mesolens::StructuredCutaway cutaway(mesh, centres, types, run_in_halves);
+  EXPECT_EQ(cutaway.minimal_barycentric(),
+            mesolens::StructuredCutaway(mesh, centres, types).minimal_barycentric());
+  CutRegion upper;
+  upper.planes.push_back({ { 0, 0, -0.2 }, { 0, 0, 1 } });
+  const auto inside = [&](const std::array<double, 3>& p) { return upper.contains(p); };
+  for (bool inverted : { false, true })
+  {
+    CutawaySettings settings;
+    settings.inverted = inverted;
+    settings.k = -0.4;
+    const mesolens::RemovalOrder order = cutaway.removal_order(inside, settings);
+    EXPECT_EQ(order.molecule_count, 50u);
+    std::size_t in_cut = 0;
+    for (std::size_t m = 0; m < 50; ++m)
+      in_cut += upper.contains({ centres[3 * m], centres[3 * m + 1], centres[3 * m + 2] });
+    EXPECT_EQ(order.in_cut(), in_cut);
+    for (double fraction : { 0.0, 0.3, 0.7, 1.0 })
+    {
+      settings.fraction_hidden = fraction;
+      settings.fraction_by_type[4] = 1.0 - fraction;
+      EXPECT_EQ(cutaway.visibility(order, settings), cutaway.visibility(upper, settings));
+    }
+  }
+  mesolens::RemovalOrder other;
+  other.molecule_count = 49;
+  EXPECT_THROW(cutaway.visibility(other, CutawaySettings()), mesolens::InvalidInput);
+}
+
 TEST(StructuredCutaway, SeedsTypesAndLaterFrames)
 {
   const auto mesh = icosahedron();

@@ -71,7 +71,9 @@ private:
 /// Whole box-vector shifts (Å, one per point) that gather `centres` (3 per point, Å) into one
 /// piece around their periodic (circular) mean in each fractional coordinate of `box`: for an
 /// assembly split by the box's faces, such as a vesicle, that spans less than the box in every
-/// direction. Zero shifts when the box is not set.
+/// direction. The largest group of points keeps its place (an assembly already whole does not
+/// move); along an axis that the points spread over (mean resultant length below 0.25, e.g. a
+/// flat membrane crossing the box) nothing moves. Zero shifts when the box is not set.
 std::vector<std::array<double, 3>> assembly_shifts(const std::vector<double>& centres,
                                                    const PeriodicBox& box);
 

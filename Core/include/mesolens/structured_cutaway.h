@@ -5,6 +5,7 @@
 // Equalizer does.
 #pragma once
 
+#include "mesolens/parallel_for.h"
 #include "mesolens/triangle_mesh.h"
 
 #include <array>
@@ -64,6 +65,15 @@ struct CutawaySettings
   std::uint64_t seed = 1;
 };
 
+/// The molecules inside a cut, per molecule type, in the order they are hidden.
+struct RemovalOrder
+{
+  std::map<int, std::vector<std::uint32_t>> by_type;
+  std::size_t molecule_count = 0; ///< all molecules, inside the cut or not
+  /// How many molecules are inside the cut.
+  std::size_t in_cut() const;
+};
+
 /// The structured cutaway for one set of molecules on one structure mesh. The costly part, each
 /// molecule's nearest triangle (exact closest point, an AABB tree), is done once here; changing
 /// the settings or the cut then only reorders.
@@ -73,9 +83,9 @@ public:
   /// `structure`: the structure's triangle mesh; `centres`: 3 coordinates per molecule (the
   /// molecules' centres, same units); `types`: one type per molecule, or empty (all type 0).
   /// Throws InvalidInput for an empty or non-finite set of centres, a types list of another
-  /// length, or a mesh without triangles.
+  /// length, or a mesh without triangles. `parallel_for` runs the closest-point searches.
   StructuredCutaway(const TriangleMesh& structure, const std::vector<double>& centres,
-                    std::vector<int> types = {});
+                    std::vector<int> types = {}, const ParallelFor& parallel_for = {});
 
   std::size_t molecule_count() const
   {
@@ -111,6 +121,19 @@ public:
   std::vector<std::uint8_t> visibility(
     const std::function<bool(const std::array<double, 3>&)>& inside_cut,
     const CutawaySettings& settings, const double* centres = nullptr) const;
+
+  /// The first, costlier half of visibility(): which molecules are in the cut and in which
+  /// order they go (all settings but the fractions count). Keep it while only the fractions
+  /// change (a slider): visibility(order, settings) is then O(molecules).
+  RemovalOrder removal_order(const std::function<bool(const std::array<double, 3>&)>& inside_cut,
+                             const CutawaySettings& settings,
+                             const double* centres = nullptr) const;
+
+  /// The mask for `order` with the fractions of `settings` (the rest of the settings are those
+  /// the order was made with). Throws InvalidInput for fractions out of [0, 1] or an order
+  /// made for another number of molecules.
+  std::vector<std::uint8_t> visibility(const RemovalOrder& order,
+                                       const CutawaySettings& settings) const;
 
 private:
   std::vector<double> Centres;

@@ -16,6 +16,7 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSphere.h>
+#include <vtkStringArray.h>
 
 #include <gtest/gtest.h>
 
@@ -326,7 +327,44 @@ TEST(vtkMesoStructuredCutaway, MartiniVesicleCutOpenAndStableOverFrames)
   EXPECT_GT(in_cut, 1300); // about half of 3072
   EXPECT_LT(in_cut, 1800);
   EXPECT_EQ(field("MoleculesHidden"), std::llround(0.5 * double(in_cut)));
-  EXPECT_GT(cutaway->GetOutput(1)->GetNumberOfPoints(), 200);
+  // The structure through the bilayer's middle: one closed sheet of even triangles.
+  vtkPolyData* structure = cutaway->GetOutput(1);
+  auto quality = [&](const char* name) {
+    return structure->GetFieldData()->GetArray(name)->GetTuple1(0);
+  };
+  EXPECT_GT(structure->GetNumberOfPoints(), 200);
+  EXPECT_GT(quality("MinAngle"), 25.0);
+  EXPECT_LT(quality("MaxAngle"), 110.0);
+  EXPECT_LT(quality("EdgeSpread"), 0.25);
+  EXPECT_EQ(quality("BoundaryEdges"), 0.0);
+  const vtkIdType faces = structure->GetNumberOfCells();
+  EXPECT_EQ(structure->GetNumberOfPoints() - 3 * faces / 2 + faces, 2); // a sphere
+  // Its vertices between the leaflets: closer to the centre than most outer lipids.
+  for (vtkIdType v = 0; v < structure->GetNumberOfPoints(); ++v)
+  {
+    double p[3];
+    structure->GetPoint(v, p);
+    const double r = std::hypot(p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]);
+    EXPECT_GT(r, 55.0);
+    EXPECT_LT(r, 110.0);
+  }
+
+  // A slider: new fractions reuse the order and hand on the same points (no new upload).
+  vtkPoints* positions = cutaway->GetOutput()->GetPoints();
+  const int orderings = cutaway->GetNumberOfOrderings();
+  for (double fraction : { 0.2, 0.8, 0.5 })
+  {
+    cutaway->SetFractionHidden(fraction);
+    cutaway->Update();
+    EXPECT_EQ(field("MoleculesHidden"), std::llround(fraction * double(in_cut)));
+    EXPECT_EQ(cutaway->GetOutput()->GetPoints(), positions);
+  }
+  EXPECT_EQ(cutaway->GetNumberOfOrderings(), orderings);
+  cutaway->SetInverted(true);
+  cutaway->Update();
+  EXPECT_EQ(cutaway->GetNumberOfOrderings(), orderings + 1);
+  cutaway->SetInverted(false);
+  cutaway->Update();
 
   // Over the next frames the order holds: of the molecules hidden in frame 0, nearly all stay
   // hidden, and the molecules are not assigned again.
@@ -348,4 +386,67 @@ TEST(vtkMesoStructuredCutaway, MartiniVesicleCutOpenAndStableOverFrames)
     kept += later.count(m);
   EXPECT_GT(double(kept) / double(first.size()), 0.9);
   EXPECT_EQ(cutaway->GetNumberOfAssignments(), 1);
+}
+
+TEST(vtkMesoStructuredCutaway, PerResidueFractionsAndVisibleAtomsOnly)
+{
+  // A Martini DPPC bilayer with 20 % cholesterol, cut by a ball around its middle.
+  vtkNew<vtkMesoTrajectoryReader> bilayer;
+  bilayer->SetTopologyFileName(
+    mesolens_test::data_file("membranes/martini_dppc_chol_bilayer.gro").c_str());
+  bilayer->Update();
+  const vtkIdType atom_count = bilayer->GetOutput()->GetNumberOfPoints();
+  double bounds[6];
+  bilayer->GetOutput()->GetBounds(bounds);
+  vtkNew<vtkSphere> ball;
+  ball->SetCenter(0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
+                  0.5 * (bounds[4] + bounds[5]));
+  ball->SetRadius(40);
+  vtkNew<vtkMesoStructuredCutaway> cutaway;
+  cutaway->SetInputConnection(bilayer->GetOutputPort());
+  cutaway->SetStructureVertices(100);
+  cutaway->SetCutFunction(ball);
+  cutaway->SetFractionHidden(0.0);
+  cutaway->SetFractionHiddenOfResidue("CHOL", 1.0);
+  mesolens_test::EventRecorder events(cutaway);
+  cutaway->Update();
+  ASSERT_TRUE(events.Errors.empty()) << events.AllErrors();
+  vtkPolyData* output = cutaway->GetOutput();
+  auto* names =
+    vtkStringArray::SafeDownCast(output->GetPointData()->GetAbstractArray("ResidueName"));
+  vtkDataArray* visible = output->GetPointData()->GetArray("Visible");
+  ASSERT_NE(names, nullptr);
+  vtkIdType hidden_chol = 0;
+  vtkIdType visible_count = 0;
+  for (vtkIdType a = 0; a < atom_count; ++a)
+  {
+    double p[3];
+    output->GetPoint(a, p);
+    visible_count += visible->GetTuple1(a) != 0;
+    if (visible->GetTuple1(a) == 0)
+    {
+      EXPECT_EQ(names->GetValue(a), "CHOL") << "only cholesterol is hidden";
+      ++hidden_chol;
+    }
+  }
+  EXPECT_GT(hidden_chol, 8 * 5); // beads of at least 5 cholesterols
+  const vtkIdType hidden =
+    vtkIdType(output->GetFieldData()->GetArray("MoleculesHidden")->GetTuple1(0));
+  EXPECT_EQ(hidden * 8, hidden_chol); // 8 beads per Martini cholesterol
+  EXPECT_EQ(output->GetFieldData()->GetArray("MoleculeVisible")->GetNumberOfTuples(), 450);
+
+  // The visible atoms alone, with the bonds among them.
+  const vtkIdType all_bonds = output->GetNumberOfLines();
+  cutaway->ExtractVisibleAtomsOn();
+  cutaway->Update();
+  ASSERT_TRUE(events.Errors.empty()) << events.AllErrors();
+  EXPECT_EQ(cutaway->GetOutput()->GetNumberOfPoints(), visible_count);
+  EXPECT_LT(cutaway->GetOutput()->GetNumberOfLines(), all_bonds);
+  EXPECT_GT(cutaway->GetOutput()->GetNumberOfLines(), all_bonds / 2);
+  vtkDataArray* kept = cutaway->GetOutput()->GetPointData()->GetArray("Visible");
+  EXPECT_EQ(kept->GetRange()[0], 1.0);
+  // Clearing the per-residue fraction with nothing else hidden: every atom comes back.
+  cutaway->RemoveAllResidueFractions();
+  cutaway->Update();
+  EXPECT_EQ(cutaway->GetOutput()->GetNumberOfPoints(), atom_count);
 }

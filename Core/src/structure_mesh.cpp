@@ -132,21 +132,21 @@ TriangleMesh structure_mesh(const std::vector<double>& points, const StructureMe
   // length allows: the reconstruction then meets neither two leaflets nor noise, and stays fast.
   const double radius =
     size.mid_surface_radius > 0 ? size.mid_surface_radius : 4.0 * median_spacing(points);
-  const double spacing = 0.5 * radius;
-  std::vector<double> sheet =
-    poisson_disk_subset(mid_surface_points(points, spacing, radius, 4, parallel_for), spacing);
   double edge = size.edge_length;
   if (edge <= 0)
   {
-    // A Poisson-disk set has about 0.7 / spacing^2 points per unit area; two triangles per
-    // vertex of area (sqrt(3) / 4) L^2 each.
-    const double area = double(sheet.size() / 3) * spacing * spacing / 0.7;
+    // The area from a Poisson-disk set at twice the radius, wider than the structure is thick
+    // so that each place is sampled once (about 0.8 / spacing^2 points per unit area); two
+    // triangles per vertex of area (sqrt(3) / 4) L^2 each. The final length comes from the
+    // reconstructed surface's area.
+    const double coarse = 2.0 * radius;
+    const double area =
+      double(poisson_disk_subset(points, coarse).size() / 3) * coarse * coarse / 0.8;
     edge = std::sqrt(2.0 * area / (std::sqrt(3.0) * double(size.vertices)));
   }
-  if (0.5 * edge > spacing)
-  {
-    sheet = poisson_disk_subset(sheet, 0.5 * edge);
-  }
+  const double spacing = std::max(0.5 * radius, 0.5 * edge);
+  std::vector<double> sheet =
+    poisson_disk_subset(mid_surface_points(points, spacing, radius, 4, parallel_for), spacing);
   if (sheet.size() < 12)
   {
     sheet = points; // too few for a sheet: reconstruct through the points themselves

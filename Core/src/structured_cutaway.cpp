@@ -122,10 +122,14 @@ StructuredCutaway::StructuredCutaway(const TriangleMesh& structure,
   this->MinimalBarycentric.resize(count);
   this->Triangles.resize(count);
   run_parallel(parallel_for, count, [&](std::size_t begin, std::size_t end) {
+    // Molecules next to each other in the input are usually neighbours in space.
+    SurfacePoint previous;
     for (std::size_t m = begin; m < end; ++m)
     {
       const SurfacePoint nearest =
-        locator.closest_point({ centres[3 * m], centres[3 * m + 1], centres[3 * m + 2] });
+        locator.closest_point({ centres[3 * m], centres[3 * m + 1], centres[3 * m + 2] },
+                              m > begin ? &previous : nullptr);
+      previous = nearest;
       const auto& b = nearest.barycentric;
       this->MinimalBarycentric[m] = std::clamp(std::min({ b[0], b[1], b[2] }), 0.0, 1.0 / 3.0);
       this->Triangles[m] = nearest.triangle;

@@ -60,13 +60,26 @@ SurfaceLocator::~SurfaceLocator() = default;
 SurfacePoint SurfaceLocator::closest_point(const std::array<double, 3>& point,
                                            double* distance) const
 {
+  return this->closest_point(point, nullptr, distance);
+}
+
+SurfacePoint SurfaceLocator::closest_point(const std::array<double, 3>& point,
+                                           const SurfacePoint* hint, double* distance) const
+{
   if (!std::isfinite(point[0]) || !std::isfinite(point[1]) || !std::isfinite(point[2]))
   {
     throw InvalidInput("the query point has a non-finite coordinate");
   }
   const Impl& impl = *this->Internal;
   const Kernel::Point_3 query(point[0], point[1], point[2]);
-  const auto closest = impl.SearchTree->closest_point_and_primitive(query);
+  const bool usable_hint =
+    hint && hint->triangle >= 0 && std::size_t(hint->triangle) < impl.Triangles.size();
+  const auto closest = usable_hint
+    ? impl.SearchTree->closest_point_and_primitive(
+        query,
+        std::make_pair(Kernel::Point_3(hint->position[0], hint->position[1], hint->position[2]),
+                       impl.Triangles.cbegin() + hint->triangle))
+    : impl.SearchTree->closest_point_and_primitive(query);
   SurfacePoint result;
   result.triangle = std::int64_t(closest.second - impl.Triangles.begin());
   result.position = { closest.first.x(), closest.first.y(), closest.first.z() };

@@ -9,7 +9,8 @@
     mesolens demo [-o mesolens-demo.png] [--size WxH] [--no-window]
 
 ``view`` opens the interactive magnifier (mesolens.viewer): click the surface to map the patch
-there; keys change the tiles, the method, the style, SSAO, play the trajectory, take screenshots.
+there; keys change the tiles, the method, the style, SSAO, play the trajectory, take screenshots,
+and cut the membrane open (o: a structured cutaway under a plane widget and a slider).
 ``render`` draws offscreen (no window; under Xvfb without a display). With --frames N and a
 trajectory it writes OUT_0000.png ... for N time steps. --camera reads a camera saved as
 "position x y z", "focal x y z", "up x y z", "angle degrees" lines; without it the camera looks

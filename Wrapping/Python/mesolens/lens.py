@@ -7,21 +7,30 @@ optionally with a trajectory), maps the patch onto the surface around a centre p
 ``vtkMesoAtomMapper`` (warped on the GPU for the polynomial and instancing methods, mapped on the
 CPU for displacement). The ``mesolens`` command is built on it.
 
+With the structured cutaway on (``set_cutaway``), the mapped atoms go through
+``vtkMesoStructuredCutaway``: a plane cuts the membrane open, and of the molecules on the plane's
+cut side a fraction is hidden so that what remains follows a wireframe of a regular triangle mesh
+laid on the surface around the lens (or its patches, or a random selection for comparison).
+
 Units: the mesh in ``mesh_unit_angstrom`` Å per unit (1e4 for µm, the default; 10 for nm); the
 membrane in Å (GROMACS files are converted by the reader).
 """
 import math
 import os
 
+import numpy as np
 from vtkmodules.util.misc import calldata_type
-from vtkmodules.util.vtkConstants import VTK_STRING
-from vtkmodules.vtkCommonCore import vtkCommand
-from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.util.vtkAlgorithm import VTKPythonAlgorithmBase
+from vtkmodules.util.vtkConstants import VTK_ID_TYPE, VTK_STRING
+from vtkmodules.vtkCommonCore import vtkCommand, vtkPoints
+from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPlane, vtkPolyData
+from vtkmodules.vtkFiltersCore import vtkPolyDataNormals, vtkProbeFilter
 from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderer
 
 from .MesoLensFilters import (vtkMesoMembraneMapping, vtkMesoMeshReader,
-                              vtkMesoStructureReader, vtkMesoTrajectoryReader,
-                              vtkMesoTrajectoryRefinement)
+                              vtkMesoStructureReader, vtkMesoStructuredCutaway,
+                              vtkMesoTrajectoryReader, vtkMesoTrajectoryRefinement)
 from .MesoLensRendering import vtkMesoAtomMapper
 
 METHODS = {"displacement": vtkMesoMembraneMapping.DISPLACEMENT,
@@ -30,6 +39,9 @@ METHODS = {"displacement": vtkMesoMembraneMapping.DISPLACEMENT,
 STYLES = {"space-filling": vtkMesoAtomMapper.SPACE_FILLING,
           "ball-and-stick": vtkMesoAtomMapper.BALL_AND_STICK}
 TRAJECTORY_SUFFIXES = (".xtc", ".trr")
+# Edge of the cutaway's structure triangles, Å: several lipids (about 0.65 nm² each) per
+# triangle and leaflet, so that a half-hidden cut shows the wireframe, not single molecules.
+CUT_STRUCTURE_EDGE = 40.0
 
 
 class LensError(RuntimeError):
@@ -57,6 +69,179 @@ class _ErrorCatcher:
         text = "; ".join(dict.fromkeys(self.messages))
         self.messages = []
         return text
+
+
+def _cell_array(offsets, connectivity):
+    cells = vtkCellArray()
+    cells.SetData(numpy_to_vtk(np.ascontiguousarray(offsets, dtype=np.int64), deep=1,
+                               array_type=VTK_ID_TYPE),
+                  numpy_to_vtk(np.ascontiguousarray(connectivity, dtype=np.int64), deep=1,
+                               array_type=VTK_ID_TYPE))
+    return cells
+
+
+def _points(coordinates):
+    points = vtkPoints()
+    points.SetData(numpy_to_vtk(np.ascontiguousarray(coordinates), deep=1))
+    return points
+
+
+class _MoleculesPerTile(VTKPythonAlgorithmBase):
+    """The mapped atoms with `MoleculeId` made unique over the tiles: the mapping repeats the
+    patch's ids in every tile, and the cutaway must see each tile's copy of a molecule as a
+    molecule of its own (not one molecule spread over k x k places).
+
+    While the ids stay the same (a new frame of the trajectory), the same `MoleculeId` and
+    `ResidueName` array objects are passed on: the cutaway then keeps its assignment over the
+    frames (it assigns again for new array objects), and the removal order stays stable."""
+
+    def __init__(self):
+        super().__init__(nInputPorts=1, inputType="vtkPolyData", nOutputPorts=1,
+                         outputType="vtkPolyData")
+        self._unique = None  # numpy ids of the last output, and the arrays passed on with them
+        self._arrays = ()
+
+    def RequestData(self, _request, in_info, out_info):
+        atoms = vtkPolyData.GetData(in_info[0])
+        output = vtkPolyData.GetData(out_info)
+        output.ShallowCopy(atoms)
+        point_data = atoms.GetPointData()
+        molecules = point_data.GetArray("MoleculeId")
+        tiles = point_data.GetArray("TileId")
+        if molecules is None or tiles is None or atoms.GetNumberOfPoints() == 0:
+            return 1
+        molecule = vtk_to_numpy(molecules).astype(np.int64)
+        molecule -= molecule.min()
+        unique = vtk_to_numpy(tiles).astype(np.int64) * (molecule.max() + 1) + molecule
+        if self._unique is None or not np.array_equal(unique, self._unique):
+            ids = numpy_to_vtk(unique, deep=1, array_type=VTK_ID_TYPE)
+            ids.SetName("MoleculeId")
+            names = point_data.GetAbstractArray("ResidueName")
+            self._unique = unique
+            self._arrays = (ids,) + ((names,) if names is not None else ())
+        for array in self._arrays:  # replace the input's arrays of these names in the output
+            output.GetPointData().AddArray(array)
+        return 1
+
+
+def surface_lattice(disk, edge):
+    """A regular triangle mesh (vtkPolyData) on the surface of a lens' disk (the output 1 of
+    vtkMesoMembraneMapping): equilateral triangles of edge `edge` (mesh units) laid out in the
+    disk's parameter plane (its TextureCoordinates, in mesh units and nearly isometric) and
+    carried onto the surface through the parameterization, covering the disk. The cutaway's
+    structure: the disk's own triangles are about one lipid wide, far too fine to show a
+    wireframe. Empty where the disk has no parameterization."""
+    output = vtkPolyData()
+    point_data = disk.GetPointData()
+    uv_array = point_data.GetTCoords() or point_data.GetArray("TextureCoordinates")
+    if uv_array is None or disk.GetNumberOfPolys() == 0:
+        return output
+    uv = vtk_to_numpy(uv_array)[:, :2].astype(np.float64)
+    # The disk flattened onto its parameters, carrying its surface points to interpolate.
+    flat = vtkPolyData()
+    flat.SetPoints(_points(np.column_stack([uv, np.zeros(len(uv))])))
+    flat.SetPolys(disk.GetPolys())
+    surface_points = numpy_to_vtk(vtk_to_numpy(disk.GetPoints().GetData()).astype(np.float64),
+                                  deep=1)
+    surface_points.SetName("SurfacePoint")
+    flat.GetPointData().AddArray(surface_points)
+
+    lattice_uv, triangles = _lattice(uv.min(axis=0), uv.max(axis=0), edge)
+    lattice = vtkPolyData()
+    lattice.SetPoints(_points(np.column_stack([lattice_uv, np.zeros(len(lattice_uv))])))
+    probe = vtkProbeFilter()
+    probe.SetInputData(lattice)
+    probe.SetSourceData(flat)
+    probe.Update()
+    probed = probe.GetOutput().GetPointData()
+    valid = vtk_to_numpy(probed.GetArray(probe.GetValidPointMaskArrayName())) != 0
+    on_surface = vtk_to_numpy(probed.GetArray("SurfacePoint"))
+    # Triangles wholly on the disk, their vertices renumbered.
+    triangles = triangles[valid[triangles].all(axis=1)]
+    used = np.unique(triangles)
+    renumber = np.full(len(lattice_uv), -1, dtype=np.int64)
+    renumber[used] = np.arange(len(used))
+    output.SetPoints(_points(on_surface[used]))
+    output.SetPolys(_cell_array(np.arange(0, 3 * len(triangles) + 1, 3),
+                                renumber[triangles].ravel()))
+    return output
+
+
+def _lattice(low, high, edge):
+    """Points (n x 2) and counter-clockwise triangles (m x 3) of an equilateral lattice of edge
+    `edge` covering the box [low, high], with a vertex at the box's centre."""
+    row_height = edge * math.sqrt(3) / 2
+    centre = (low + high) / 2
+    half_columns = math.ceil((high[0] - low[0]) / (2 * edge)) + 1
+    half_rows = math.ceil((high[1] - low[1]) / (2 * row_height)) + 1
+    columns = np.arange(-half_columns, half_columns + 1)
+    rows = np.arange(-half_rows, half_rows + 1)
+    shifted = rows % 2 == 1  # odd rows sit half an edge to the right
+    x = columns[None, :] * edge + shifted[:, None] * edge / 2
+    y = np.broadcast_to(rows[:, None] * row_height, x.shape)
+    points = np.column_stack([x.ravel() + centre[0], y.ravel() + centre[1]])
+    width = len(columns)
+    row, column = np.meshgrid(np.arange(len(rows) - 1), np.arange(width - 1), indexing="ij")
+    row, column = row.ravel(), column.ravel()
+    here = row * width + column  # (row, column)
+    right = here + 1             # (row, column + 1)
+    above = here + width         # (row + 1, column)
+    above_right = above + 1      # (row + 1, column + 1)
+    up = shifted[row + 1][:, None]  # the row above sits to the right of this one
+    first = np.where(up, np.column_stack([here, right, above]),
+                     np.column_stack([here, above_right, above]))
+    second = np.where(up, np.column_stack([right, above_right, above]),
+                      np.column_stack([here, right, above_right]))
+    return points, np.concatenate([first, second])
+
+
+class _VisibleAtoms(VTKPythonAlgorithmBase):
+    """The atoms of a cutaway's output whose `Visible` is 1, with their bonds (lines whose two
+    atoms are both visible), numeric point arrays and field data; string arrays (atom names)
+    are left out, vtkMesoAtomMapper reads none. Without `Visible`, the atoms as they are."""
+
+    def __init__(self):
+        super().__init__(nInputPorts=1, inputType="vtkPolyData", nOutputPorts=1,
+                         outputType="vtkPolyData")
+
+    def RequestData(self, _request, in_info, out_info):
+        atoms = vtkPolyData.GetData(in_info[0])
+        output = vtkPolyData.GetData(out_info)
+        visible = atoms.GetPointData().GetArray("Visible")
+        if visible is None or atoms.GetNumberOfPoints() == 0:
+            output.ShallowCopy(atoms)
+            return 1
+        output.Initialize()
+        keep = np.flatnonzero(vtk_to_numpy(visible))
+        renumber = np.full(atoms.GetNumberOfPoints(), -1, dtype=np.int64)
+        renumber[keep] = np.arange(len(keep))
+        output.SetPoints(_points(vtk_to_numpy(atoms.GetPoints().GetData())[keep]))
+        output.SetVerts(_cell_array(np.arange(len(keep) + 1), np.arange(len(keep))))
+        lines = atoms.GetLines()
+        if lines.GetNumberOfCells() > 0:
+            ends = vtk_to_numpy(lines.GetConnectivityArray())
+            if len(ends) == 2 * lines.GetNumberOfCells():  # bonds: two atoms per line
+                bonds = renumber[ends.reshape(-1, 2)]
+                bonds = bonds[(bonds >= 0).all(axis=1)]
+                output.SetLines(_cell_array(np.arange(0, 2 * len(bonds) + 1, 2), bonds.ravel()))
+        point_data = atoms.GetPointData()
+        for index in range(point_data.GetNumberOfArrays()):
+            array = point_data.GetArray(index)  # None for string arrays
+            if array is None:
+                continue
+            kept = numpy_to_vtk(np.ascontiguousarray(vtk_to_numpy(array)[keep]), deep=1,
+                                array_type=array.GetDataType())
+            kept.SetName(array.GetName())
+            output.GetPointData().AddArray(kept)
+        output.GetFieldData().ShallowCopy(atoms.GetFieldData())
+        return 1
+
+
+def drawn_atoms_port(cutaway, visible_atoms):
+    """Where vtkMesoAtomMapper reads a cutaway's atoms from: the visible ones, picked out by
+    `visible_atoms` (a _VisibleAtoms on the cutaway's output). The one place to change when the
+    mapper hides atoms by the `Visible` array itself: return cutaway.GetOutputPort() then."""
+    return visible_atoms.GetOutputPort()
 
 
 def write_png(window, path):
@@ -193,6 +378,24 @@ class MembraneLens:
         self.renderer.SetBackground(0.09, 0.10, 0.13)
         self.renderer.AddActor(self.surface_actor)
         self.renderer.AddActor(self.atom_actor)
+        # The structured cutaway, off until set_cutaway(True): the mapped atoms (each tile's
+        # molecules its own) against a lattice on the lens' disk; the mapper draws what stays.
+        self._molecules_per_tile = _MoleculesPerTile()
+        self._molecules_per_tile.SetInputConnection(self.mapping.GetOutputPort(0))
+        self.cutaway = vtkMesoStructuredCutaway()
+        self.cutaway.SetInputConnection(self._molecules_per_tile.GetOutputPort())
+        self.cut_structure = None  # made by place(): it stays over the frames of a trajectory
+        self.cutaway.MakeAssemblyWholeOff()  # mapped atoms lie on the surface, not in a box
+        # The filter cuts where the plane's function is <= 0, behind its normal; ours points
+        # into the cut, so the filter's plane has the opposite normal.
+        self._cut_side = vtkPlane()
+        self.cutaway.SetCutFunction(self._cut_side)
+        self._cutaway_errors = _ErrorCatcher(self.cutaway)
+        self._visible_atoms = _VisibleAtoms()
+        self._visible_atoms.SetInputConnection(self.cutaway.GetOutputPort())
+        self.cutaway_on = False
+        self.cut_origin = None
+        self.cut_normal = None
         self.method = "polynomial"
         self.style = "space-filling"
         self.centre = None
@@ -226,7 +429,10 @@ class MembraneLens:
 
     def set_time(self, time):
         """Shows the membrane at `time` (ps)."""
-        self._patch_source().UpdateTimeStep(time)
+        # Asked of what the atom mapper draws, the time reaches every filter up to the reader
+        # (the mapping, the cutaway), and each of them runs for the new frame.
+        drawn = self.atoms.GetInputAlgorithm() if self.centre is not None else None
+        (drawn or self._patch_source()).UpdateTimeStep(time)
 
     def set_refinement(self, level):
         """2^level - 1 frames interpolated between the trajectory's frames, level in [0, 4]
@@ -260,10 +466,13 @@ class MembraneLens:
     def place(self, centre):
         """Maps the patch around the surface point nearest `centre` (mesh units) with the current
         tiles and method. Raises LensError with the mapping's reason when it fails (a point off
-        the surface, a disk that is no disk, ...)."""
+        the surface, a disk that is no disk, ...). With the cutaway on, the mapped atoms are cut
+        (a new centre moves the cut plane there, facing outward) and the structure is laid on
+        the new disk; if the cutaway fails, it is turned off and LensError says why."""
         self.mapping.SetSeedPoint(*centre)
         self.mapping.SetMappingMethod(METHODS[self.method])
-        on_gpu = self.method != "displacement"
+        # The cutaway needs the mapped atoms on the CPU, whatever the method.
+        on_gpu = self.method != "displacement" and not self.cutaway_on
         self.mapping.SetOutputAtoms(not on_gpu)
         self._progress(f"mapping {self.tiles} x {self.tiles} tiles by {self.method} around "
                        f"({centre[0]:.4g}, {centre[1]:.4g}, {centre[2]:.4g})")
@@ -272,14 +481,134 @@ class MembraneLens:
         if not ok or message:
             self.atom_actor.VisibilityOff()
             raise LensError(f"the membrane cannot be mapped there: {message or 'no reason given'}")
+        moved = self.centre is None or tuple(centre) != self.centre
+        self.centre = tuple(centre)
+        self.atom_actor.VisibilityOn()
+        if self.cutaway_on:
+            if moved or self.cut_normal is None:
+                self.set_cut_plane(self.centre, self._outward(self.centre))
+            self.cut_structure = surface_lattice(self.mapping.GetOutput(1),
+                                                 CUT_STRUCTURE_EDGE * self.scale)
+            self.cutaway.SetInputData(1, self.cut_structure)
+            try:
+                self._draw_cutaway()
+                return
+            except LensError:
+                self.cutaway_on = False  # the whole patch rather than nothing
+                self.place(centre)
+                raise
         if on_gpu:
             self.atoms.SetInputConnection(self._patch_port())
             self.atoms.SetWarpConnection(self.mapping.GetOutputPort())
         else:
             self.atoms.SetInputConnection(self.mapping.GetOutputPort())
             self.atoms.SetWarpConnection(None)
-        self.atom_actor.VisibilityOn()
-        self.centre = tuple(centre)
+
+    def _draw_cutaway(self):
+        """Runs the cutaway on the mapped atoms and gives the mapper what stays visible. Raises
+        LensError with the cutaway's reason when it fails."""
+        port = drawn_atoms_port(self.cutaway, self._visible_atoms)
+        port.GetProducer().Update()
+        message = self._cutaway_errors.take()
+        if message or self.cutaway.GetOutput().GetNumberOfPoints() == 0:
+            raise LensError(f"the membrane cannot be cut open there: {message or 'no atoms'}")
+        self.atoms.SetInputConnection(port)
+        self.atoms.SetWarpConnection(None)
+
+    def _outward(self, point):
+        """The direction from the surface's centre to `point`, unit length."""
+        organelle = self.surface.GetOutput().GetCenter()
+        outward = [point[d] - organelle[d] for d in range(3)]
+        length = math.sqrt(sum(v * v for v in outward)) or 1.0
+        return tuple(v / length for v in outward)
+
+    # The structured cutaway ----------------------------------------------------------------
+
+    def set_cutaway(self, on):
+        """Cuts the mapped membrane open (on) or shows it whole (off). The cut is the half-space
+        of set_cut_plane, at first the plane through the lens' centre facing away from the
+        surface's centre; of the molecules there, set_cut_fraction's share is hidden (default
+        0.5), in structured order (a wireframe of triangles of CUT_STRUCTURE_EDGE Å; patches with
+        set_cut_inverted) or random order (set_cut_random). While on, all methods map the atoms
+        on the CPU. Raises LensError before place() or when the cutaway fails (it is then off)."""
+        on = bool(on)
+        if on and self.centre is None:
+            raise LensError("place the membrane first: the cutaway cuts the mapped membrane open")
+        if on == self.cutaway_on:
+            return
+        self.cutaway_on = on
+        if self.centre is not None:
+            self.place(self.centre)
+
+    def set_cut_plane(self, origin, normal):
+        """The cut: the half-space in front of the plane through `origin` (mesh units) that
+        `normal` (any length but 0) points into. Raises LensError for non-finite numbers or a
+        zero normal."""
+        try:
+            origin = tuple(float(v) for v in origin)
+            normal = tuple(float(v) for v in normal)
+        except (TypeError, ValueError):
+            raise LensError(f"the cut plane needs an origin and a normal of 3 numbers each, not "
+                            f"{origin!r} and {normal!r}") from None
+        if len(origin) != 3 or len(normal) != 3 or not all(map(math.isfinite, origin + normal)):
+            raise LensError(f"the cut plane needs an origin and a normal of 3 finite numbers "
+                            f"each, not {origin} and {normal}")
+        length = math.sqrt(sum(v * v for v in normal))
+        if length == 0:
+            raise LensError("the cut plane's normal must not be zero")
+        self.cut_origin = origin
+        self.cut_normal = tuple(v / length for v in normal)
+        self._cut_side.SetOrigin(*origin)
+        self._cut_side.SetNormal(*(-v for v in self.cut_normal))
+
+    def set_cut_fraction(self, fraction):
+        """Hide this share of the molecules in the cut, in [0, 1] (0: none, 1: all); 0.5 at
+        first. Raises LensError outside [0, 1] (the cutaway keeps its fraction)."""
+        try:
+            value = float(fraction)
+        except (TypeError, ValueError):
+            value = math.nan
+        if not 0.0 <= value <= 1.0:
+            raise LensError(f"the fraction hidden must be between 0 and 1 (0 % and 100 %), "
+                            f"not {fraction!r}")
+        self.cutaway.SetFractionHidden(value)
+
+    @property
+    def cut_fraction(self):
+        """The share of the molecules in the cut that is hidden, [0, 1]."""
+        return self.cutaway.GetFractionHidden()
+
+    def set_cut_inverted(self, inverted):
+        """Hide the molecules on the structure's edges first (patches stay) instead of those at
+        the triangles' centres (a wireframe stays). No effect in random order."""
+        self.cutaway.SetInverted(bool(inverted))
+
+    @property
+    def cut_inverted(self):
+        return bool(self.cutaway.GetInverted())
+
+    def set_cut_random(self, random):
+        """Hide molecules in a random (seeded, stable) order instead of the structured one: the
+        Visibility Equalizer's removal, for comparison."""
+        self.cutaway.SetRandomOrder(bool(random))
+
+    @property
+    def cut_random(self):
+        return bool(self.cutaway.GetRandomOrder())
+
+    def cut_counts(self):
+        """(molecules hidden, molecules in the cut), or None while the cutaway is off or has
+        nothing to show."""
+        if not self.cutaway_on:
+            return None
+        self._visible_atoms.Update()
+        self._cutaway_errors.take()  # place() reports failures; here only the numbers count
+        fields = self.cutaway.GetOutput().GetFieldData()
+        hidden = fields.GetArray("MoleculesHidden")
+        in_cut = fields.GetArray("MoleculesInCut")
+        if hidden is None or in_cut is None:
+            return None
+        return int(hidden.GetValue(0)), int(in_cut.GetValue(0))
 
     def set_effects(self, ssao=False, shadows=False):
         """Ambient occlusion (vtkSSAOPass, sized to the patch) and shadows (vtkShadowMapPass,
@@ -344,7 +673,11 @@ class MembraneLens:
         return extent, centre, [v / length for v in outward]
 
     def atom_count(self):
-        """Atoms drawn: the patch's atoms times the tiles."""
+        """Atoms drawn: the patch's atoms times the tiles, or those the cutaway leaves."""
+        if self.cutaway_on and self.centre is not None:
+            self._visible_atoms.Update()
+            self._cutaway_errors.take()
+            return self._visible_atoms.GetOutputDataObject(0).GetNumberOfPoints()
         return self.membrane.GetOutput().GetNumberOfPoints() * self.tiles * self.tiles
 
     def look_at_patch(self, renderer=None, distance_factor=3.0, elevation=25.0):

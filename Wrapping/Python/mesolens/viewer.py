@@ -11,13 +11,28 @@ point. Keys:
     space   play / pause the trajectory           l   refinement level (frames in between)
     c       screenshot (mesolens-NNNN.png)        v   save the camera (mesolens-camera.txt, for
                                                       mesolens render --camera)
+    o       structured cutaway on / off           i   cutaway: patches / wireframe (inverted)
+    n       cutaway: random / structured removal
     q       quit
 
-A line at the bottom shows the atom count, the last frame time and the settings; messages (a
-click off the surface, a mapping that fails, with its reason) replace it until the next action.
+The structured cutaway (o, once the membrane is placed) cuts the mapped membrane open with a plane
+through the lens point facing the camera: of the molecules on the camera's side of it (where its
+arrow points) the slider at the top right hides 0 to 100 % (50 % at first), those at the centres
+of a triangle mesh on the surface first, so that a wireframe remains (i: the edges first, so that
+patches remain; n: at random, for comparison). Drag its arrow (at first seen end on, at the
+plane's centre) to tilt the plane; Up / Down with the mouse over the plane push it along the
+arrow or back (Ctrl: half steps). Clicks and camera drags that start on the plane go to the
+plane: start them beside it.
+
+Two lines at the bottom show the atom count, the last frame time and the settings, then the
+cutaway's (off, or its mode and "hidden X of Y in cut", counted in molecules); messages (a click
+off the surface, a mapping that fails, with its reason) replace them until the next action.
 """
 import os
 
+from vtkmodules.vtkInteractionWidgets import (vtkImplicitPlaneRepresentation,
+                                              vtkImplicitPlaneWidget2,
+                                              vtkSliderRepresentation2D, vtkSliderWidget)
 from vtkmodules.vtkRenderingCore import vtkCellPicker, vtkRenderWindow, vtkRenderWindowInteractor
 from vtkmodules.vtkRenderingCore import vtkTextActor
 from vtkmodules.vtkInteractionStyle import vtkInteractorStyleTrackballCamera
@@ -27,6 +42,7 @@ import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL factory)
 from .lens import METHODS, LensError, write_camera_file, write_png
 
 CLICK_TOLERANCE = 3  # pixels a click may move and still be a click
+CUT_SLIDER_ENDS = ((0.62, 0.93), (0.95, 0.93))  # the fraction slider, normalized display
 
 
 class LensViewer:
@@ -67,6 +83,7 @@ class LensViewer:
         self.style.AddObserver("LeftButtonReleaseEvent", self._on_release)
         self.style.AddObserver("CharEvent", self._on_char)
         self.interactor.AddObserver("TimerEvent", self._on_timer)
+        self._make_cut_widgets()
         lens.renderer.AddObserver("StartEvent", lambda *_: self._show_status())
         lens.renderer.ResetCamera()
         self._show_status()
@@ -83,6 +100,7 @@ class LensViewer:
         return self._place(self.picker.GetPickPosition())
 
     def _place(self, point):
+        moved = self.lens.centre is None or tuple(point) != self.lens.centre
         try:
             self.lens.place(point)
             self.message = ""
@@ -90,11 +108,13 @@ class LensViewer:
         except LensError as error:
             self.message = str(error)
             ok = False
+        self._fit_cut_widgets(face_camera=moved)
         self.window.Render()
         return ok
 
     def key(self, name):
-        """What a key does (the names VTK gives: 'plus', 'minus', 'm', 's', 'a', 'space', 'c')."""
+        """What a key does (the names VTK gives: 'plus', 'minus', 'm', 's', 'a', 'space', 'c',
+        'o', ...)."""
         lens = self.lens
         if name in ("plus", "equal", "KP_Add", "minus", "KP_Subtract"):
             step = 1 if name in ("plus", "equal", "KP_Add") else -1
@@ -123,6 +143,124 @@ class LensViewer:
             self.screenshot()
         elif name == "v":
             self.save_camera()
+        elif name == "o":
+            self.toggle_cutaway()
+        elif name == "i":
+            lens.set_cut_inverted(not lens.cut_inverted)
+            self._cut_setting_changed()
+        elif name == "n":
+            lens.set_cut_random(not lens.cut_random)
+            self._cut_setting_changed()
+
+    # The structured cutaway ----------------------------------------------------------------
+
+    def _make_cut_widgets(self):
+        """The cut plane (vtkImplicitPlaneWidget2, no outline, a faint plane) and the slider of
+        the fraction hidden (0-100 %), both off until the cutaway is on."""
+        self.plane_representation = vtkImplicitPlaneRepresentation()
+        self.plane_representation.SetPlaceFactor(1.1)
+        self.plane_representation.DrawOutlineOff()
+        self.plane_representation.OutlineTranslationOff()
+        self.plane_representation.ScaleEnabledOff()
+        self.plane_representation.SetBumpDistance(0.025)  # of the patch's diagonal per Up / Down
+        self.plane_representation.GetPlaneProperty().SetOpacity(0.12)
+        self.plane_representation.GetSelectedPlaneProperty().SetOpacity(0.25)
+        self.plane_widget = vtkImplicitPlaneWidget2()
+        self.plane_widget.SetInteractor(self.interactor)
+        self.plane_widget.SetRepresentation(self.plane_representation)
+        self.plane_widget.SetCurrentRenderer(self.lens.renderer)
+        self.plane_widget.KeyPressActivationOff()  # 'i' is ours (inversion)
+        self.plane_widget.AddObserver("InteractionEvent", self._on_plane_moved)
+
+        self.slider_representation = vtkSliderRepresentation2D()
+        slider = self.slider_representation
+        slider.SetMinimumValue(0.0)
+        slider.SetMaximumValue(100.0)
+        slider.SetValue(100.0 * self.lens.cut_fraction)
+        slider.SetTitleText("hidden in the cut")
+        slider.SetLabelFormat("%.0f %%")
+        for coordinate, (x, y) in zip((slider.GetPoint1Coordinate(), slider.GetPoint2Coordinate()),
+                                      CUT_SLIDER_ENDS):
+            coordinate.SetCoordinateSystemToNormalizedDisplay()
+            coordinate.SetValue(x, y)
+        slider.SetSliderLength(0.02)
+        slider.SetSliderWidth(0.03)
+        slider.SetTubeWidth(0.008)
+        slider.SetEndCapLength(0.01)
+        slider.SetTitleHeight(0.025)
+        slider.SetLabelHeight(0.025)
+        for text in (slider.GetTitleProperty(), slider.GetLabelProperty()):
+            text.SetColor(0.9, 0.9, 0.9)
+            text.ShadowOff()
+            text.BoldOff()
+        self.slider_widget = vtkSliderWidget()
+        self.slider_widget.SetInteractor(self.interactor)
+        self.slider_widget.SetRepresentation(slider)
+        self.slider_widget.SetCurrentRenderer(self.lens.renderer)
+        self.slider_widget.KeyPressActivationOff()
+        self.slider_widget.SetAnimationModeToJump()  # a click on the tube sets the value there
+        self.slider_widget.AddObserver("InteractionEvent", self._on_slider_moved)
+
+    def _fit_cut_widgets(self, face_camera):
+        """Shows the widgets while the cutaway is on, around the mapped patch; with face_camera
+        the plane goes through the lens point, facing the camera (its arrow towards the eye)."""
+        mapped = self.lens.mapping.GetOutput()
+        # Nothing to cut around where the last mapping failed (the atoms are hidden then).
+        on = self.lens.cutaway_on and mapped.GetNumberOfPoints() > 0
+        if on:
+            self.plane_representation.PlaceWidget(mapped.GetBounds())
+            if face_camera or self.lens.cut_normal is None:
+                camera = self.lens.renderer.GetActiveCamera()
+                towards_eye = [-v for v in camera.GetDirectionOfProjection()]
+                self.lens.set_cut_plane(self.lens.centre, towards_eye)
+            self.plane_representation.SetOrigin(*self.lens.cut_origin)
+            self.plane_representation.SetNormal(*self.lens.cut_normal)
+            self.slider_representation.SetValue(100.0 * self.lens.cut_fraction)
+        if bool(self.plane_widget.GetEnabled()) != on:
+            self.plane_widget.SetEnabled(on)
+            self.slider_widget.SetEnabled(on)
+
+    def toggle_cutaway(self):
+        """Cuts the membrane open or shows it whole again (key o); says why not before the
+        membrane is placed. Returns whether the cutaway is on."""
+        try:
+            self.lens.set_cutaway(not self.lens.cutaway_on)
+            self.message = ""
+        except LensError as error:
+            self.message = str(error)
+        self._fit_cut_widgets(face_camera=True)
+        self.window.Render()
+        return self.lens.cutaway_on
+
+    def set_cut_fraction(self, fraction):
+        """Hides this share of the molecules in the cut, [0, 1] (the slider shows it in %).
+        Raises LensError outside [0, 1]."""
+        self.lens.set_cut_fraction(fraction)
+        self.slider_representation.SetValue(100.0 * self.lens.cut_fraction)
+        self.window.Render()
+
+    def set_cut_plane(self, origin, normal):
+        """Moves the cut plane (the widget with it): through `origin` (mesh units), the cut on
+        the side `normal` points to. Raises LensError for a zero or non-finite normal."""
+        self.lens.set_cut_plane(origin, normal)
+        if self.lens.cutaway_on:
+            self.plane_representation.SetOrigin(*self.lens.cut_origin)
+            self.plane_representation.SetNormal(*self.lens.cut_normal)
+        self.window.Render()
+
+    def _cut_setting_changed(self):
+        on = self.lens.cutaway_on
+        self.message = "" if on else "the cutaway is off: o cuts the membrane open"
+        self.window.Render()
+
+    def _on_plane_moved(self, _caller, _event):
+        # The widget renders after this event: the cut follows in the same frame.
+        self.lens.set_cut_plane(self.plane_representation.GetOrigin(),
+                                self.plane_representation.GetNormal())
+
+    def _on_slider_moved(self, _caller, _event):
+        value = min(100.0, max(0.0, self.slider_representation.GetValue()))
+        self.lens.set_cut_fraction(value / 100.0)
 
     def _replace(self):
         if self.lens.centre is not None:
@@ -195,7 +333,7 @@ class LensViewer:
             self.click(x, y)
 
     KEYS = ("plus", "equal", "KP_Add", "minus", "KP_Subtract", "m", "s", "a", "h", "space", "c",
-            "l", "v")
+            "l", "v", "o", "i", "n")
 
     def _on_char(self, _caller, _event):
         # Ours replace VTK's defaults for these keys (s: surface, a: actor mode, c: camera
@@ -225,6 +363,14 @@ class LensViewer:
                     f"{lens.tiles} tiles (+/-), {lens.method} (m), {lens.style} (s), SSAO "
                     f"{'on' if lens.ssao else 'off'} (a), shadows {'on' if lens.shadows else 'off'} (h){when}"
                     f"{' playing' if self.playing else ''} (space) | c: screenshot")
+            counts = lens.cut_counts()
+            if counts is None:
+                text += "\ncutaway off (o)"
+            else:
+                mode = ("random removal (n)" if lens.cut_random else
+                        f"structured (n), {'patches' if lens.cut_inverted else 'wireframe'} (i)")
+                text += (f"\ncutaway (o): {mode}, hidden {counts[0]:,} of {counts[1]:,} in cut "
+                         f"({lens.cut_fraction:.0%}, slider)")
         if self.status.GetInput() != text:
             self.status.SetInput(text)
 

@@ -35,7 +35,8 @@ constexpr int nan_color = color_count - 1;
 int element_of(vtkDataArray* numbers, vtkIdType atom)
 {
   const double z = numbers ? numbers->GetComponent(atom, 0) : 0.0;
-  return std::isfinite(z) ? static_cast<int>(std::clamp(z, 0.0, double(element_count - 1))) : 0;
+  // The last element is the hidden atoms'.
+  return std::isfinite(z) ? static_cast<int>(std::clamp(z, 0.0, double(element_count - 2))) : 0;
 }
 
 /// The colour array of the mapper's settings, or nullptr for element colours.
@@ -223,6 +224,7 @@ std::vector<float> vtkMesoAtomGPUData::StyleRadii(const Style& style)
     }
     radii[std::size_t(z)] = static_cast<float>(r * style.RadiusScale);
   }
+  radii[vtkMesoAtomGPUData::HiddenElement] = 0.0f;
   return radii;
 }
 
@@ -242,10 +244,15 @@ void vtkMesoAtomGPUData::Clear()
   this->WarpTexels.clear();
   this->TypesKey = {};
   this->BondsKey = {};
+  this->MaskKey = {};
+  this->PositionsKey = {};
+  this->UnmaskedTypes.clear();
+  this->HiddenAtoms = 0;
 }
 
 bool vtkMesoAtomGPUData::Update(vtkPolyData* atoms, vtkPolyData* warp, const Style& style,
-                                vtkMapper* mapper, std::size_t atoms_per_cell)
+                                vtkMapper* mapper, std::size_t atoms_per_cell,
+                                const char* mask_name)
 {
   this->Radii = StyleRadii(style);
   this->BondRadius = static_cast<float>(style.BondRadius * style.RadiusScale);
@@ -266,13 +273,15 @@ bool vtkMesoAtomGPUData::Update(vtkPolyData* atoms, vtkPolyData* warp, const Sty
     return false;
   }
   this->AtomCount = n;
+  vtkDataArray* mask =
+    mask_name && *mask_name ? atoms->GetPointData()->GetArray(mask_name) : nullptr;
   if (!this->UpdatePositions(atoms, mapper, warp ? 0 : atoms_per_cell) ||
       !this->UpdateBonds(atoms, mapper))
   {
     this->Clear();
     return false;
   }
-  this->UpdateTypes(atoms, mapper);
+  this->UpdateTypes(atoms, mapper, mask);
   this->LargestPresentRadius = 0;
   for (std::size_t z = 0; z < this->ElementPresent.size(); ++z)
   {
@@ -292,6 +301,16 @@ bool vtkMesoAtomGPUData::UpdatePositions(vtkPolyData* atoms, vtkMapper* mapper,
 {
   // Float coordinates go up as they are (when not regrouped); others are converted once.
   vtkDataArray* coordinates = atoms->GetPoints()->GetData();
+  // The same coordinates, unchanged (a new mask or colour on the same atoms): nothing to do.
+  // (The cell size takes the mapper time's place in the key.)
+  const ArrayKey key{ coordinates, coordinates->GetMTime(), nullptr,
+                      0,           atoms_per_cell,          this->AtomCount };
+  if (key == this->PositionsKey && this->PositionData)
+  {
+    return true;
+  }
+  this->PositionsKey = {};
+  ++this->PositionsVersion;
   const std::size_t values = 3 * static_cast<std::size_t>(this->AtomCount);
   const float* input = nullptr;
   std::vector<float> converted;
@@ -337,6 +356,7 @@ bool vtkMesoAtomGPUData::UpdatePositions(vtkPolyData* atoms, vtkMapper* mapper,
       this->PositionStorage = std::move(converted);
       this->PositionData = this->PositionStorage.data();
     }
+    this->PositionsKey = key;
     return true;
   }
   // New cells for new atoms, or when a trajectory's atoms have spread their cells by half.
@@ -364,12 +384,14 @@ bool vtkMesoAtomGPUData::UpdatePositions(vtkPolyData* atoms, vtkMapper* mapper,
     // The per-atom tables follow the new slot order.
     this->TypesKey = {};
     this->BondsKey = {};
+    this->MaskKey = {};
   }
   this->PositionData = this->PositionStorage.data();
+  this->PositionsKey = key;
   return true;
 }
 
-void vtkMesoAtomGPUData::UpdateTypes(vtkPolyData* atoms, vtkMapper* mapper)
+void vtkMesoAtomGPUData::UpdateTypes(vtkPolyData* atoms, vtkMapper* mapper, vtkDataArray* mask)
 {
   vtkDataArray* numbers = atoms->GetPointData()->GetArray("AtomicNumber");
   vtkDataArray* scalars = color_array(atoms, mapper);
@@ -386,14 +408,42 @@ void vtkMesoAtomGPUData::UpdateTypes(vtkPolyData* atoms, vtkMapper* mapper)
                       scalars ? scalars->GetMTime() : 0,
                       mapper->GetMTime(),
                       this->AtomCount };
-  if (key == this->TypesKey)
+  if (!(key == this->TypesKey))
+  {
+    this->TypesKey = key;
+    this->ComputeTypes(mapper, numbers, scalars, table);
+    this->MaskKey = {};
+  }
+  // The mask over the types: a new mask costs a copy of the type bytes.
+  const ArrayKey mask_key{ mask, mask ? mask->GetMTime() : 0, nullptr, 0, 0, this->AtomCount };
+  if (mask_key == this->MaskKey)
   {
     return;
   }
-  this->TypesKey = key;
+  this->MaskKey = mask_key;
   ++this->TypesVersion;
+  this->Types = this->UnmaskedTypes;
+  this->HiddenAtoms = 0;
+  if (!mask)
+  {
+    return;
+  }
+  auto* bytes = vtkUnsignedCharArray::FastDownCast(mask);
+  for (vtkIdType i = 0; i < this->AtomCount; ++i)
+  {
+    if (bytes ? bytes->GetValue(i) == 0 : mask->GetComponent(i, 0) == 0.0)
+    {
+      this->Types[2 * this->SlotOf(i)] = HiddenElement;
+      ++this->HiddenAtoms;
+    }
+  }
+}
+
+void vtkMesoAtomGPUData::ComputeTypes(vtkMapper* mapper, vtkDataArray* numbers,
+                                      vtkDataArray* scalars, vtkScalarsToColors* table)
+{
   const vtkIdType n = this->AtomCount;
-  this->Types.resize(2 * static_cast<std::size_t>(n));
+  this->UnmaskedTypes.resize(2 * static_cast<std::size_t>(n));
   this->ElementPresent.assign(element_count, false);
   this->ColorTable.assign(4 * color_count, 0.6f);
   if (table)
@@ -425,8 +475,8 @@ void vtkMesoAtomGPUData::UpdateTypes(vtkPolyData* atoms, vtkMapper* mapper)
       const std::size_t slot = this->SlotOf(i);
       const int z = element_of(numbers, i);
       this->ElementPresent[std::size_t(z)] = true;
-      this->Types[2 * slot] = static_cast<unsigned char>(z);
-      this->Types[2 * slot + 1] = static_cast<unsigned char>(bin);
+      this->UnmaskedTypes[2 * slot] = static_cast<unsigned char>(z);
+      this->UnmaskedTypes[2 * slot + 1] = static_cast<unsigned char>(bin);
     }
     return;
   }
@@ -445,8 +495,8 @@ void vtkMesoAtomGPUData::UpdateTypes(vtkPolyData* atoms, vtkMapper* mapper)
     const std::size_t slot = this->SlotOf(i);
     const auto z = static_cast<unsigned char>(element_of(numbers, i));
     this->ElementPresent[z] = true;
-    this->Types[2 * slot] = z;
-    this->Types[2 * slot + 1] = z;
+    this->UnmaskedTypes[2 * slot] = z;
+    this->UnmaskedTypes[2 * slot + 1] = z;
   }
 }
 

@@ -9,6 +9,10 @@
  * of a lookup table plus its NaN colour at 255). Warp: the per-tile polynomial (10 texels per
  * tile) or the per-molecule rigid motions (3 texels each) and the patch frame uniforms.
  *
+ * A visibility mask (a point array, 0 = hidden; e.g. vtkMesoStructuredCutaway's `Visible`)
+ * hides atoms by giving them the element HiddenElement, whose radius is 0 (the bond pass skips
+ * bonds to them): a new mask changes the type bytes only, never the positions or the bonds.
+ *
  * For occlusion culling the atoms may be grouped into spatial cells (GroupIntoCells): then
  * every per-atom buffer and the bond indices are in "slot" order, the atoms of each cell
  * adjacent (mesolens::AtomCells), and CellBoxes holds each cell's box of atom centres.
@@ -23,7 +27,9 @@
 #include <cstdint>
 #include <vector>
 
+class vtkDataArray;
 class vtkMapper;
+class vtkScalarsToColors;
 class vtkPolyData;
 
 class vtkMesoAtomGPUData
@@ -52,7 +58,10 @@ public:
   /// Returns false, with an error reported on `mapper` and AtomCount 0, for inputs it cannot
   /// draw.
   bool Update(vtkPolyData* atoms, vtkPolyData* warp, const Style& style, vtkMapper* mapper,
-              std::size_t atoms_per_cell = 0);
+              std::size_t atoms_per_cell = 0, const char* mask_name = nullptr);
+
+  /// The type byte of hidden atoms: an element of radius 0 (input elements are clamped below).
+  static constexpr unsigned char HiddenElement = 127;
 
   /// Bounds of what is drawn (warped tiles in warp mode), padded by `pad`. Leaves `bounds` as
   /// it is when there is nothing to draw.
@@ -75,11 +84,13 @@ public:
   std::vector<unsigned char> Types;          ///< 2 per atom
   std::vector<unsigned short> MoleculeSlots; ///< 1 per atom (instancing only)
   std::vector<unsigned int> Bonds;
-  unsigned long TypesVersion = 0; ///< counts recomputations of Types and ColorTable
-  unsigned long BondsVersion = 0; ///< counts recomputations of Bonds           ///< 2 per bond
-  std::vector<float> Radii;       ///< 128
-  float BondRadius = 0;           ///< scene units
-  std::vector<float> ColorTable;  ///< 256 RGBA
+  unsigned long TypesVersion = 0;     ///< counts recomputations of Types and ColorTable
+  unsigned long PositionsVersion = 0; ///< counts changes of the positions (PositionData)
+  vtkIdType HiddenAtoms = 0;          ///< atoms hidden by the mask
+  unsigned long BondsVersion = 0;     ///< counts recomputations of Bonds           ///< 2 per bond
+  std::vector<float> Radii;           ///< 128
+  float BondRadius = 0;               ///< scene units
+  std::vector<float> ColorTable;      ///< 256 RGBA
 
   int WarpMethod = NONE;
   std::vector<float> WarpTexels; ///< RGBA texels
@@ -115,12 +126,18 @@ private:
                                     : this->SlotOfAtom[static_cast<std::size_t>(atom)];
   }
   bool UpdatePositions(vtkPolyData* atoms, vtkMapper* mapper, std::size_t atoms_per_cell);
-  void UpdateTypes(vtkPolyData* atoms, vtkMapper* mapper);
+  void UpdateTypes(vtkPolyData* atoms, vtkMapper* mapper, vtkDataArray* mask);
   bool UpdateBonds(vtkPolyData* atoms, vtkMapper* mapper);
+  /// UnmaskedTypes and ColorTable from the element numbers and the colour array.
+  void ComputeTypes(vtkMapper* mapper, vtkDataArray* numbers, vtkDataArray* scalars,
+                    vtkScalarsToColors* table);
   bool ReadWarp(vtkPolyData* atoms, vtkPolyData* warp, vtkMapper* mapper);
   void Clear();
 
   std::vector<float> PositionStorage;
+  std::vector<unsigned char> UnmaskedTypes; ///< Types before the mask
+  ArrayKey MaskKey;                         ///< the mask that Types has
+  ArrayKey PositionsKey;                    ///< coordinates array, time, count, cell size
   std::vector<bool> ElementPresent;
   double GroupedDiagonal = 0; ///< total_cell_diagonal when the cells were made
   ArrayKey TypesKey;

@@ -125,6 +125,7 @@ struct vtkMesoAtomMapper::Internals
   vtkNew<vtkTextureObject> TypeTexture;
   vtkNew<vtkTextureObject> MoleculeTexture;
   unsigned long UploadedTypes = 0;     // TypesVersion on the GPU, 0: none
+  unsigned long UploadedPositions = 0; // PositionsVersion on the GPU, 0: none
   unsigned long UploadedMolecules = 0; // WarpVersion of the molecule slots on the GPU
   unsigned long UploadedBonds = 0;
   TexelBuffer Colors;
@@ -202,7 +203,7 @@ struct vtkMesoAtomMapper::Internals
       for (std::uint32_t slot = grouping.cell_start[viewed.cell];
            slot < grouping.cell_start[viewed.cell + 1]; ++slot)
       {
-        if (flags[slot] & bit)
+        if ((flags[slot] & bit) && this->Data.Types[2 * slot] != vtkMesoAtomGPUData::HiddenElement)
         {
           this->DrawList.push_back(slot);
         }
@@ -265,9 +266,18 @@ vtkMesoAtomMapper::vtkMesoAtomMapper()
   : Internal(std::make_unique<Internals>())
 {
   this->SetNumberOfInputPorts(2);
+  this->SetVisibilityArrayName("Visible");
 }
 
-vtkMesoAtomMapper::~vtkMesoAtomMapper() = default;
+vtkMesoAtomMapper::~vtkMesoAtomMapper()
+{
+  this->SetVisibilityArrayName(nullptr);
+}
+
+vtkIdType vtkMesoAtomMapper::GetHiddenAtomCount() const
+{
+  return this->Internal->Data.HiddenAtoms;
+}
 
 int vtkMesoAtomMapper::FillInputPortInformation(int port, vtkInformation* info)
 {
@@ -332,7 +342,8 @@ void vtkMesoAtomMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*)
   {
     atoms_per_cell = static_cast<std::size_t>(std::clamp<vtkIdType>(input_atoms / 1024, 256, 2048));
   }
-  if (!in.Data.Update(this->CurrentInput, this->WarpInput(), style, this, atoms_per_cell))
+  if (!in.Data.Update(this->CurrentInput, this->WarpInput(), style, this, atoms_per_cell,
+                      this->VisibilityArrayName))
   {
     this->VBOBuildTime.Modified();
     return;
@@ -341,8 +352,12 @@ void vtkMesoAtomMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*)
   const vtkMesoAtomGPUData& data = in.Data;
 
   const std::size_t position_values = 3 * static_cast<std::size_t>(data.AtomCount);
-  in.Positions->Upload(data.PositionData, position_values, vtkOpenGLBufferObject::ArrayBuffer);
-  in.LastUploadBytes += static_cast<vtkIdType>(sizeof(float) * position_values);
+  if (data.PositionsVersion != in.UploadedPositions)
+  {
+    in.Positions->Upload(data.PositionData, position_values, vtkOpenGLBufferObject::ArrayBuffer);
+    in.UploadedPositions = data.PositionsVersion;
+    in.LastUploadBytes += static_cast<vtkIdType>(sizeof(float) * position_values);
+  }
   if (data.TypesVersion != in.UploadedTypes)
   {
     in.Types->Upload(data.Types, vtkOpenGLBufferObject::ArrayBuffer);
@@ -817,6 +832,7 @@ void vtkMesoAtomMapper::ReleaseGraphicsResources(vtkWindow* window)
   in.Types->ReleaseGraphicsResources();
   in.Molecules->ReleaseGraphicsResources();
   in.UploadedTypes = 0;
+  in.UploadedPositions = 0;
   in.UploadedMolecules = 0;
   in.UploadedBonds = 0;
   in.Colors.Release(window);
@@ -843,5 +859,7 @@ void vtkMesoAtomMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BondRadius: " << this->BondRadius << "\n";
   os << indent << "OcclusionCulling: " << (this->OcclusionCulling ? "on" : "off") << "\n";
   os << indent << "AtomsPerCell: " << this->AtomsPerCell << "\n";
+  os << indent << "VisibilityArrayName: "
+     << (this->VisibilityArrayName ? this->VisibilityArrayName : "(none)") << "\n";
   os << indent << "Warp: " << (this->GetNumberOfInputConnections(1) ? "connected" : "none") << "\n";
 }

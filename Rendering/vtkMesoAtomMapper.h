@@ -67,6 +67,11 @@
  * origin (with any mapper, VTK's sphere mapper too): give ambient occlusion to the renderer at
  * the lower left, or to a renderer that fills the window.
  *
+ * Visibility mask: atoms whose point array VisibilityArrayName (default `Visible`, as
+ * vtkMesoStructuredCutaway writes it) is 0 are not drawn, nor their bonds, nor picked. A new mask
+ * uploads the 2 type bytes per atom again, not the positions (which go up only when the points
+ * change), so a cutaway slider stays cheap.
+ *
  * Picking (vtkHardwareSelector, cells): atom i is cell i (its vertex), bond j is the cell of
  * its line, as in the input; in warp mode these are the patch's ids (the tile is not reported).
  *
@@ -152,6 +157,16 @@ public:
   vtkGetMacro(AtomsPerCell, int);
   ///@}
 
+  ///@{
+  /// The point array whose zeros hide atoms (any numeric type, first component). Default
+  /// "Visible"; nullptr or "": no mask. An input without the array draws every atom.
+  vtkSetStringMacro(VisibilityArrayName);
+  vtkGetStringMacro(VisibilityArrayName);
+  ///@}
+
+  /// Atoms hidden by the visibility mask at the last buffer update.
+  vtkIdType GetHiddenAtomCount() const;
+
   /// Atoms drawn by the last render (times the tiles in warp mode): fewer than the input's when
   /// culling skipped cells.
   vtkIdType GetLastDrawnAtomCount() const;
@@ -198,6 +213,7 @@ protected:
   double BondRadius = 0.2;
   bool OcclusionCulling = true;
   int AtomsPerCell = 0;
+  char* VisibilityArrayName = nullptr;
 
 private:
   vtkMesoAtomMapper(const vtkMesoAtomMapper&) = delete;

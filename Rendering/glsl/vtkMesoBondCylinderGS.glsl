@@ -14,6 +14,7 @@ uniform mat4 VCDCMatrix;
 uniform float bondRadius;
 
 in vec4 atomColorVSOutput[];
+in float atomHiddenVSOutput[];
 
 out vec4 vertexVCGSOutput;
 flat out vec3 bondStartVCGSOutput;
@@ -31,7 +32,7 @@ void main()
   vec3 end = gl_in[1].gl_Position.xyz;
   vec3 axis = end - start;
   float length2 = dot(axis, axis);
-  if (length2 <= 0.0 || bondRadius <= 0.0)
+  if (length2 <= 0.0 || bondRadius <= 0.0 || atomHiddenVSOutput[0] + atomHiddenVSOutput[1] > 0.0)
   {
     return;
   }

@@ -12,6 +12,7 @@ uniform mat4 MCVCMatrix;
 uniform samplerBuffer atomColorTable;
 
 out vec4 atomColorVSOutput;
+out float atomHiddenVSOutput; // 1: hidden by a visibility mask (element 127)
 
 //MESO::Warp::Dec
 
@@ -24,6 +25,7 @@ out vec4 atomColorVSOutput;
 void main()
 {
   atomColorVSOutput = texelFetch(atomColorTable, int(atomType.y + 0.5));
+  atomHiddenVSOutput = atomType.x > 126.5 ? 1.0 : 0.0;
   vec4 vertexMC = vec4(atomPosition, 1.0);
 
   //MESO::Warp::Impl

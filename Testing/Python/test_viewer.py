@@ -132,9 +132,10 @@ class Viewer(unittest.TestCase):
 
 
 def drawn_atoms(lens):
-    """Atoms the atom mapper draws: its input's, times the tiles when it warps on the GPU."""
+    """Atoms the atom mapper draws: its input's less those its visibility mask hides, times the
+    tiles when it warps on the GPU."""
     lens.renderer.GetRenderWindow().Render()
-    count = lens.atoms.GetInput().GetNumberOfPoints()
+    count = lens.atoms.GetInput().GetNumberOfPoints() - lens.atoms.GetHiddenAtomCount()
     warped = lens.atoms.GetNumberOfInputConnections(1) > 0 and lens.atoms.GetInputConnection(1, 0)
     return count * lens.tiles * lens.tiles if warped else count
 
@@ -199,6 +200,9 @@ class Cutaway(unittest.TestCase):
         for fraction in (0.2, 0.9, 0.35, 1.0, 0.65):
             self.viewer.set_cut_fraction(fraction)
             self.assertEqual(self.lens.cut_counts()[0], round(fraction * in_cut))
+            # The mapper gets a new mask only: 2 type bytes per atom, no positions.
+            drawn_atoms(self.lens)
+            self.assertEqual(self.lens.atoms.GetLastUploadBytes(), 2 * self.all_atoms)
         self.viewer.set_cut_plane(self.lens.centre, [-v for v in self.lens.cut_normal])
         self.viewer.set_cut_plane(self.lens.centre, self.lens._outward(self.lens.centre))
         self.assertEqual(self.lens.cutaway.GetNumberOfAssignments(), 1)

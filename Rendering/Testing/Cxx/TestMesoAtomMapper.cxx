@@ -15,6 +15,7 @@
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkHardwareSelector.h>
+#include <vtkIdList.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkProperty.h>
@@ -509,12 +510,147 @@ TEST(MesoAtomMapper, FourteenBytesPerAtomAndOnlyPositionsForANewFrame)
   scene.Window->Render();
   EXPECT_EQ(scene.Mapper->GetLastUploadBytes(), 12 * n);
 
-  // Other elements: the types go up again too.
+  // Other elements: the types go up again, not the positions.
   vtkDataArray* numbers = atoms->GetPointData()->GetArray("AtomicNumber");
   numbers->SetComponent(0, 0, 26);
   numbers->Modified();
   scene.Window->Render();
-  EXPECT_EQ(scene.Mapper->GetLastUploadBytes(), 14 * n);
+  EXPECT_EQ(scene.Mapper->GetLastUploadBytes(), 2 * n);
+}
+
+namespace {
+/// The atoms whose mask is non-zero, and the bonds between them.
+vtkSmartPointer<vtkPolyData> visible_subset(vtkPolyData* atoms, const std::vector<bool>& visible)
+{
+  auto subset = vtkSmartPointer<vtkPolyData>::New();
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkUnsignedCharArray> numbers;
+  numbers->SetName("AtomicNumber");
+  vtkDataArray* source = atoms->GetPointData()->GetArray("AtomicNumber");
+  std::vector<vtkIdType> renumber(visible.size(), -1);
+  for (vtkIdType a = 0; a < atoms->GetNumberOfPoints(); ++a)
+  {
+    if (visible[std::size_t(a)])
+    {
+      renumber[std::size_t(a)] = points->InsertNextPoint(atoms->GetPoint(a));
+      numbers->InsertNextValue(static_cast<unsigned char>(source->GetTuple1(a)));
+    }
+  }
+  subset->SetPoints(points);
+  subset->GetPointData()->AddArray(numbers);
+  vtkMesoAtomTableConversion::SetAtomVertices(subset);
+  vtkNew<vtkCellArray> bonds;
+  vtkNew<vtkIdList> ends;
+  for (vtkIdType c = 0; atoms->GetLines() && c < atoms->GetLines()->GetNumberOfCells(); ++c)
+  {
+    atoms->GetLines()->GetCellAtId(c, ends);
+    const vtkIdType a = renumber[std::size_t(ends->GetId(0))];
+    const vtkIdType b = renumber[std::size_t(ends->GetId(1))];
+    if (a >= 0 && b >= 0)
+      bonds->InsertNextCell({ a, b });
+  }
+  subset->SetLines(bonds);
+  return subset;
+}
+
+/// A `Visible` array on `atoms` from a mask; returns it.
+vtkUnsignedCharArray* set_mask(vtkPolyData* atoms, const std::vector<bool>& visible)
+{
+  vtkNew<vtkUnsignedCharArray> mask;
+  mask->SetName("Visible");
+  for (bool v : visible)
+    mask->InsertNextValue(v ? 1 : 0);
+  atoms->GetPointData()->AddArray(mask);
+  return mask;
+}
+} // namespace
+
+TEST(MesoAtomMapper, VisibilityMaskHidesAtomsAndBondsWithoutNewPositions)
+{
+  auto reader = mesolens_test::crambin();
+  vtkNew<vtkPolyData> atoms;
+  atoms->DeepCopy(reader->GetOutput());
+  const vtkIdType n = atoms->GetNumberOfPoints();
+  std::vector<bool> visible(static_cast<std::size_t>(n));
+  vtkIdType hidden = 0;
+  for (vtkIdType a = 0; a < n; ++a)
+  {
+    visible[std::size_t(a)] = a % 3 != 0;
+    hidden += a % 3 == 0;
+  }
+  vtkUnsignedCharArray* mask = set_mask(atoms, visible);
+  // The masked atoms against the visible ones alone, in ball-and-stick (bonds to hidden atoms
+  // must go too).
+  Scene masked = make_scene(atoms, vtkMesoAtomMapper::BALL_AND_STICK);
+  auto subset = visible_subset(atoms, visible);
+  Scene alone = make_scene(subset, vtkMesoAtomMapper::BALL_AND_STICK);
+  for (Scene* scene : { &masked, &alone })
+    scene->Window->SetSize(160, 160);
+  mesolens_test::look_at(masked.Renderer, atoms, 45.0);
+  alone.Renderer->SetActiveCamera(masked.Renderer->GetActiveCamera());
+  masked.Window->Render();
+  alone.Window->Render();
+  EXPECT_EQ(masked.Mapper->GetHiddenAtomCount(), hidden);
+  EXPECT_LT(differing_pixels(capture(masked.Window), capture(alone.Window)), 5);
+  // Unmasked, the picture differs: the test can tell.
+  masked.Mapper->SetVisibilityArrayName(nullptr);
+  masked.Window->Render();
+  EXPECT_EQ(masked.Mapper->GetHiddenAtomCount(), 0);
+  EXPECT_GT(differing_pixels(capture(masked.Window), capture(alone.Window)), 500);
+  masked.Mapper->SetVisibilityArrayName("Visible");
+  masked.Window->Render();
+
+  // A new mask (a cutaway slider): the type bytes go up again, the positions do not.
+  for (vtkIdType a = 0; a < n; ++a)
+    mask->SetValue(a, a % 2);
+  mask->Modified();
+  masked.Window->Render();
+  EXPECT_EQ(masked.Mapper->GetLastUploadBytes(), 2 * n);
+  EXPECT_EQ(masked.Mapper->GetHiddenAtomCount(), n - n / 2);
+
+  // Hidden atoms cannot be picked.
+  vtkNew<vtkHardwareSelector> selector;
+  selector->SetRenderer(masked.Renderer);
+  selector->SetFieldAssociation(vtkDataObject::FIELD_ASSOCIATION_CELLS);
+  selector->SetArea(0, 0, 159, 159);
+  ASSERT_TRUE(selector->CaptureBuffers());
+  int picked_atoms = 0;
+  for (unsigned int y = 0; y < 160; y += 2)
+    for (unsigned int x = 0; x < 160; x += 2)
+    {
+      const unsigned int position[2] = { x, y };
+      unsigned int found[2];
+      const auto info = selector->GetPixelInformation(position, 0, found);
+      if (info.Valid && info.AttributeID < n)
+      {
+        ++picked_atoms;
+        EXPECT_EQ(info.AttributeID % 2, 1) << "a hidden atom was picked";
+      }
+    }
+  selector->ClearBuffers();
+  EXPECT_GT(picked_atoms, 100);
+}
+
+TEST(MesoAtomMapper, VisibilityMaskWithCulling)
+{
+  // Half a 27 000-atom block hidden (x below the middle), drawn in culling cells: the same
+  // picture as the visible half alone, from several sides.
+  auto block = carbon_block(30);
+  std::vector<bool> visible(27000);
+  for (vtkIdType a = 0; a < 27000; ++a)
+    visible[std::size_t(a)] = block->GetPoint(a)[0] > 21.0;
+  set_mask(block, visible);
+  CullingPair pair(block);
+  pair.Whole.Mapper->SetInputData(visible_subset(block, visible));
+  vtkCamera* camera = pair.Culled.Renderer->GetActiveCamera();
+  camera->Azimuth(-60);
+  for (int frame = 0; frame < 4; ++frame)
+  {
+    EXPECT_LT(pair.Render(), 5) << "frame " << frame;
+    EXPECT_EQ(pair.Culled.Mapper->GetHiddenAtomCount(),
+              27000 - pair.Whole.Mapper->GetInput()->GetNumberOfPoints());
+    camera->Azimuth(50);
+  }
 }
 
 TEST(MesoAtomMapper, BoundsIncludeTheRadii)

@@ -195,55 +195,6 @@ def _lattice(low, high, edge):
     return points, np.concatenate([first, second])
 
 
-class _VisibleAtoms(VTKPythonAlgorithmBase):
-    """The atoms of a cutaway's output whose `Visible` is 1, with their bonds (lines whose two
-    atoms are both visible), numeric point arrays and field data; string arrays (atom names)
-    are left out, vtkMesoAtomMapper reads none. Without `Visible`, the atoms as they are."""
-
-    def __init__(self):
-        super().__init__(nInputPorts=1, inputType="vtkPolyData", nOutputPorts=1,
-                         outputType="vtkPolyData")
-
-    def RequestData(self, _request, in_info, out_info):
-        atoms = vtkPolyData.GetData(in_info[0])
-        output = vtkPolyData.GetData(out_info)
-        visible = atoms.GetPointData().GetArray("Visible")
-        if visible is None or atoms.GetNumberOfPoints() == 0:
-            output.ShallowCopy(atoms)
-            return 1
-        output.Initialize()
-        keep = np.flatnonzero(vtk_to_numpy(visible))
-        renumber = np.full(atoms.GetNumberOfPoints(), -1, dtype=np.int64)
-        renumber[keep] = np.arange(len(keep))
-        output.SetPoints(_points(vtk_to_numpy(atoms.GetPoints().GetData())[keep]))
-        output.SetVerts(_cell_array(np.arange(len(keep) + 1), np.arange(len(keep))))
-        lines = atoms.GetLines()
-        if lines.GetNumberOfCells() > 0:
-            ends = vtk_to_numpy(lines.GetConnectivityArray())
-            if len(ends) == 2 * lines.GetNumberOfCells():  # bonds: two atoms per line
-                bonds = renumber[ends.reshape(-1, 2)]
-                bonds = bonds[(bonds >= 0).all(axis=1)]
-                output.SetLines(_cell_array(np.arange(0, 2 * len(bonds) + 1, 2), bonds.ravel()))
-        point_data = atoms.GetPointData()
-        for index in range(point_data.GetNumberOfArrays()):
-            array = point_data.GetArray(index)  # None for string arrays
-            if array is None:
-                continue
-            kept = numpy_to_vtk(np.ascontiguousarray(vtk_to_numpy(array)[keep]), deep=1,
-                                array_type=array.GetDataType())
-            kept.SetName(array.GetName())
-            output.GetPointData().AddArray(kept)
-        output.GetFieldData().ShallowCopy(atoms.GetFieldData())
-        return 1
-
-
-def drawn_atoms_port(cutaway, visible_atoms):
-    """Where vtkMesoAtomMapper reads a cutaway's atoms from: the visible ones, picked out by
-    `visible_atoms` (a _VisibleAtoms on the cutaway's output). The one place to change when the
-    mapper hides atoms by the `Visible` array itself: return cutaway.GetOutputPort() then."""
-    return visible_atoms.GetOutputPort()
-
-
 def write_png(window, path):
     """Writes what `window` (a vtkRenderWindow) shows to the PNG file `path`. Raises LensError
     when the folder does not exist or the file cannot be written."""
@@ -391,8 +342,6 @@ class MembraneLens:
         self._cut_side = vtkPlane()
         self.cutaway.SetCutFunction(self._cut_side)
         self._cutaway_errors = _ErrorCatcher(self.cutaway)
-        self._visible_atoms = _VisibleAtoms()
-        self._visible_atoms.SetInputConnection(self.cutaway.GetOutputPort())
         self.cutaway_on = False
         self.cut_origin = None
         self.cut_normal = None
@@ -505,10 +454,11 @@ class MembraneLens:
             self.atoms.SetWarpConnection(None)
 
     def _draw_cutaway(self):
-        """Runs the cutaway on the mapped atoms and gives the mapper what stays visible. Raises
+        """Runs the cutaway on the mapped atoms and gives them to the mapper, which hides the
+        atoms whose `Visible` is 0 (a new fraction uploads that mask, not the positions). Raises
         LensError with the cutaway's reason when it fails."""
-        port = drawn_atoms_port(self.cutaway, self._visible_atoms)
-        port.GetProducer().Update()
+        port = self.cutaway.GetOutputPort()
+        self.cutaway.Update()
         message = self._cutaway_errors.take()
         if message or self.cutaway.GetOutput().GetNumberOfPoints() == 0:
             raise LensError(f"the membrane cannot be cut open there: {message or 'no atoms'}")
@@ -601,7 +551,7 @@ class MembraneLens:
         nothing to show."""
         if not self.cutaway_on:
             return None
-        self._visible_atoms.Update()
+        self.cutaway.Update()
         self._cutaway_errors.take()  # place() reports failures; here only the numbers count
         fields = self.cutaway.GetOutput().GetFieldData()
         hidden = fields.GetArray("MoleculesHidden")
@@ -675,9 +625,12 @@ class MembraneLens:
     def atom_count(self):
         """Atoms drawn: the patch's atoms times the tiles, or those the cutaway leaves."""
         if self.cutaway_on and self.centre is not None:
-            self._visible_atoms.Update()
+            self.cutaway.Update()
             self._cutaway_errors.take()
-            return self._visible_atoms.GetOutputDataObject(0).GetNumberOfPoints()
+            visible = self.cutaway.GetOutput().GetPointData().GetArray("Visible")
+            if visible is None:
+                return 0
+            return int(np.count_nonzero(vtk_to_numpy(visible)))
         return self.membrane.GetOutput().GetNumberOfPoints() * self.tiles * self.tiles
 
     def look_at_patch(self, renderer=None, distance_factor=3.0, elevation=25.0):

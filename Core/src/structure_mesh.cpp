@@ -166,6 +166,13 @@ TriangleMesh structure_mesh(const std::vector<double>& points, const StructureMe
     throw TopologyError("the " + std::to_string(cloud.size()) +
                         " points describe no surface (no triangle could be reconstructed)");
   }
+  // The reconstruction gives the same triangles in an order (and orientation) that changes
+  // from run to run; sorted, every later step and so the mesh are the same each time.
+  for (auto& facet : facets)
+  {
+    std::sort(facet.begin(), facet.end());
+  }
+  std::sort(facets.begin(), facets.end());
   std::vector<std::vector<std::size_t>> polygons(facets.size());
   for (std::size_t f = 0; f < facets.size(); ++f)
   {

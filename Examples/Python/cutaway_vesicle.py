@@ -7,18 +7,18 @@ the thesis.
 The vesicle (3072 lipids, split by its periodic box and gathered whole by the filter) is cut
 by the plane through its centre facing the camera; the structure mesh is made from the lipids'
 centres. Top row: structured (what remains of the cut half, orange, follows the mesh's edges);
-bottom row: random. The beads are drawn by vtkMesoAtomMapper, the visible ones only; the
-untouched half behind is blue.
+bottom row: random. The beads are drawn by vtkMesoAtomMapper, which hides those the cutaway's
+`Visible` mask marks; the untouched half behind is blue.
 
-    cutaway_vesicle.py [--output cutaway_vesicle.png] [--size 240] [--vertices 100]
+    cutaway_vesicle.py [--output cutaway_vesicle.png] [--size 240] [--vertices 20]
+                       [--both-random]
 """
 import argparse
 import os
 
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkCommonCore import vtkPoints
-from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPlane, vtkPolyData
+from vtkmodules.vtkCommonDataModel import vtkPlane, vtkPolyData
 from vtkmodules.vtkCommonCore import vtkLookupTable
 from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkRenderWindow
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
@@ -31,23 +31,13 @@ DATA = os.environ.get("MESOLENS_DATA_DIR",
 BEAD_RADIUS = 2.35  # Å, a Martini bead
 
 
-def visible_beads(cut_output, in_cut):
-    """The visible atoms of the cutaway's output as vertices, with `InCut` (1: the cut half,
-    what the removal leaves of it; 0: the untouched half behind)."""
-    points = vtk_to_numpy(cut_output.GetPoints().GetData())
-    visible = vtk_to_numpy(cut_output.GetPointData().GetArray("Visible")) != 0
+def coloured_beads(cut_output, in_cut):
+    """The cutaway's output (all beads, with its `Visible` mask, which vtkMesoAtomMapper reads
+    and hides the zeros of) and an `InCut` array to colour by: 1 for the cut half (what the
+    removal leaves of it), 0 for the untouched half behind."""
     beads = vtkPolyData()
-    kept = vtkPoints()
-    kept.SetData(numpy_to_vtk(np.ascontiguousarray(points[visible], dtype=np.float32), deep=1))
-    beads.SetPoints(kept)
-    count = int(visible.sum())
-    vertices = vtkCellArray()
-    vertices.SetData(numpy_to_vtk(np.arange(count + 1, dtype=np.int64), deep=1, array_type=16),
-                     numpy_to_vtk(np.arange(count, dtype=np.int64), deep=1, array_type=16))
-    beads.SetVerts(vertices)
-    colour = numpy_to_vtk(np.ascontiguousarray(in_cut[visible], dtype=np.float32), deep=1)
-    colour.SetName("InCut")
-    beads.GetPointData().AddArray(colour)
+    beads.ShallowCopy(cut_output)
+    beads.GetPointData().AddArray(in_cut)
     return beads
 
 
@@ -56,7 +46,12 @@ def main():
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--output", default="cutaway_vesicle.png")
     parser.add_argument("--size", type=int, default=240, help="pixels per picture")
-    parser.add_argument("--vertices", type=int, default=100, help="structure mesh vertices")
+    parser.add_argument("--vertices", type=int, default=20,
+                        help="structure mesh vertices (20: triangles about 6 nm wide, several "
+                             "lipids across, on this 17 nm vesicle)")
+    parser.add_argument("--both-random", action="store_true",
+                        help="random removal in both rows (shows that the picture tells the "
+                             "modes apart)")
     args = parser.parse_args()
 
     vesicle = mesolens.vtkMesoTrajectoryReader()
@@ -67,7 +62,9 @@ def main():
     cutaway.Update()
     points = vtk_to_numpy(cutaway.GetOutput().GetPoints().GetData())
     centre = np.median(points, axis=0)
-    in_cut = (points[:, 2] >= centre[2]).astype(np.float32)
+    in_cut = numpy_to_vtk(np.ascontiguousarray(points[:, 2] >= centre[2], dtype=np.float32),
+                          deep=1)
+    in_cut.SetName("InCut")
     # The vesicle's extent (a few stray lipids lie far from it).
     low = np.percentile(points, 1, axis=0)
     high = np.percentile(points, 99, axis=0)
@@ -90,10 +87,10 @@ def main():
     keep = []
     for row, random_order in enumerate((False, True)):
         for column, fraction in enumerate(fractions):
-            cutaway.SetRandomOrder(random_order)
+            cutaway.SetRandomOrder(random_order or args.both_random)
             cutaway.SetFractionHidden(fraction)
             cutaway.Update()
-            beads = visible_beads(cutaway.GetOutput(), in_cut)
+            beads = coloured_beads(cutaway.GetOutput(), in_cut)
             mapper = mesolens.vtkMesoAtomMapper()
             mapper.SetInputData(beads)
             mapper.SetRadiusScale(BEAD_RADIUS)

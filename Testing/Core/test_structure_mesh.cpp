@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <thread>
 
 namespace {
 /// `count` points spread evenly over a sphere of `radius` (a Fibonacci lattice).
@@ -84,6 +85,18 @@ TEST(StructureMesh, ABilayerVesicleGivesOneMeshThroughItsMiddle)
   {
     const auto p = mesh.point(std::int64_t(i));
     EXPECT_NEAR(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]), 72.0 - 3.0, 2.5);
+  }
+  // The same mesh every time, on one thread or two.
+  const auto two_threads = [](std::size_t count, const mesolens::RangeKernel& kernel) {
+    std::thread other([&] { kernel(0, count / 2); });
+    kernel(count / 2, count);
+    other.join();
+  };
+  for (int again = 0; again < 3; ++again)
+  {
+    const auto same = mesolens::structure_mesh(points, { 200, 0 }, nullptr, two_threads);
+    EXPECT_EQ(same.points, mesh.points);
+    EXPECT_EQ(same.triangles, mesh.triangles);
   }
 }
 

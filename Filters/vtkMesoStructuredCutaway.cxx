@@ -280,7 +280,7 @@ struct vtkMesoStructuredCutaway::Internals
 
   // The removal order: kept while the cut, the order settings and the centres stay.
   mesolens::RemovalOrder Order;
-  std::tuple<double, bool, bool, int, Stamp, int, int> OrderFrom{};
+  std::tuple<double, bool, bool, bool, int, Stamp, int, int> OrderFrom{};
   bool HasOrder = false;
   int Orderings = 0;
 
@@ -464,6 +464,7 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
     settings.fraction_hidden = this->FractionHidden;
     settings.inverted = this->Inverted;
     settings.random = this->RandomOrder;
+    settings.probabilistic = this->ProbabilisticOrder;
     settings.seed = static_cast<std::uint64_t>(this->Seed);
     for (std::size_t t = 0; t < molecules.TypeNames.size(); ++t)
     {
@@ -474,8 +475,8 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
       }
     }
     const auto order_from =
-      std::make_tuple(this->K, this->Inverted, this->RandomOrder, this->Seed,
-                      Stamp::Of(this->CutFunction), in.CentresVersion, in.Assignments);
+      std::make_tuple(this->K, this->Inverted, this->RandomOrder, this->ProbabilisticOrder,
+                      this->Seed, Stamp::Of(this->CutFunction), in.CentresVersion, in.Assignments);
     if (!in.HasOrder || in.OrderFrom != order_from)
     {
       vtkImplicitFunction* cut = this->CutFunction;
@@ -582,6 +583,7 @@ void vtkMesoStructuredCutaway::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FractionHidden: " << this->FractionHidden << "\n";
   os << indent << "Inverted: " << this->Inverted << "\n";
   os << indent << "RandomOrder: " << this->RandomOrder << "\n";
+  os << indent << "ProbabilisticOrder: " << this->ProbabilisticOrder << "\n";
   os << indent << "Seed: " << this->Seed << "\n";
   os << indent << "StructureVertices: " << this->StructureVertices << "\n";
   os << indent << "StructureMidSurfaceRadius: " << this->StructureMidSurfaceRadius << "\n";

@@ -25,9 +25,10 @@
  * vtkImplicitBoolean union of them); a molecule is in the cut when the function is <= 0 at its
  * centre (inside a sphere or box; for a plane, the side its normal points away from). Of the
  * molecules in the cut, round(FractionHidden x count) are hidden, highest priority first
- * (lowest when Inverted; by a seeded random key alone with RandomOrder, the Visibility
- * Equalizer's removal), ties broken by the seeded key: the same settings give the same mask
- * every frame. Without a CutFunction nothing is hidden.
+ * (lowest when Inverted; with ProbabilisticOrder, in a seeded random order weighted by the
+ * priorities; by a seeded random key alone with RandomOrder, the Visibility Equalizer's
+ * removal), ties broken by the seeded key: the same settings give the same mask every frame.
+ * Without a CutFunction nothing is hidden.
  *
  * Molecule types: with a `ResidueName` point array, a molecule's type is the residue name of
  * its first atom (DPPC, CHOL, ...); the fraction applies per type (round(f x count) of each type
@@ -93,6 +94,16 @@ public:
   vtkSetMacro(Inverted, bool);
   vtkGetMacro(Inverted, bool);
   vtkBooleanMacro(Inverted, bool);
+  ///@}
+
+  ///@{
+  /// Use the priorities as probabilities (a seeded weighted random order, see
+  /// mesolens::CutawaySettings::probabilistic): K then blends from two classes (towards -1)
+  /// through 3x (0) to nearly random (towards 1). Off (default): the strict order by priority,
+  /// the crispest wireframe, the same for every K.
+  vtkSetMacro(ProbabilisticOrder, bool);
+  vtkGetMacro(ProbabilisticOrder, bool);
+  vtkBooleanMacro(ProbabilisticOrder, bool);
   ///@}
 
   ///@{
@@ -170,6 +181,7 @@ protected:
   double FractionHidden = 0.5;
   bool Inverted = false;
   bool RandomOrder = false;
+  bool ProbabilisticOrder = false;
   int Seed = 1;
   int StructureVertices = 500;
   double StructureMidSurfaceRadius = 0;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <string>
 
@@ -171,8 +172,9 @@ RemovalOrder StructuredCutaway::removal_order(
   const double* at = centres ? centres : this->Centres.data();
   const std::size_t count = this->molecule_count();
 
-  // Sort keys made once: the priority (negated to go first, unless inverted; none when
-  // random), then the seeded random key, then the index.
+  // Sort keys made once, smallest first: the priority negated (1 - priority when inverted;
+  // none when random; a weighted random key when probabilistic), then the seeded random key,
+  // then the index.
   struct Key
   {
     double priority;
@@ -192,9 +194,20 @@ RemovalOrder StructuredCutaway::removal_order(
   {
     if (inside_cut({ at[3 * m], at[3 * m + 1], at[3 * m + 2] }))
     {
-      const double p = settings.random ? 0.0 : settings.inverted ? priority[m] : -priority[m];
-      inside[this->Types[m]].push_back(
-        { p, random_key(settings.seed, m), static_cast<std::uint32_t>(m) });
+      const std::uint64_t random = random_key(settings.seed, m);
+      const double chance = settings.inverted ? 1.0 - priority[m] : priority[m];
+      double p = -chance;
+      if (settings.random)
+      {
+        p = 0.0;
+      }
+      else if (settings.probabilistic)
+      {
+        // -log(u) / w, smallest first, is u^(1 / w), largest first; w = 0 goes last.
+        const double u = (double(random >> 11) + 0.5) * 0x1.0p-53;
+        p = chance > 0 ? -std::log(u) / chance : std::numeric_limits<double>::infinity();
+      }
+      inside[this->Types[m]].push_back({ p, random, static_cast<std::uint32_t>(m) });
     }
   }
   RemovalOrder order;

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <numeric>
+#include <random>
 
 namespace {
 using mesolens::CutawaySettings;
@@ -226,6 +227,77 @@ TEST(StructuredCutaway, AKeptOrderGivesTheSameMasksForEveryFraction)
   mesolens::RemovalOrder other;
   other.molecule_count = 49;
   EXPECT_THROW(cutaway.visibility(other, CutawaySettings()), mesolens::InvalidInput);
+}
+
+TEST(StructuredCutaway, ProbabilisticOrderMakesKABlendOfStructuredAndRandom)
+{
+  // 40 molecules at random places on each triangle of the icosahedron.
+  const auto mesh = icosahedron();
+  std::mt19937 generator(5);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::vector<double> centres;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+    for (int i = 0; i < 40; ++i)
+    {
+      double a = uniform(generator);
+      double b = uniform(generator);
+      if (a + b > 1)
+      {
+        a = 1 - a;
+        b = 1 - b;
+      }
+      const double w[3] = { 1 - a - b, a, b };
+      for (int d = 0; d < 3; ++d)
+      {
+        double value = 0;
+        for (int k = 0; k < 3; ++k)
+          value += w[k] * mesh.point(mesh.triangles[3 * t + k])[d];
+        centres.push_back(1.02 * value);
+      }
+    }
+  const mesolens::StructuredCutaway cutaway(mesh, centres);
+  const auto& x = cutaway.minimal_barycentric();
+  // How far apart the hidden and the visible molecules' mean x are, at half hidden.
+  auto separation = [&](const CutawaySettings& settings) {
+    const auto visible = cutaway.visibility(everything(), settings);
+    EXPECT_EQ(hidden_count(visible), x.size() / 2);
+    double hidden_sum = 0, visible_sum = 0;
+    for (std::size_t m = 0; m < x.size(); ++m)
+      (visible[m] ? visible_sum : hidden_sum) += x[m];
+    return (hidden_sum - visible_sum) / double(x.size() / 2);
+  };
+  CutawaySettings settings;
+  settings.fraction_hidden = 0.5;
+  const double strict = separation(settings);
+  settings.k = 0.9;
+  EXPECT_EQ(separation(settings), strict); // the strict order ignores k
+  settings.probabilistic = true;
+  const double nearly_random = separation(settings);
+  settings.k = 0.0;
+  const double linear = separation(settings);
+  settings.k = -0.9;
+  const double two_classes = separation(settings);
+  settings.random = true;
+  const double random = separation(settings);
+  EXPECT_GT(strict, 0.12); // x lies in [0, 1/3]
+  EXPECT_LT(std::abs(random), 0.02);
+  EXPECT_LT(std::abs(nearly_random), 0.03);
+  EXPECT_GT(linear, nearly_random + 0.02);
+  EXPECT_GT(two_classes, linear);
+  EXPECT_LT(two_classes, strict);
+  // Inverted and probabilistic: edges first.
+  settings.random = false;
+  settings.inverted = true;
+  EXPECT_LT(separation(settings), -0.03);
+  // Molecules on an edge (probability 0) never go before those with a chance.
+  const auto edges = molecules_over(mesh);
+  const mesolens::StructuredCutaway over(mesh, edges);
+  settings = CutawaySettings();
+  settings.probabilistic = true;
+  settings.fraction_hidden = 0.4; // the 20 centre molecules of 50
+  const auto visible = over.visibility(everything(), settings);
+  for (std::size_t m = 0; m < 50; ++m)
+    EXPECT_EQ(visible[m], m < 20 ? 0 : 1);
 }
 
 TEST(StructuredCutaway, SeedsTypesAndLaterFrames)

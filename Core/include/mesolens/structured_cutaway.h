@@ -60,6 +60,13 @@ struct CutawaySettings
   bool inverted = false;
   /// The Visibility Equalizer's order: by a random key alone (for comparison).
   bool random = false;
+  /// The priorities as probabilities instead of a strict order: a weighted random order
+  /// (Efraimidis-Spirakis: key u^(1 / p) from the seeded uniform u), so a molecule of priority
+  /// p goes before one of priority q with odds p : q. k then matters: towards -1 the priorities
+  /// are nearly 0 or 1 (two classes, random within each), at 0 they are 3x, towards 1 all near
+  /// 1/2 (nearly random). In the strict order (false, default) k changes the priorities' values
+  /// but not their order, so every k gives the same mask.
+  bool probabilistic = false;
   /// Seed of the per-molecule random keys that break ties (and order the random mode): the same
   /// seed gives the same order, frame after frame.
   std::uint64_t seed = 1;

@@ -366,6 +366,32 @@ TEST(vtkMesoStructuredCutaway, MartiniVesicleCutOpenAndStableOverFrames)
   cutaway->SetInverted(false);
   cutaway->Update();
 
+  // K: no change to the strict order's mask; in the probabilistic order a new mask of the
+  // same size.
+  auto mask = [&]() {
+    vtkDataArray* visible = cutaway->GetOutput()->GetPointData()->GetArray("Visible");
+    std::vector<int> values(std::size_t(visible->GetNumberOfTuples()));
+    for (vtkIdType a = 0; a < visible->GetNumberOfTuples(); ++a)
+      values[std::size_t(a)] = int(visible->GetTuple1(a));
+    return values;
+  };
+  const auto strict = mask();
+  cutaway->SetK(-0.8);
+  cutaway->Update();
+  EXPECT_EQ(mask(), strict);
+  cutaway->ProbabilisticOrderOn();
+  cutaway->Update();
+  const auto sharp = mask();
+  EXPECT_NE(sharp, strict);
+  EXPECT_EQ(field("MoleculesHidden"), std::llround(0.5 * double(in_cut)));
+  cutaway->SetK(0.8);
+  cutaway->Update();
+  EXPECT_NE(mask(), sharp);
+  cutaway->ProbabilisticOrderOff();
+  cutaway->SetK(0);
+  cutaway->Update();
+  EXPECT_EQ(mask(), strict);
+
   // Over the next frames the order holds: of the molecules hidden in frame 0, nearly all stay
   // hidden, and the molecules are not assigned again.
   auto hidden_molecules = [&]() {

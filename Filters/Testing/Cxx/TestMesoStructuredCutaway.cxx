@@ -8,6 +8,7 @@
 #include <vtkCellArray.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
+#include <vtkInformation.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPlane.h>
@@ -16,6 +17,7 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSphere.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStringArray.h>
 
 #include <gtest/gtest.h>
@@ -404,13 +406,29 @@ TEST(vtkMesoStructuredCutaway, MartiniVesicleCutOpenAndStableOverFrames)
         hidden.insert((long long)ids->GetTuple1(a));
     return hidden;
   };
-  const std::set<long long> first = hidden_molecules();
-  cutaway->UpdateTimeStep(1000.0); // ps
-  const std::set<long long> later = hidden_molecules();
-  std::size_t kept = 0;
-  for (long long m : first)
-    kept += later.count(m);
-  EXPECT_GT(double(kept) / double(first.size()), 0.9);
+  // In every mode, over all 11 frames (0 to 1000 ps).
+  const double* times =
+    vesicle->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  const int frames =
+    vesicle->GetOutputInformation(0)->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  ASSERT_EQ(frames, 11);
+  for (int mode = 0; mode < 4; ++mode)
+  {
+    cutaway->SetInverted(mode == 1);
+    cutaway->SetRandomOrder(mode == 2);
+    cutaway->SetProbabilisticOrder(mode == 3);
+    cutaway->UpdateTimeStep(times[0]);
+    const std::set<long long> first = hidden_molecules();
+    for (int frame = 1; frame < frames; ++frame)
+    {
+      cutaway->UpdateTimeStep(times[frame]);
+      const std::set<long long> later = hidden_molecules();
+      std::size_t kept = 0;
+      for (long long m : first)
+        kept += later.count(m);
+      EXPECT_GT(double(kept) / double(first.size()), 0.9) << "mode " << mode << " frame " << frame;
+    }
+  }
   EXPECT_EQ(cutaway->GetNumberOfAssignments(), 1);
 }
 

@@ -16,6 +16,7 @@
 #include "mesolens/molecule_pbc.h"
 #include "mesolens/trajectory_file.h"
 #include "mesolens/structure_file.h"
+#include "mesolens_benchmark_timing.h"
 #include "mesolens_test_data.h"
 
 #include <CGAL/Polygon_mesh_processing/measure.h>
@@ -41,23 +42,8 @@
 #include <vector>
 
 namespace {
-double seconds_of(const std::function<void()>& work)
-{
-  const auto start = std::chrono::steady_clock::now();
-  work();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-double median_seconds(int repeats, const std::function<void()>& work)
-{
-  std::vector<double> times;
-  for (int r = 0; r < repeats; ++r)
-  {
-    times.push_back(seconds_of(work));
-  }
-  std::sort(times.begin(), times.end());
-  return times[times.size() / 2];
-}
+using mesolens_test::median_seconds;
+using mesolens_test::seconds_of;
 
 mesolens::TriangleMesh to_mesh(vtkPolyData* surface)
 {

@@ -16,6 +16,7 @@
 #include "mesolens/elements.h"
 #include "mesolens/structure_file.h"
 #include "mesolens/trajectory_file.h"
+#include "mesolens_benchmark_timing.h"
 #include "mesolens_test_data.h"
 
 #include <gromacs/fileio/confio.h>
@@ -44,28 +45,13 @@
 #include <vector>
 
 namespace {
-double seconds_of(const std::function<void()>& work)
-{
-  const auto start = std::chrono::steady_clock::now();
-  work();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
+using mesolens_test::median_seconds;
+using mesolens_test::seconds_of;
 
 double median(std::vector<double> values)
 {
   std::sort(values.begin(), values.end());
   return values[values.size() / 2];
-}
-
-/// Median wall time in seconds of `repeats` runs of `work`.
-double median_seconds(int repeats, const std::function<void()>& work)
-{
-  std::vector<double> times;
-  for (int r = 0; r < repeats; ++r)
-  {
-    times.push_back(seconds_of(work));
-  }
-  return median(times);
 }
 
 /// Medians of `repeats` runs of `a` and `b`, interleaved so both see the same machine load.

@@ -10,6 +10,7 @@
 // not counted); goals: preparation <= 0.5 s, slider <= 5 ms.
 //
 //   BenchmarkStructuredCutaway [--seeds N] [--repeats N]
+#include "mesolens_benchmark_timing.h"
 #include "mesolens_test_data.h"
 #include "vtkMesoMembraneMapping.h"
 #include "vtkMesoStructuredCutaway.h"
@@ -41,23 +42,8 @@
 #include <vector>
 
 namespace {
-double seconds_of(const std::function<void()>& work)
-{
-  const auto start = std::chrono::steady_clock::now();
-  work();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-double median_seconds(int repeats, const std::function<void()>& work)
-{
-  std::vector<double> times;
-  for (int r = 0; r < repeats; ++r)
-  {
-    times.push_back(seconds_of(work));
-  }
-  std::sort(times.begin(), times.end());
-  return times[times.size() / 2];
-}
+using mesolens_test::median_seconds;
+using mesolens_test::seconds_of;
 
 constexpr double vesicle_radius = 750.0; // Å: 150 nm across, an HIV envelope
 
@@ -140,7 +126,8 @@ int main(int argc, char* argv[])
   const double build = seconds_of([&] { vesicle = hiv_sized_vesicle(seeds); });
   vtkDataArray* ids = vesicle->GetPointData()->GetArray("MoleculeId");
   const long lipids = long(ids->GetRange()[1]) + 1;
-  std::printf("BENCH structured-cutaway input: vesicle of radius %.0f Å, %d mapped 3x3 tiles of the Martini DPPC/CHOL "
+  std::printf("BENCH structured-cutaway input: vesicle of radius %.0f Å, %d mapped 3x3 tiles of "
+              "the Martini DPPC/CHOL "
               "bilayer: %lld beads, up to %ld lipids (built in %.1f s); %d threads\n",
               vesicle_radius, seeds, static_cast<long long>(vesicle->GetNumberOfPoints()), lipids,
               build, vtkSMPTools::GetEstimatedNumberOfThreads());
@@ -166,7 +153,8 @@ int main(int argc, char* argv[])
       in_cut = long(cutaway->GetOutput()->GetFieldData()->GetArray("MoleculesInCut")->GetTuple1(0));
       min_angle = cutaway->GetOutput(1)->GetFieldData()->GetArray("MinAngle")->GetTuple1(0);
     });
-    std::printf("BENCH structured-cutaway preparation, %d structure vertices: %ld lipids (%ld in the cut), %.3f s "
+    std::printf("BENCH structured-cutaway preparation, %d structure vertices: %ld lipids (%ld in "
+                "the cut), %.3f s "
                 "(min angle %.1f°)",
                 vertices, molecules, in_cut, prepare, min_angle);
     if (vertices <= 150)
@@ -225,7 +213,8 @@ int main(int argc, char* argv[])
         settings.fraction_hidden > 0.8 ? 0.1 : settings.fraction_hidden + 0.05;
       (void)solver->visibility(order, settings);
     });
-    std::printf("BENCH structured-cutaway core, 150 vertices, %zu lipid centres (median spacing %.1f Å, in %.3f s): "
+    std::printf("BENCH structured-cutaway core, 150 vertices, %zu lipid centres (median spacing "
+                "%.1f Å, in %.3f s): "
                 "centres from atoms %.3f s; structure mesh %.3f s (%zu vertices); assignment "
                 "%.3f s; removal order %.1f ms; mask for a new fraction %.2f ms\n",
                 present.size() / 3, spacing, spacing_time, centring, mesh_time, mesh.vertex_count(),
@@ -253,7 +242,8 @@ int main(int argc, char* argv[])
       fraction = fraction > 0.85 ? 0.1 : fraction + 0.04;
       cutaway->Update();
     });
-    std::printf("BENCH structured-cutaway filter, 150 vertices: first update %.3f s; slider update (new fraction, mask of "
+    std::printf("BENCH structured-cutaway filter, 150 vertices: first update %.3f s; slider update "
+                "(new fraction, mask of "
                 "%lld atoms) %.2f ms, goal <= 5 ms, ratio to goal %.2f; orderings during the "
                 "slider %d; moving the cut plane (new order) %.1f ms; assignments %d\n",
                 first, static_cast<long long>(vesicle->GetNumberOfPoints()), 1e3 * slider,

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "mesolens/errors.h"
 #include "mesolens/structure_mesh.h"
+#include "mesolens_test_meshes.h"
 
 #include <gtest/gtest.h>
 
@@ -8,20 +9,9 @@
 #include <thread>
 
 namespace {
-/// `count` points spread evenly over a sphere of `radius` (a Fibonacci lattice).
 std::vector<double> sphere_points(int count, double radius)
 {
-  std::vector<double> points;
-  const double golden = 3.14159265358979 * (3 - std::sqrt(5.0));
-  for (int i = 0; i < count; ++i)
-  {
-    const double z = 1 - 2 * (i + 0.5) / count;
-    const double r = std::sqrt(1 - z * z);
-    points.insert(
-      points.end(),
-      { radius * r * std::cos(golden * i), radius * r * std::sin(golden * i), radius * z });
-  }
-  return points;
+  return mesolens_test::fibonacci_sphere(count, radius);
 }
 } // namespace
 

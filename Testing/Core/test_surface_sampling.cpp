@@ -1,24 +1,18 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "mesolens/errors.h"
 #include "mesolens/surface_sampling.h"
+#include "mesolens_test_meshes.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 namespace {
-/// `count` points spread evenly over a sphere of `radius` (a Fibonacci lattice), appended.
+/// `count` points spread evenly over a sphere of `radius`, appended to `points`.
 void add_sphere(std::vector<double>& points, int count, double radius)
 {
-  const double golden = 3.14159265358979 * (3 - std::sqrt(5.0));
-  for (int i = 0; i < count; ++i)
-  {
-    const double z = 1 - 2 * (i + 0.5) / count;
-    const double r = std::sqrt(1 - z * z);
-    points.insert(
-      points.end(),
-      { radius * r * std::cos(golden * i), radius * r * std::sin(golden * i), radius * z });
-  }
+  const auto sphere = mesolens_test::fibonacci_sphere(count, radius);
+  points.insert(points.end(), sphere.begin(), sphere.end());
 }
 
 double distance(const double* a, const double* b)

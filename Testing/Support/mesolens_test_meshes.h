@@ -11,8 +11,26 @@
 #include <map>
 #include <random>
 #include <utility>
+#include <vector>
 
 namespace mesolens_test {
+
+/// `count` points spread evenly over a sphere of `radius` around the origin (a Fibonacci
+/// lattice), 3 coordinates each.
+inline std::vector<double> fibonacci_sphere(int count, double radius)
+{
+  std::vector<double> points;
+  const double golden = 3.14159265358979 * (3 - std::sqrt(5.0));
+  for (int i = 0; i < count; ++i)
+  {
+    const double z = 1 - 2 * (i + 0.5) / count;
+    const double r = std::sqrt(1 - z * z);
+    points.insert(
+      points.end(),
+      { radius * r * std::cos(golden * i), radius * r * std::sin(golden * i), radius * z });
+  }
+  return points;
+}
 
 /// Icosahedron subdivided `levels` times (midpoints pushed to the sphere): 20 * 4^levels
 /// triangles on a sphere of `radius` around the origin, oriented outwards.

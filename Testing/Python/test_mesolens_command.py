@@ -109,6 +109,24 @@ class MesolensCommand(unittest.TestCase):
         self.assertIn("view needs a display", errors)
         self.assertNotIn("Traceback", errors)
 
+    def test_cut_open(self):
+        atoms = {}
+        for cut in ([], ["--cut", "0.5"], ["--cut", "0.5", "--cut-order", "random"],
+                    ["--cut", "1", "--cut-order", "inverted"]):
+            arguments = [a for a in self.render("--vertex", "1000", "--tiles", "2", *cut)
+                         if a != "--quiet"]
+            status, errors = run(*arguments)
+            self.assertEqual(status, 0, errors)
+            self.assertGreater(os.path.getsize(self.output), 100)
+            os.remove(self.output)
+            atoms[" ".join(cut)] = int(errors.split("wrote ")[1].split(": ")[1].split(" atoms")[0])
+        whole = atoms[""]
+        self.assertLess(atoms["--cut 0.5"], whole)
+        self.assertGreater(atoms["--cut 0.5"], whole // 2)
+        self.assertLess(abs(atoms["--cut 0.5 --cut-order random"] - atoms["--cut 0.5"]), whole // 50)
+        self.assertLess(atoms["--cut 1 --cut-order inverted"], atoms["--cut 0.5"])
+        self.refused(1, "--cut must be between 0 and 1", *self.render("--vertex", "1000", "--cut", "2"))
+
     def test_centre_off_the_surface_gives_the_mapping_reason(self):
         self.refused(1, "the membrane cannot be mapped there:", *self.render("--center", "50,50,50"))
 

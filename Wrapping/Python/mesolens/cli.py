@@ -4,7 +4,7 @@
     mesolens render --mesh CELL --membrane PATCH [--trajectory XTC] (--center X,Y,Z | --vertex I)
                     [--tiles K] [--method polynomial|instancing|displacement]
                     [--style space-filling|ball-and-stick] [--ssao] [--size WxH]
-                    [--camera FILE] [--frames N] -o OUT.png
+                    [--camera FILE] [--frames N] [--cut FRACTION [--cut-order ORDER]] -o OUT.png
     mesolens view --mesh CELL --membrane PATCH [--trajectory XTC] [--center X,Y,Z | --vertex I]
     mesolens demo [-o mesolens-demo.png] [--size WxH] [--no-window]
 
@@ -12,7 +12,10 @@
 there; keys change the tiles, the method, the style, SSAO, play the trajectory, take screenshots,
 and cut the membrane open (o: a structured cutaway under a plane widget and a slider).
 ``render`` draws offscreen (no window; under Xvfb without a display). With --frames N and a
-trajectory it writes OUT_0000.png ... for N time steps. --camera reads a camera saved as
+trajectory it writes OUT_0000.png ... for N time steps. --cut F cuts the mapped membrane open
+as the viewer's o key does (the plane through the centre facing outward) and hides the share F
+of the molecules in the cut, in structured (a wireframe remains), inverted (patches remain) or
+random order (--cut-order). --camera reads a camera saved as
 "position x y z", "focal x y z", "up x y z", "angle degrees" lines; without it the camera looks
 at the patch from outside the surface. ``demo`` renders the embedded data (the outer membrane of
 a mitochondrion from electron tomography and the all-atom DPPC patch) the same way, the whole
@@ -96,6 +99,9 @@ def _lens(args):
     lens.set_tiles(args.tiles)
     lens.set_method(args.method)
     lens.set_style(args.style)
+    cut = getattr(args, "cut", None)
+    if cut is not None and not 0.0 <= cut <= 1.0:
+        raise LensError(f"--cut must be between 0 and 1, not {cut}")
     if args.vertex is not None:
         points = lens.surface.GetOutput().GetNumberOfPoints()
         if not 0 <= args.vertex < points:
@@ -103,6 +109,11 @@ def _lens(args):
         lens.place(lens.surface.GetOutput().GetPoint(args.vertex))
     elif args.center is not None:
         lens.place(args.center)
+    if cut is not None:
+        lens.set_cutaway(True)
+        lens.set_cut_fraction(cut)
+        lens.set_cut_inverted(args.cut_order == "inverted")
+        lens.set_cut_random(args.cut_order == "random")
     return lens
 
 
@@ -182,6 +193,11 @@ def _parser():
     render_command.add_argument("--camera", help="camera file (position/focal/up/angle lines)")
     render_command.add_argument("--frames", type=int, default=0,
                                 help="write this many time steps as OUT_0000.png ...")
+    render_command.add_argument("--cut", type=float, metavar="FRACTION",
+                                help="cut the membrane open and hide this share (0..1) of the "
+                                     "molecules in the cut")
+    render_command.add_argument("--cut-order", choices=("structured", "inverted", "random"),
+                                default="structured", help="which molecules go first (structured)")
     render_command.add_argument("-o", "--output", required=True, help="PNG file")
     common(render_command, "close")
 

@@ -14,7 +14,7 @@ namespace mesolens {
 /// Secondary-structure class of a residue, stored per atom. The values are stable: they are
 /// written to the `SecondaryStructure` point array. PDB HELIX classes map to the helix kinds
 /// (class 1 -> AlphaHelix, 3 -> PiHelix, 5 -> Helix310, others -> OtherHelix); SHEET strands
-/// map to Strand. Turn, Bend and Bridge are reserved for DSSP.
+/// map to Strand. Turn, Bend, Bridge and Polyproline come from DSSP (mesolens/dssp.h).
 enum class SecondaryStructure : std::uint8_t
 {
   Coil = 0,
@@ -26,6 +26,7 @@ enum class SecondaryStructure : std::uint8_t
   Bend = 6,
   Bridge = 7,
   OtherHelix = 8,
+  Polyproline = 9, ///< a polyproline II (kappa) helix
 };
 
 /// A bond between two atoms of one AtomTable (indices, first < second).

@@ -19,6 +19,8 @@
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnsignedShortArray.h>
 
+#include <type_traits>
+
 namespace vtkMesoAtomTableConversion {
 
 namespace {
@@ -132,6 +134,69 @@ void ToPolyData(const mesolens::AtomTable& table, double length_scale, vtkPolyDa
   add_array<vtkIntArray>(data, "MoleculeId", table.molecule_ids);
   data->SetActiveScalars("AtomicNumber");
   SetPeriodicBox(table.box, length_scale, output);
+}
+
+bool FromPolyData(vtkPolyData* atoms, double length_scale, mesolens::AtomTable& table,
+                  std::string* missing)
+{
+  table = mesolens::AtomTable();
+  vtkPointData* data = atoms ? atoms->GetPointData() : nullptr;
+  auto* names = data ? vtkStringArray::SafeDownCast(data->GetAbstractArray("AtomName")) : nullptr;
+  vtkDataArray* residues = data ? data->GetArray("ResidueIndex") : nullptr;
+  if (!names || !residues)
+  {
+    if (missing)
+    {
+      *missing = !names ? "AtomName" : "ResidueIndex";
+    }
+    return false;
+  }
+  const vtkIdType n = atoms->GetNumberOfPoints();
+  const std::size_t count = static_cast<std::size_t>(n);
+  table.positions.resize(3 * count);
+  for (vtkIdType i = 0; i < n; ++i)
+  {
+    double p[3];
+    atoms->GetPoint(i, p);
+    for (int d = 0; d < 3; ++d)
+    {
+      table.positions[std::size_t(3 * i + d)] = static_cast<float>(p[d] / length_scale);
+    }
+  }
+  auto strings = [&](const char* name, std::vector<std::string>& values) {
+    auto* array = vtkStringArray::SafeDownCast(data->GetAbstractArray(name));
+    values.assign(count, std::string());
+    for (vtkIdType i = 0; array && i < n && i < array->GetNumberOfValues(); ++i)
+    {
+      values[std::size_t(i)] = array->GetValue(i);
+    }
+  };
+  auto numbers = [&](const char* name, auto& values, auto fallback) {
+    vtkDataArray* array = data->GetArray(name);
+    values.assign(count, fallback);
+    for (vtkIdType i = 0; array && i < n && i < array->GetNumberOfTuples(); ++i)
+    {
+      values[std::size_t(i)] =
+        static_cast<std::decay_t<decltype(fallback)>>(array->GetComponent(i, 0));
+    }
+  };
+  strings("AtomName", table.atom_names);
+  strings("ResidueName", table.residue_names);
+  strings("ChainId", table.chain_ids);
+  std::vector<std::string> alternates;
+  strings("AltLoc", alternates);
+  table.alt_locs.assign(count, ' ');
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    table.alt_locs[i] = alternates[i].empty() ? ' ' : alternates[i][0];
+  }
+  numbers("ResidueIndex", table.residue_indices, 0);
+  numbers("MoleculeId", table.molecule_ids, 0);
+  numbers("ResidueNumber", table.residue_numbers, 0);
+  numbers("Occupancy", table.occupancies, 1.0f);
+  numbers("AtomicNumber", table.atomic_numbers, std::uint8_t(0));
+  numbers("SecondaryStructure", table.secondary_structure, std::uint8_t(0));
+  return true;
 }
 
 void SetPositions(const std::vector<float>& positions, const std::vector<std::size_t>& kept,

@@ -20,6 +20,14 @@ namespace vtkMesoAtomTableConversion {
 /// documented in vtkMesoStructureReader.h. Positions are multiplied by `length_scale`.
 void ToPolyData(const mesolens::AtomTable& table, double length_scale, vtkPolyData* output);
 
+/// The atoms of a polydata laid out as ToPolyData makes them, back as an AtomTable: positions
+/// (Å, divided by `length_scale`) and whichever of the named arrays are present (names,
+/// residues, chains, alternates, occupancies, secondary structure, residue indices, molecule
+/// ids); bonds are not read. Returns false, naming what is missing in `missing`, without
+/// `AtomName` or `ResidueIndex`.
+bool FromPolyData(vtkPolyData* atoms, double length_scale, mesolens::AtomTable& table,
+                  std::string* missing = nullptr);
+
 /// Replaces the points of an output built by ToPolyData with `positions` (3 floats per atom,
 /// Å) times `length_scale`, picking atoms `kept` (all atoms when empty).
 void SetPositions(const std::vector<float>& positions, const std::vector<std::size_t>& kept,

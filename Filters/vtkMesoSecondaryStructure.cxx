@@ -1,0 +1,222 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoSecondaryStructure.h"
+
+#include "vtkMesoAtomTableConversion.h"
+#include "vtkMesoParallelFor.h"
+
+#include "mesolens/dssp.h"
+#include "mesolens/errors.h"
+
+#include <vtkDataArray.h>
+#include <vtkDataObject.h>
+#include <vtkFieldData.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+#include <vtkStringArray.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <cmath>
+#include <optional>
+#include <vector>
+
+vtkStandardNewMacro(vtkMesoSecondaryStructure);
+
+struct vtkMesoSecondaryStructure::Internals
+{
+  std::optional<mesolens::SecondaryStructureHysteresis> Hysteresis;
+  vtkMTimeType SettingsTime = 0;
+  double LastTime = -HUGE_VAL;
+  std::vector<mesolens::SecondaryStructure> LastShown;
+};
+
+vtkMesoSecondaryStructure::vtkMesoSecondaryStructure()
+  : Internal(std::make_unique<Internals>())
+{
+}
+
+vtkMesoSecondaryStructure::~vtkMesoSecondaryStructure() = default;
+
+namespace {
+/// Whether any atom has a class other than coil.
+bool has_records(const mesolens::AtomTable& table)
+{
+  for (std::uint8_t value : table.secondary_structure)
+  {
+    if (value != 0)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+/// Per residue, the index of its run of one class (helix, strand, bridge, polyproline) along
+/// its chain, -1 for coil, turn and bend.
+std::vector<int> run_ids(const std::vector<mesolens::SecondaryStructure>& classes,
+                         const std::vector<mesolens::BackboneResidue>& residues)
+{
+  using mesolens::SecondaryStructure;
+  std::vector<int> ids(classes.size(), -1);
+  int next = 0;
+  for (std::size_t r = 0; r < classes.size(); ++r)
+  {
+    const SecondaryStructure s = classes[r];
+    if (s == SecondaryStructure::Coil || s == SecondaryStructure::Turn ||
+        s == SecondaryStructure::Bend)
+    {
+      continue;
+    }
+    const bool continues =
+      r > 0 && classes[r - 1] == s && residues[r - 1].chain == residues[r].chain;
+    ids[r] = continues ? ids[r - 1] : next++;
+  }
+  return ids;
+}
+} // namespace
+
+int vtkMesoSecondaryStructure::RequestData(vtkInformation*, vtkInformationVector** inputVector,
+                                           vtkInformationVector* outputVector)
+{
+  vtkPolyData* atoms = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  output->Initialize();
+  if (!atoms || atoms->GetNumberOfPoints() == 0)
+  {
+    vtkErrorMacro("No atoms to assign a secondary structure to.");
+    return 0;
+  }
+  mesolens::AtomTable table;
+  std::string missing;
+  if (!vtkMesoAtomTableConversion::FromPolyData(atoms, 1.0, table, &missing))
+  {
+    vtkErrorMacro("The atoms have no `" << missing
+                                        << "` point array: read them with a MesoLens reader.");
+    return 0;
+  }
+  try
+  {
+    const vtkIdType n = atoms->GetNumberOfPoints();
+    output->ShallowCopy(atoms);
+    if (this->KeepFileRecords && has_records(table))
+    {
+      return 1; // the file's classes as they are
+    }
+    const mesolens::ProteinBackbone backbone = mesolens::protein_backbone(table);
+    mesolens::DsspSettings settings;
+    settings.pi_helix_priority = this->PiHelixPriority;
+    settings.polyproline_stretch = this->PolyprolineStretch;
+    settings.bulges = this->Bulges;
+    settings.file_hydrogens = this->UseFileHydrogens;
+    const mesolens::DsspResult result =
+      mesolens::assign_secondary_structure(backbone.residues, settings, vtkMesoParallelFor::Get());
+
+    // A played trajectory: the hysteresis over successive time steps.
+    std::vector<mesolens::SecondaryStructure> classes = result.structure;
+    Internals& in = *this->Internal;
+    const double time = atoms->GetInformation()->Has(vtkDataObject::DATA_TIME_STEP())
+      ? atoms->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP())
+      : 0.0;
+    if (this->HysteresisFrames > 1)
+    {
+      // New settings or a jump back in time start over.
+      if (!in.Hysteresis || in.SettingsTime != this->GetMTime() || time < in.LastTime)
+      {
+        in.LastShown.clear();
+        in.Hysteresis.emplace(this->HysteresisFrames);
+        in.SettingsTime = this->GetMTime();
+      }
+      // The same frame again (a setting changed) is no new frame: it shows what it showed.
+      if (time != in.LastTime || in.LastShown.size() != result.structure.size())
+      {
+        in.LastShown = in.Hysteresis->update(result.structure);
+      }
+      classes = in.LastShown;
+    }
+    else
+    {
+      in.Hysteresis.reset();
+    }
+    in.LastTime = time;
+
+    // Per atom: its residue's class and run.
+    const std::vector<int> runs = run_ids(classes, backbone.residues);
+    std::vector<int> residue_slot; // table residue index -> backbone residue, -1: none
+    for (std::size_t r = 0; r < backbone.residue_index.size(); ++r)
+    {
+      const auto index = static_cast<std::size_t>(std::max(0, backbone.residue_index[r]));
+      if (index >= residue_slot.size())
+      {
+        residue_slot.resize(index + 1, -1);
+      }
+      residue_slot[index] = static_cast<int>(r);
+    }
+    vtkNew<vtkUnsignedCharArray> per_atom;
+    per_atom->SetName("SecondaryStructure");
+    per_atom->SetNumberOfValues(n);
+    vtkNew<vtkIntArray> per_atom_run;
+    per_atom_run->SetName("SecondaryStructureId");
+    per_atom_run->SetNumberOfValues(n);
+    for (vtkIdType a = 0; a < n; ++a)
+    {
+      const int residue = table.residue_indices[std::size_t(a)];
+      const int slot = residue >= 0 && std::size_t(residue) < residue_slot.size()
+        ? residue_slot[std::size_t(residue)]
+        : -1;
+      per_atom->SetValue(a, slot >= 0 ? static_cast<unsigned char>(classes[std::size_t(slot)]) : 0);
+      per_atom_run->SetValue(a, slot >= 0 ? runs[std::size_t(slot)] : -1);
+    }
+    output->GetPointData()->AddArray(per_atom);
+    output->GetPointData()->AddArray(per_atom_run);
+
+    // Per residue and per chain, in field data.
+    vtkNew<vtkUnsignedCharArray> per_residue;
+    per_residue->SetName("ResidueSecondaryStructure");
+    vtkNew<vtkIntArray> residue_indices;
+    residue_indices->SetName("ResidueIndexOfAssignment");
+    vtkNew<vtkStringArray> chains;
+    chains->SetName("DSSP");
+    std::string letters;
+    for (std::size_t r = 0; r < classes.size(); ++r)
+    {
+      per_residue->InsertNextValue(static_cast<unsigned char>(classes[r]));
+      residue_indices->InsertNextValue(backbone.residue_index[r]);
+      if (r > 0 && backbone.residues[r].chain != backbone.residues[r - 1].chain)
+      {
+        chains->InsertNextValue(letters);
+        letters.clear();
+      }
+      letters += mesolens::dssp_string({ classes[r] });
+    }
+    if (!letters.empty())
+    {
+      chains->InsertNextValue(letters);
+    }
+    output->GetFieldData()->AddArray(per_residue);
+    output->GetFieldData()->AddArray(residue_indices);
+    output->GetFieldData()->AddArray(chains);
+    vtkMesoAtomTableConversion::SetFieldValue(output, "HydrogenBonds",
+                                              double(result.hydrogen_bonds));
+  }
+  catch (const mesolens::Error& error)
+  {
+    output->Initialize();
+    vtkErrorMacro("Cannot assign the secondary structure: " << error.what());
+    return 0;
+  }
+  return 1;
+}
+
+void vtkMesoSecondaryStructure::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "KeepFileRecords: " << this->KeepFileRecords << "\n";
+  os << indent << "PiHelixPriority: " << this->PiHelixPriority << "\n";
+  os << indent << "PolyprolineStretch: " << this->PolyprolineStretch << "\n";
+  os << indent << "Bulges: " << this->Bulges << "\n";
+  os << indent << "UseFileHydrogens: " << this->UseFileHydrogens << "\n";
+  os << indent << "HysteresisFrames: " << this->HysteresisFrames << "\n";
+}

@@ -335,10 +335,39 @@ private:
   void Sheets(std::vector<SecondaryStructure>& ss) const
   {
     const std::size_t n = this->Used.size();
-    std::vector<Ladder> ladders;
-    for (std::size_t i = 1; i + 4 < n; ++i)
+    // A bridge (i, j) needs an H-bond between i - 1..i + 1 and j - 1..j + 1: only the pairs
+    // near a bond are tested (DSSP tests them all, O(n^2)), in DSSP's order (i, then j).
+    std::vector<std::pair<std::size_t, std::size_t>> candidates;
+    for (std::size_t donor = 0; donor < n; ++donor)
     {
-      for (std::size_t j = i + 3; j + 1 < n; ++j)
+      for (int k = 0; k < 2; ++k)
+      {
+        const std::int64_t acceptor = this->Acceptors[donor].partner[k];
+        if (acceptor < 0 || this->Acceptors[donor].energy[k] >= bond_energy)
+        {
+          continue;
+        }
+        for (int da = -1; da <= 1; ++da)
+        {
+          for (int db = -1; db <= 1; ++db)
+          {
+            const std::int64_t a = std::int64_t(donor) + da;
+            const std::int64_t b = acceptor + db;
+            const std::int64_t i = std::min(a, b);
+            const std::int64_t j = std::max(a, b);
+            if (i >= 1 && i + 4 < std::int64_t(n) && j >= i + 3 && j + 1 < std::int64_t(n))
+            {
+              candidates.emplace_back(std::size_t(i), std::size_t(j));
+            }
+          }
+        }
+      }
+    }
+    std::sort(candidates.begin(), candidates.end());
+    candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    std::vector<Ladder> ladders;
+    for (const auto& [i, j] : candidates)
+    {
       {
         const Bridge type = this->TestBridge(i, j);
         if (type == Bridge::None)

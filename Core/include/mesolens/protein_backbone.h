@@ -6,6 +6,7 @@
 #include "mesolens/atom_table.h"
 
 #include <array>
+#include <cstdint>
 #include <vector>
 
 namespace mesolens {
@@ -34,6 +35,8 @@ struct ProteinBackbone
   std::vector<BackboneResidue> residues;
   /// Per backbone residue, the table's residue index (AtomTable::residue_indices).
   std::vector<int> residue_index;
+  /// Per backbone residue, the table row of its CA atom (-1 when it has none).
+  std::vector<std::int64_t> ca_atom;
 };
 
 /// The amino-acid residues of `atoms` (standard and modified amino acids by name, or any

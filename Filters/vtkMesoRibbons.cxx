@@ -1,0 +1,307 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoRibbons.h"
+
+#include "vtkMesoAtomTableConversion.h"
+#include "vtkMesoParallelFor.h"
+
+#include "mesolens/dssp.h"
+#include "mesolens/errors.h"
+#include "mesolens/molecule_assignment.h"
+#include "mesolens/protein_backbone.h"
+#include "mesolens/ribbon_geometry.h"
+
+#include <vtkCellArray.h>
+#include <vtkDataArray.h>
+#include <vtkDoubleArray.h>
+#include <vtkFieldData.h>
+#include <vtkFloatArray.h>
+#include <vtkIdList.h>
+#include <vtkIdTypeArray.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkIntArray.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <algorithm>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkMesoRibbons);
+vtkCxxSetObjectMacro(vtkMesoRibbons, SegmentSubdivisions, vtkIntArray);
+
+vtkMesoRibbons::vtkMesoRibbons() = default;
+
+vtkMesoRibbons::~vtkMesoRibbons()
+{
+  this->SetSegmentSubdivisions(nullptr);
+}
+
+vtkMTimeType vtkMesoRibbons::GetMTime()
+{
+  vtkMTimeType time = this->Superclass::GetMTime();
+  if (this->SegmentSubdivisions)
+  {
+    time = std::max(time, this->SegmentSubdivisions->GetMTime());
+  }
+  return time;
+}
+
+namespace {
+/// The traced residues of a table in table order: amino acids through CA (oriented by O),
+/// nucleotides through P. `atom` gets each one's trace atom row, `residue` its residue index.
+std::vector<mesolens::RibbonResidue> traced_residues(const mesolens::AtomTable& table,
+                                                     std::vector<std::int64_t>& atom,
+                                                     std::vector<int>& residue)
+{
+  const mesolens::ProteinBackbone backbone = mesolens::protein_backbone(table);
+  std::map<int, std::size_t> amino_acid_of_residue;
+  for (std::size_t r = 0; r < backbone.residue_index.size(); ++r)
+  {
+    amino_acid_of_residue[backbone.residue_index[r]] = r;
+  }
+  std::vector<mesolens::RibbonResidue> traced;
+  // Chains as the backbone tells them apart (chain id or molecule changes), nucleotides too.
+  std::int64_t chain = -1;
+  std::string previous_chain;
+  int previous_molecule = std::numeric_limits<int>::min();
+  const std::size_t count = table.atom_names.size();
+  std::size_t begin = 0;
+  while (begin < count)
+  {
+    std::size_t end = begin + 1;
+    while (end < count && table.residue_indices[end] == table.residue_indices[begin])
+    {
+      ++end;
+    }
+    const int index = table.residue_indices[begin];
+    const auto amino_acid = amino_acid_of_residue.find(index);
+    std::int64_t trace = -1;
+    mesolens::RibbonResidue residue_out;
+    if (amino_acid != amino_acid_of_residue.end() && backbone.ca_atom[amino_acid->second] >= 0)
+    {
+      const mesolens::BackboneResidue& b = backbone.residues[amino_acid->second];
+      trace = backbone.ca_atom[amino_acid->second];
+      if (b.has_o)
+      {
+        residue_out.carbonyl_oxygen = b.o;
+      }
+    }
+    else if (mesolens::is_nucleotide_residue(table.residue_names[begin]))
+    {
+      for (std::size_t a = begin; a < end && trace < 0; ++a)
+      {
+        if (table.atom_names[a] == "P")
+        {
+          trace = std::int64_t(a);
+        }
+      }
+      residue_out.nucleotide = true;
+    }
+    if (trace >= 0)
+    {
+      const std::size_t t = std::size_t(trace);
+      const std::string& chain_id = table.chain_ids[t];
+      const int molecule = table.molecule_ids[t];
+      if (chain < 0 || chain_id != previous_chain || molecule != previous_molecule)
+      {
+        ++chain;
+      }
+      previous_chain = chain_id;
+      previous_molecule = molecule;
+      residue_out.trace = { table.positions[3 * t], table.positions[3 * t + 1],
+                            table.positions[3 * t + 2] };
+      residue_out.secondary_structure = mesolens::dssp_letter(
+        static_cast<mesolens::SecondaryStructure>(table.secondary_structure[t]));
+      residue_out.chain = chain;
+      residue_out.id = std::int64_t(traced.size());
+      traced.push_back(residue_out);
+      atom.push_back(trace);
+      residue.push_back(index);
+    }
+    begin = end;
+  }
+  return traced;
+}
+} // namespace
+
+void vtkMesoRibbons::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "Subdivisions: " << this->Subdivisions << "\n";
+  os << indent << "TubeSides: " << this->TubeSides << "\n";
+  os << indent << "HelixAsCylinder: " << this->HelixAsCylinder << "\n";
+  os << indent << "HelixWidth: " << this->HelixWidth << "\n";
+  os << indent << "StrandWidth: " << this->StrandWidth << "\n";
+  os << indent << "RibbonThickness: " << this->RibbonThickness << "\n";
+  os << indent << "CoilRadius: " << this->CoilRadius << "\n";
+  os << indent << "NucleicRadius: " << this->NucleicRadius << "\n";
+  os << indent << "CylinderRadius: " << this->CylinderRadius << "\n";
+  os << indent << "ArrowWidthFactor: " << this->ArrowWidthFactor << "\n";
+  os << indent << "SegmentSubdivisions: " << this->SegmentSubdivisions << "\n";
+}
+
+int vtkMesoRibbons::RequestData(vtkInformation*, vtkInformationVector** inputVector,
+                                vtkInformationVector* outputVector)
+{
+  vtkPolyData* atoms = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  output->Initialize();
+  if (!atoms || atoms->GetNumberOfPoints() == 0)
+  {
+    vtkErrorMacro("No atoms to draw ribbons through.");
+    return 0;
+  }
+  mesolens::AtomTable table;
+  std::string missing;
+  if (!vtkMesoAtomTableConversion::FromPolyData(atoms, 1.0, table, &missing))
+  {
+    vtkErrorMacro("The atoms have no `" << missing
+                                        << "` point array: read them with a MesoLens reader.");
+    return 0;
+  }
+  try
+  {
+    std::vector<std::int64_t> trace_atom;
+    std::vector<int> residue_index;
+    const std::vector<mesolens::RibbonResidue> residues =
+      traced_residues(table, trace_atom, residue_index);
+    mesolens::RibbonSettings settings;
+    settings.subdivisions = this->Subdivisions;
+    settings.tube_sides = this->TubeSides;
+    settings.helix_as_cylinder = this->HelixAsCylinder;
+    settings.helix_width = this->HelixWidth;
+    settings.strand_width = this->StrandWidth;
+    settings.ribbon_thickness = this->RibbonThickness;
+    settings.coil_radius = this->CoilRadius;
+    settings.nucleic_radius = this->NucleicRadius;
+    settings.cylinder_radius = this->CylinderRadius;
+    settings.arrow_width_factor = this->ArrowWidthFactor;
+    const std::vector<mesolens::RibbonSegment> segments =
+      mesolens::ribbon_segments(residues, settings);
+    if (this->SegmentSubdivisions &&
+        this->SegmentSubdivisions->GetNumberOfTuples() == vtkIdType(segments.size()))
+    {
+      for (vtkIdType s = 0; s < this->SegmentSubdivisions->GetNumberOfTuples(); ++s)
+      {
+        settings.segment_subdivisions.push_back(
+          std::clamp(this->SegmentSubdivisions->GetValue(s), 1, 32));
+      }
+    }
+    const mesolens::RibbonMesh mesh =
+      mesolens::ribbon_mesh(residues, settings, vtkMesoParallelFor::Get());
+
+    const vtkIdType vertices = vtkIdType(mesh.vertex_count());
+    vtkNew<vtkPoints> points;
+    points->SetDataTypeToFloat();
+    points->SetNumberOfPoints(vertices);
+    vtkNew<vtkFloatArray> normals;
+    normals->SetName("Normals");
+    normals->SetNumberOfComponents(3);
+    normals->SetNumberOfTuples(vertices);
+    for (vtkIdType v = 0; v < vertices; ++v)
+    {
+      const std::size_t i = 3 * std::size_t(v);
+      points->SetPoint(v, mesh.points[i], mesh.points[i + 1], mesh.points[i + 2]);
+      normals->SetTuple3(v, mesh.normals[i], mesh.normals[i + 1], mesh.normals[i + 2]);
+    }
+    output->SetPoints(points);
+    vtkNew<vtkCellArray> triangles;
+    triangles->AllocateExact(vtkIdType(mesh.triangle_count()),
+                             3 * vtkIdType(mesh.triangle_count()));
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+    {
+      const vtkIdType ids[3] = { mesh.triangles[3 * t], mesh.triangles[3 * t + 1],
+                                 mesh.triangles[3 * t + 2] };
+      triangles->InsertNextCell(3, ids);
+    }
+    output->SetPolys(triangles);
+
+    // Per vertex: the trace atom's row, and its numeric arrays.
+    vtkNew<vtkIdList> from;
+    from->SetNumberOfIds(vertices);
+    vtkNew<vtkIdList> to;
+    to->SetNumberOfIds(vertices);
+    vtkNew<vtkIdTypeArray> atom_ids;
+    atom_ids->SetName("AtomId");
+    atom_ids->SetNumberOfValues(vertices);
+    vtkNew<vtkIntArray> residue_ids;
+    residue_ids->SetName("ResidueIndex");
+    residue_ids->SetNumberOfValues(vertices);
+    vtkNew<vtkIntArray> chain_ids;
+    chain_ids->SetName("ChainIndex");
+    chain_ids->SetNumberOfValues(vertices);
+    vtkNew<vtkUnsignedCharArray> classes;
+    classes->SetName("SecondaryStructure");
+    classes->SetNumberOfValues(vertices);
+    for (vtkIdType v = 0; v < vertices; ++v)
+    {
+      const auto traced = std::size_t(mesh.vertex_residue_id[std::size_t(v)]);
+      from->SetId(v, trace_atom[traced]);
+      to->SetId(v, v);
+      atom_ids->SetValue(v, trace_atom[traced]);
+      residue_ids->SetValue(v, residue_index[traced]);
+      chain_ids->SetValue(v, int(residues[traced].chain));
+      classes->SetValue(v,
+                        static_cast<unsigned char>(mesolens::from_dssp_letter(
+                          mesh.vertex_secondary_structure[std::size_t(v)])));
+    }
+    vtkPointData* in = atoms->GetPointData();
+    vtkPointData* out = output->GetPointData();
+    out->CopyAllOn();
+    for (int a = 0; a < in->GetNumberOfArrays(); ++a)
+    {
+      // Strings are costly per vertex and colour nothing: AtomId leads back to them.
+      if (!in->GetArray(a) && in->GetAbstractArray(a) && in->GetAbstractArray(a)->GetName())
+      {
+        out->CopyFieldOff(in->GetAbstractArray(a)->GetName());
+      }
+    }
+    out->CopyFieldOff("ResidueIndex");
+    out->CopyFieldOff("SecondaryStructure");
+    out->CopyAllocate(in, vertices);
+    out->CopyData(in, from, to);
+    out->AddArray(atom_ids);
+    out->AddArray(residue_ids);
+    out->AddArray(chain_ids);
+    out->AddArray(classes);
+    out->SetNormals(normals);
+
+    // Per piece of chain: its bounds and residues, for a view-dependent level of detail.
+    vtkNew<vtkDoubleArray> bounds;
+    bounds->SetName("SegmentBounds");
+    bounds->SetNumberOfComponents(6);
+    vtkNew<vtkIntArray> lengths;
+    lengths->SetName("SegmentResidueCounts");
+    for (const mesolens::RibbonSegment& segment : segments)
+    {
+      double box[6] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MIN, VTK_DOUBLE_MAX,
+                        VTK_DOUBLE_MIN, VTK_DOUBLE_MAX, VTK_DOUBLE_MIN };
+      for (std::size_t r = segment.first_residue; r < segment.first_residue + segment.residue_count;
+           ++r)
+      {
+        for (int d = 0; d < 3; ++d)
+        {
+          box[2 * d] = std::min(box[2 * d], residues[r].trace[std::size_t(d)]);
+          box[2 * d + 1] = std::max(box[2 * d + 1], residues[r].trace[std::size_t(d)]);
+        }
+      }
+      bounds->InsertNextTuple(box);
+      lengths->InsertNextValue(int(segment.residue_count));
+    }
+    output->GetFieldData()->AddArray(bounds);
+    output->GetFieldData()->AddArray(lengths);
+  }
+  catch (const mesolens::Error& error)
+  {
+    output->Initialize();
+    vtkErrorMacro("Cannot draw the ribbons: " << error.what());
+    return 0;
+  }
+  return 1;
+}

@@ -3,6 +3,7 @@
 
 #include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoParallelFor.h"
+#include "vtkMesoStamp.h"
 
 #include "mesolens/dssp.h"
 #include "mesolens/errors.h"
@@ -24,18 +25,38 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSMPTools.h>
+#include <vtkSmartPointer.h>
 #include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
+#include <array>
+#include <cstring>
 #include <limits>
 #include <map>
+#include <numeric>
 #include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkMesoRibbons);
 vtkCxxSetObjectMacro(vtkMesoRibbons, SegmentSubdivisions, vtkIntArray);
 
-vtkMesoRibbons::vtkMesoRibbons() = default;
+/// Which atoms the ribbon is traced through, kept while the atoms' names and residues stay: a
+/// new frame (or a new level of detail) then only reads positions and classes.
+struct vtkMesoRibbons::Internals
+{
+  std::array<vtkMesoStamp, 6> LayoutFrom;
+  vtkIdType LayoutAtoms = -1;
+  std::vector<mesolens::RibbonResidue> Residues;
+  std::vector<std::int64_t> TraceAtom;
+  std::vector<std::int64_t> OxygenAtom; ///< -1: none
+  std::vector<int> ResidueIndex;
+};
+
+vtkMesoRibbons::vtkMesoRibbons()
+  : Internal(std::make_unique<Internals>())
+{
+}
 
 vtkMesoRibbons::~vtkMesoRibbons()
 {
@@ -57,6 +78,7 @@ namespace {
 /// nucleotides through P. `atom` gets each one's trace atom row, `residue` its residue index.
 std::vector<mesolens::RibbonResidue> traced_residues(const mesolens::AtomTable& table,
                                                      std::vector<std::int64_t>& atom,
+                                                     std::vector<std::int64_t>& oxygen,
                                                      std::vector<int>& residue)
 {
   const mesolens::ProteinBackbone backbone = mesolens::protein_backbone(table);
@@ -82,6 +104,7 @@ std::vector<mesolens::RibbonResidue> traced_residues(const mesolens::AtomTable& 
     const int index = table.residue_indices[begin];
     const auto amino_acid = amino_acid_of_residue.find(index);
     std::int64_t trace = -1;
+    std::int64_t oxygen_row = -1;
     mesolens::RibbonResidue residue_out;
     if (amino_acid != amino_acid_of_residue.end() && backbone.ca_atom[amino_acid->second] >= 0)
     {
@@ -90,6 +113,7 @@ std::vector<mesolens::RibbonResidue> traced_residues(const mesolens::AtomTable& 
       if (b.has_o)
       {
         residue_out.carbonyl_oxygen = b.o;
+        oxygen_row = backbone.atom_rows[amino_acid->second][3];
       }
     }
     else if (mesolens::is_nucleotide_residue(table.residue_names[begin]))
@@ -122,6 +146,7 @@ std::vector<mesolens::RibbonResidue> traced_residues(const mesolens::AtomTable& 
       residue_out.id = std::int64_t(traced.size());
       traced.push_back(residue_out);
       atom.push_back(trace);
+      oxygen.push_back(oxygen_row);
       residue.push_back(index);
     }
     begin = end;
@@ -157,20 +182,57 @@ int vtkMesoRibbons::RequestData(vtkInformation*, vtkInformationVector** inputVec
     vtkErrorMacro("No atoms to draw ribbons through.");
     return 0;
   }
-  mesolens::AtomTable table;
-  std::string missing;
-  if (!vtkMesoAtomTableConversion::FromPolyData(atoms, 1.0, table, &missing))
-  {
-    vtkErrorMacro("The atoms have no `" << missing
-                                        << "` point array: read them with a MesoLens reader.");
-    return 0;
-  }
+  Internals& in = *this->Internal;
   try
   {
-    std::vector<std::int64_t> trace_atom;
-    std::vector<int> residue_index;
-    const std::vector<mesolens::RibbonResidue> residues =
-      traced_residues(table, trace_atom, residue_index);
+    vtkPointData* data = atoms->GetPointData();
+    std::array<vtkMesoStamp, 6> stamps;
+    const char* layout_arrays[6] = { "AtomName", "ResidueIndex", "ResidueName",
+                                     "ChainId",  "MoleculeId",   "Occupancy" };
+    for (int k = 0; k < 6; ++k)
+    {
+      stamps[std::size_t(k)] = vtkMesoStamp::Of(data->GetAbstractArray(layout_arrays[k]));
+    }
+    if (stamps != in.LayoutFrom || atoms->GetNumberOfPoints() != in.LayoutAtoms)
+    {
+      in.LayoutAtoms = -1;
+      mesolens::AtomTable table;
+      std::string missing;
+      if (!vtkMesoAtomTableConversion::FromPolyData(atoms, 1.0, table, &missing))
+      {
+        vtkErrorMacro("The atoms have no `" << missing
+                                            << "` point array: read them with a MesoLens reader.");
+        return 0;
+      }
+      in.TraceAtom.clear();
+      in.OxygenAtom.clear();
+      in.ResidueIndex.clear();
+      in.Residues = traced_residues(table, in.TraceAtom, in.OxygenAtom, in.ResidueIndex);
+      in.LayoutFrom = stamps;
+      in.LayoutAtoms = atoms->GetNumberOfPoints();
+    }
+    // This frame's positions and classes.
+    vtkDataArray* codes = data->GetArray("SecondaryStructure");
+    vtkPoints* positions = atoms->GetPoints();
+    for (std::size_t r = 0; r < in.Residues.size(); ++r)
+    {
+      mesolens::RibbonResidue& residue = in.Residues[r];
+      double p[3];
+      positions->GetPoint(in.TraceAtom[r], p);
+      residue.trace = { p[0], p[1], p[2] };
+      if (in.OxygenAtom[r] >= 0)
+      {
+        positions->GetPoint(in.OxygenAtom[r], p);
+        residue.carbonyl_oxygen = std::array<double, 3>{ p[0], p[1], p[2] };
+      }
+      residue.secondary_structure = codes
+        ? mesolens::dssp_letter(
+            static_cast<mesolens::SecondaryStructure>(codes->GetComponent(in.TraceAtom[r], 0)))
+        : ' ';
+    }
+    const std::vector<mesolens::RibbonResidue>& residues = in.Residues;
+    const std::vector<std::int64_t>& trace_atom = in.TraceAtom;
+    const std::vector<int>& residue_index = in.ResidueIndex;
     mesolens::RibbonSettings settings;
     settings.subdivisions = this->Subdivisions;
     settings.tube_sides = this->TubeSides;
@@ -197,36 +259,20 @@ int vtkMesoRibbons::RequestData(vtkInformation*, vtkInformationVector** inputVec
       mesolens::ribbon_mesh(residues, settings, vtkMesoParallelFor::Get());
 
     const vtkIdType vertices = vtkIdType(mesh.vertex_count());
-    vtkNew<vtkPoints> points;
-    points->SetDataTypeToFloat();
-    points->SetNumberOfPoints(vertices);
+    const vtkIdType triangle_count = vtkIdType(mesh.triangle_count());
+    vtkNew<vtkFloatArray> coordinates;
+    coordinates->SetNumberOfComponents(3);
+    coordinates->SetNumberOfTuples(vertices);
     vtkNew<vtkFloatArray> normals;
     normals->SetName("Normals");
     normals->SetNumberOfComponents(3);
     normals->SetNumberOfTuples(vertices);
-    for (vtkIdType v = 0; v < vertices; ++v)
-    {
-      const std::size_t i = 3 * std::size_t(v);
-      points->SetPoint(v, mesh.points[i], mesh.points[i + 1], mesh.points[i + 2]);
-      normals->SetTuple3(v, mesh.normals[i], mesh.normals[i + 1], mesh.normals[i + 2]);
-    }
-    output->SetPoints(points);
-    vtkNew<vtkCellArray> triangles;
-    triangles->AllocateExact(vtkIdType(mesh.triangle_count()),
-                             3 * vtkIdType(mesh.triangle_count()));
-    for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
-    {
-      const vtkIdType ids[3] = { mesh.triangles[3 * t], mesh.triangles[3 * t + 1],
-                                 mesh.triangles[3 * t + 2] };
-      triangles->InsertNextCell(3, ids);
-    }
-    output->SetPolys(triangles);
-
-    // Per vertex: the trace atom's row, and its numeric arrays.
+    vtkNew<vtkIdTypeArray> offsets;
+    offsets->SetNumberOfValues(triangle_count + 1);
+    vtkNew<vtkIdTypeArray> connectivity;
+    connectivity->SetNumberOfValues(3 * triangle_count);
     vtkNew<vtkIdList> from;
     from->SetNumberOfIds(vertices);
-    vtkNew<vtkIdList> to;
-    to->SetNumberOfIds(vertices);
     vtkNew<vtkIdTypeArray> atom_ids;
     atom_ids->SetName("AtomId");
     atom_ids->SetNumberOfValues(vertices);
@@ -239,33 +285,75 @@ int vtkMesoRibbons::RequestData(vtkInformation*, vtkInformationVector** inputVec
     vtkNew<vtkUnsignedCharArray> classes;
     classes->SetName("SecondaryStructure");
     classes->SetNumberOfValues(vertices);
-    for (vtkIdType v = 0; v < vertices; ++v)
-    {
-      const auto traced = std::size_t(mesh.vertex_residue_id[std::size_t(v)]);
-      from->SetId(v, trace_atom[traced]);
-      to->SetId(v, v);
-      atom_ids->SetValue(v, trace_atom[traced]);
-      residue_ids->SetValue(v, residue_index[traced]);
-      chain_ids->SetValue(v, int(residues[traced].chain));
-      classes->SetValue(v,
-                        static_cast<unsigned char>(mesolens::from_dssp_letter(
-                          mesh.vertex_secondary_structure[std::size_t(v)])));
-    }
+    // Straight into the arrays' memory, in parallel: the mesh can have millions of vertices.
+    float* xyz = coordinates->GetPointer(0);
+    float* nxyz = normals->GetPointer(0);
+    vtkIdType* atom_of = atom_ids->GetPointer(0);
+    vtkIdType* source = from->GetPointer(0);
+    int* residue_of = residue_ids->GetPointer(0);
+    int* chain_of = chain_ids->GetPointer(0);
+    unsigned char* class_of = classes->GetPointer(0);
+    vtkSMPTools::For(0, vertices, [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType v = begin; v < end; ++v)
+      {
+        const std::size_t i = 3 * std::size_t(v);
+        for (int d = 0; d < 3; ++d)
+        {
+          xyz[i + std::size_t(d)] = static_cast<float>(mesh.points[i + std::size_t(d)]);
+          nxyz[i + std::size_t(d)] = static_cast<float>(mesh.normals[i + std::size_t(d)]);
+        }
+        const auto traced = std::size_t(mesh.vertex_residue_id[std::size_t(v)]);
+        atom_of[v] = trace_atom[traced];
+        source[v] = trace_atom[traced];
+        residue_of[v] = residue_index[traced];
+        chain_of[v] = int(residues[traced].chain);
+        class_of[v] = static_cast<unsigned char>(
+          mesolens::from_dssp_letter(mesh.vertex_secondary_structure[std::size_t(v)]));
+      }
+    });
+    vtkIdType* offset = offsets->GetPointer(0);
+    vtkIdType* corner = connectivity->GetPointer(0);
+    vtkSMPTools::For(0, triangle_count, [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType t = begin; t < end; ++t)
+      {
+        offset[t] = 3 * t;
+        for (int k = 0; k < 3; ++k)
+        {
+          corner[3 * t + k] = mesh.triangles[3 * std::size_t(t) + std::size_t(k)];
+        }
+      }
+    });
+    offset[triangle_count] = 3 * triangle_count;
+    vtkNew<vtkPoints> points;
+    points->SetData(coordinates);
+    output->SetPoints(points);
+    vtkNew<vtkCellArray> triangles;
+    triangles->SetData(offsets, connectivity);
+    output->SetPolys(triangles);
+
     vtkPointData* in = atoms->GetPointData();
     vtkPointData* out = output->GetPointData();
-    out->CopyAllOn();
+    // (String arrays are left out: costly per vertex, they colour nothing; AtomId leads back.)
+    // Each numeric array of the input, gathered from the trace atoms.
+    vtkNew<vtkIdList> to;
+    to->SetNumberOfIds(vertices);
+    std::iota(to->begin(), to->end(), vtkIdType(0));
     for (int a = 0; a < in->GetNumberOfArrays(); ++a)
     {
-      // Strings are costly per vertex and colour nothing: AtomId leads back to them.
-      if (!in->GetArray(a) && in->GetAbstractArray(a) && in->GetAbstractArray(a)->GetName())
+      vtkDataArray* array = in->GetArray(a);
+      const char* name = array ? array->GetName() : nullptr;
+      if (!array || !name || !std::strcmp(name, "ResidueIndex") ||
+          !std::strcmp(name, "SecondaryStructure"))
       {
-        out->CopyFieldOff(in->GetAbstractArray(a)->GetName());
+        continue;
       }
+      vtkSmartPointer<vtkDataArray> gathered = vtk::TakeSmartPointer(array->NewInstance());
+      gathered->SetName(name);
+      gathered->SetNumberOfComponents(array->GetNumberOfComponents());
+      gathered->SetNumberOfTuples(vertices);
+      gathered->InsertTuples(to, from, array);
+      out->AddArray(gathered);
     }
-    out->CopyFieldOff("ResidueIndex");
-    out->CopyFieldOff("SecondaryStructure");
-    out->CopyAllocate(in, vertices);
-    out->CopyData(in, from, to);
     out->AddArray(atom_ids);
     out->AddArray(residue_ids);
     out->AddArray(chain_ids);

@@ -35,6 +35,8 @@
 #include "MesoLensFiltersModule.h"
 #include "vtkPolyDataAlgorithm.h"
 
+#include <memory>
+
 class vtkIntArray;
 
 class MESOLENSFILTERS_EXPORT vtkMesoRibbons : public vtkPolyDataAlgorithm
@@ -115,6 +117,9 @@ protected:
 private:
   vtkMesoRibbons(const vtkMesoRibbons&) = delete;
   void operator=(const vtkMesoRibbons&) = delete;
+
+  struct Internals;
+  std::unique_ptr<Internals> Internal;
 };
 
 #endif

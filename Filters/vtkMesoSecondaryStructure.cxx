@@ -3,6 +3,7 @@
 
 #include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoParallelFor.h"
+#include "vtkMesoStamp.h"
 
 #include "mesolens/dssp.h"
 #include "mesolens/errors.h"
@@ -10,15 +11,18 @@
 #include <vtkDataArray.h>
 #include <vtkDataObject.h>
 #include <vtkFieldData.h>
+#include <vtkFloatArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkIntArray.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
+#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkStringArray.h>
 #include <vtkUnsignedCharArray.h>
 
+#include <array>
 #include <cmath>
 #include <optional>
 #include <vector>
@@ -31,7 +35,51 @@ struct vtkMesoSecondaryStructure::Internals
   vtkMTimeType SettingsTime = 0;
   double LastTime = -HUGE_VAL;
   std::vector<mesolens::SecondaryStructure> LastShown;
+  // The backbone's layout (which atom is which), kept while the atoms' names and residues stay:
+  // a new frame then only reads positions.
+  std::array<vtkMesoStamp, 7> LayoutFrom;
+  vtkIdType LayoutAtoms = -1;
+  mesolens::ProteinBackbone Backbone;
+  std::vector<int> ResidueOfAtom;
+  std::vector<float> Positions;
 };
+
+namespace {
+/// The stamps of the arrays the backbone's layout comes from.
+std::array<vtkMesoStamp, 7> layout_stamps(vtkPolyData* atoms)
+{
+  vtkPointData* data = atoms->GetPointData();
+  std::array<vtkMesoStamp, 7> stamps;
+  const char* names[7] = { "AtomName",   "ResidueIndex", "ResidueName", "ChainId",
+                           "MoleculeId", "Occupancy",    "AltLoc" };
+  for (int k = 0; k < 7; ++k)
+  {
+    stamps[std::size_t(k)] = vtkMesoStamp::Of(data->GetAbstractArray(names[k]));
+  }
+  return stamps;
+}
+
+/// The atoms' positions as floats (a pointer into the points when they are floats already).
+const float* float_positions(vtkPolyData* atoms, std::vector<float>& storage)
+{
+  if (auto* floats = vtkFloatArray::FastDownCast(atoms->GetPoints()->GetData()))
+  {
+    return floats->GetPointer(0);
+  }
+  const vtkIdType n = atoms->GetNumberOfPoints();
+  storage.resize(3 * std::size_t(n));
+  for (vtkIdType a = 0; a < n; ++a)
+  {
+    double p[3];
+    atoms->GetPoint(a, p);
+    for (int d = 0; d < 3; ++d)
+    {
+      storage[3 * std::size_t(a) + std::size_t(d)] = static_cast<float>(p[d]);
+    }
+  }
+  return storage.data();
+}
+} // namespace
 
 vtkMesoSecondaryStructure::vtkMesoSecondaryStructure()
   : Internal(std::make_unique<Internals>())
@@ -41,12 +89,13 @@ vtkMesoSecondaryStructure::vtkMesoSecondaryStructure()
 vtkMesoSecondaryStructure::~vtkMesoSecondaryStructure() = default;
 
 namespace {
-/// Whether any atom has a class other than coil.
-bool has_records(const mesolens::AtomTable& table)
+/// Whether any atom has a class other than coil in the input's `SecondaryStructure`.
+bool has_records(vtkPolyData* atoms)
 {
-  for (std::uint8_t value : table.secondary_structure)
+  vtkDataArray* classes = atoms->GetPointData()->GetArray("SecondaryStructure");
+  for (vtkIdType a = 0; classes && a < classes->GetNumberOfTuples(); ++a)
   {
-    if (value != 0)
+    if (classes->GetComponent(a, 0) != 0)
     {
       return true;
     }
@@ -89,23 +138,37 @@ int vtkMesoSecondaryStructure::RequestData(vtkInformation*, vtkInformationVector
     vtkErrorMacro("No atoms to assign a secondary structure to.");
     return 0;
   }
-  mesolens::AtomTable table;
-  std::string missing;
-  if (!vtkMesoAtomTableConversion::FromPolyData(atoms, 1.0, table, &missing))
-  {
-    vtkErrorMacro("The atoms have no `" << missing
-                                        << "` point array: read them with a MesoLens reader.");
-    return 0;
-  }
+  Internals& in = *this->Internal;
   try
   {
     const vtkIdType n = atoms->GetNumberOfPoints();
+    const auto stamps = layout_stamps(atoms);
+    if (stamps != in.LayoutFrom || n != in.LayoutAtoms)
+    {
+      in.LayoutAtoms = -1;
+      mesolens::AtomTable table;
+      std::string missing;
+      if (!vtkMesoAtomTableConversion::FromPolyData(atoms, 1.0, table, &missing))
+      {
+        vtkErrorMacro("The atoms have no `" << missing
+                                            << "` point array: read them with a MesoLens reader.");
+        return 0;
+      }
+      in.Backbone = mesolens::protein_backbone(table);
+      in.ResidueOfAtom = table.residue_indices;
+      in.LayoutFrom = stamps;
+      in.LayoutAtoms = n;
+    }
+    else
+    {
+      in.Backbone.update_positions(float_positions(atoms, in.Positions));
+    }
     output->ShallowCopy(atoms);
-    if (this->KeepFileRecords && has_records(table))
+    if (this->KeepFileRecords && has_records(atoms))
     {
       return 1; // the file's classes as they are
     }
-    const mesolens::ProteinBackbone backbone = mesolens::protein_backbone(table);
+    const mesolens::ProteinBackbone& backbone = in.Backbone;
     mesolens::DsspSettings settings;
     settings.pi_helix_priority = this->PiHelixPriority;
     settings.polyproline_stretch = this->PolyprolineStretch;
@@ -116,7 +179,6 @@ int vtkMesoSecondaryStructure::RequestData(vtkInformation*, vtkInformationVector
 
     // A played trajectory: the hysteresis over successive time steps.
     std::vector<mesolens::SecondaryStructure> classes = result.structure;
-    Internals& in = *this->Internal;
     const double time = atoms->GetInformation()->Has(vtkDataObject::DATA_TIME_STEP())
       ? atoms->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP())
       : 0.0;
@@ -162,7 +224,7 @@ int vtkMesoSecondaryStructure::RequestData(vtkInformation*, vtkInformationVector
     per_atom_run->SetNumberOfValues(n);
     for (vtkIdType a = 0; a < n; ++a)
     {
-      const int residue = table.residue_indices[std::size_t(a)];
+      const int residue = in.ResidueOfAtom[std::size_t(a)];
       const int slot = residue >= 0 && std::size_t(residue) < residue_slot.size()
         ? residue_slot[std::size_t(residue)]
         : -1;

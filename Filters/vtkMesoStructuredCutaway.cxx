@@ -2,6 +2,7 @@
 #include "vtkMesoStructuredCutaway.h"
 
 #include "vtkMesoParallelFor.h"
+#include "vtkMesoStamp.h"
 #include "vtkMesoSurfaceConversion.h"
 
 #include "mesolens/errors.h"
@@ -170,22 +171,6 @@ struct Molecules
   }
 };
 
-/// What an object was when a result was made from it: the same pointer and modification time
-/// mean the result still holds.
-struct Stamp
-{
-  const void* Object = nullptr;
-  vtkMTimeType Time = 0;
-  static Stamp Of(vtkObject* object)
-  {
-    return { object, object ? object->GetMTime() : 0 };
-  }
-  bool operator==(const Stamp& other) const
-  {
-    return this->Object == other.Object && this->Time == other.Time;
-  }
-};
-
 /// The atoms whose `visible` is non-zero, with their point data, and the vertices and bonds
 /// whose atoms are all visible, with their cell data.
 void ExtractAtoms(vtkPolyData* atoms, const vtkUnsignedCharArray* visible, vtkPolyData* output)
@@ -260,7 +245,7 @@ struct vtkMesoStructuredCutaway::Internals
 {
   // The molecules, kept while the input's points, ids, names and box stay.
   Molecules Groups;
-  std::array<Stamp, 4> GroupsFrom; // ids, names, points, box
+  std::array<vtkMesoStamp, 4> GroupsFrom; // ids, names, points, box
   bool GroupsWhole = false;
   vtkSmartPointer<vtkPoints> MovedAtoms;
   int CentresVersion = 0;
@@ -273,14 +258,14 @@ struct vtkMesoStructuredCutaway::Internals
 
   // The assignment: kept while the structure and the molecules' grouping stay.
   std::unique_ptr<mesolens::StructuredCutaway> Solver;
-  Stamp SolverStructure;
-  std::array<Stamp, 2> SolverGroups; // ids, names
+  vtkMesoStamp SolverStructure;
+  std::array<vtkMesoStamp, 2> SolverGroups; // ids, names
   vtkIdType SolverAtoms = -1;
   int Assignments = 0;
 
   // The removal order: kept while the cut, the order settings and the centres stay.
   mesolens::RemovalOrder Order;
-  std::tuple<double, bool, bool, bool, int, Stamp, int, int> OrderFrom{};
+  std::tuple<double, bool, bool, bool, int, vtkMesoStamp, int, int> OrderFrom{};
   bool HasOrder = false;
   int Orderings = 0;
 
@@ -383,9 +368,9 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
     const vtkIdType n = atoms->GetNumberOfPoints();
 
     // 1. The molecules and their centres.
-    const std::array<Stamp, 4> groups_from{ Stamp::Of(ids), Stamp::Of(names),
-                                            Stamp::Of(atoms->GetPoints()->GetData()),
-                                            Stamp::Of(box_vectors) };
+    const std::array<vtkMesoStamp, 4> groups_from{ vtkMesoStamp::Of(ids), vtkMesoStamp::Of(names),
+                                                   vtkMesoStamp::Of(atoms->GetPoints()->GetData()),
+                                                   vtkMesoStamp::Of(box_vectors) };
     const bool same_grouping = in.GroupsFrom[0] == groups_from[0] &&
       in.GroupsFrom[1] == groups_from[1] && in.Groups.OfAtom.size() == std::size_t(n);
     if (!same_grouping)
@@ -443,7 +428,7 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
     }
 
     // 3. The assignment, only for a new structure or a new set of molecules.
-    if (!in.Solver || !(in.SolverStructure == Stamp::Of(structure)) ||
+    if (!in.Solver || !(in.SolverStructure == vtkMesoStamp::Of(structure)) ||
         !(in.SolverGroups[0] == groups_from[0]) || !(in.SolverGroups[1] == groups_from[1]) ||
         in.SolverAtoms != n)
     {
@@ -452,7 +437,7 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
       const mesolens::TriangleMesh mesh = vtkMesoSurfaceConversion::ToTriangleMesh(structure);
       in.Solver = std::make_unique<mesolens::StructuredCutaway>(
         mesh, molecules.Centres, molecules.Types, vtkMesoParallelFor::Get());
-      in.SolverStructure = Stamp::Of(structure);
+      in.SolverStructure = vtkMesoStamp::Of(structure);
       in.SolverGroups = { groups_from[0], groups_from[1] };
       in.SolverAtoms = n;
       ++in.Assignments;
@@ -474,9 +459,9 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
         settings.fraction_by_type[static_cast<int>(t)] = found->second;
       }
     }
-    const auto order_from =
-      std::make_tuple(this->K, this->Inverted, this->RandomOrder, this->ProbabilisticOrder,
-                      this->Seed, Stamp::Of(this->CutFunction), in.CentresVersion, in.Assignments);
+    const auto order_from = std::make_tuple(
+      this->K, this->Inverted, this->RandomOrder, this->ProbabilisticOrder, this->Seed,
+      vtkMesoStamp::Of(this->CutFunction), in.CentresVersion, in.Assignments);
     if (!in.HasOrder || in.OrderFrom != order_from)
     {
       vtkImplicitFunction* cut = this->CutFunction;

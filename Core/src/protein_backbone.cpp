@@ -99,10 +99,30 @@ ProteinBackbone protein_backbone(const AtomTable& atoms)
       backbone.residues.push_back(residue);
       backbone.residue_index.push_back(atoms.residue_indices[begin]);
       backbone.ca_atom.push_back(found[1]);
+      backbone.atom_rows.push_back(found);
     }
     begin = end;
   }
   return backbone;
+}
+
+void ProteinBackbone::update_positions(const float* positions)
+{
+  for (std::size_t r = 0; r < this->residues.size(); ++r)
+  {
+    BackboneResidue& residue = this->residues[r];
+    std::array<std::array<double, 3>*, 5> targets{ &residue.n, &residue.ca, &residue.c, &residue.o,
+                                                   &residue.h };
+    for (int k = 0; k < 5; ++k)
+    {
+      const std::int64_t row = this->atom_rows[r][std::size_t(k)];
+      if (row >= 0)
+      {
+        const float* p = positions + 3 * row;
+        *targets[std::size_t(k)] = { p[0], p[1], p[2] };
+      }
+    }
+  }
 }
 
 } // namespace mesolens

@@ -37,6 +37,12 @@ struct ProteinBackbone
   std::vector<int> residue_index;
   /// Per backbone residue, the table row of its CA atom (-1 when it has none).
   std::vector<std::int64_t> ca_atom;
+  /// Per backbone residue, the table rows of its N, CA, C, O and H atoms (-1: absent): a new
+  /// frame of the same atoms only needs update_positions().
+  std::vector<std::array<std::int64_t, 5>> atom_rows;
+
+  /// Takes every present atom's position from `positions` (3 floats per table row, Å).
+  void update_positions(const float* positions);
 };
 
 /// The amino-acid residues of `atoms` (standard and modified amino acids by name, or any

@@ -5,8 +5,8 @@
 //   TestMesoRibbonsImage SCENE OUTPUT.png [--strand-width W]
 //
 // Scenes: ribbons_1tii (helix ribbons, coloured by secondary structure), cylinders_1tii (helix
-// cylinders, coloured by chain), ribbons_1igy (the antibody from ../shared/data, by chain; prints
-// "needs ../shared/data" and draws nothing without it), styles_1hpv (ribbons, the inhibitor in
+// cylinders, coloured by chain), ribbons_1igy and cylinders_1igy (the antibody from
+// ../shared/data, by chain; they print "needs ../shared/data" and draw nothing without it), styles_1hpv (ribbons, the inhibitor in
 // ball-and-stick through vtkMesoAtomMapper and a translucent surface of the whole protein,
 // composited by depth peeling). --strand-width changes the strands' width (Å; a test breaks the
 // picture on purpose with it).
@@ -245,7 +245,7 @@ int main(int argc, char* argv[])
     window = cartoon(mesolens_test::data_file("proteins/1tii.pdb"), false, false);
   else if (scene == "cylinders_1tii")
     window = cartoon(mesolens_test::data_file("proteins/1tii.pdb"), true, true);
-  else if (scene == "ribbons_1igy")
+  else if (scene == "ribbons_1igy" || scene == "cylinders_1igy")
   {
     const std::string path = mesolens_test::shared_file("proteins/1igy.pdb");
     if (!mesolens_test::exists(path))
@@ -253,7 +253,7 @@ int main(int argc, char* argv[])
       std::printf("needs ../shared/data\n");
       return 0;
     }
-    window = cartoon(path, false, true);
+    window = cartoon(path, scene == "cylinders_1igy", true);
   }
   else if (scene == "styles_1hpv")
     window = styles();

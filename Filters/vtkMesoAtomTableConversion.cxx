@@ -136,6 +136,11 @@ void ToPolyData(const mesolens::AtomTable& table, double length_scale, vtkPolyDa
   SetPeriodicBox(table.box, length_scale, output);
 }
 
+std::string MissingArrayMessage(const std::string& missing)
+{
+  return "The atoms have no `" + missing + "` point array: read them with a MesoLens reader.";
+}
+
 bool FromPolyData(vtkPolyData* atoms, double length_scale, mesolens::AtomTable& table,
                   std::string* missing)
 {

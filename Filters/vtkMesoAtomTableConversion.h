@@ -28,6 +28,9 @@ void ToPolyData(const mesolens::AtomTable& table, double length_scale, vtkPolyDa
 bool FromPolyData(vtkPolyData* atoms, double length_scale, mesolens::AtomTable& table,
                   std::string* missing = nullptr);
 
+/// The error a filter gives for atoms without the array FromPolyData names as missing.
+std::string MissingArrayMessage(const std::string& missing);
+
 /// Replaces the points of an output built by ToPolyData with `positions` (3 floats per atom,
 /// Å) times `length_scale`, picking atoms `kept` (all atoms when empty).
 void SetPositions(const std::vector<float>& positions, const std::vector<std::size_t>& kept,

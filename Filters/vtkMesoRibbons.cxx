@@ -45,8 +45,7 @@ vtkCxxSetObjectMacro(vtkMesoRibbons, SegmentSubdivisions, vtkIntArray);
 /// new frame (or a new level of detail) then only reads positions and classes.
 struct vtkMesoRibbons::Internals
 {
-  std::array<vtkMesoStamp, 6> LayoutFrom;
-  vtkIdType LayoutAtoms = -1;
+  std::vector<vtkMesoStamp> LayoutFrom;
   std::vector<mesolens::RibbonResidue> Residues;
   std::vector<std::int64_t> TraceAtom;
   std::vector<std::int64_t> OxygenAtom; ///< -1: none
@@ -186,22 +185,15 @@ int vtkMesoRibbons::RequestData(vtkInformation*, vtkInformationVector** inputVec
   try
   {
     vtkPointData* data = atoms->GetPointData();
-    std::array<vtkMesoStamp, 6> stamps;
-    const char* layout_arrays[6] = { "AtomName", "ResidueIndex", "ResidueName",
-                                     "ChainId",  "MoleculeId",   "Occupancy" };
-    for (int k = 0; k < 6; ++k)
+    const auto stamps = vtkMesoAtomLayoutStamps(atoms);
+    if (stamps != in.LayoutFrom)
     {
-      stamps[std::size_t(k)] = vtkMesoStamp::Of(data->GetAbstractArray(layout_arrays[k]));
-    }
-    if (stamps != in.LayoutFrom || atoms->GetNumberOfPoints() != in.LayoutAtoms)
-    {
-      in.LayoutAtoms = -1;
+      in.LayoutFrom.clear();
       mesolens::AtomTable table;
       std::string missing;
       if (!vtkMesoAtomTableConversion::FromPolyData(atoms, 1.0, table, &missing))
       {
-        vtkErrorMacro("The atoms have no `" << missing
-                                            << "` point array: read them with a MesoLens reader.");
+        vtkErrorMacro(<< vtkMesoAtomTableConversion::MissingArrayMessage(missing));
         return 0;
       }
       in.TraceAtom.clear();
@@ -209,7 +201,6 @@ int vtkMesoRibbons::RequestData(vtkInformation*, vtkInformationVector** inputVec
       in.ResidueIndex.clear();
       in.Residues = traced_residues(table, in.TraceAtom, in.OxygenAtom, in.ResidueIndex);
       in.LayoutFrom = stamps;
-      in.LayoutAtoms = atoms->GetNumberOfPoints();
     }
     // This frame's positions and classes.
     vtkDataArray* codes = data->GetArray("SecondaryStructure");

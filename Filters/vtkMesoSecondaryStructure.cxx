@@ -37,28 +37,13 @@ struct vtkMesoSecondaryStructure::Internals
   std::vector<mesolens::SecondaryStructure> LastShown;
   // The backbone's layout (which atom is which), kept while the atoms' names and residues stay:
   // a new frame then only reads positions.
-  std::array<vtkMesoStamp, 7> LayoutFrom;
-  vtkIdType LayoutAtoms = -1;
+  std::vector<vtkMesoStamp> LayoutFrom;
   mesolens::ProteinBackbone Backbone;
   std::vector<int> ResidueOfAtom;
   std::vector<float> Positions;
 };
 
 namespace {
-/// The stamps of the arrays the backbone's layout comes from.
-std::array<vtkMesoStamp, 7> layout_stamps(vtkPolyData* atoms)
-{
-  vtkPointData* data = atoms->GetPointData();
-  std::array<vtkMesoStamp, 7> stamps;
-  const char* names[7] = { "AtomName",   "ResidueIndex", "ResidueName", "ChainId",
-                           "MoleculeId", "Occupancy",    "AltLoc" };
-  for (int k = 0; k < 7; ++k)
-  {
-    stamps[std::size_t(k)] = vtkMesoStamp::Of(data->GetAbstractArray(names[k]));
-  }
-  return stamps;
-}
-
 /// The atoms' positions as floats (a pointer into the points when they are floats already).
 const float* float_positions(vtkPolyData* atoms, std::vector<float>& storage)
 {
@@ -142,22 +127,20 @@ int vtkMesoSecondaryStructure::RequestData(vtkInformation*, vtkInformationVector
   try
   {
     const vtkIdType n = atoms->GetNumberOfPoints();
-    const auto stamps = layout_stamps(atoms);
-    if (stamps != in.LayoutFrom || n != in.LayoutAtoms)
+    const auto stamps = vtkMesoAtomLayoutStamps(atoms);
+    if (stamps != in.LayoutFrom)
     {
-      in.LayoutAtoms = -1;
+      in.LayoutFrom.clear();
       mesolens::AtomTable table;
       std::string missing;
       if (!vtkMesoAtomTableConversion::FromPolyData(atoms, 1.0, table, &missing))
       {
-        vtkErrorMacro("The atoms have no `" << missing
-                                            << "` point array: read them with a MesoLens reader.");
+        vtkErrorMacro(<< vtkMesoAtomTableConversion::MissingArrayMessage(missing));
         return 0;
       }
       in.Backbone = mesolens::protein_backbone(table);
       in.ResidueOfAtom = table.residue_indices;
       in.LayoutFrom = stamps;
-      in.LayoutAtoms = n;
     }
     else
     {

@@ -4,6 +4,10 @@
 #define vtkMesoStamp_h
 
 #include <vtkObject.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+
+#include <vector>
 
 /// An object's address and modification time: while both are the same, whatever was computed
 /// from the object still holds.
@@ -25,5 +29,20 @@ struct vtkMesoStamp
     return !(*this == other);
   }
 };
+
+/// The stamps of the point arrays that say which atom is which (names, residues, chains,
+/// molecules, alternates): while they hold, a filter may keep its atom layout and read only the
+/// positions of a new frame.
+inline std::vector<vtkMesoStamp> vtkMesoAtomLayoutStamps(vtkPolyData* atoms)
+{
+  std::vector<vtkMesoStamp> stamps;
+  for (const char* name : { "AtomName", "ResidueIndex", "ResidueName", "ChainId", "MoleculeId",
+                            "Occupancy", "AltLoc" })
+  {
+    stamps.push_back(vtkMesoStamp::Of(atoms->GetPointData()->GetAbstractArray(name)));
+  }
+  stamps.push_back({ nullptr, static_cast<vtkMTimeType>(atoms->GetNumberOfPoints()) });
+  return stamps;
+}
 
 #endif

@@ -20,6 +20,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace {
 /// All chains' DSSP strings joined.
@@ -107,8 +108,10 @@ TEST(vtkMesoSecondaryStructure, NmrModelsAsTimeSteps)
   const int steps =
     dssp->GetOutputInformation(0)->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
   ASSERT_EQ(steps, 38);
-  const double* times =
+  // A copy: the pipeline replaces the information's vector when it updates.
+  const double* steps_in_information =
     dssp->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  const std::vector<double> times(steps_in_information, steps_in_information + steps);
   dssp->UpdateTimeStep(times[0]);
   EXPECT_EQ(dssp_of(dssp->GetOutput()), "-HHHHHHHTTGGGGT-PPP-");
   int helical = 0;
@@ -134,8 +137,10 @@ TEST(vtkMesoSecondaryStructure, TrajectoryFramesWithHysteresis)
   const int steps =
     dssp->GetOutputInformation(0)->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
   ASSERT_GE(steps, 5);
-  const double* times =
+  // A copy: the pipeline replaces the information's vector when it updates.
+  const double* steps_in_information =
     dssp->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  const std::vector<double> times(steps_in_information, steps_in_information + steps);
   auto changes_over_frames = [&](int hysteresis) {
     dssp->SetHysteresisFrames(hysteresis);
     std::string previous;

@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <vector>
 
 namespace {
 /// Two atoms per molecule, the molecules just outside the icosahedron: first the 20 over its
@@ -407,10 +408,12 @@ TEST(vtkMesoStructuredCutaway, MartiniVesicleCutOpenAndStableOverFrames)
     return hidden;
   };
   // In every mode, over all 11 frames (0 to 1000 ps).
-  const double* times =
-    vesicle->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
   const int frames =
     vesicle->GetOutputInformation(0)->Length(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  // A copy: the pipeline replaces the information's vector when it updates.
+  const double* steps_in_information =
+    vesicle->GetOutputInformation(0)->Get(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
+  const std::vector<double> times(steps_in_information, steps_in_information + frames);
   ASSERT_EQ(frames, 11);
   for (int mode = 0; mode < 4; ++mode)
   {

@@ -67,6 +67,35 @@ class PythonPipeline(unittest.TestCase):
         self.assertEqual(out.GetNumberOfPoints(), 43480)
         self.assertEqual(out.GetFieldData().GetArray("FrameIndex").GetValue(0), 3)
 
+    def test_cartoon_pipeline_with_level_of_detail(self):
+        # Reader -> DSSP -> ribbons -> a VTK mapper, steered by the level-of-detail helper.
+        from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderer
+        reader = mesolens.vtkMesoStructureReader()
+        reader.SetFileName(os.path.join(DATA, "proteins", "1ubq.pdb"))
+        dssp = mesolens.vtkMesoSecondaryStructure()
+        dssp.SetInputConnection(reader.GetOutputPort())
+        ribbons = mesolens.vtkMesoRibbons()
+        ribbons.SetInputConnection(dssp.GetOutputPort())
+        ribbons.Update()
+        chains = dssp.GetOutput().GetFieldData().GetAbstractArray("DSSP")
+        self.assertEqual(chains.GetValue(0),  # mkdssp 4.2.2
+                         "-EEEEEETTS-EEEEE--TTSBHHHHHHHHHHHH---GGGEEEEETTEEPPTTSBTGGGTPPTT-EEEEEE--S--")
+        self.assertGreater(ribbons.GetOutput().GetNumberOfPolys(), 5000)
+        colours = vtk_to_numpy(ribbons.GetOutput().GetPointData().GetArray("BFactor"))
+        self.assertGreater(colours.max(), colours.min())
+        mapper = vtkPolyDataMapper()
+        mapper.SetInputConnection(ribbons.GetOutputPort())
+        actor = vtkActor()
+        actor.SetMapper(mapper)
+        renderer = vtkRenderer()
+        renderer.AddActor(actor)
+        renderer.ResetCamera()
+        detail = mesolens.vtkMesoRibbonLevelOfDetail()
+        detail.SetRibbons(ribbons)
+        detail.SetRenderer(renderer)
+        self.assertGreater(detail.Update(), 0)
+        self.assertIsNotNone(ribbons.GetSegmentSubdivisions())
+
     def test_error_is_reported_not_raised(self):
         reader = mesolens.vtkMesoStructureReader()
         messages = []

@@ -1,0 +1,348 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "mesolens/sphere_union_area.h"
+
+#include "mesolens/errors.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+
+namespace mesolens {
+
+namespace {
+using Vec = std::array<double, 3>;
+constexpr double pi = 3.14159265358979323846;
+
+Vec minus(const Vec& a, const Vec& b)
+{
+  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+}
+double dot(const Vec& a, const Vec& b)
+{
+  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+Vec cross(const Vec& a, const Vec& b)
+{
+  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
+}
+Vec scaled(const Vec& a, double s)
+{
+  return { a[0] * s, a[1] * s, a[2] * s };
+}
+Vec plus(const Vec& a, const Vec& b)
+{
+  return { a[0] + b[0], a[1] + b[1], a[2] + b[2] };
+}
+Vec unit(const Vec& a)
+{
+  return scaled(a, 1.0 / std::sqrt(dot(a, a)));
+}
+
+/// The part of the unit sphere of one sphere that a neighbour covers: u . axis > height.
+struct Cap
+{
+  Vec axis{};
+  double height = 0; ///< cosine of the cap's angular radius, in (-1, 1)
+  double angle = 0;  ///< the angular radius
+  double sine = 0;   ///< of the angular radius: the radius of its circle
+  Vec e1{}, e2{};    ///< with axis, a right-handed frame: the circle's azimuth 0 and 90 degrees
+
+  Vec point(double azimuth) const
+  {
+    return plus(scaled(this->axis, this->height),
+                plus(scaled(this->e1, this->sine * std::cos(azimuth)),
+                     scaled(this->e2, this->sine * std::sin(azimuth))));
+  }
+  /// The boundary's direction of travel at `azimuth` with the uncovered side on the left:
+  /// clockwise about the axis (decreasing azimuth).
+  Vec tangent(double azimuth) const
+  {
+    return plus(scaled(this->e1, std::sin(azimuth)), scaled(this->e2, -std::cos(azimuth)));
+  }
+  double azimuth_of(const Vec& u) const
+  {
+    const Vec in_plane = minus(u, scaled(this->axis, this->height));
+    return std::atan2(dot(in_plane, this->e2), dot(in_plane, this->e1));
+  }
+};
+
+struct UnionFind
+{
+  std::vector<std::size_t> parent;
+  explicit UnionFind(std::size_t n)
+    : parent(n)
+  {
+    std::iota(parent.begin(), parent.end(), std::size_t(0));
+  }
+  std::size_t find(std::size_t x)
+  {
+    while (parent[x] != x)
+    {
+      parent[x] = parent[parent[x]];
+      x = parent[x];
+    }
+    return x;
+  }
+  void join(std::size_t a, std::size_t b)
+  {
+    parent[find(a)] = find(b);
+  }
+};
+
+/// The exposed area of the unit sphere under `caps` (times R^2 by the caller).
+double exposed_unit_area(const std::vector<Cap>& caps)
+{
+  const std::size_t count = caps.size();
+  if (count == 0)
+  {
+    return 4.0 * pi;
+  }
+  // Components of the union of caps (overlapping caps join).
+  UnionFind cap_groups(count);
+  for (std::size_t a = 0; a < count; ++a)
+  {
+    for (std::size_t b = a + 1; b < count; ++b)
+    {
+      const double between = std::acos(std::clamp(dot(caps[a].axis, caps[b].axis), -1.0, 1.0));
+      if (between < caps[a].angle + caps[b].angle)
+      {
+        cap_groups.join(a, b);
+      }
+    }
+  }
+  std::size_t unions = 0;
+  for (std::size_t a = 0; a < count; ++a)
+  {
+    unions += cap_groups.find(a) == a ? 1 : 0;
+  }
+  auto covered = [&](const Vec& u, std::size_t except_a, std::size_t except_b) {
+    for (std::size_t c = 0; c < count; ++c)
+    {
+      if (c != except_a && c != except_b && dot(u, caps[c].axis) > caps[c].height)
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+
+  // The crossing points of the caps' circles, and on each circle their azimuths.
+  std::vector<Vec> vertices;
+  std::vector<std::vector<std::pair<double, std::size_t>>> on_circle(count);
+  for (std::size_t a = 0; a < count; ++a)
+  {
+    for (std::size_t b = a + 1; b < count; ++b)
+    {
+      const double g = std::clamp(dot(caps[a].axis, caps[b].axis), -1.0, 1.0);
+      const double between = std::acos(g);
+      if (!(between > std::abs(caps[a].angle - caps[b].angle) &&
+            between < caps[a].angle + caps[b].angle) ||
+          1.0 - g * g <= 1e-24)
+      {
+        continue;
+      }
+      const double alpha = (caps[a].height - caps[b].height * g) / (1.0 - g * g);
+      const double beta = (caps[b].height - caps[a].height * g) / (1.0 - g * g);
+      const Vec w = plus(scaled(caps[a].axis, alpha), scaled(caps[b].axis, beta));
+      const Vec m = cross(caps[a].axis, caps[b].axis);
+      const double rest = 1.0 - dot(w, w);
+      if (rest <= 0)
+      {
+        continue;
+      }
+      const double gamma = std::sqrt(rest / dot(m, m));
+      for (double side : { -1.0, 1.0 })
+      {
+        const Vec u = unit(plus(w, scaled(m, side * gamma)));
+        const std::size_t id = vertices.size();
+        vertices.push_back(u);
+        on_circle[a].emplace_back(caps[a].azimuth_of(u), id);
+        on_circle[b].emplace_back(caps[b].azimuth_of(u), id);
+      }
+    }
+  }
+
+  // The exposed arcs: travelled clockwise about each axis (uncovered side on the left).
+  struct Arc
+  {
+    std::size_t cap;
+    double start_azimuth, end_azimuth;
+    std::size_t start, end; // vertex ids
+  };
+  std::vector<Arc> arcs;
+  double turning = 0; // the boundary's geodesic curvature integrated, plus the corners
+  std::size_t loops = 0;
+  for (std::size_t a = 0; a < count; ++a)
+  {
+    const Cap& cap = caps[a];
+    auto& crossings = on_circle[a];
+    if (crossings.empty())
+    {
+      if (!covered(cap.point(0.0), a, a))
+      {
+        turning += -cap.height * 2.0 * pi;
+        ++loops;
+      }
+      continue;
+    }
+    std::sort(crossings.begin(), crossings.end());
+    for (std::size_t k = 0; k < crossings.size(); ++k)
+    {
+      const double low = crossings[k].first;
+      double high = k + 1 < crossings.size() ? crossings[k + 1].first : crossings[0].first + 2 * pi;
+      if (high - low <= 0)
+      {
+        continue;
+      }
+      if (covered(cap.point(0.5 * (low + high)), a, a))
+      {
+        continue;
+      }
+      turning += -cap.height * (high - low);
+      const std::size_t next = k + 1 < crossings.size() ? k + 1 : 0;
+      arcs.push_back({ a, high, low, crossings[next].second, crossings[k].second });
+    }
+  }
+  // Corners: from the arc ending at a vertex to the arc leaving it.
+  std::unordered_map<std::size_t, std::size_t> leaving;
+  for (std::size_t k = 0; k < arcs.size(); ++k)
+  {
+    leaving.emplace(arcs[k].start, k);
+  }
+  UnionFind chains(vertices.size());
+  for (const Arc& arc : arcs)
+  {
+    chains.join(arc.start, arc.end);
+    const auto next = leaving.find(arc.end);
+    if (next == leaving.end())
+    {
+      continue; // a degenerate crossing (three circles through a point): no corner counted
+    }
+    const Arc& out = arcs[next->second];
+    const Vec& p = vertices[arc.end];
+    const Vec in_direction = caps[arc.cap].tangent(arc.end_azimuth);
+    const Vec out_direction = caps[out.cap].tangent(out.start_azimuth);
+    turning +=
+      std::atan2(dot(p, cross(in_direction, out_direction)), dot(in_direction, out_direction));
+  }
+  std::vector<char> root_seen(vertices.size(), 0);
+  for (const Arc& arc : arcs)
+  {
+    const std::size_t root = chains.find(arc.start);
+    if (!root_seen[root])
+    {
+      root_seen[root] = 1;
+      ++loops;
+    }
+  }
+  // Gauss-Bonnet on the unit sphere: area = 2 pi chi - turning, with chi = loops + 2 - 2 unions
+  // (the exposed part and the caps' union share their loops and together make the sphere).
+  const double chi = double(loops) + 2.0 - 2.0 * double(unions);
+  return std::clamp(2.0 * pi * chi - turning, 0.0, 4.0 * pi);
+}
+} // namespace
+
+SphereUnionArea sphere_union_area(const std::vector<std::array<double, 3>>& centres,
+                                  const std::vector<double>& radii, const ParallelFor& parallel_for)
+{
+  const std::size_t n = centres.size();
+  if (radii.size() != n)
+  {
+    throw InvalidInput("sphere_union_area needs one radius per centre: " + std::to_string(n) +
+                       " centres, " + std::to_string(radii.size()) + " radii");
+  }
+  double largest = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (!std::isfinite(centres[i][0]) || !std::isfinite(centres[i][1]) ||
+        !std::isfinite(centres[i][2]) || !std::isfinite(radii[i]) || !(radii[i] > 0))
+    {
+      throw InvalidInput("sphere " + std::to_string(i) +
+                         " has a non-finite centre or a radius that is not positive");
+    }
+    largest = std::max(largest, radii[i]);
+  }
+  SphereUnionArea result;
+  result.per_sphere.assign(n, 0.0);
+  if (n == 0)
+  {
+    return result;
+  }
+  // Spheres in cells of the largest diameter: overlapping ones are in neighbouring cells.
+  const double cell = 2.0 * largest;
+  auto key_of = [cell](const Vec& p, int dx, int dy, int dz) {
+    const auto x = static_cast<std::int64_t>(std::floor(p[0] / cell)) + dx;
+    const auto y = static_cast<std::int64_t>(std::floor(p[1] / cell)) + dy;
+    const auto z = static_cast<std::int64_t>(std::floor(p[2] / cell)) + dz;
+    return (static_cast<std::uint64_t>(x + (1 << 20)) & 0x1fffff) |
+      ((static_cast<std::uint64_t>(y + (1 << 20)) & 0x1fffff) << 21) |
+      ((static_cast<std::uint64_t>(z + (1 << 20)) & 0x1fffff) << 42);
+  };
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    cells[key_of(centres[i], 0, 0, 0)].push_back(static_cast<std::uint32_t>(i));
+  }
+  run_parallel(parallel_for, n, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const Vec& c = centres[i];
+      const double r = radii[i];
+      std::vector<Cap> caps;
+      bool buried = false;
+      for (int dx = -1; dx <= 1 && !buried; ++dx)
+        for (int dy = -1; dy <= 1 && !buried; ++dy)
+          for (int dz = -1; dz <= 1 && !buried; ++dz)
+          {
+            const auto found = cells.find(key_of(c, dx, dy, dz));
+            if (found == cells.end())
+            {
+              continue;
+            }
+            for (const std::uint32_t j : found->second)
+            {
+              if (j == i)
+              {
+                continue;
+              }
+              const double rj = radii[j];
+              const Vec offset = minus(centres[j], c);
+              const double d = std::sqrt(dot(offset, offset));
+              if (d >= r + rj)
+              {
+                continue; // apart
+              }
+              if (d + r <= rj && !(d == 0 && rj == r && j > i))
+              {
+                buried = true; // inside j (of coincident equal spheres the first stays)
+                break;
+              }
+              if (d + rj <= r)
+              {
+                continue; // j inside this sphere
+              }
+              Cap cap;
+              cap.axis = scaled(offset, 1.0 / d);
+              cap.height = std::clamp((r * r + d * d - rj * rj) / (2.0 * r * d), -1.0, 1.0);
+              cap.angle = std::acos(cap.height);
+              cap.sine = std::sqrt(std::max(0.0, 1.0 - cap.height * cap.height));
+              const Vec helper = std::abs(cap.axis[0]) < 0.9 ? Vec{ 1, 0, 0 } : Vec{ 0, 1, 0 };
+              cap.e1 = unit(cross(cap.axis, helper));
+              cap.e2 = cross(cap.axis, cap.e1);
+              caps.push_back(cap);
+            }
+          }
+      result.per_sphere[i] = buried ? 0.0 : r * r * exposed_unit_area(caps);
+    }
+  });
+  for (double area : result.per_sphere)
+  {
+    result.total += area;
+  }
+  return result;
+}
+
+} // namespace mesolens

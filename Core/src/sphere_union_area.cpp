@@ -92,10 +92,12 @@ struct UnionFind
   }
 };
 
-/// The exposed area of the unit sphere under `caps` (times R^2 by the caller).
-double exposed_unit_area(const std::vector<Cap>& caps)
+/// The exposed area of the unit sphere under `caps` (times R^2 by the caller), and in
+/// `normal_integral` the integral of the outward unit normal over it (for the volume).
+double exposed_unit_area(const std::vector<Cap>& caps, Vec& normal_integral)
 {
   const std::size_t count = caps.size();
+  normal_integral = { 0, 0, 0 };
   if (count == 0)
   {
     return 4.0 * pi;
@@ -184,6 +186,7 @@ double exposed_unit_area(const std::vector<Cap>& caps)
       if (!covered(cap.point(0.0), a, a))
       {
         turning += -cap.height * 2.0 * pi;
+        normal_integral = plus(normal_integral, scaled(cap.axis, -pi * cap.sine * cap.sine));
         ++loops;
       }
       continue;
@@ -202,6 +205,12 @@ double exposed_unit_area(const std::vector<Cap>& caps)
         continue;
       }
       turning += -cap.height * (high - low);
+      // The vector area of a surface is half the boundary integral of x cross dx.
+      const double h = cap.height, r = cap.sine;
+      const Vec along_arc = plus(scaled(cap.e1, h * r * (std::sin(high) - std::sin(low))),
+                                 plus(scaled(cap.e2, h * r * (std::cos(low) - std::cos(high))),
+                                      scaled(cap.axis, -r * r * (high - low))));
+      normal_integral = plus(normal_integral, scaled(along_arc, 0.5));
       const std::size_t next = k + 1 < crossings.size() ? k + 1 : 0;
       arcs.push_back({ a, high, low, crossings[next].second, crossings[k].second });
     }
@@ -281,6 +290,7 @@ SphereUnionArea sphere_union_area(const std::vector<std::array<double, 3>>& cent
       ((static_cast<std::uint64_t>(y + (1 << 20)) & 0x1fffff) << 21) |
       ((static_cast<std::uint64_t>(z + (1 << 20)) & 0x1fffff) << 42);
   };
+  std::vector<double> volume_terms(n, 0.0);
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
   for (std::size_t i = 0; i < n; ++i)
   {
@@ -335,12 +345,18 @@ SphereUnionArea sphere_union_area(const std::vector<std::array<double, 3>>& cent
               caps.push_back(cap);
             }
           }
-      result.per_sphere[i] = buried ? 0.0 : r * r * exposed_unit_area(caps);
+      Vec normal_integral{ 0, 0, 0 };
+      const double solid_angle = buried ? 0.0 : exposed_unit_area(caps, normal_integral);
+      result.per_sphere[i] = r * r * solid_angle;
+      // The divergence theorem over the exposed patch: (1/3) of x . n dA, x = c + r u.
+      volume_terms[i] =
+        buried ? 0.0 : r * r * r * solid_angle / 3.0 + r * r * dot(c, normal_integral) / 3.0;
     }
   });
-  for (double area : result.per_sphere)
+  for (std::size_t i = 0; i < n; ++i)
   {
-    result.total += area;
+    result.total += result.per_sphere[i];
+    result.volume += volume_terms[i];
   }
   return result;
 }

@@ -66,6 +66,13 @@ TEST(SphereUnionArea, OneSphereAndTwoOverlapping)
   EXPECT_EQ(nested.per_sphere[1], 0.0);
   const auto same = mesolens::sphere_union_area({ { 1, 1, 1 }, { 1, 1, 1 } }, { 2, 2 });
   EXPECT_NEAR(same.total, 4 * pi * 4, 1e-9);
+  // Volumes: a ball, and two less their lens, r1 + r2 - d deep.
+  EXPECT_NEAR(one.volume, 4.0 / 3.0 * pi * std::pow(1.7, 3), 1e-9);
+  const double lens = pi * std::pow(r1 + r2 - d, 2) *
+    (d * d + 2 * d * (r1 + r2) - 3 * (r1 - r2) * (r1 - r2)) / (12 * d);
+  EXPECT_NEAR(two.volume, 4.0 / 3.0 * pi * (std::pow(r1, 3) + std::pow(r2, 3)) - lens, 1e-9);
+  EXPECT_NEAR(nested.volume, 4.0 / 3.0 * pi * 27, 1e-9);
+  EXPECT_NEAR(same.volume, 4.0 / 3.0 * pi * 8, 1e-9);
 }
 
 TEST(SphereUnionArea, ThreeInARowAndAClusterAgreeWithSampling)
@@ -75,6 +82,8 @@ TEST(SphereUnionArea, ThreeInARowAndAClusterAgreeWithSampling)
   const auto row =
     mesolens::sphere_union_area({ { -d, 0, 0 }, { 0, 0, 0 }, { d, 0, 0 } }, { r, r, r });
   const double h = d / (2 * r);
+  const double lens = pi * std::pow(2 * r - d, 2) * (d * d + 4 * d * r) / (12 * d);
+  EXPECT_NEAR(row.volume, 3 * 4.0 / 3.0 * pi * r * r * r - 2 * lens, 1e-9);
   EXPECT_NEAR(row.per_sphere[1], 4 * pi * r * r - 2 * 2 * pi * r * r * (1 - h), 1e-9);
   EXPECT_NEAR(row.per_sphere[0], 2 * pi * r * r * (1 + h), 1e-9);
   // Three overlapping pairwise with a common triple region, and a random cluster of 40 spheres
@@ -93,6 +102,38 @@ TEST(SphereUnionArea, ThreeInARowAndAClusterAgreeWithSampling)
   for (std::size_t i = 0; i < centres.size(); ++i)
     EXPECT_NEAR(exact.per_sphere[i], sampled[i], 0.002 * 4 * pi * radii[i] * radii[i] + 1e-9)
       << "sphere " << i;
+  // The volume of the cluster against 2 000 000 random points in its box.
+  double low[3] = { 1e9, 1e9, 1e9 }, high[3] = { -1e9, -1e9, -1e9 };
+  for (std::size_t i = 3; i < centres.size(); ++i)
+    for (int k = 0; k < 3; ++k)
+    {
+      low[k] = std::min(low[k], centres[i][k] - radii[i]);
+      high[k] = std::max(high[k], centres[i][k] + radii[i]);
+    }
+  std::uniform_real_distribution<double> unit_interval(0.0, 1.0);
+  const int points = 2000000;
+  int inside_count = 0;
+  for (int s = 0; s < points; ++s)
+  {
+    double p[3];
+    for (int k = 0; k < 3; ++k)
+      p[k] = low[k] + (high[k] - low[k]) * unit_interval(generator);
+    for (std::size_t i = 3; i < centres.size(); ++i)
+    {
+      const double dx = p[0] - centres[i][0], dy = p[1] - centres[i][1], dz = p[2] - centres[i][2];
+      if (dx * dx + dy * dy + dz * dz < radii[i] * radii[i])
+      {
+        ++inside_count;
+        break;
+      }
+    }
+  }
+  const double box = (high[0] - low[0]) * (high[1] - low[1]) * (high[2] - low[2]);
+  const std::vector<std::array<double, 3>> cluster(centres.begin() + 3, centres.end());
+  const std::vector<double> cluster_radii(radii.begin() + 3, radii.end());
+  const double sampled_volume = box * inside_count / points;
+  EXPECT_NEAR(mesolens::sphere_union_area(cluster, cluster_radii).volume, sampled_volume,
+              0.005 * sampled_volume);
   // The same on two threads.
   const auto two_threads = [](std::size_t count, const mesolens::RangeKernel& kernel) {
     std::thread other([&] { kernel(0, count / 2); });

@@ -46,7 +46,6 @@ struct Cap
 {
   Vec axis{};
   double height = 0; ///< cosine of the cap's angular radius, in (-1, 1)
-  double angle = 0;  ///< the angular radius
   double sine = 0;   ///< of the angular radius: the radius of its circle
   Vec e1{}, e2{};    ///< with axis, a right-handed frame: the circle's azimuth 0 and 90 degrees
 
@@ -94,24 +93,61 @@ struct UnionFind
 
 /// The exposed area of the unit sphere under `caps` (times R^2 by the caller), and in
 /// `normal_integral` the integral of the outward unit normal over it (for the volume).
-double exposed_unit_area(const std::vector<Cap>& caps, Vec& normal_integral)
+double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral)
 {
-  const std::size_t count = caps.size();
   normal_integral = { 0, 0, 0 };
+  // Caps inside another cap bound nothing: dropped (cap b lies in cap a when the angle between
+  // their axes plus b's radius is at most a's radius; compared as cosines, without acos).
+  {
+    std::sort(caps.begin(), caps.end(),
+              [](const Cap& x, const Cap& y) { return x.height < y.height; }); // largest first
+    std::vector<Cap> kept;
+    for (const Cap& cap : caps)
+    {
+      bool inside = false;
+      for (const Cap& larger : kept)
+      {
+        // between <= larger.angle - cap.angle  <=>  cos(between) >= cos(larger - cap)
+        // (larger.height <= cap.height: sorted, the larger angular radius first.)
+        inside = dot(cap.axis, larger.axis) >= larger.height * cap.height + larger.sine * cap.sine;
+        if (inside)
+        {
+          break;
+        }
+      }
+      if (!inside)
+      {
+        kept.push_back(cap);
+      }
+    }
+    caps.swap(kept);
+  }
+  for (Cap& cap : caps)
+  {
+    // The frame of the circle, for the caps that stay.
+    const Vec helper = std::abs(cap.axis[0]) < 0.9 ? Vec{ 1, 0, 0 } : Vec{ 0, 1, 0 };
+    cap.e1 = unit(cross(cap.axis, helper));
+    cap.e2 = cross(cap.axis, cap.e1);
+  }
+  const std::size_t count = caps.size();
   if (count == 0)
   {
     return 4.0 * pi;
   }
-  // Components of the union of caps (overlapping caps join).
+  // Overlapping caps (between < angle a + angle b <=> cos(between) > cos(a + b)): they make
+  // the union's components, and only they can cover a point of each other's circles.
   UnionFind cap_groups(count);
+  std::vector<std::vector<std::uint32_t>> overlapping(count);
   for (std::size_t a = 0; a < count; ++a)
   {
     for (std::size_t b = a + 1; b < count; ++b)
     {
-      const double between = std::acos(std::clamp(dot(caps[a].axis, caps[b].axis), -1.0, 1.0));
-      if (between < caps[a].angle + caps[b].angle)
+      const double g = dot(caps[a].axis, caps[b].axis);
+      if (g > caps[a].height * caps[b].height - caps[a].sine * caps[b].sine)
       {
         cap_groups.join(a, b);
+        overlapping[a].push_back(static_cast<std::uint32_t>(b));
+        overlapping[b].push_back(static_cast<std::uint32_t>(a));
       }
     }
   }
@@ -120,10 +156,10 @@ double exposed_unit_area(const std::vector<Cap>& caps, Vec& normal_integral)
   {
     unions += cap_groups.find(a) == a ? 1 : 0;
   }
-  auto covered = [&](const Vec& u, std::size_t except_a, std::size_t except_b) {
-    for (std::size_t c = 0; c < count; ++c)
+  auto covered = [&](const Vec& u, std::size_t on) {
+    for (const std::uint32_t c : overlapping[on])
     {
-      if (c != except_a && c != except_b && dot(u, caps[c].axis) > caps[c].height)
+      if (dot(u, caps[c].axis) > caps[c].height)
       {
         return true;
       }
@@ -136,12 +172,15 @@ double exposed_unit_area(const std::vector<Cap>& caps, Vec& normal_integral)
   std::vector<std::vector<std::pair<double, std::size_t>>> on_circle(count);
   for (std::size_t a = 0; a < count; ++a)
   {
-    for (std::size_t b = a + 1; b < count; ++b)
+    for (const std::uint32_t b : overlapping[a])
     {
+      if (b < a)
+      {
+        continue;
+      }
+      // The circles cross when |angle a - angle b| < between (between < a + b holds already).
       const double g = std::clamp(dot(caps[a].axis, caps[b].axis), -1.0, 1.0);
-      const double between = std::acos(g);
-      if (!(between > std::abs(caps[a].angle - caps[b].angle) &&
-            between < caps[a].angle + caps[b].angle) ||
+      if (!(g < caps[a].height * caps[b].height + caps[a].sine * caps[b].sine) ||
           1.0 - g * g <= 1e-24)
       {
         continue;
@@ -159,6 +198,21 @@ double exposed_unit_area(const std::vector<Cap>& caps, Vec& normal_integral)
       for (double side : { -1.0, 1.0 })
       {
         const Vec u = unit(plus(w, scaled(m, side * gamma)));
+        // A crossing inside a third cap is no corner of the exposed part: exposure along a
+        // circle changes only at crossings no other cap covers, so those alone cut the arcs.
+        bool inside_third = false;
+        for (const std::uint32_t c : overlapping[a])
+        {
+          if (c != b && dot(u, caps[c].axis) > caps[c].height)
+          {
+            inside_third = true;
+            break;
+          }
+        }
+        if (inside_third)
+        {
+          continue;
+        }
         const std::size_t id = vertices.size();
         vertices.push_back(u);
         on_circle[a].emplace_back(caps[a].azimuth_of(u), id);
@@ -183,7 +237,7 @@ double exposed_unit_area(const std::vector<Cap>& caps, Vec& normal_integral)
     auto& crossings = on_circle[a];
     if (crossings.empty())
     {
-      if (!covered(cap.point(0.0), a, a))
+      if (!covered(cap.point(0.0), a))
       {
         turning += -cap.height * 2.0 * pi;
         normal_integral = plus(normal_integral, scaled(cap.axis, -pi * cap.sine * cap.sine));
@@ -200,7 +254,7 @@ double exposed_unit_area(const std::vector<Cap>& caps, Vec& normal_integral)
       {
         continue;
       }
-      if (covered(cap.point(0.5 * (low + high)), a, a))
+      if (covered(cap.point(0.5 * (low + high)), a))
       {
         continue;
       }
@@ -337,11 +391,7 @@ SphereUnionArea sphere_union_area(const std::vector<std::array<double, 3>>& cent
               Cap cap;
               cap.axis = scaled(offset, 1.0 / d);
               cap.height = std::clamp((r * r + d * d - rj * rj) / (2.0 * r * d), -1.0, 1.0);
-              cap.angle = std::acos(cap.height);
               cap.sine = std::sqrt(std::max(0.0, 1.0 - cap.height * cap.height));
-              const Vec helper = std::abs(cap.axis[0]) < 0.9 ? Vec{ 1, 0, 0 } : Vec{ 0, 1, 0 };
-              cap.e1 = unit(cross(cap.axis, helper));
-              cap.e2 = cross(cap.axis, cap.e1);
               caps.push_back(cap);
             }
           }

@@ -1,0 +1,110 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoSurfaceArea.h"
+
+#include "vtkMesoAtomTableConversion.h"
+#include "vtkMesoParallelFor.h"
+
+#include "mesolens/elements.h"
+#include "mesolens/errors.h"
+#include "mesolens/sphere_union_area.h"
+
+#include <vtkDataArray.h>
+#include <vtkFloatArray.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPolyData.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkMesoSurfaceArea);
+
+vtkMesoSurfaceArea::vtkMesoSurfaceArea() = default;
+
+vtkMesoSurfaceArea::~vtkMesoSurfaceArea()
+{
+  this->SetRadiusArrayName(nullptr);
+}
+
+int vtkMesoSurfaceArea::RequestData(vtkInformation*, vtkInformationVector** inputVector,
+                                    vtkInformationVector* outputVector)
+{
+  vtkPolyData* atoms = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  output->Initialize();
+  if (!atoms || atoms->GetNumberOfPoints() == 0)
+  {
+    vtkErrorMacro("No atoms to measure.");
+    return 0;
+  }
+  const vtkIdType n = atoms->GetNumberOfPoints();
+  vtkDataArray* given = nullptr;
+  if (this->RadiusArrayName && *this->RadiusArrayName)
+  {
+    given = atoms->GetPointData()->GetArray(this->RadiusArrayName);
+    if (!given)
+    {
+      vtkErrorMacro("The atoms have no point array `" << this->RadiusArrayName << "` of radii.");
+      return 0;
+    }
+  }
+  vtkDataArray* elements = atoms->GetPointData()->GetArray("AtomicNumber");
+  std::vector<std::array<double, 3>> centres(static_cast<std::size_t>(n));
+  std::vector<double> radii(static_cast<std::size_t>(n));
+  for (vtkIdType a = 0; a < n; ++a)
+  {
+    double p[3];
+    atoms->GetPoint(a, p);
+    centres[std::size_t(a)] = { p[0], p[1], p[2] };
+    double radius = this->BeadRadius;
+    if (given)
+    {
+      radius = given->GetComponent(a, 0);
+    }
+    else if (elements)
+    {
+      const int z = static_cast<int>(elements->GetComponent(a, 0));
+      if (z > 0 && z <= mesolens::max_atomic_number)
+      {
+        radius = mesolens::van_der_waals_radius(z);
+      }
+    }
+    radii[std::size_t(a)] = radius + this->ProbeRadius;
+  }
+  try
+  {
+    const mesolens::SphereUnionArea measured =
+      mesolens::sphere_union_area(centres, radii, vtkMesoParallelFor::Get());
+    output->ShallowCopy(atoms);
+    vtkNew<vtkFloatArray> areas;
+    areas->SetName("AccessibleArea");
+    areas->SetNumberOfValues(n);
+    for (vtkIdType a = 0; a < n; ++a)
+    {
+      areas->SetValue(a, static_cast<float>(measured.per_sphere[std::size_t(a)]));
+    }
+    output->GetPointData()->AddArray(areas);
+    vtkMesoAtomTableConversion::SetFieldValue(output, "TotalArea", measured.total);
+    vtkMesoAtomTableConversion::SetFieldValue(output, "Volume", measured.volume);
+  }
+  catch (const mesolens::Error& error)
+  {
+    output->Initialize();
+    vtkErrorMacro("Cannot measure the surface: " << error.what());
+    return 0;
+  }
+  return 1;
+}
+
+void vtkMesoSurfaceArea::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "ProbeRadius: " << this->ProbeRadius << "\n";
+  os << indent
+     << "RadiusArrayName: " << (this->RadiusArrayName ? this->RadiusArrayName : "(elements)")
+     << "\n";
+  os << indent << "BeadRadius: " << this->BeadRadius << "\n";
+}

@@ -76,7 +76,7 @@ int main(int argc, char* argv[])
       measure->SetInputConnection(fresh->GetOutputPort());
       measure->Update();
     });
-    std::printf("BENCH sas %s (%lld atoms): exact %.1f Å² (element radii, ligands kept: not\n"
+    std::printf("BENCH sas %s (%lld atoms): exact %.1f Å² (element radii, ligands kept: not "
                 "FreeSASA's area), %.1f ms (reading included %.1f ms)\n",
                 name.c_str(), static_cast<long long>(reader->GetOutput()->GetNumberOfPoints()),
                 total, 1e3 * alone, 1e3 * whole);

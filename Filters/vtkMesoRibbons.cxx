@@ -105,10 +105,10 @@ std::vector<mesolens::RibbonResidue> traced_residues(const mesolens::AtomTable& 
     std::int64_t trace = -1;
     std::int64_t oxygen_row = -1;
     mesolens::RibbonResidue residue_out;
-    if (amino_acid != amino_acid_of_residue.end() && backbone.ca_atom[amino_acid->second] >= 0)
+    if (amino_acid != amino_acid_of_residue.end() && backbone.atom_rows[amino_acid->second][1] >= 0)
     {
       const mesolens::BackboneResidue& b = backbone.residues[amino_acid->second];
-      trace = backbone.ca_atom[amino_acid->second];
+      trace = backbone.atom_rows[amino_acid->second][1]; // CA
       if (b.has_o)
       {
         residue_out.carbonyl_oxygen = b.o;

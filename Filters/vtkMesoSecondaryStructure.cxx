@@ -39,7 +39,7 @@ struct vtkMesoSecondaryStructure::Internals
   // a new frame then only reads positions.
   std::vector<vtkMesoStamp> LayoutFrom;
   mesolens::ProteinBackbone Backbone;
-  std::vector<int> ResidueOfAtom;
+  std::vector<int> BackboneResidueOfAtom; ///< per atom, -1: not an amino acid's
   std::vector<float> Positions;
 };
 
@@ -139,7 +139,26 @@ int vtkMesoSecondaryStructure::RequestData(vtkInformation*, vtkInformationVector
         return 0;
       }
       in.Backbone = mesolens::protein_backbone(table);
-      in.ResidueOfAtom = table.residue_indices;
+      // Per atom, its residue's place among the backbone residues (-1: none), once per layout.
+      std::vector<int> slot_of_residue;
+      for (std::size_t r = 0; r < in.Backbone.residue_index.size(); ++r)
+      {
+        const auto index = static_cast<std::size_t>(std::max(0, in.Backbone.residue_index[r]));
+        if (index >= slot_of_residue.size())
+        {
+          slot_of_residue.resize(index + 1, -1);
+        }
+        slot_of_residue[index] = static_cast<int>(r);
+      }
+      in.BackboneResidueOfAtom.assign(std::size_t(n), -1);
+      for (std::size_t a = 0; a < std::size_t(n); ++a)
+      {
+        const int residue = table.residue_indices[a];
+        if (residue >= 0 && std::size_t(residue) < slot_of_residue.size())
+        {
+          in.BackboneResidueOfAtom[a] = slot_of_residue[std::size_t(residue)];
+        }
+      }
       in.LayoutFrom = stamps;
     }
     else
@@ -189,16 +208,6 @@ int vtkMesoSecondaryStructure::RequestData(vtkInformation*, vtkInformationVector
 
     // Per atom: its residue's class and run.
     const std::vector<int> runs = run_ids(classes, backbone.residues);
-    std::vector<int> residue_slot; // table residue index -> backbone residue, -1: none
-    for (std::size_t r = 0; r < backbone.residue_index.size(); ++r)
-    {
-      const auto index = static_cast<std::size_t>(std::max(0, backbone.residue_index[r]));
-      if (index >= residue_slot.size())
-      {
-        residue_slot.resize(index + 1, -1);
-      }
-      residue_slot[index] = static_cast<int>(r);
-    }
     vtkNew<vtkUnsignedCharArray> per_atom;
     per_atom->SetName("SecondaryStructure");
     per_atom->SetNumberOfValues(n);
@@ -207,10 +216,7 @@ int vtkMesoSecondaryStructure::RequestData(vtkInformation*, vtkInformationVector
     per_atom_run->SetNumberOfValues(n);
     for (vtkIdType a = 0; a < n; ++a)
     {
-      const int residue = in.ResidueOfAtom[std::size_t(a)];
-      const int slot = residue >= 0 && std::size_t(residue) < residue_slot.size()
-        ? residue_slot[std::size_t(residue)]
-        : -1;
+      const int slot = in.BackboneResidueOfAtom[std::size_t(a)];
       per_atom->SetValue(a, slot >= 0 ? static_cast<unsigned char>(classes[std::size_t(slot)]) : 0);
       per_atom_run->SetValue(a, slot >= 0 ? runs[std::size_t(slot)] : -1);
     }

@@ -3,6 +3,10 @@
 
 #include "mesolens/errors.h"
 
+#include "grid_cells.h"
+
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -24,44 +28,40 @@ constexpr double neighbour_ca = 9.0;     // Å: Cα farther apart form no H-bond
 constexpr double peptide_bond = 2.5;     // Å: a longer C-N is a chain break
 constexpr double degrees = 180.0 / 3.14159265358979323846;
 
-Vec minus(const Vec& a, const Vec& b)
+/// A coordinate triple as an Eigen vector (the residues keep std::array for the public API).
+Eigen::Vector3d as_vector(const Vec& a)
 {
-  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
+  return { a[0], a[1], a[2] };
 }
-double dot(const Vec& a, const Vec& b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-Vec cross(const Vec& a, const Vec& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
-}
+
 double distance(const Vec& a, const Vec& b)
 {
-  const Vec d = minus(a, b);
-  return std::sqrt(dot(d, d));
+  return (as_vector(a) - as_vector(b)).norm();
 }
 
 /// The dihedral angle p1-p2-p3-p4, degrees in (-180, 180].
 double dihedral(const Vec& p1, const Vec& p2, const Vec& p3, const Vec& p4)
 {
-  const Vec b1 = minus(p2, p1);
-  const Vec b2 = minus(p3, p2);
-  const Vec b3 = minus(p4, p3);
-  const Vec n1 = cross(b1, b2);
-  const Vec n2 = cross(b2, b3);
-  const double b2_length = std::sqrt(dot(b2, b2));
-  const Vec m1 = cross(n1, { b2[0] / b2_length, b2[1] / b2_length, b2[2] / b2_length });
-  return -std::atan2(dot(m1, n2), dot(n1, n2)) * degrees;
+  const Eigen::Vector3d b1 = as_vector(p2) - as_vector(p1);
+  const Eigen::Vector3d b2 = as_vector(p3) - as_vector(p2);
+  const Eigen::Vector3d b3 = as_vector(p4) - as_vector(p3);
+  const Eigen::Vector3d n1 = b1.cross(b2);
+  const Eigen::Vector3d n2 = b2.cross(b3);
+  const Eigen::Vector3d m1 = n1.cross(b2 / b2.norm());
+  return -std::atan2(m1.dot(n2), n1.dot(n2)) * degrees;
+}
+
+/// The angle between the directions a and b, degrees.
+double angle_between(const Eigen::Vector3d& a, const Eigen::Vector3d& b)
+{
+  const double cosine = a.dot(b) / std::sqrt(a.squaredNorm() * b.squaredNorm());
+  return std::acos(std::clamp(cosine, -1.0, 1.0)) * degrees;
 }
 
 /// The angle at b of a-b-c, degrees.
 double angle(const Vec& a, const Vec& b, const Vec& c)
 {
-  const Vec u = minus(a, b);
-  const Vec v = minus(c, b);
-  const double cosine = dot(u, v) / std::sqrt(dot(u, u) * dot(v, v));
-  return std::acos(std::clamp(cosine, -1.0, 1.0)) * degrees;
+  return angle_between(as_vector(a) - as_vector(b), as_vector(c) - as_vector(b));
 }
 
 /// The two best (lowest-energy) partners of a donor or an acceptor.
@@ -132,8 +132,8 @@ public:
       else if (!r.proline && i > 0 && !this->Break[i])
       {
         const BackboneResidue& p = this->At(i - 1);
-        const Vec co = minus(p.c, p.o);
-        const double length = std::sqrt(dot(co, co));
+        const Eigen::Vector3d co = as_vector(p.c) - as_vector(p.o);
+        const double length = co.norm();
         if (length > 0)
         {
           for (int d = 0; d < 3; ++d)
@@ -194,22 +194,10 @@ public:
     this->Acceptors.assign(n, BestTwo()); // per donor NH: its best C=O partners
     // Cα in cells of 9 Å: pairs within 9 Å are in neighbouring cells.
     std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
-    auto cell_of = [](const Vec& p) {
-      return std::array<std::int64_t, 3>{
-        static_cast<std::int64_t>(std::floor(p[0] / neighbour_ca)),
-        static_cast<std::int64_t>(std::floor(p[1] / neighbour_ca)),
-        static_cast<std::int64_t>(std::floor(p[2] / neighbour_ca))
-      };
-    };
-    auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
-      return (static_cast<std::uint64_t>(x + (1 << 20)) & 0x1fffff) |
-        ((static_cast<std::uint64_t>(y + (1 << 20)) & 0x1fffff) << 21) |
-        ((static_cast<std::uint64_t>(z + (1 << 20)) & 0x1fffff) << 42);
-    };
     for (std::size_t i = 0; i < n; ++i)
     {
-      const auto c = cell_of(this->At(i).ca);
-      cells[key(c[0], c[1], c[2])].push_back(static_cast<std::uint32_t>(i));
+      cells[grid_cell_key(grid_cell(this->At(i).ca, neighbour_ca))].push_back(
+        static_cast<std::uint32_t>(i));
     }
     // Per donor, the energies to every acceptor near it (computed in parallel, then offered in
     // a fixed order so that ties resolve the same way every time).
@@ -218,12 +206,12 @@ public:
       for (std::size_t i = begin; i < end; ++i)
       {
         const Vec& ca = this->At(i).ca;
-        const auto c = cell_of(ca);
+        const GridCell c = grid_cell(ca, neighbour_ca);
         for (int dx = -1; dx <= 1; ++dx)
           for (int dy = -1; dy <= 1; ++dy)
             for (int dz = -1; dz <= 1; ++dz)
             {
-              const auto found = cells.find(key(c[0] + dx, c[1] + dy, c[2] + dz));
+              const auto found = cells.find(grid_cell_key(c, dx, dy, dz));
               if (found == cells.end())
               {
                 continue;
@@ -570,11 +558,11 @@ private:
       }
       else if (i >= 2 && i + 2 < n && this->NoBreak(i - 2, i + 2))
       {
-        const Vec before = minus(this->At(i).ca, this->At(i - 2).ca);
-        const Vec after = minus(this->At(i + 2).ca, this->At(i).ca);
-        const double cosine =
-          dot(before, after) / std::sqrt(dot(before, before) * dot(after, after));
-        if (std::acos(std::clamp(cosine, -1.0, 1.0)) * degrees > 70.0)
+        // Kappa: the turn of the chain at i, between CA i-2 -> i and CA i -> i+2.
+        const double kappa =
+          angle_between(as_vector(this->At(i).ca) - as_vector(this->At(i - 2).ca),
+                        as_vector(this->At(i + 2).ca) - as_vector(this->At(i).ca));
+        if (kappa > 70.0)
         {
           ss[i] = SecondaryStructure::Bend;
         }

@@ -98,7 +98,6 @@ ProteinBackbone protein_backbone(const AtomTable& atoms)
       }
       backbone.residues.push_back(residue);
       backbone.residue_index.push_back(atoms.residue_indices[begin]);
-      backbone.ca_atom.push_back(found[1]);
       backbone.atom_rows.push_back(found);
     }
     begin = end;

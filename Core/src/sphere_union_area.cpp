@@ -3,6 +3,10 @@
 
 #include "mesolens/errors.h"
 
+#include "grid_cells.h"
+
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -13,58 +17,33 @@
 namespace mesolens {
 
 namespace {
-using Vec = std::array<double, 3>;
+using Vec = Eigen::Vector3d;
 constexpr double pi = 3.14159265358979323846;
-
-Vec minus(const Vec& a, const Vec& b)
-{
-  return { a[0] - b[0], a[1] - b[1], a[2] - b[2] };
-}
-double dot(const Vec& a, const Vec& b)
-{
-  return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-Vec cross(const Vec& a, const Vec& b)
-{
-  return { a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0] };
-}
-Vec scaled(const Vec& a, double s)
-{
-  return { a[0] * s, a[1] * s, a[2] * s };
-}
-Vec plus(const Vec& a, const Vec& b)
-{
-  return { a[0] + b[0], a[1] + b[1], a[2] + b[2] };
-}
-Vec unit(const Vec& a)
-{
-  return scaled(a, 1.0 / std::sqrt(dot(a, a)));
-}
 
 /// The part of the unit sphere of one sphere that a neighbour covers: u . axis > height.
 struct Cap
 {
-  Vec axis{};
+  Vec axis = Vec::Zero();
   double height = 0; ///< cosine of the cap's angular radius, in (-1, 1)
   double sine = 0;   ///< of the angular radius: the radius of its circle
-  Vec e1{}, e2{};    ///< with axis, a right-handed frame: the circle's azimuth 0 and 90 degrees
+  Vec e1 = Vec::Zero(),
+      e2 = Vec::Zero(); ///< with axis, a right-handed frame: the circle's azimuth 0 and 90 degrees
 
   Vec point(double azimuth) const
   {
-    return plus(scaled(this->axis, this->height),
-                plus(scaled(this->e1, this->sine * std::cos(azimuth)),
-                     scaled(this->e2, this->sine * std::sin(azimuth))));
+    return this->height * this->axis +
+      this->sine * (std::cos(azimuth) * this->e1 + std::sin(azimuth) * this->e2);
   }
   /// The boundary's direction of travel at `azimuth` with the uncovered side on the left:
   /// clockwise about the axis (decreasing azimuth).
   Vec tangent(double azimuth) const
   {
-    return plus(scaled(this->e1, std::sin(azimuth)), scaled(this->e2, -std::cos(azimuth)));
+    return std::sin(azimuth) * this->e1 - std::cos(azimuth) * this->e2;
   }
   double azimuth_of(const Vec& u) const
   {
-    const Vec in_plane = minus(u, scaled(this->axis, this->height));
-    return std::atan2(dot(in_plane, this->e2), dot(in_plane, this->e1));
+    const Vec in_plane = u - this->height * this->axis;
+    return std::atan2(in_plane.dot(this->e2), in_plane.dot(this->e1));
   }
 };
 
@@ -95,7 +74,7 @@ struct UnionFind
 /// `normal_integral` the integral of the outward unit normal over it (for the volume).
 double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral)
 {
-  normal_integral = { 0, 0, 0 };
+  normal_integral = Vec::Zero();
   // Caps inside another cap bound nothing: dropped (cap b lies in cap a when the angle between
   // their axes plus b's radius is at most a's radius; compared as cosines, without acos).
   {
@@ -109,7 +88,7 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral)
       {
         // between <= larger.angle - cap.angle  <=>  cos(between) >= cos(larger - cap)
         // (larger.height <= cap.height: sorted, the larger angular radius first.)
-        inside = dot(cap.axis, larger.axis) >= larger.height * cap.height + larger.sine * cap.sine;
+        inside = cap.axis.dot(larger.axis) >= larger.height * cap.height + larger.sine * cap.sine;
         if (inside)
         {
           break;
@@ -125,9 +104,9 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral)
   for (Cap& cap : caps)
   {
     // The frame of the circle, for the caps that stay.
-    const Vec helper = std::abs(cap.axis[0]) < 0.9 ? Vec{ 1, 0, 0 } : Vec{ 0, 1, 0 };
-    cap.e1 = unit(cross(cap.axis, helper));
-    cap.e2 = cross(cap.axis, cap.e1);
+    const Vec helper = std::abs(cap.axis[0]) < 0.9 ? Vec::UnitX() : Vec::UnitY();
+    cap.e1 = cap.axis.cross(helper).normalized();
+    cap.e2 = cap.axis.cross(cap.e1);
   }
   const std::size_t count = caps.size();
   if (count == 0)
@@ -142,7 +121,7 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral)
   {
     for (std::size_t b = a + 1; b < count; ++b)
     {
-      const double g = dot(caps[a].axis, caps[b].axis);
+      const double g = caps[a].axis.dot(caps[b].axis);
       if (g > caps[a].height * caps[b].height - caps[a].sine * caps[b].sine)
       {
         cap_groups.join(a, b);
@@ -159,7 +138,7 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral)
   auto covered = [&](const Vec& u, std::size_t on) {
     for (const std::uint32_t c : overlapping[on])
     {
-      if (dot(u, caps[c].axis) > caps[c].height)
+      if (u.dot(caps[c].axis) > caps[c].height)
       {
         return true;
       }
@@ -179,7 +158,7 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral)
         continue;
       }
       // The circles cross when |angle a - angle b| < between (between < a + b holds already).
-      const double g = std::clamp(dot(caps[a].axis, caps[b].axis), -1.0, 1.0);
+      const double g = std::clamp(caps[a].axis.dot(caps[b].axis), -1.0, 1.0);
       if (!(g < caps[a].height * caps[b].height + caps[a].sine * caps[b].sine) ||
           1.0 - g * g <= 1e-24)
       {
@@ -187,23 +166,23 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral)
       }
       const double alpha = (caps[a].height - caps[b].height * g) / (1.0 - g * g);
       const double beta = (caps[b].height - caps[a].height * g) / (1.0 - g * g);
-      const Vec w = plus(scaled(caps[a].axis, alpha), scaled(caps[b].axis, beta));
-      const Vec m = cross(caps[a].axis, caps[b].axis);
-      const double rest = 1.0 - dot(w, w);
+      const Vec w = alpha * caps[a].axis + beta * caps[b].axis;
+      const Vec m = caps[a].axis.cross(caps[b].axis);
+      const double rest = 1.0 - w.squaredNorm();
       if (rest <= 0)
       {
         continue;
       }
-      const double gamma = std::sqrt(rest / dot(m, m));
+      const double gamma = std::sqrt(rest / m.squaredNorm());
       for (double side : { -1.0, 1.0 })
       {
-        const Vec u = unit(plus(w, scaled(m, side * gamma)));
+        const Vec u = (w + side * gamma * m).normalized();
         // A crossing inside a third cap is no corner of the exposed part: exposure along a
         // circle changes only at crossings no other cap covers, so those alone cut the arcs.
         bool inside_third = false;
         for (const std::uint32_t c : overlapping[a])
         {
-          if (c != b && dot(u, caps[c].axis) > caps[c].height)
+          if (c != b && u.dot(caps[c].axis) > caps[c].height)
           {
             inside_third = true;
             break;
@@ -240,7 +219,7 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral)
       if (!covered(cap.point(0.0), a))
       {
         turning += -cap.height * 2.0 * pi;
-        normal_integral = plus(normal_integral, scaled(cap.axis, -pi * cap.sine * cap.sine));
+        normal_integral += -pi * cap.sine * cap.sine * cap.axis;
         ++loops;
       }
       continue;
@@ -261,10 +240,9 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral)
       turning += -cap.height * (high - low);
       // The vector area of a surface is half the boundary integral of x cross dx.
       const double h = cap.height, r = cap.sine;
-      const Vec along_arc = plus(scaled(cap.e1, h * r * (std::sin(high) - std::sin(low))),
-                                 plus(scaled(cap.e2, h * r * (std::cos(low) - std::cos(high))),
-                                      scaled(cap.axis, -r * r * (high - low))));
-      normal_integral = plus(normal_integral, scaled(along_arc, 0.5));
+      const Vec along_arc = h * r * (std::sin(high) - std::sin(low)) * cap.e1 +
+        h * r * (std::cos(low) - std::cos(high)) * cap.e2 - r * r * (high - low) * cap.axis;
+      normal_integral += 0.5 * along_arc;
       const std::size_t next = k + 1 < crossings.size() ? k + 1 : 0;
       arcs.push_back({ a, high, low, crossings[next].second, crossings[k].second });
     }
@@ -289,7 +267,7 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral)
     const Vec in_direction = caps[arc.cap].tangent(arc.end_azimuth);
     const Vec out_direction = caps[out.cap].tangent(out.start_azimuth);
     turning +=
-      std::atan2(dot(p, cross(in_direction, out_direction)), dot(in_direction, out_direction));
+      std::atan2(p.dot(in_direction.cross(out_direction)), in_direction.dot(out_direction));
   }
   std::vector<char> root_seen(vertices.size(), 0);
   for (const Arc& arc : arcs)
@@ -336,32 +314,25 @@ SphereUnionArea sphere_union_area(const std::vector<std::array<double, 3>>& cent
   }
   // Spheres in cells of the largest diameter: overlapping ones are in neighbouring cells.
   const double cell = 2.0 * largest;
-  auto key_of = [cell](const Vec& p, int dx, int dy, int dz) {
-    const auto x = static_cast<std::int64_t>(std::floor(p[0] / cell)) + dx;
-    const auto y = static_cast<std::int64_t>(std::floor(p[1] / cell)) + dy;
-    const auto z = static_cast<std::int64_t>(std::floor(p[2] / cell)) + dz;
-    return (static_cast<std::uint64_t>(x + (1 << 20)) & 0x1fffff) |
-      ((static_cast<std::uint64_t>(y + (1 << 20)) & 0x1fffff) << 21) |
-      ((static_cast<std::uint64_t>(z + (1 << 20)) & 0x1fffff) << 42);
-  };
   std::vector<double> volume_terms(n, 0.0);
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
   for (std::size_t i = 0; i < n; ++i)
   {
-    cells[key_of(centres[i], 0, 0, 0)].push_back(static_cast<std::uint32_t>(i));
+    cells[grid_cell_key(grid_cell(centres[i], cell))].push_back(static_cast<std::uint32_t>(i));
   }
   run_parallel(parallel_for, n, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
     {
-      const Vec& c = centres[i];
+      const Vec c(centres[i][0], centres[i][1], centres[i][2]);
       const double r = radii[i];
+      const GridCell home = grid_cell(centres[i], cell);
       std::vector<Cap> caps;
       bool buried = false;
       for (int dx = -1; dx <= 1 && !buried; ++dx)
         for (int dy = -1; dy <= 1 && !buried; ++dy)
           for (int dz = -1; dz <= 1 && !buried; ++dz)
           {
-            const auto found = cells.find(key_of(c, dx, dy, dz));
+            const auto found = cells.find(grid_cell_key(home, dx, dy, dz));
             if (found == cells.end())
             {
               continue;
@@ -373,8 +344,8 @@ SphereUnionArea sphere_union_area(const std::vector<std::array<double, 3>>& cent
                 continue;
               }
               const double rj = radii[j];
-              const Vec offset = minus(centres[j], c);
-              const double d = std::sqrt(dot(offset, offset));
+              const Vec offset = Vec(centres[j][0], centres[j][1], centres[j][2]) - c;
+              const double d = offset.norm();
               if (d >= r + rj)
               {
                 continue; // apart
@@ -389,18 +360,18 @@ SphereUnionArea sphere_union_area(const std::vector<std::array<double, 3>>& cent
                 continue; // j inside this sphere
               }
               Cap cap;
-              cap.axis = scaled(offset, 1.0 / d);
+              cap.axis = offset / d;
               cap.height = std::clamp((r * r + d * d - rj * rj) / (2.0 * r * d), -1.0, 1.0);
               cap.sine = std::sqrt(std::max(0.0, 1.0 - cap.height * cap.height));
               caps.push_back(cap);
             }
           }
-      Vec normal_integral{ 0, 0, 0 };
+      Vec normal_integral = Vec::Zero();
       const double solid_angle = buried ? 0.0 : exposed_unit_area(caps, normal_integral);
       result.per_sphere[i] = r * r * solid_angle;
       // The divergence theorem over the exposed patch: (1/3) of x . n dA, x = c + r u.
       volume_terms[i] =
-        buried ? 0.0 : r * r * r * solid_angle / 3.0 + r * r * dot(c, normal_integral) / 3.0;
+        buried ? 0.0 : r * r * r * solid_angle / 3.0 + r * r * c.dot(normal_integral) / 3.0;
     }
   });
   for (std::size_t i = 0; i < n; ++i)

@@ -3,6 +3,8 @@
 
 #include "mesolens/errors.h"
 
+#include "grid_cells.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -14,7 +16,7 @@
 namespace mesolens {
 
 namespace {
-using Cell = std::array<std::int64_t, 3>;
+using Cell = GridCell;
 
 /// The 27 cells around a cell, its own first: in a dense cloud a point's conflict is usually
 /// in its own cell, found with one lookup.
@@ -29,15 +31,6 @@ const std::array<std::array<int, 3>, 27> neighbour_offsets = [] {
   return offsets;
 }();
 
-std::uint64_t cell_key(const Cell& c)
-{
-  // 21 bits per axis: cells up to +-1e6 per axis, far more than any cloud here needs.
-  const auto part = [](std::int64_t v) {
-    return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1fffff;
-  };
-  return part(c[0]) | (part(c[1]) << 21) | (part(c[2]) << 42);
-}
-
 /// The points binned in cubic cells of one size, each cell's points contiguous.
 class PointGrid
 {
@@ -50,7 +43,7 @@ public:
     std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(n);
     for (std::size_t i = 0; i < n; ++i)
     {
-      keyed[i] = { cell_key(this->cell_of(&points[3 * i])), static_cast<std::uint32_t>(i) };
+      keyed[i] = { grid_cell_key(this->cell_of(&points[3 * i])), static_cast<std::uint32_t>(i) };
     }
     std::sort(keyed.begin(), keyed.end());
     this->Order.resize(n);
@@ -67,9 +60,7 @@ public:
 
   Cell cell_of(const double* p) const
   {
-    return { static_cast<std::int64_t>(std::floor(p[0] / this->Size)),
-             static_cast<std::int64_t>(std::floor(p[1] / this->Size)),
-             static_cast<std::int64_t>(std::floor(p[2] / this->Size)) };
+    return grid_cell({ p[0], p[1], p[2] }, this->Size);
   }
 
   /// Calls visit(index, squared distance) for every point within the cells `reach` cells
@@ -82,8 +73,7 @@ public:
       for (int dy = -reach; dy <= reach; ++dy)
         for (int dz = -reach; dz <= reach; ++dz)
         {
-          const auto found =
-            this->Ranges.find(cell_key({ centre[0] + dx, centre[1] + dy, centre[2] + dz }));
+          const auto found = this->Ranges.find(grid_cell_key(centre, dx, dy, dz));
           if (found == this->Ranges.end())
           {
             continue;
@@ -198,15 +188,12 @@ std::vector<double> poisson_disk_subset(const std::vector<double>& points, doubl
   for (std::size_t i = 0; i < points.size(); i += 3)
   {
     const double* p = &points[i];
-    const Cell c{ static_cast<std::int64_t>(std::floor(p[0] / spacing)),
-                  static_cast<std::int64_t>(std::floor(p[1] / spacing)),
-                  static_cast<std::int64_t>(std::floor(p[2] / spacing)) };
+    const Cell c = grid_cell({ p[0], p[1], p[2] }, spacing);
     bool free = true;
     for (std::size_t o = 0; o < neighbour_offsets.size() && free; ++o)
     {
       const auto& offset = neighbour_offsets[o];
-      const auto found =
-        cells.find(cell_key({ c[0] + offset[0], c[1] + offset[1], c[2] + offset[2] }));
+      const auto found = cells.find(grid_cell_key(c, offset[0], offset[1], offset[2]));
       if (found == cells.end())
       {
         continue;
@@ -225,7 +212,7 @@ std::vector<double> poisson_disk_subset(const std::vector<double>& points, doubl
     }
     if (free)
     {
-      cells[cell_key(c)].push_back(static_cast<std::uint32_t>(kept.size() / 3));
+      cells[grid_cell_key(c)].push_back(static_cast<std::uint32_t>(kept.size() / 3));
       kept.insert(kept.end(), { p[0], p[1], p[2] });
     }
   }

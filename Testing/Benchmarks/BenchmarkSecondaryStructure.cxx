@@ -58,21 +58,11 @@ void write_pdb_for_mkdssp(const mesolens::AtomTable& table, const std::string& p
   std::fprintf(file, "END\n");
   std::fclose(file);
 }
-
-bool have_mkdssp()
-{
-  return std::system("mkdssp --version > /dev/null 2>&1") == 0;
-}
 } // namespace
 
 int main(int argc, char* argv[])
 {
-  int repeats = 5;
-  for (int i = 1; i + 1 < argc; i += 2)
-  {
-    if (!std::strcmp(argv[i], "--repeats"))
-      repeats = std::max(1, std::atoi(argv[i + 1]));
-  }
+  const int repeats = mesolens_test::count_argument(argc, argv, "--repeats", 5);
   std::printf("BENCH dssp threads: %d\n", vtkSMPTools::GetEstimatedNumberOfThreads());
 
   // 1. 4jsv.pdb against mkdssp.
@@ -93,7 +83,7 @@ int main(int argc, char* argv[])
     std::printf("BENCH dssp 4jsv.pdb (%zu atoms, %zu residues): assignment %.1f ms; reader + "
                 "vtkMesoSecondaryStructure %.1f ms\n",
                 file.models[0].size(), backbone.residues.size(), 1e3 * assign, 1e3 * whole);
-    if (have_mkdssp())
+    if (mesolens_test::program_available("mkdssp --version"))
     {
       const std::string output =
         mesolens_test::output_file("BenchmarkSecondaryStructure_4jsv.dssp");
@@ -149,7 +139,7 @@ int main(int argc, char* argv[])
                 "%.1f ms (one thread)\n",
                 backbone.residues.size(), 1e3 * extract, 1e3 * assign);
     // mkdssp cannot read GRO: the same atoms as a PDB it accepts, timed once (about a minute).
-    if (have_mkdssp())
+    if (mesolens_test::program_available("mkdssp --version"))
     {
       const std::string pdb_copy =
         mesolens_test::output_file("BenchmarkSecondaryStructure_3l5q.pdb");

@@ -113,15 +113,8 @@ vtkSmartPointer<vtkPolyData> hiv_sized_vesicle(int seeds)
 
 int main(int argc, char* argv[])
 {
-  int seeds = 60;
-  int repeats = 3;
-  for (int i = 1; i + 1 < argc; i += 2)
-  {
-    if (!std::strcmp(argv[i], "--seeds"))
-      seeds = std::max(1, std::atoi(argv[i + 1]));
-    else if (!std::strcmp(argv[i], "--repeats"))
-      repeats = std::max(1, std::atoi(argv[i + 1]));
-  }
+  const int seeds = mesolens_test::count_argument(argc, argv, "--seeds", 60);
+  const int repeats = mesolens_test::count_argument(argc, argv, "--repeats", 3);
   vtkSmartPointer<vtkPolyData> vesicle;
   const double build = seconds_of([&] { vesicle = hiv_sized_vesicle(seeds); });
   vtkDataArray* ids = vesicle->GetPointData()->GetArray("MoleculeId");

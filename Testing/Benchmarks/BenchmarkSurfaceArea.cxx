@@ -19,29 +19,17 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <string>
 
 namespace {
 using mesolens_test::median_seconds;
-using mesolens_test::seconds_of;
-
-bool have_freesasa()
-{
-  return std::system("freesasa --version > /dev/null 2>&1") == 0;
-}
 } // namespace
 
 int main(int argc, char* argv[])
 {
-  int repeats = 5;
-  for (int i = 1; i + 1 < argc; i += 2)
-  {
-    if (!std::strcmp(argv[i], "--repeats"))
-      repeats = std::max(1, std::atoi(argv[i + 1]));
-  }
+  const int repeats = mesolens_test::count_argument(argc, argv, "--repeats", 5);
   std::printf("BENCH sas threads: %d\n", vtkSMPTools::GetEstimatedNumberOfThreads());
-  const bool freesasa = have_freesasa();
+  const bool freesasa = mesolens_test::program_available("freesasa --version");
   if (!freesasa)
   {
     std::printf("BENCH sas FreeSASA is not installed (Debian package freesasa): no ratios\n");

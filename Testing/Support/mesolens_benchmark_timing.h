@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
+#include <cstring>
 #include <functional>
+#include <string>
 #include <vector>
 
 namespace mesolens_test {
@@ -27,6 +30,25 @@ inline double median_seconds(int repeats, const std::function<void()>& work)
   }
   std::sort(times.begin(), times.end());
   return times[times.size() / 2];
+}
+
+/// The value after `--name` on the command line as an integer >= 1, or `fallback`.
+inline int count_argument(int argc, char* argv[], const char* name, int fallback)
+{
+  for (int i = 1; i + 1 < argc; ++i)
+  {
+    if (!std::strcmp(argv[i], name))
+    {
+      return std::max(1, std::atoi(argv[i + 1]));
+    }
+  }
+  return fallback;
+}
+
+/// Whether a baseline program runs here (`command` such as "mkdssp --version").
+inline bool program_available(const std::string& command)
+{
+  return std::system((command + " > /dev/null 2>&1").c_str()) == 0;
 }
 
 } // namespace mesolens_test

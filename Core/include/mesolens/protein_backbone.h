@@ -35,8 +35,6 @@ struct ProteinBackbone
   std::vector<BackboneResidue> residues;
   /// Per backbone residue, the table's residue index (AtomTable::residue_indices).
   std::vector<int> residue_index;
-  /// Per backbone residue, the table row of its CA atom (-1 when it has none).
-  std::vector<std::int64_t> ca_atom;
   /// Per backbone residue, the table rows of its N, CA, C, O and H atoms (-1: absent): a new
   /// frame of the same atoms only needs update_positions().
   std::vector<std::array<std::int64_t, 5>> atom_rows;

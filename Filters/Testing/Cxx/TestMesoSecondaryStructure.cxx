@@ -32,16 +32,6 @@ std::string dssp_of(vtkPolyData* output)
     joined += chains->GetValue(c);
   return joined;
 }
-
-double agreement(const std::string& a, const std::string& b)
-{
-  if (a.size() != b.size() || a.empty())
-    return 0.0;
-  std::size_t same = 0;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    same += a[i] == b[i];
-  return double(same) / double(a.size());
-}
 } // namespace
 
 TEST(vtkMesoSecondaryStructure, CrambinAsMkdsspAssignsIt)

@@ -1,0 +1,32 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Cells of a uniform grid as hash keys (private to MesoLensCore): the neighbour searches of
+// the point-cloud sampling, DSSP and the sphere-union area bin their points this way.
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+namespace mesolens {
+
+using GridCell = std::array<std::int64_t, 3>;
+
+/// The cell of edge `size` holding `p`.
+inline GridCell grid_cell(const std::array<double, 3>& p, double size)
+{
+  return { static_cast<std::int64_t>(std::floor(p[0] / size)),
+           static_cast<std::int64_t>(std::floor(p[1] / size)),
+           static_cast<std::int64_t>(std::floor(p[2] / size)) };
+}
+
+/// A cell as one 64-bit key: 21 bits per axis, cells up to +-1e6 per axis (far more than any
+/// molecule or cloud here needs). `dx`, `dy`, `dz` offset the cell (its neighbours).
+inline std::uint64_t grid_cell_key(const GridCell& c, int dx = 0, int dy = 0, int dz = 0)
+{
+  const auto part = [](std::int64_t v) {
+    return static_cast<std::uint64_t>(v + (1 << 20)) & 0x1fffff;
+  };
+  return part(c[0] + dx) | (part(c[1] + dy) << 21) | (part(c[2] + dz) << 42);
+}
+
+} // namespace mesolens

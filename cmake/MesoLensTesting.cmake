@@ -77,8 +77,7 @@ target_link_libraries(mesolens_compare_images PRIVATE VTK::IOImage VTK::CommonDa
 # strictly: 16 levels per pixel, 0.2 % of the pixels; THRESHOLDS loosens that for pictures drawn
 # by a different method). WILL_FAIL: the test passes only when the comparison finds the picture
 # different (a render that fails is no pass). PYTHON: the program runs the wrapped modules in
-# Debian's Python (which
-# needs the sanitizer runtime preloaded in a sanitizer build).
+# Debian's Python (which needs the sanitizer runtime preloaded in a sanitizer build).
 function(mesolens_add_image_test name)
   cmake_parse_arguments(arg "WILL_FAIL;PYTHON" "BASELINE;LABEL" "COMMAND;THRESHOLDS" ${ARGN})
   if (NOT arg_LABEL)

@@ -235,10 +235,11 @@ int vtkMesoRibbons::RequestData(vtkInformation*, vtkInformationVector** inputVec
     settings.nucleic_radius = this->NucleicRadius;
     settings.cylinder_radius = this->CylinderRadius;
     settings.arrow_width_factor = this->ArrowWidthFactor;
-    const std::vector<mesolens::RibbonSegment> segments =
-      mesolens::ribbon_segments(residues, settings);
+    // Per-piece counts apply while they match the pieces (counted only when some are given:
+    // ribbon_mesh finds the pieces itself).
     if (this->SegmentSubdivisions &&
-        this->SegmentSubdivisions->GetNumberOfTuples() == vtkIdType(segments.size()))
+        this->SegmentSubdivisions->GetNumberOfTuples() ==
+          vtkIdType(mesolens::ribbon_segments(residues, settings).size()))
     {
       for (vtkIdType s = 0; s < this->SegmentSubdivisions->GetNumberOfTuples(); ++s)
       {
@@ -357,7 +358,7 @@ int vtkMesoRibbons::RequestData(vtkInformation*, vtkInformationVector** inputVec
     bounds->SetNumberOfComponents(6);
     vtkNew<vtkIntArray> lengths;
     lengths->SetName("SegmentResidueCounts");
-    for (const mesolens::RibbonSegment& segment : segments)
+    for (const mesolens::RibbonSegment& segment : mesh.segments)
     {
       double box[6] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MIN, VTK_DOUBLE_MAX,
                         VTK_DOUBLE_MIN, VTK_DOUBLE_MAX, VTK_DOUBLE_MIN };

@@ -1,0 +1,103 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Molecular surfaces of a set of atoms (spheres): the solvent-excluded surface from its analytic
+// patches, the solvent-accessible and the van der Waals surface; their exact areas and volumes,
+// and watertight triangle meshes of them to a chosen chord error.
+#pragma once
+
+#include "mesolens/parallel_for.h"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace mesolens {
+
+/// Which surface of the atoms.
+enum class SurfaceKind : std::uint8_t
+{
+  /// Where a probe sphere rolled over the atoms cannot reach (Richards' molecular surface,
+  /// Connolly's): convex parts of the atoms, saddles (torus pieces) where the probe touches two
+  /// atoms, concave spherical triangles where it touches three.
+  SolventExcluded = 0,
+  /// The surface the probe's centre traces: the atoms' spheres inflated by the probe radius.
+  SolventAccessible = 1,
+  /// The atoms' spheres themselves (the probe radius is not used).
+  VanDerWaals = 2,
+};
+
+/// The kinds of analytic patch, as the `patch` of a mesh vertex.
+enum class SurfacePatch : std::uint8_t
+{
+  Convex = 0,   ///< on an atom's sphere (every vertex of the SAS and vdW surfaces)
+  Toroidal = 1, ///< swept by the probe rolling on two atoms
+  Concave = 2,  ///< on the probe where it touches three atoms
+};
+
+/// Parameters of molecular_surface().
+struct MolecularSurfaceOptions
+{
+  SurfaceKind kind = SurfaceKind::SolventExcluded;
+  /// Radius of the solvent probe, Å (length units of the input), (0, 20]; default 1.4 (water).
+  double probe_radius = 1.4;
+  /// Largest distance between a triangle and the exact surface it stands for (chord error),
+  /// Å, [0.005, 1]: the grid spacing of the tessellation follows from it and the smallest
+  /// radius of curvature. 0.1 suits interaction, 0.02 figures.
+  double tolerance = 0.1;
+  /// Keep the surfaces of cavities inside the molecule (closed components whose normals face
+  /// inwards). Default true.
+  bool keep_cavities = true;
+  /// Build the triangle mesh; false gives the exact area and volume alone. Default true.
+  bool tessellate = true;
+};
+
+/// Exact figures of a surface and, when tessellated, its mesh. Mesh vertices lie on the exact
+/// surface (to 1e-6 Å); triangles are counter-clockwise seen from outside (the solvent).
+struct MolecularSurface
+{
+  double area = 0;   ///< exact, from the patches (Å²)
+  double volume = 0; ///< enclosed, exact from the patches (Å³); cavities count negatively
+  /// Exact area per patch kind (convex, toroidal, concave), Å².
+  std::array<double, 3> patch_area{};
+  /// Number of patches: convex (atoms with exposed surface), toroidal, concave; and how many of
+  /// the toroidal and concave ones are cut by the surface's singularities (a probe passing
+  /// between two atoms, probes overlapping), whose area is integrated numerically (about
+  /// 1e-6 of the patch's area) rather than in closed form.
+  std::array<std::size_t, 3> patch_count{};
+  std::size_t singular_patch_count = 0;
+  /// Closed components of the mesh, and how many of them are cavities (dropped when
+  /// keep_cavities is false).
+  std::size_t component_count = 0;
+  std::size_t cavity_count = 0;
+  /// Grid spacing the tessellation used, Å.
+  double grid_spacing = 0;
+
+  std::vector<double> points;          ///< 3 per vertex, Å
+  std::vector<double> normals;         ///< 3 per vertex, unit, pointing into the solvent
+  std::vector<std::int64_t> triangles; ///< 3 vertex indices each
+  std::vector<std::int32_t> atom;      ///< per vertex: the atom it belongs to (nearest)
+  std::vector<SurfacePatch> patch;     ///< per vertex: the kind of patch it lies on
+};
+
+/// Called with the fraction done, in [0, 1], from the calling thread.
+using SurfaceProgress = std::function<void(double)>;
+
+/// The surface of `centres` (Å) with `radii` (Å, > 0; e.g. the van der Waals radii of their
+/// elements). The solvent-excluded surface is built from the solvent-accessible boundary: its
+/// exposed spheres, arcs where two meet and points where three meet are the probe's positions;
+/// each patch's area and volume term comes in closed form, and singular patches are integrated
+/// numerically where they are cut. The mesh is the zero set of the exact distance to those probe
+/// positions minus the probe radius, contoured on a sparse grid (marching tetrahedra, so it is
+/// watertight and 2-manifold by construction) with every vertex moved onto the exact surface.
+///
+/// Throws InvalidInput for lists of different lengths, a non-finite centre or radius, a radius
+/// <= 0 or > 20 Å, or an option out of range. No atoms give an empty surface. Deterministic
+/// whatever `parallel_for`.
+MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& centres,
+                                   const std::vector<double>& radii,
+                                   const MolecularSurfaceOptions& options = {},
+                                   const ParallelFor& parallel_for = {},
+                                   const SurfaceProgress& progress = {});
+
+} // namespace mesolens

@@ -1,0 +1,289 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <Eigen/Dense>
+
+#include "contour_tetrahedra.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <unordered_map>
+
+namespace mesolens {
+
+namespace {
+using Vec = Eigen::Vector3d;
+constexpr int block_cells = 8; // cells per block edge: the unit of parallel work
+
+/// Kuhn's six tetrahedra of the unit cube, corners as bit masks (x 1, y 2, z 4), each ordered
+/// so that its orientation is positive.
+std::array<std::array<int, 4>, 6> kuhn_tetrahedra()
+{
+  const int axes[6][3] = { { 1, 2, 4 }, { 1, 4, 2 }, { 2, 1, 4 },
+                           { 2, 4, 1 }, { 4, 1, 2 }, { 4, 2, 1 } };
+  std::array<std::array<int, 4>, 6> tets{};
+  for (int t = 0; t < 6; ++t)
+  {
+    std::array<int, 4> tet = { 0, axes[t][0], axes[t][0] | axes[t][1], 7 };
+    const auto corner = [](int mask) {
+      return Vec(mask & 1 ? 1 : 0, mask & 2 ? 1 : 0, mask & 4 ? 1 : 0);
+    };
+    const Vec a = corner(tet[0]);
+    const double det = (corner(tet[1]) - a).cross(corner(tet[2]) - a).dot(corner(tet[3]) - a);
+    if (det < 0)
+    {
+      std::swap(tet[2], tet[3]);
+    }
+    tets[t] = tet;
+  }
+  return tets;
+}
+
+// Even permutations of a positive tetrahedron putting the listed corners first (they keep the
+// orientation): one corner alone, and each pair.
+constexpr int first_alone[4][4] = { { 0, 1, 2, 3 },
+                                    { 1, 0, 3, 2 },
+                                    { 2, 0, 1, 3 },
+                                    { 3, 0, 2, 1 } };
+int pair_order(int a, int b, int order[4])
+{
+  static const int orders[6][4] = { { 0, 1, 2, 3 }, { 0, 2, 3, 1 }, { 0, 3, 1, 2 },
+                                    { 1, 2, 0, 3 }, { 1, 3, 2, 0 }, { 2, 3, 0, 1 } };
+  static const int which[4][4] = {
+    { -1, 0, 1, 2 }, { 0, -1, 3, 4 }, { 1, 3, -1, 5 }, { 2, 4, 5, -1 }
+  };
+  const int k = which[a][b];
+  std::copy(orders[k], orders[k] + 4, order);
+  return k;
+}
+
+struct BlockOutput
+{
+  std::vector<std::pair<std::uint64_t, ContourVertex>> vertices;
+  std::vector<std::array<std::uint64_t, 3>> triangles;
+};
+} // namespace
+
+ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const Vec& high,
+                               double spacing, const ParallelFor& parallel_for,
+                               const std::function<void(double)>& progress)
+{
+  ContourMesh mesh;
+  std::array<std::int64_t, 3> cells{};
+  for (int a = 0; a < 3; ++a)
+  {
+    cells[a] =
+      std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil((high[a] - low[a]) / spacing)));
+  }
+  const std::array<std::int64_t, 3> points = { cells[0] + 1, cells[1] + 1, cells[2] + 1 };
+  const std::array<std::int64_t, 3> blocks = { (cells[0] + block_cells - 1) / block_cells,
+                                               (cells[1] + block_cells - 1) / block_cells,
+                                               (cells[2] + block_cells - 1) / block_cells };
+  const std::size_t block_count = static_cast<std::size_t>(blocks[0] * blocks[1] * blocks[2]);
+  const auto tets = kuhn_tetrahedra();
+  const auto point_key = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return static_cast<std::uint64_t>(x + points[0] * (y + points[1] * z));
+  };
+  const auto position = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return Vec(low[0] + spacing * double(x), low[1] + spacing * double(y),
+               low[2] + spacing * double(z));
+  };
+
+  std::vector<BlockOutput> outputs(block_count);
+  const auto run_block = [&](std::size_t b) {
+    const std::int64_t bx = static_cast<std::int64_t>(b % std::size_t(blocks[0]));
+    const std::int64_t by =
+      static_cast<std::int64_t>((b / std::size_t(blocks[0])) % std::size_t(blocks[1]));
+    const std::int64_t bz = static_cast<std::int64_t>(b / std::size_t(blocks[0] * blocks[1]));
+    const std::int64_t x0 = bx * block_cells, y0 = by * block_cells, z0 = bz * block_cells;
+    // Octree culling down to single cells.
+    std::vector<std::array<std::int64_t, 3>> candidates;
+    std::vector<std::array<std::int64_t, 4>> stack = { { x0, y0, z0, block_cells } };
+    while (!stack.empty())
+    {
+      const auto node = stack.back();
+      stack.pop_back();
+      const std::int64_t size = node[3];
+      const Vec centre =
+        position(node[0], node[1], node[2]) + Vec::Constant(0.5 * spacing * double(size));
+      if (field.empty(centre, 0.5 * std::sqrt(3.0) * spacing * double(size)))
+      {
+        continue;
+      }
+      if (size == 1)
+      {
+        candidates.push_back({ node[0], node[1], node[2] });
+        continue;
+      }
+      const std::int64_t half = size / 2;
+      for (int child = 7; child >= 0; --child)
+      {
+        const std::int64_t cx = node[0] + (child & 1 ? half : 0);
+        const std::int64_t cy = node[1] + (child & 2 ? half : 0);
+        const std::int64_t cz = node[2] + (child & 4 ? half : 0);
+        if (cx < cells[0] && cy < cells[1] && cz < cells[2])
+        {
+          stack.push_back({ cx, cy, cz, half });
+        }
+      }
+    }
+    if (candidates.empty())
+    {
+      return;
+    }
+    // Corner values on the block's points (block_cells + 1 per axis), computed once.
+    constexpr int side = block_cells + 1;
+    std::vector<double> values(side * side * side, std::numeric_limits<double>::quiet_NaN());
+    const auto value_at = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+      double& v = values[std::size_t((x - x0) + side * ((y - y0) + side * (z - z0)))];
+      if (std::isnan(v))
+      {
+        v = field.value(position(x, y, z));
+      }
+      return v;
+    };
+    BlockOutput& out = outputs[b];
+    std::unordered_map<std::uint64_t, char> made;
+    for (const auto& cell : candidates)
+    {
+      std::array<double, 8> corner_value{};
+      std::array<Vec, 8> corner_position;
+      for (int m = 0; m < 8; ++m)
+      {
+        const std::int64_t x = cell[0] + (m & 1), y = cell[1] + ((m >> 1) & 1),
+                           z = cell[2] + ((m >> 2) & 1);
+        corner_value[m] = value_at(x, y, z);
+        corner_position[m] = position(x, y, z);
+      }
+      const auto edge = [&](int a, int b) {
+        // Kuhn edges join a corner to one whose bits include its own: key by the lower corner
+        // and the offset.
+        const int from = std::min(a, b), to = std::max(a, b);
+        const std::uint64_t key = point_key(cell[0] + (from & 1), cell[1] + ((from >> 1) & 1),
+                                            cell[2] + ((from >> 2) & 1)) *
+            8 +
+          std::uint64_t(to ^ from);
+        if (made.emplace(key, 1).second)
+        {
+          const int outside = corner_value[a] > 0 ? b : a;
+          const int inside = corner_value[a] > 0 ? a : b;
+          out.vertices.emplace_back(key,
+                                    field.vertex(corner_position[outside], corner_value[outside],
+                                                 corner_position[inside], corner_value[inside]));
+        }
+        return key;
+      };
+      for (const auto& tet : tets)
+      {
+        int inside_mask = 0, inside_count = 0;
+        for (int k = 0; k < 4; ++k)
+        {
+          if (corner_value[tet[k]] > 0)
+          {
+            inside_mask |= 1 << k;
+            ++inside_count;
+          }
+        }
+        if (inside_count == 0 || inside_count == 4)
+        {
+          continue;
+        }
+        if (inside_count == 1 || inside_count == 3)
+        {
+          int lone = 0;
+          for (int k = 0; k < 4; ++k)
+          {
+            const bool in = (inside_mask >> k) & 1;
+            if (in == (inside_count == 1))
+            {
+              lone = k;
+            }
+          }
+          const int* order = first_alone[lone];
+          const int a = tet[order[0]], b = tet[order[1]], c = tet[order[2]], d = tet[order[3]];
+          if (inside_count == 1)
+          {
+            out.triangles.push_back({ edge(a, b), edge(a, c), edge(a, d) });
+          }
+          else
+          {
+            out.triangles.push_back({ edge(a, b), edge(a, d), edge(a, c) });
+          }
+          continue;
+        }
+        int pair[2], p = 0;
+        for (int k = 0; k < 4; ++k)
+        {
+          if ((inside_mask >> k) & 1)
+          {
+            pair[p++] = k;
+          }
+        }
+        int order[4];
+        pair_order(pair[0], pair[1], order);
+        const int a = tet[order[0]], b = tet[order[1]], c = tet[order[2]], d = tet[order[3]];
+        const std::uint64_t ac = edge(a, c), ad = edge(a, d), bd = edge(b, d), bc = edge(b, c);
+        out.triangles.push_back({ ac, ad, bd });
+        out.triangles.push_back({ ac, bd, bc });
+      }
+    }
+  };
+
+  // Blocks in rounds, so progress is reported from this thread.
+  const std::size_t round = 256;
+  for (std::size_t first = 0; first < block_count; first += round)
+  {
+    const std::size_t count = std::min(round, block_count - first);
+    run_parallel(parallel_for, count, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k)
+      {
+        run_block(first + k);
+      }
+    });
+    if (progress)
+    {
+      progress(double(first + count) / double(block_count));
+    }
+  }
+
+  // One vertex per edge key (blocks share their faces' edges), ordered by key.
+  std::vector<std::pair<std::uint64_t, ContourVertex>> all;
+  std::size_t triangle_count = 0;
+  for (BlockOutput& out : outputs)
+  {
+    all.insert(all.end(), out.vertices.begin(), out.vertices.end());
+    triangle_count += out.triangles.size();
+    out.vertices.clear();
+    out.vertices.shrink_to_fit();
+  }
+  std::stable_sort(all.begin(), all.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  all.erase(std::unique(all.begin(), all.end(),
+                        [](const auto& a, const auto& b) { return a.first == b.first; }),
+            all.end());
+  std::vector<std::uint64_t> keys(all.size());
+  mesh.vertices.resize(all.size());
+  for (std::size_t k = 0; k < all.size(); ++k)
+  {
+    keys[k] = all[k].first;
+    mesh.vertices[k] = all[k].second;
+  }
+  const auto index_of = [&](std::uint64_t key) {
+    return static_cast<std::int64_t>(std::lower_bound(keys.begin(), keys.end(), key) -
+                                     keys.begin());
+  };
+  mesh.triangles.reserve(3 * triangle_count);
+  for (const BlockOutput& out : outputs)
+  {
+    for (const auto& triangle : out.triangles)
+    {
+      for (const std::uint64_t key : triangle)
+      {
+        mesh.triangles.push_back(index_of(key));
+      }
+    }
+  }
+  return mesh;
+}
+
+} // namespace mesolens

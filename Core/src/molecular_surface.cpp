@@ -1,0 +1,536 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <Eigen/Dense>
+
+#include "mesolens/molecular_surface.h"
+
+#include "mesolens/errors.h"
+
+#include "contour_tetrahedra.h"
+#include "probe_distance.h"
+#include "sas_boundary.h"
+#include "ses_patches.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+namespace mesolens {
+
+namespace {
+using Vec = Eigen::Vector3d;
+constexpr double largest_radius = 20.0;        // Å: no atom, bead or probe is larger
+constexpr double largest_triangle_count = 6e7; // a finer tolerance than this allows is refused
+
+/// Which grid cells of width `width` some sphere's bounding box touches, with 3D prefix sums so
+/// that any box is tested in eight lookups: the coarse test of where a surface can be.
+class Occupancy
+{
+public:
+  Occupancy(const std::vector<Vec>& centres, const std::vector<double>& radii, double width)
+    : width_(width)
+  {
+    Vec low = Vec::Constant(1e300), high = -low;
+    for (std::size_t i = 0; i < centres.size(); ++i)
+    {
+      low = low.cwiseMin(centres[i] - Vec::Constant(radii[i]));
+      high = high.cwiseMax(centres[i] + Vec::Constant(radii[i]));
+    }
+    this->origin_ = low - Vec::Constant(width);
+    for (int a = 0; a < 3; ++a)
+    {
+      this->dims_[a] =
+        static_cast<std::int64_t>(std::ceil((high[a] - this->origin_[a]) / width)) + 2;
+    }
+    const std::int64_t nx = this->dims_[0] + 1, ny = this->dims_[1] + 1, nz = this->dims_[2] + 1;
+    this->sums_.assign(static_cast<std::size_t>(nx * ny * nz), 0);
+    std::vector<std::int32_t> marks(static_cast<std::size_t>(nx * ny * nz), 0);
+    for (std::size_t i = 0; i < centres.size(); ++i)
+    {
+      const auto from = this->cell(centres[i] - Vec::Constant(radii[i]));
+      const auto to = this->cell(centres[i] + Vec::Constant(radii[i]));
+      for (std::int64_t z = from[2]; z <= to[2]; ++z)
+        for (std::int64_t y = from[1]; y <= to[1]; ++y)
+          for (std::int64_t x = from[0]; x <= to[0]; ++x)
+          {
+            marks[this->at(x + 1, y + 1, z + 1)] = 1;
+          }
+    }
+    for (std::int64_t z = 1; z < nz; ++z)
+      for (std::int64_t y = 1; y < ny; ++y)
+        for (std::int64_t x = 1; x < nx; ++x)
+        {
+          this->sums_[this->at(x, y, z)] = marks[this->at(x, y, z)] +
+            this->sums_[this->at(x - 1, y, z)] + this->sums_[this->at(x, y - 1, z)] +
+            this->sums_[this->at(x, y, z - 1)] - this->sums_[this->at(x - 1, y - 1, z)] -
+            this->sums_[this->at(x - 1, y, z - 1)] - this->sums_[this->at(x, y - 1, z - 1)] +
+            this->sums_[this->at(x - 1, y - 1, z - 1)];
+        }
+  }
+
+  /// True when some sphere's box meets the box [x - r, x + r].
+  bool any(const Vec& x, double r) const
+  {
+    const auto from = this->cell(x - Vec::Constant(r));
+    const auto to = this->cell(x + Vec::Constant(r));
+    const auto s = [&](std::int64_t a, std::int64_t b, std::int64_t c) {
+      return this->sums_[this->at(a, b, c)];
+    };
+    const std::int64_t x0 = from[0], y0 = from[1], z0 = from[2];
+    const std::int64_t x1 = to[0] + 1, y1 = to[1] + 1, z1 = to[2] + 1;
+    const std::int32_t count = s(x1, y1, z1) - s(x0, y1, z1) - s(x1, y0, z1) - s(x1, y1, z0) +
+      s(x0, y0, z1) + s(x0, y1, z0) + s(x1, y0, z0) - s(x0, y0, z0);
+    return count > 0;
+  }
+
+private:
+  std::array<std::int64_t, 3> cell(const Vec& x) const
+  {
+    std::array<std::int64_t, 3> c{};
+    for (int a = 0; a < 3; ++a)
+    {
+      c[a] =
+        std::clamp(static_cast<std::int64_t>(std::floor((x[a] - this->origin_[a]) / this->width_)),
+                   std::int64_t(0), this->dims_[a] - 1);
+    }
+    return c;
+  }
+  std::size_t at(std::int64_t x, std::int64_t y, std::int64_t z) const
+  {
+    return static_cast<std::size_t>(x + (this->dims_[0] + 1) * (y + (this->dims_[1] + 1) * z));
+  }
+
+  double width_;
+  Vec origin_ = Vec::Zero();
+  std::array<std::int64_t, 3> dims_{};
+  std::vector<std::int32_t> sums_;
+};
+
+/// The root of `value` on the segment from a (value <= 0) to b (value > 0), by the Illinois
+/// variant of regula falsi, to 1e-9 Å.
+template<typename Value>
+Vec segment_root(const Vec& a, double value_a, const Vec& b, double value_b, Value&& value)
+{
+  double t0 = 0, t1 = 1, f0 = value_a, f1 = value_b;
+  const double length = (b - a).norm();
+  int side = 0;
+  double t = f0 / (f0 - f1);
+  for (int iteration = 0; iteration < 60 && (t1 - t0) * length > 1e-9; ++iteration)
+  {
+    t = (t0 * f1 - t1 * f0) / (f1 - f0);
+    const double f = value(a + t * (b - a));
+    if (f == 0)
+    {
+      break;
+    }
+    if (f < 0)
+    {
+      t0 = t;
+      f0 = f;
+      if (side == -1)
+      {
+        f1 *= 0.5;
+      }
+      side = -1;
+    }
+    else
+    {
+      t1 = t;
+      f1 = f;
+      if (side == 1)
+      {
+        f0 *= 0.5;
+      }
+      side = 1;
+    }
+  }
+  return a + t * (b - a);
+}
+
+void check_input(const std::vector<std::array<double, 3>>& centres,
+                 const std::vector<double>& radii, const MolecularSurfaceOptions& options)
+{
+  if (radii.size() != centres.size())
+  {
+    throw InvalidInput(
+      "molecular_surface needs one radius per atom: " + std::to_string(centres.size()) +
+      " atoms, " + std::to_string(radii.size()) + " radii");
+  }
+  for (std::size_t i = 0; i < centres.size(); ++i)
+  {
+    if (!std::isfinite(centres[i][0]) || !std::isfinite(centres[i][1]) ||
+        !std::isfinite(centres[i][2]))
+    {
+      throw InvalidInput("atom " + std::to_string(i) + " has a non-finite position");
+    }
+    if (!(radii[i] > 0) || !(radii[i] <= largest_radius))
+    {
+      throw InvalidInput("atom " + std::to_string(i) + " has radius " + std::to_string(radii[i]) +
+                         " Å; radii must lie in (0, 20] Å");
+    }
+  }
+  if (options.kind != SurfaceKind::VanDerWaals &&
+      (!(options.probe_radius > 0) || !(options.probe_radius <= largest_radius)))
+  {
+    throw InvalidInput("probe radius " + std::to_string(options.probe_radius) +
+                       " Å is outside (0, 20] Å");
+  }
+  if (!(options.tolerance >= 0.005) || !(options.tolerance <= 1.0))
+  {
+    throw InvalidInput("surface tolerance " + std::to_string(options.tolerance) +
+                       " Å is outside [0.005, 1] Å");
+  }
+}
+
+/// Per mesh component (triangles joined by vertices): labels per vertex, and signed volumes.
+std::vector<std::size_t> component_labels(const std::vector<std::int64_t>& triangles,
+                                          std::size_t vertex_count, std::size_t& count)
+{
+  std::vector<std::size_t> parent(vertex_count);
+  std::iota(parent.begin(), parent.end(), std::size_t(0));
+  const auto find = [&](std::size_t x) {
+    while (parent[x] != x)
+    {
+      parent[x] = parent[parent[x]];
+      x = parent[x];
+    }
+    return x;
+  };
+  for (std::size_t t = 0; t < triangles.size(); t += 3)
+  {
+    for (int k = 1; k < 3; ++k)
+    {
+      const std::size_t a = find(std::size_t(triangles[t])),
+                        b = find(std::size_t(triangles[t + k]));
+      if (a != b)
+      {
+        parent[std::max(a, b)] = std::min(a, b);
+      }
+    }
+  }
+  std::vector<std::size_t> label(vertex_count, 0), root_label(vertex_count, SIZE_MAX);
+  count = 0;
+  for (std::size_t v = 0; v < vertex_count; ++v)
+  {
+    const std::size_t root = find(v);
+    if (root_label[root] == SIZE_MAX)
+    {
+      root_label[root] = count++;
+    }
+    label[v] = root_label[root];
+  }
+  return label;
+}
+} // namespace
+
+MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& centre_list,
+                                   const std::vector<double>& atom_radii,
+                                   const MolecularSurfaceOptions& options,
+                                   const ParallelFor& parallel_for, const SurfaceProgress& progress)
+{
+  check_input(centre_list, atom_radii, options);
+  MolecularSurface surface;
+  const std::size_t n = centre_list.size();
+  if (n == 0)
+  {
+    return surface;
+  }
+  const bool excluded = options.kind == SurfaceKind::SolventExcluded;
+  const double p = options.probe_radius;
+  std::vector<Vec> centres(n);
+  std::vector<double> radii(n); // of the spheres whose union is traced
+  double smallest = largest_radius, largest = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    centres[i] = Vec(centre_list[i][0], centre_list[i][1], centre_list[i][2]);
+    radii[i] = atom_radii[i] + (options.kind == SurfaceKind::VanDerWaals ? 0.0 : p);
+    smallest = std::min(smallest, atom_radii[i]);
+    largest = std::max(largest, radii[i]);
+  }
+  const auto report = [&](double fraction) {
+    if (progress)
+    {
+      progress(fraction);
+    }
+  };
+  const SasBoundary boundary = sas_boundary(centre_list, radii, excluded, parallel_for);
+  report(0.1);
+
+  // Exact figures from the patches.
+  SesPatchIntegrals patches;
+  if (excluded)
+  {
+    const ProbeDistance patch_distance(centres, radii, boundary, 2.0 * p + 0.6 * largest);
+    patches = ses_patch_integrals(centres, atom_radii, p, boundary, patch_distance, parallel_for);
+    surface.singular_patch_count = patches.singular_count;
+  }
+  else
+  {
+    patches.face_area = boundary.area;
+    patches.face_volume.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      patches.face_volume[i] =
+        (radii[i] * boundary.area[i] + centres[i].dot(boundary.normal_integral[i])) / 3.0;
+    }
+  }
+  report(0.2);
+
+  // The tessellation: grid spacing from the chord error of triangles about sqrt(3) spacings
+  // long on the most curved patches (radius: the probe's or the smallest atom's).
+  const double curvature_radius = excluded
+    ? std::min(p, smallest)
+    : smallest + (options.kind == SurfaceKind::SolventAccessible ? p : 0.0);
+  const double spacing = std::sqrt(8.0 * options.tolerance * curvature_radius) / std::sqrt(3.0);
+  surface.grid_spacing = spacing;
+
+  std::vector<ContourVertex> vertices;
+  std::vector<std::int64_t> triangles;
+  if (options.tessellate)
+  {
+    double exact_area = 0;
+    for (double a : patches.face_area)
+      exact_area += a;
+    for (double a : patches.arc_area)
+      exact_area += a;
+    for (double a : patches.vertex_area)
+      exact_area += a;
+    const double expected_triangles = 5.0 * exact_area / (spacing * spacing);
+    if (expected_triangles > largest_triangle_count)
+    {
+      throw InvalidInput("a surface of " + std::to_string(exact_area) + " Å² at tolerance " +
+                         std::to_string(options.tolerance) + " Å would need about " +
+                         std::to_string(expected_triangles / 1e6) +
+                         " million triangles; choose a larger tolerance");
+    }
+    const double leaf_half_diagonal = 0.5 * std::sqrt(3.0) * spacing;
+    const double reach = p * (excluded ? 1.0 : 0.0) + 4.0 * spacing;
+    const ProbeDistance distance(centres, radii, boundary, reach,
+                                 largest + 2.0 * leaf_half_diagonal);
+    const Occupancy occupancy(centres, radii, 2.0);
+    const double outside_range = distance.cell_width() - largest;
+    const auto depth = [&](const Vec& x) { return distance.union_depth(x); };
+    ContourField field;
+    if (excluded)
+    {
+      field.value = [&](const Vec& x) { return distance.closest(x).distance - p; };
+      field.empty = [&](const Vec& x, double r) {
+        if (!occupancy.any(x, r))
+        {
+          return true;
+        }
+        const double depth = distance.union_depth(x);
+        if (depth - p > r || (r <= outside_range && depth < -r))
+        {
+          return true;
+        }
+        if (p + r < reach)
+        {
+          return std::abs(distance.closest(x).distance - p) > r;
+        }
+        return false;
+      };
+      field.vertex = [&](const Vec& outside, double outside_value, const Vec& inside,
+                         double inside_value) {
+        // Linear guess, moved along the ray from its nearest probe position onto the probe
+        // sphere; where that is not certain to land on the surface, the root along the edge.
+        const Vec guess =
+          outside + outside_value / (outside_value - inside_value) * (inside - outside);
+        ClosestPiece piece = distance.closest(guess);
+        Vec position = guess;
+        bool placed = false;
+        if (piece.kind != PieceKind::None && piece.distance > 0)
+        {
+          const Vec moved = piece.point + p / piece.distance * (guess - piece.point);
+          if (piece.distance >= p && (moved - guess).norm() <= spacing)
+          {
+            position = moved;
+            placed = true;
+          }
+          else if ((moved - guess).norm() <= spacing)
+          {
+            const ClosestPiece check = distance.closest(moved);
+            if (std::abs(check.distance - p) <= 1e-9)
+            {
+              position = moved;
+              piece = check;
+              placed = true;
+            }
+          }
+        }
+        if (!placed)
+        {
+          position = segment_root(outside, outside_value, inside, inside_value,
+                                  [&](const Vec& x) { return distance.closest(x).distance - p; });
+          piece = distance.closest(position);
+        }
+        ContourVertex vertex;
+        vertex.position = position;
+        const Vec towards_probe = piece.point - position;
+        vertex.normal = towards_probe.norm() > 0 ? Vec(towards_probe.normalized()) : Vec::UnitZ();
+        vertex.piece = piece.index;
+        // The atom: the face's own, else the one whose surface is nearest.
+        std::array<std::uint32_t, 3> candidates{};
+        int candidate_count = 0;
+        switch (piece.kind)
+        {
+          case PieceKind::Arc:
+            vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Toroidal);
+            candidates = { boundary.arcs[piece.index].first, boundary.arcs[piece.index].second, 0 };
+            candidate_count = 2;
+            break;
+          case PieceKind::Vertex:
+            vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Concave);
+            candidates = boundary.vertices[piece.index].spheres;
+            candidate_count = 3;
+            break;
+          default:
+            vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Convex);
+            candidates = { piece.index, 0, 0 };
+            candidate_count = 1;
+        }
+        double nearest = 1e300;
+        for (int c = 0; c < candidate_count; ++c)
+        {
+          const double gap = (position - centres[candidates[c]]).norm() - atom_radii[candidates[c]];
+          if (gap < nearest)
+          {
+            nearest = gap;
+            vertex.atom = static_cast<std::int32_t>(candidates[c]);
+          }
+        }
+        return vertex;
+      };
+    }
+    else
+    {
+      field.value = depth;
+      field.empty = [&](const Vec& x, double r) {
+        if (!occupancy.any(x, r))
+        {
+          return true;
+        }
+        const double d = distance.union_depth(x);
+        return d > r || (r <= outside_range && d < -r);
+      };
+      field.vertex = [&](const Vec& outside, double outside_value, const Vec& inside,
+                         double inside_value) {
+        ContourVertex vertex;
+        vertex.position = segment_root(outside, outside_value, inside, inside_value, depth);
+        std::uint32_t sphere = 0;
+        distance.union_depth(vertex.position, &sphere);
+        vertex.normal = (vertex.position - centres[sphere]).normalized();
+        vertex.atom = static_cast<std::int32_t>(sphere);
+        vertex.piece = sphere;
+        vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Convex);
+        return vertex;
+      };
+    }
+    // The grid: the spheres' box with two cells to spare, shifted off any symmetry of the input.
+    Vec low = Vec::Constant(1e300), high = -low;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      low = low.cwiseMin(centres[i] - Vec::Constant(radii[i]));
+      high = high.cwiseMax(centres[i] + Vec::Constant(radii[i]));
+    }
+    low -= Vec(2.0 + 0.318309886, 2.0 + 0.271828183, 2.0 + 0.141421356) * spacing;
+    high += Vec::Constant(3.0 * spacing);
+    ContourMesh mesh = contour_tetrahedra(field, low, high, spacing, parallel_for,
+                                          [&](double f) { report(0.2 + 0.75 * f); });
+    vertices = std::move(mesh.vertices);
+    triangles = std::move(mesh.triangles);
+  }
+
+  // Components; cavities are those enclosing negative volume (their normals face inwards).
+  std::size_t component_count = 0;
+  const std::vector<std::size_t> component =
+    component_labels(triangles, vertices.size(), component_count);
+  std::vector<double> component_volume(component_count, 0.0);
+  for (std::size_t t = 0; t < triangles.size(); t += 3)
+  {
+    const Vec& a = vertices[std::size_t(triangles[t])].position;
+    const Vec& b = vertices[std::size_t(triangles[t + 1])].position;
+    const Vec& c = vertices[std::size_t(triangles[t + 2])].position;
+    component_volume[component[std::size_t(triangles[t])]] += a.dot(b.cross(c)) / 6.0;
+  }
+  std::vector<char> cavity(component_count, 0);
+  for (std::size_t k = 0; k < component_count; ++k)
+  {
+    cavity[k] = component_volume[k] < 0 ? 1 : 0;
+  }
+  surface.component_count = component_count;
+  surface.cavity_count = static_cast<std::size_t>(std::count(cavity.begin(), cavity.end(), 1));
+
+  // Per piece, the share of its vertices on dropped cavities: that share of its exact area and
+  // volume is dropped with them (pieces too small to carry a vertex stay).
+  const auto dropped_share = [&](std::uint8_t patch_kind, std::size_t piece_count) {
+    std::vector<double> share(piece_count, 0.0);
+    if (options.keep_cavities || surface.cavity_count == 0)
+    {
+      return share;
+    }
+    std::vector<double> total(piece_count, 0.0);
+    for (std::size_t v = 0; v < vertices.size(); ++v)
+    {
+      if (vertices[v].patch == patch_kind)
+      {
+        total[vertices[v].piece] += 1;
+        share[vertices[v].piece] += cavity[component[v]] ? 1 : 0;
+      }
+    }
+    for (std::size_t k = 0; k < piece_count; ++k)
+    {
+      share[k] = total[k] > 0 ? share[k] / total[k] : 0.0;
+    }
+    return share;
+  };
+  const auto add = [&](const std::vector<double>& area, const std::vector<double>& volume,
+                       SurfacePatch kind) {
+    const std::vector<double> share = dropped_share(static_cast<std::uint8_t>(kind), area.size());
+    const int slot = static_cast<int>(kind);
+    for (std::size_t k = 0; k < area.size(); ++k)
+    {
+      const double kept = 1.0 - share[k];
+      surface.patch_area[slot] += kept * area[k];
+      surface.volume += kept * volume[k];
+      surface.patch_count[slot] += area[k] > 0 && kept > 0 ? 1 : 0;
+    }
+  };
+  add(patches.face_area, patches.face_volume, SurfacePatch::Convex);
+  add(patches.arc_area, patches.arc_volume, SurfacePatch::Toroidal);
+  add(patches.vertex_area, patches.vertex_volume, SurfacePatch::Concave);
+  surface.area = surface.patch_area[0] + surface.patch_area[1] + surface.patch_area[2];
+
+  // The mesh, less dropped cavities.
+  std::vector<std::int64_t> new_index(vertices.size(), -1);
+  for (std::size_t v = 0; v < vertices.size(); ++v)
+  {
+    if (options.keep_cavities || !cavity[component[v]])
+    {
+      new_index[v] = static_cast<std::int64_t>(surface.atom.size());
+      const ContourVertex& vertex = vertices[v];
+      surface.points.insert(surface.points.end(),
+                            { vertex.position[0], vertex.position[1], vertex.position[2] });
+      surface.normals.insert(surface.normals.end(),
+                             { vertex.normal[0], vertex.normal[1], vertex.normal[2] });
+      surface.atom.push_back(vertex.atom);
+      surface.patch.push_back(static_cast<SurfacePatch>(vertex.patch));
+    }
+  }
+  surface.triangles.reserve(triangles.size());
+  for (const std::int64_t v : triangles)
+  {
+    if (new_index[std::size_t(v)] >= 0)
+    {
+      surface.triangles.push_back(new_index[std::size_t(v)]);
+    }
+  }
+  if (!options.keep_cavities)
+  {
+    surface.component_count -= surface.cavity_count;
+  }
+  report(1.0);
+  return surface;
+}
+
+} // namespace mesolens

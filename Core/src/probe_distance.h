@@ -1,0 +1,101 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The exact distance from a point to the boundary of a union of spheres (private to
+// MesoLensCore). With the atoms inflated by a probe, that boundary is the set of the probe's
+// possible centres, and the solvent-excluded surface is where the distance equals the probe
+// radius: this field is what the tessellation contours and what decides where singular patches
+// are cut.
+#pragma once
+
+#include "sas_boundary.h"
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+namespace mesolens {
+
+/// The piece of a union's boundary nearest a point.
+enum class PieceKind : std::uint8_t
+{
+  Face,   ///< a sphere's exposed part (index: the sphere)
+  Arc,    ///< an exposed arc (index into SasBoundary::arcs)
+  Vertex, ///< an exposed vertex (index into SasBoundary::vertices)
+  None,   ///< nothing within reach
+};
+
+struct ClosestPiece
+{
+  /// Signed distance to the boundary: positive inside the union, capped at the reach.
+  double distance = 0;
+  Eigen::Vector3d point = Eigen::Vector3d::Zero(); ///< the nearest boundary point
+  PieceKind kind = PieceKind::None;
+  std::uint32_t index = 0;
+};
+
+/// Distance queries against the boundary of spheres `centres` with radii `radii` (those of
+/// `boundary`, built with its pieces). Queries are exact within `reach` of the boundary and
+/// may run concurrently.
+class ProbeDistance
+{
+public:
+  /// `reach` > 0; index cells are at least `cell_at_least` wide (and the largest radius and
+  /// the reach), so union_depth() sees every sphere within that width less the largest radius.
+  ProbeDistance(const std::vector<Eigen::Vector3d>& centres, const std::vector<double>& radii,
+                const SasBoundary& boundary, double reach, double cell_at_least = 0);
+
+  /// Pieces a query leaves out: true to skip.
+  using Excluded = std::function<bool(PieceKind, std::uint32_t)>;
+
+  /// The nearest boundary piece of `x` and the signed distance to it. Outside the union the
+  /// distance is exact at any range (the nearest sphere); inside it is exact up to the reach,
+  /// beyond which it reports the reach and PieceKind::None. With `excluded`, the nearest of the
+  /// other pieces (inside the union only).
+  ClosestPiece closest(const Eigen::Vector3d& x, const Excluded* excluded = nullptr) const;
+
+  /// Width of the index cells: union_depth() is exact outside the union up to this width less
+  /// the largest radius.
+  double cell_width() const
+  {
+    return this->outside_exact_;
+  }
+
+  /// Calls `visit` with each vertex within `radius` (<= the reach) of `x`, in index order of
+  /// their cells.
+  void vertices_within(const Eigen::Vector3d& x, double radius,
+                       const std::function<void(std::uint32_t)>& visit) const;
+
+  /// max over spheres of (R - |x - c|): the signed distance outside the union, a lower bound of
+  /// it inside. -reach when no sphere is within reach. `sphere` gets the maximising sphere.
+  double union_depth(const Eigen::Vector3d& x, std::uint32_t* sphere = nullptr) const;
+
+  double reach() const
+  {
+    return this->reach_;
+  }
+
+private:
+  template<typename Visit>
+  void for_cells(const Eigen::Vector3d& x, double radius, const std::vector<std::uint32_t>& starts,
+                 const std::vector<std::uint32_t>& items, Visit&& visit) const;
+  std::int64_t cell_of(const Eigen::Vector3d& x, std::array<std::int64_t, 3>& ijk) const;
+
+  const std::vector<Eigen::Vector3d>& centres_;
+  const std::vector<double>& radii_;
+  const SasBoundary& boundary_;
+  double reach_ = 0;
+  double largest_ = 0;       ///< the largest radius
+  double outside_exact_ = 0; ///< union_depth() is exact outside the union to this less largest_
+  double cell_ = 1;
+  double arc_extent_ = 0; ///< every indexed arc piece lies within this of its middle
+  Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
+  std::array<std::int64_t, 3> dims_{};
+  // Per cell (compressed rows): the spheres centred in it, the arcs whose bounding ball
+  // overlaps it, the vertices in it.
+  std::vector<std::uint32_t> sphere_start_, sphere_items_;
+  std::vector<std::uint32_t> arc_start_, arc_items_;
+  std::vector<std::uint32_t> vertex_start_, vertex_items_;
+};
+
+} // namespace mesolens

@@ -1,0 +1,463 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "sas_boundary.h"
+
+#include "mesolens/errors.h"
+
+#include "grid_cells.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <numeric>
+#include <string>
+#include <unordered_map>
+
+namespace mesolens {
+
+namespace {
+using Vec = Eigen::Vector3d;
+constexpr double pi = 3.14159265358979323846;
+
+/// The part of the unit sphere of one sphere that a neighbour covers: u . axis > height.
+struct Cap
+{
+  Vec axis = Vec::Zero();
+  double height = 0; ///< cosine of the cap's angular radius, in (-1, 1)
+  double sine = 0;   ///< of the angular radius: the radius of its circle
+  Vec e1 = Vec::Zero(),
+      e2 = Vec::Zero(); ///< with axis, a right-handed frame: the circle's azimuth 0 and 90 degrees
+  std::uint32_t neighbour = 0; ///< the sphere that covers it
+
+  Vec point(double azimuth) const
+  {
+    return this->height * this->axis +
+      this->sine * (std::cos(azimuth) * this->e1 + std::sin(azimuth) * this->e2);
+  }
+  /// The boundary's direction of travel at `azimuth` with the uncovered side on the left:
+  /// clockwise about the axis (decreasing azimuth).
+  Vec tangent(double azimuth) const
+  {
+    return std::sin(azimuth) * this->e1 - std::cos(azimuth) * this->e2;
+  }
+  double azimuth_of(const Vec& u) const
+  {
+    const Vec in_plane = u - this->height * this->axis;
+    return std::atan2(in_plane.dot(this->e2), in_plane.dot(this->e1));
+  }
+};
+
+struct UnionFind
+{
+  std::vector<std::size_t> parent;
+  explicit UnionFind(std::size_t n)
+    : parent(n)
+  {
+    std::iota(parent.begin(), parent.end(), std::size_t(0));
+  }
+  std::size_t find(std::size_t x)
+  {
+    while (parent[x] != x)
+    {
+      parent[x] = parent[parent[x]];
+      x = parent[x];
+    }
+    return x;
+  }
+  void join(std::size_t a, std::size_t b)
+  {
+    parent[find(a)] = find(b);
+  }
+};
+
+/// What bounds one sphere's exposed part, on its unit sphere: arcs of caps' circles (azimuths
+/// [low, high] in the cap's frame) and the corners between them (unit vectors).
+struct UnitPieces
+{
+  struct Arc
+  {
+    Cap cap;
+    double low = 0, high = 0;
+  };
+  struct Corner
+  {
+    std::uint32_t neighbour_a = 0, neighbour_b = 0;
+    Vec direction = Vec::Zero();
+  };
+  std::vector<Arc> arcs;
+  std::vector<Corner> corners;
+};
+
+/// The exposed area of the unit sphere under `caps` (times R^2 by the caller), and in
+/// `normal_integral` the integral of the outward unit normal over it (for the volume). With
+/// `pieces`, also the arcs and corners that bound it.
+double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral, UnitPieces* pieces)
+{
+  normal_integral = Vec::Zero();
+  // Caps inside another cap bound nothing: dropped (cap b lies in cap a when the angle between
+  // their axes plus b's radius is at most a's radius; compared as cosines, without acos).
+  {
+    std::sort(caps.begin(), caps.end(),
+              [](const Cap& x, const Cap& y) { return x.height < y.height; }); // largest first
+    std::vector<Cap> kept;
+    for (const Cap& cap : caps)
+    {
+      bool inside = false;
+      for (const Cap& larger : kept)
+      {
+        // between <= larger.angle - cap.angle  <=>  cos(between) >= cos(larger - cap)
+        // (larger.height <= cap.height: sorted, the larger angular radius first.)
+        inside = cap.axis.dot(larger.axis) >= larger.height * cap.height + larger.sine * cap.sine;
+        if (inside)
+        {
+          break;
+        }
+      }
+      if (!inside)
+      {
+        kept.push_back(cap);
+      }
+    }
+    caps.swap(kept);
+  }
+  for (Cap& cap : caps)
+  {
+    // The frame of the circle, for the caps that stay.
+    const Vec helper = std::abs(cap.axis[0]) < 0.9 ? Vec::UnitX() : Vec::UnitY();
+    cap.e1 = cap.axis.cross(helper).normalized();
+    cap.e2 = cap.axis.cross(cap.e1);
+  }
+  const std::size_t count = caps.size();
+  if (count == 0)
+  {
+    return 4.0 * pi;
+  }
+  // Overlapping caps (between < angle a + angle b <=> cos(between) > cos(a + b)): they make
+  // the union's components, and only they can cover a point of each other's circles.
+  UnionFind cap_groups(count);
+  std::vector<std::vector<std::uint32_t>> overlapping(count);
+  for (std::size_t a = 0; a < count; ++a)
+  {
+    for (std::size_t b = a + 1; b < count; ++b)
+    {
+      const double g = caps[a].axis.dot(caps[b].axis);
+      if (g > caps[a].height * caps[b].height - caps[a].sine * caps[b].sine)
+      {
+        cap_groups.join(a, b);
+        overlapping[a].push_back(static_cast<std::uint32_t>(b));
+        overlapping[b].push_back(static_cast<std::uint32_t>(a));
+      }
+    }
+  }
+  std::size_t unions = 0;
+  for (std::size_t a = 0; a < count; ++a)
+  {
+    unions += cap_groups.find(a) == a ? 1 : 0;
+  }
+  auto covered = [&](const Vec& u, std::size_t on) {
+    for (const std::uint32_t c : overlapping[on])
+    {
+      if (u.dot(caps[c].axis) > caps[c].height)
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+
+  // The crossing points of the caps' circles, and on each circle their azimuths.
+  std::vector<Vec> vertices;
+  std::vector<std::vector<std::pair<double, std::size_t>>> on_circle(count);
+  for (std::size_t a = 0; a < count; ++a)
+  {
+    for (const std::uint32_t b : overlapping[a])
+    {
+      if (b < a)
+      {
+        continue;
+      }
+      // The circles cross when |angle a - angle b| < between (between < a + b holds already).
+      const double g = std::clamp(caps[a].axis.dot(caps[b].axis), -1.0, 1.0);
+      if (!(g < caps[a].height * caps[b].height + caps[a].sine * caps[b].sine) ||
+          1.0 - g * g <= 1e-24)
+      {
+        continue;
+      }
+      const double alpha = (caps[a].height - caps[b].height * g) / (1.0 - g * g);
+      const double beta = (caps[b].height - caps[a].height * g) / (1.0 - g * g);
+      const Vec w = alpha * caps[a].axis + beta * caps[b].axis;
+      const Vec m = caps[a].axis.cross(caps[b].axis);
+      const double rest = 1.0 - w.squaredNorm();
+      if (rest <= 0)
+      {
+        continue;
+      }
+      const double gamma = std::sqrt(rest / m.squaredNorm());
+      for (double side : { -1.0, 1.0 })
+      {
+        const Vec u = (w + side * gamma * m).normalized();
+        // A crossing inside a third cap is no corner of the exposed part: exposure along a
+        // circle changes only at crossings no other cap covers, so those alone cut the arcs.
+        bool inside_third = false;
+        for (const std::uint32_t c : overlapping[a])
+        {
+          if (c != b && u.dot(caps[c].axis) > caps[c].height)
+          {
+            inside_third = true;
+            break;
+          }
+        }
+        if (inside_third)
+        {
+          continue;
+        }
+        const std::size_t id = vertices.size();
+        vertices.push_back(u);
+        if (pieces)
+        {
+          pieces->corners.push_back({ caps[a].neighbour, caps[b].neighbour, u });
+        }
+        on_circle[a].emplace_back(caps[a].azimuth_of(u), id);
+        on_circle[b].emplace_back(caps[b].azimuth_of(u), id);
+      }
+    }
+  }
+
+  // The exposed arcs: travelled clockwise about each axis (uncovered side on the left).
+  struct Arc
+  {
+    std::size_t cap;
+    double start_azimuth, end_azimuth;
+    std::size_t start, end; // vertex ids
+  };
+  std::vector<Arc> arcs;
+  double turning = 0; // the boundary's geodesic curvature integrated, plus the corners
+  std::size_t loops = 0;
+  for (std::size_t a = 0; a < count; ++a)
+  {
+    const Cap& cap = caps[a];
+    auto& crossings = on_circle[a];
+    if (crossings.empty())
+    {
+      if (!covered(cap.point(0.0), a))
+      {
+        turning += -cap.height * 2.0 * pi;
+        normal_integral += -pi * cap.sine * cap.sine * cap.axis;
+        ++loops;
+        if (pieces)
+        {
+          pieces->arcs.push_back({ cap, 0.0, 2.0 * pi });
+        }
+      }
+      continue;
+    }
+    std::sort(crossings.begin(), crossings.end());
+    for (std::size_t k = 0; k < crossings.size(); ++k)
+    {
+      const double low = crossings[k].first;
+      double high = k + 1 < crossings.size() ? crossings[k + 1].first : crossings[0].first + 2 * pi;
+      if (high - low <= 0)
+      {
+        continue;
+      }
+      if (covered(cap.point(0.5 * (low + high)), a))
+      {
+        continue;
+      }
+      turning += -cap.height * (high - low);
+      // The vector area of a surface is half the boundary integral of x cross dx.
+      const double h = cap.height, r = cap.sine;
+      const Vec along_arc = h * r * (std::sin(high) - std::sin(low)) * cap.e1 +
+        h * r * (std::cos(low) - std::cos(high)) * cap.e2 - r * r * (high - low) * cap.axis;
+      normal_integral += 0.5 * along_arc;
+      if (pieces)
+      {
+        pieces->arcs.push_back({ cap, low, high });
+      }
+      const std::size_t next = k + 1 < crossings.size() ? k + 1 : 0;
+      arcs.push_back({ a, high, low, crossings[next].second, crossings[k].second });
+    }
+  }
+  // Corners: from the arc ending at a vertex to the arc leaving it.
+  std::unordered_map<std::size_t, std::size_t> leaving;
+  for (std::size_t k = 0; k < arcs.size(); ++k)
+  {
+    leaving.emplace(arcs[k].start, k);
+  }
+  UnionFind chains(vertices.size());
+  for (const Arc& arc : arcs)
+  {
+    chains.join(arc.start, arc.end);
+    const auto next = leaving.find(arc.end);
+    if (next == leaving.end())
+    {
+      continue; // a degenerate crossing (three circles through a point): no corner counted
+    }
+    const Arc& out = arcs[next->second];
+    const Vec& p = vertices[arc.end];
+    const Vec in_direction = caps[arc.cap].tangent(arc.end_azimuth);
+    const Vec out_direction = caps[out.cap].tangent(out.start_azimuth);
+    turning +=
+      std::atan2(p.dot(in_direction.cross(out_direction)), in_direction.dot(out_direction));
+  }
+  std::vector<char> root_seen(vertices.size(), 0);
+  for (const Arc& arc : arcs)
+  {
+    const std::size_t root = chains.find(arc.start);
+    if (!root_seen[root])
+    {
+      root_seen[root] = 1;
+      ++loops;
+    }
+  }
+  // Gauss-Bonnet on the unit sphere: area = 2 pi chi - turning, with chi = loops + 2 - 2 unions
+  // (the exposed part and the caps' union share their loops and together make the sphere).
+  const double chi = double(loops) + 2.0 - 2.0 * double(unions);
+  return std::clamp(2.0 * pi * chi - turning, 0.0, 4.0 * pi);
+}
+} // namespace
+
+SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
+                         const std::vector<double>& radii, bool with_pieces,
+                         const ParallelFor& parallel_for)
+{
+  const std::size_t n = centres.size();
+  if (radii.size() != n)
+  {
+    throw InvalidInput("the sphere union needs one radius per centre: " + std::to_string(n) +
+                       " centres, " + std::to_string(radii.size()) + " radii");
+  }
+  double largest = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (!std::isfinite(centres[i][0]) || !std::isfinite(centres[i][1]) ||
+        !std::isfinite(centres[i][2]) || !std::isfinite(radii[i]) || !(radii[i] > 0))
+    {
+      throw InvalidInput("sphere " + std::to_string(i) +
+                         " has a non-finite centre or a radius that is not positive");
+    }
+    largest = std::max(largest, radii[i]);
+  }
+  SasBoundary result;
+  result.area.assign(n, 0.0);
+  result.normal_integral.assign(n, Vec::Zero());
+  result.neighbours.assign(n, {});
+  std::vector<std::vector<SasArc>> arcs_of(with_pieces ? n : 0);
+  std::vector<std::vector<SasVertex>> vertices_of(with_pieces ? n : 0);
+  if (n == 0)
+  {
+    return result;
+  }
+  // Spheres in cells of the largest diameter: overlapping ones are in neighbouring cells.
+  const double cell = 2.0 * largest;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    cells[grid_cell_key(grid_cell(centres[i], cell))].push_back(static_cast<std::uint32_t>(i));
+  }
+  run_parallel(parallel_for, n, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      const Vec c(centres[i][0], centres[i][1], centres[i][2]);
+      const double r = radii[i];
+      const GridCell home = grid_cell(centres[i], cell);
+      std::vector<Cap> caps;
+      bool buried = false;
+      for (int dx = -1; dx <= 1 && !buried; ++dx)
+        for (int dy = -1; dy <= 1 && !buried; ++dy)
+          for (int dz = -1; dz <= 1 && !buried; ++dz)
+          {
+            const auto found = cells.find(grid_cell_key(home, dx, dy, dz));
+            if (found == cells.end())
+            {
+              continue;
+            }
+            for (const std::uint32_t j : found->second)
+            {
+              if (j == i)
+              {
+                continue;
+              }
+              const double rj = radii[j];
+              const Vec offset = Vec(centres[j][0], centres[j][1], centres[j][2]) - c;
+              const double d = offset.norm();
+              if (d >= r + rj)
+              {
+                continue; // apart
+              }
+              if (d + r <= rj && !(d == 0 && rj == r && j > i))
+              {
+                buried = true; // inside j (of coincident equal spheres the first stays)
+                break;
+              }
+              if (d + rj <= r)
+              {
+                continue; // j inside this sphere
+              }
+              result.neighbours[i].push_back(j);
+              Cap cap;
+              cap.neighbour = j;
+              cap.axis = offset / d;
+              cap.height = std::clamp((r * r + d * d - rj * rj) / (2.0 * r * d), -1.0, 1.0);
+              cap.sine = std::sqrt(std::max(0.0, 1.0 - cap.height * cap.height));
+              caps.push_back(cap);
+            }
+          }
+      std::sort(result.neighbours[i].begin(), result.neighbours[i].end());
+      if (buried)
+      {
+        continue;
+      }
+      Vec normal_integral = Vec::Zero();
+      UnitPieces pieces;
+      const double solid_angle =
+        exposed_unit_area(caps, normal_integral, with_pieces ? &pieces : nullptr);
+      result.area[i] = r * r * solid_angle;
+      result.normal_integral[i] = r * r * normal_integral;
+      if (!with_pieces)
+      {
+        continue;
+      }
+      const std::uint32_t self = static_cast<std::uint32_t>(i);
+      for (const UnitPieces::Arc& piece : pieces.arcs)
+      {
+        if (piece.cap.neighbour < self)
+        {
+          continue; // the lower sphere reports it
+        }
+        SasArc arc;
+        arc.first = self;
+        arc.second = piece.cap.neighbour;
+        arc.centre = c + r * piece.cap.height * piece.cap.axis;
+        arc.axis = piece.cap.axis;
+        arc.e1 = piece.cap.e1;
+        arc.e2 = piece.cap.e2;
+        arc.radius = r * piece.cap.sine;
+        arc.start = piece.low;
+        arc.span = piece.high - piece.low;
+        arcs_of[i].push_back(arc);
+      }
+      for (const UnitPieces::Corner& corner : pieces.corners)
+      {
+        if (corner.neighbour_a < self || corner.neighbour_b < self)
+        {
+          continue;
+        }
+        SasVertex vertex;
+        vertex.spheres = { self, std::min(corner.neighbour_a, corner.neighbour_b),
+                           std::max(corner.neighbour_a, corner.neighbour_b) };
+        vertex.position = c + r * corner.direction;
+        vertices_of[i].push_back(vertex);
+      }
+    }
+  });
+  for (std::size_t i = 0; i < arcs_of.size(); ++i)
+  {
+    result.arcs.insert(result.arcs.end(), arcs_of[i].begin(), arcs_of[i].end());
+    result.vertices.insert(result.vertices.end(), vertices_of[i].begin(), vertices_of[i].end());
+  }
+  return result;
+}
+
+} // namespace mesolens

@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The boundary of a union of spheres as pieces (private to MesoLensCore): per sphere its exposed
+// area and normal integral, and the exposed arcs of the spheres' intersection circles and the
+// points where three spheres meet. With the atoms inflated by a probe these are the probe
+// positions of the solvent-accessible surface, from which the solvent-excluded surface follows.
+#pragma once
+
+#include "mesolens/parallel_for.h"
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace mesolens {
+
+/// An exposed arc of the circle where spheres `first` < `second` meet: the points
+/// centre + radius (cos a e1 + sin a e2) for azimuths a in [start, start + span] (radians,
+/// 0 < span <= 2 pi; a full circle has span 2 pi). axis runs from `first`'s centre to
+/// `second`'s; (e1, e2, axis) is right-handed.
+struct SasArc
+{
+  std::uint32_t first = 0, second = 0;
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero(), axis = Eigen::Vector3d::UnitZ(),
+                  e1 = Eigen::Vector3d::UnitX(), e2 = Eigen::Vector3d::UnitY();
+  double radius = 0, start = 0, span = 0;
+
+  Eigen::Vector3d point(double azimuth) const
+  {
+    return this->centre +
+      this->radius * (std::cos(azimuth) * this->e1 + std::sin(azimuth) * this->e2);
+  }
+};
+
+/// An exposed point where three spheres meet (spheres in increasing order).
+struct SasVertex
+{
+  std::array<std::uint32_t, 3> spheres{};
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();
+};
+
+/// The pieces of a union's boundary. Per sphere (radius R): `area` (exposed, length^2),
+/// `normal_integral` (integral of the outward unit normal over the exposed part, length^2),
+/// `neighbours` (the spheres that overlap it). Arcs and vertices only when asked for.
+struct SasBoundary
+{
+  std::vector<double> area;
+  std::vector<Eigen::Vector3d> normal_integral;
+  std::vector<std::vector<std::uint32_t>> neighbours;
+  std::vector<SasArc> arcs;
+  std::vector<SasVertex> vertices;
+};
+
+/// The exposed parts of each sphere (see sphere_union_area() for the method and the input
+/// checks), and with `with_pieces` the exposed arcs and vertices, each once, ordered by their
+/// lowest sphere (deterministic whatever `parallel_for`).
+SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
+                         const std::vector<double>& radii, bool with_pieces,
+                         const ParallelFor& parallel_for);
+
+} // namespace mesolens

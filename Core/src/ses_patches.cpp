@@ -1,0 +1,454 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <Eigen/Dense>
+
+#include "ses_patches.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace mesolens {
+
+namespace {
+using Vec = Eigen::Vector3d;
+constexpr double pi = 3.14159265358979323846;
+constexpr int deepest_split = 4;   // singular patches: at most 4^6 pieces, near the cuts only
+constexpr double ball_slack = 1.1; // sub-patches lie within this times their corner distance
+
+/// Area and x . n integral of a patch piece.
+struct Integral
+{
+  double area = 0, flux = 0;
+  Integral& operator+=(const Integral& other)
+  {
+    this->area += other.area;
+    this->flux += other.flux;
+    return *this;
+  }
+};
+
+/// The generating arc of a torus: in the plane of the axis and the radial direction d(phi),
+/// points o + rho d + p (cos t a + sin t d) for t in the arc's range, where the probe touches
+/// the first atom at t = first and the second at t = second.
+struct Torus
+{
+  const SasArc* arc = nullptr;
+  double probe = 0;
+  double first = 0, second = 0;
+
+  Vec point(double phi, double t) const
+  {
+    const Vec d = std::cos(phi) * this->arc->e1 + std::sin(phi) * this->arc->e2;
+    return this->arc->centre + this->arc->radius * d +
+      this->probe * (std::cos(t) * this->arc->axis + std::sin(t) * d);
+  }
+
+  /// The piece over azimuths [phi0, phi1] and arc angles [t0, t1] (where the distance to the
+  /// axis, rho + p sin t, is >= 0): area = int p (rho + p sin t) dt dphi, and with the outward
+  /// normal n = -(cos t a + sin t d), x . n = -(o.a cos t + (o.d + rho) sin t + p).
+  Integral piece(double phi0, double phi1, double t0, double t1) const
+  {
+    const SasArc& a = *this->arc;
+    const double p = this->probe, rho = a.radius, span = phi1 - phi0, dt = t1 - t0;
+    const Vec along_d =
+      a.e1 * (std::sin(phi1) - std::sin(phi0)) - a.e2 * (std::cos(phi1) - std::cos(phi0));
+    const double c_int = std::sin(t1) - std::sin(t0);
+    const double s_int = -(std::cos(t1) - std::cos(t0));
+    const double sc_int = 0.5 * (std::sin(t1) * std::sin(t1) - std::sin(t0) * std::sin(t0));
+    const double ss_int = 0.5 * dt - 0.25 * (std::sin(2 * t1) - std::sin(2 * t0));
+    const double A = a.centre.dot(a.axis) * span;
+    const double B = a.centre.dot(along_d) + rho * span;
+    const double C = p * span;
+    Integral result;
+    result.area = span * p * (rho * dt + p * s_int);
+    result.flux = -p *
+      (rho * A * c_int + (rho * B + p * C) * s_int + rho * C * dt + p * A * sc_int +
+       p * B * ss_int);
+    return result;
+  }
+};
+
+/// A spherical triangle on the probe at `centre` (corners unit vectors, counter-clockwise seen
+/// from outside the probe): area p^2 E, and with n = -u, x . n = -(centre . u + p).
+Integral concave_piece(const Vec& centre, double p, const Vec& a, const Vec& b, const Vec& c)
+{
+  const double triple = a.dot(b.cross(c));
+  const double excess = 2.0 * std::atan2(std::abs(triple), 1.0 + a.dot(b) + b.dot(c) + c.dot(a));
+  // The integral of u over a spherical polygon: half the sum over its edges of the edge's angle
+  // times the unit normal of its great circle.
+  Vec mean_direction = Vec::Zero();
+  const Vec corners[3] = { a, b, c };
+  for (int k = 0; k < 3; ++k)
+  {
+    const Vec& from = corners[k];
+    const Vec& to = corners[(k + 1) % 3];
+    const Vec normal = from.cross(to);
+    const double length = normal.norm();
+    if (length > 0)
+    {
+      mean_direction += 0.5 * std::atan2(length, from.dot(to)) * normal / length;
+    }
+  }
+  Integral result;
+  result.area = p * p * excess;
+  result.flux = -(centre.dot(p * p * mean_direction) + p * result.area);
+  return result;
+}
+
+/// Splits a patch until each piece is certainly kept or certainly cut away: cut when even the
+/// nearest of all probe positions is closer than p less the piece's size, kept when every
+/// position foreign to the patch is farther than p plus its size. At the deepest split, a piece
+/// counts by the fraction of it where the clearance (distance to foreign positions less p),
+/// interpolated linearly between its corners, is positive: second-order accurate in its size.
+struct Splitter
+{
+  const ProbeDistance* distance = nullptr;
+  const ProbeDistance::Excluded* foreign = nullptr;
+  double probe = 0;
+
+  /// -1 cut, +1 kept, 0 undecided, for a piece around `middle` reaching `size`.
+  int decide(const Vec& middle, double size, bool last) const
+  {
+    const double nearest_foreign = this->distance->closest(middle, this->foreign).distance;
+    if (nearest_foreign >= this->probe + size)
+    {
+      return 1;
+    }
+    if (this->distance->closest(middle).distance < this->probe - size)
+    {
+      return -1;
+    }
+    (void)last;
+    return 0;
+  }
+
+  /// Distance to the foreign positions less p (> 0: kept).
+  double clearance(const Vec& x) const
+  {
+    return this->distance->closest(x, this->foreign).distance - this->probe;
+  }
+};
+
+/// The part of a triangle where the linear interpolant of corner values is positive.
+double positive_fraction(double g0, double g1, double g2)
+{
+  const double g[3] = { g0, g1, g2 };
+  const int positive = (g0 > 0) + (g1 > 0) + (g2 > 0);
+  if (positive == 0 || positive == 3)
+  {
+    return positive == 3 ? 1.0 : 0.0;
+  }
+  // The corner alone on its side cuts off a triangle t1 t2 of the whole.
+  const bool lone_sign = positive == 1;
+  int lone = 0;
+  for (int k = 0; k < 3; ++k)
+  {
+    if ((g[k] > 0) == lone_sign)
+    {
+      lone = k;
+    }
+  }
+  const double a = g[lone], b = g[(lone + 1) % 3], c = g[(lone + 2) % 3];
+  const double corner = (a / (a - b)) * (a / (a - c));
+  return lone_sign ? corner : 1.0 - corner;
+}
+
+/// The largest u . e over the spherical triangle (a, b, c) (counter-clockwise, unit corners):
+/// at e itself when inside, else on an edge's great circle or at a corner.
+double largest_dot(const Vec& a, const Vec& b, const Vec& c, const Vec& e)
+{
+  if (e.dot(a.cross(b)) >= 0 && e.dot(b.cross(c)) >= 0 && e.dot(c.cross(a)) >= 0)
+  {
+    return 1.0;
+  }
+  double best = std::max({ e.dot(a), e.dot(b), e.dot(c) });
+  const Vec corners[3] = { a, b, c };
+  for (int k = 0; k < 3; ++k)
+  {
+    const Vec& from = corners[k];
+    const Vec& to = corners[(k + 1) % 3];
+    const Vec normal = from.cross(to).normalized();
+    const Vec in_plane = e - e.dot(normal) * normal;
+    const double length = in_plane.norm();
+    if (length > 0)
+    {
+      const Vec direction = in_plane / length;
+      if (from.cross(direction).dot(normal) >= 0 && direction.cross(to).dot(normal) >= 0)
+      {
+        best = std::max(best, length);
+      }
+    }
+  }
+  return best;
+}
+
+/// The part of a probe sphere inside a neighbouring probe at `other`: the directions u with
+/// u . axis > height.
+struct ProbeCap
+{
+  Vec axis = Vec::UnitZ();
+  double height = 1;
+};
+
+Integral split_concave(const Splitter& splitter, const std::vector<ProbeCap>& caps,
+                       const Vec& centre, const Vec& a, const Vec& b, const Vec& c, int depth)
+{
+  const double p = splitter.probe;
+  const Vec middle = (a + b + c).normalized();
+  // Neighbouring probes cut exactly: caps on this probe's sphere.
+  bool cut_by_cap = false;
+  for (const ProbeCap& cap : caps)
+  {
+    if (-largest_dot(a, b, c, -cap.axis) > cap.height)
+    {
+      return {}; // wholly inside a neighbour
+    }
+    if (largest_dot(a, b, c, cap.axis) > cap.height)
+    {
+      cut_by_cap = true;
+    }
+  }
+  const double size =
+    ball_slack * p * std::max({ (middle - a).norm(), (middle - b).norm(), (middle - c).norm() });
+  int verdict = splitter.decide(centre + p * middle, size, depth == deepest_split);
+  if (verdict > 0 && cut_by_cap)
+  {
+    verdict = 0;
+  }
+  if (verdict < 0)
+  {
+    return {};
+  }
+  if (verdict > 0)
+  {
+    return concave_piece(centre, p, a, b, c);
+  }
+  if (depth == deepest_split)
+  {
+    const auto clearance = [&](const Vec& u) {
+      double g = splitter.clearance(centre + p * u);
+      for (const ProbeCap& cap : caps)
+      {
+        g = std::min(g, p * (cap.height - u.dot(cap.axis)));
+      }
+      return g;
+    };
+    Integral piece = concave_piece(centre, p, a, b, c);
+    const double kept = positive_fraction(clearance(a), clearance(b), clearance(c));
+    piece.area *= kept;
+    piece.flux *= kept;
+    return piece;
+  }
+  const Vec ab = (a + b).normalized(), bc = (b + c).normalized(), ca = (c + a).normalized();
+  Integral sum;
+  sum += split_concave(splitter, caps, centre, a, ab, ca, depth + 1);
+  sum += split_concave(splitter, caps, centre, ab, b, bc, depth + 1);
+  sum += split_concave(splitter, caps, centre, ca, bc, c, depth + 1);
+  sum += split_concave(splitter, caps, centre, ab, bc, ca, depth + 1);
+  return sum;
+}
+
+Integral split_torus(const Splitter& splitter, const Torus& torus, double phi0, double phi1,
+                     double t0, double t1, int depth)
+{
+  const double phi = 0.5 * (phi0 + phi1), t = 0.5 * (t0 + t1);
+  const Vec middle = torus.point(phi, t);
+  double size = 0;
+  for (const double corner_phi : { phi0, phi1 })
+  {
+    for (const double corner_t : { t0, t1 })
+    {
+      size = std::max(size, (torus.point(corner_phi, corner_t) - middle).norm());
+    }
+  }
+  const int verdict = splitter.decide(middle, ball_slack * size, depth == deepest_split);
+  if (verdict < 0)
+  {
+    return {};
+  }
+  if (verdict > 0)
+  {
+    return torus.piece(phi0, phi1, t0, t1);
+  }
+  if (depth == deepest_split)
+  {
+    const double g00 = splitter.clearance(torus.point(phi0, t0));
+    const double g10 = splitter.clearance(torus.point(phi1, t0));
+    const double g01 = splitter.clearance(torus.point(phi0, t1));
+    const double g11 = splitter.clearance(torus.point(phi1, t1));
+    const double kept = 0.5 * (positive_fraction(g00, g10, g11) + positive_fraction(g00, g11, g01));
+    Integral piece = torus.piece(phi0, phi1, t0, t1);
+    piece.area *= kept;
+    piece.flux *= kept;
+    return piece;
+  }
+  Integral sum;
+  sum += split_torus(splitter, torus, phi0, phi, t0, t, depth + 1);
+  sum += split_torus(splitter, torus, phi, phi1, t0, t, depth + 1);
+  sum += split_torus(splitter, torus, phi0, phi, t, t1, depth + 1);
+  sum += split_torus(splitter, torus, phi, phi1, t, t1, depth + 1);
+  return sum;
+}
+
+bool contains(const std::array<std::uint32_t, 3>& spheres, std::uint32_t s)
+{
+  return spheres[0] == s || spheres[1] == s || spheres[2] == s;
+}
+} // namespace
+
+SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
+                                      const std::vector<double>& atom_radii, double probe,
+                                      const SasBoundary& boundary, const ProbeDistance& distance,
+                                      const ParallelFor& parallel_for)
+{
+  SesPatchIntegrals out;
+  const double p = probe;
+  const std::size_t n = centres.size();
+  out.face_area.assign(n, 0.0);
+  out.face_volume.assign(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    // The exposed part of the inflated sphere, scaled about the centre onto the atom.
+    const double r = atom_radii[i], scale = r / (r + p);
+    const double area = scale * scale * boundary.area[i];
+    out.face_area[i] = area;
+    out.face_volume[i] =
+      (scale * scale * centres[i].dot(boundary.normal_integral[i]) + r * area) / 3.0;
+  }
+
+  const auto& arcs = boundary.arcs;
+  const auto& vertices = boundary.vertices;
+  out.arc_area.assign(arcs.size(), 0.0);
+  out.arc_volume.assign(arcs.size(), 0.0);
+  std::vector<char> arc_singular(arcs.size(), 0);
+  run_parallel(parallel_for, arcs.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k)
+    {
+      const SasArc& arc = arcs[k];
+      Torus torus;
+      torus.arc = &arc;
+      torus.probe = p;
+      const double rho = arc.radius;
+      torus.first = std::atan2(-rho, (centres[arc.first] - arc.centre).dot(arc.axis));
+      torus.second = std::atan2(-rho, (centres[arc.second] - arc.centre).dot(arc.axis));
+      // Where rho < p the probe passes between the atoms: the part beyond the axis lies within
+      // p of the probe's neighbouring positions on the same arc, and is cut away.
+      std::vector<std::pair<double, double>> ranges;
+      if (rho >= p)
+      {
+        ranges.emplace_back(torus.first, torus.second);
+      }
+      else
+      {
+        const double beta = std::asin(rho / p);
+        if (torus.first < -pi + beta)
+        {
+          ranges.emplace_back(torus.first, std::min(torus.second, -pi + beta));
+        }
+        if (torus.second > -beta)
+        {
+          ranges.emplace_back(std::max(torus.first, -beta), torus.second);
+        }
+      }
+      // What may cut the torus: probe positions (arcs, vertices) touching neither of its atoms.
+      // Those that touch one are its neighbours on the surface and meet it only at its edges;
+      // positions on a single atom (faces) never reach a patch between two others.
+      const ProbeDistance::Excluded foreign = [&](PieceKind kind, std::uint32_t index) {
+        switch (kind)
+        {
+          case PieceKind::Arc:
+            return arcs[index].first == arc.first || arcs[index].first == arc.second ||
+              arcs[index].second == arc.first || arcs[index].second == arc.second;
+          case PieceKind::Vertex:
+            return contains(vertices[index].spheres, arc.first) ||
+              contains(vertices[index].spheres, arc.second);
+          default:
+            return true;
+        }
+      };
+      Splitter splitter{ &distance, &foreign, p };
+      // Pieces of at most 60 degrees of azimuth, each whole unless something cuts it.
+      const int parts = std::max(1, static_cast<int>(std::ceil(arc.span / (pi / 3))));
+      Integral total;
+      for (int part = 0; part < parts; ++part)
+      {
+        const double phi0 = arc.start + arc.span * part / parts;
+        const double phi1 = arc.start + arc.span * (part + 1) / parts;
+        for (const auto& range : ranges)
+        {
+          const Integral whole = torus.piece(phi0, phi1, range.first, range.second);
+          const Integral kept =
+            split_torus(splitter, torus, phi0, phi1, range.first, range.second, 0);
+          if (std::abs(kept.area - whole.area) > 1e-12 * std::max(1.0, whole.area))
+          {
+            arc_singular[k] = 1;
+          }
+          total += kept;
+        }
+      }
+      out.arc_area[k] = total.area;
+      out.arc_volume[k] = total.flux / 3.0;
+    }
+  });
+
+  out.vertex_area.assign(vertices.size(), 0.0);
+  out.vertex_volume.assign(vertices.size(), 0.0);
+  std::vector<char> vertex_singular(vertices.size(), 0);
+  run_parallel(parallel_for, vertices.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t k = begin; k < end; ++k)
+    {
+      const SasVertex& vertex = vertices[k];
+      const Vec& v = vertex.position;
+      Vec u[3];
+      for (int s = 0; s < 3; ++s)
+      {
+        u[s] = (centres[vertex.spheres[s]] - v).normalized();
+      }
+      if (u[0].dot(u[1].cross(u[2])) < 0)
+      {
+        std::swap(u[1], u[2]);
+      }
+      // What may cut the concave patch: other probes overlapping this one (at vertices within
+      // 2 p), exactly as caps on its sphere; and, by distance, the arcs touching none of its
+      // atoms, and those between two of them where the probe passes between that pair. The
+      // other pieces are its neighbours on the surface and meet it only at its edges.
+      std::vector<ProbeCap> caps;
+      distance.vertices_within(v, 2.0 * p, [&](std::uint32_t other) {
+        const Vec offset = vertices[other].position - v;
+        const double gap = offset.norm();
+        if (other != k && gap > 0)
+        {
+          caps.push_back({ offset / gap, gap / (2.0 * p) });
+        }
+      });
+      const ProbeDistance::Excluded foreign = [&](PieceKind kind, std::uint32_t index) {
+        if (kind != PieceKind::Arc)
+        {
+          return true;
+        }
+        const bool has_first = contains(vertex.spheres, arcs[index].first);
+        const bool has_second = contains(vertex.spheres, arcs[index].second);
+        if (has_first && has_second)
+        {
+          return arcs[index].radius >= p;
+        }
+        return has_first || has_second;
+      };
+      Splitter splitter{ &distance, &foreign, p };
+      const Integral patch = split_concave(splitter, caps, v, u[0], u[1], u[2], 0);
+      const Integral whole = concave_piece(v, p, u[0], u[1], u[2]);
+      if (std::abs(patch.area - whole.area) > 1e-12 * std::max(1.0, whole.area))
+      {
+        vertex_singular[k] = 1;
+      }
+      out.vertex_area[k] = patch.area;
+      out.vertex_volume[k] = patch.flux / 3.0;
+    }
+  });
+  out.singular_count =
+    static_cast<std::size_t>(std::count(arc_singular.begin(), arc_singular.end(), 1) +
+                             std::count(vertex_singular.begin(), vertex_singular.end(), 1));
+  return out;
+}
+
+} // namespace mesolens

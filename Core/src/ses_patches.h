@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Area and volume of the solvent-excluded surface's analytic patches (private to MesoLensCore).
+#pragma once
+
+#include "probe_distance.h"
+#include "sas_boundary.h"
+
+#include "mesolens/parallel_for.h"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace mesolens {
+
+/// Per piece of the solvent-accessible boundary, the area of the SES patch it carries (Å²) and
+/// its volume term, one third of the integral of x . n over the patch (Å³; the terms sum to the
+/// enclosed volume). Faces carry convex patches, arcs toroidal ones, vertices concave ones.
+struct SesPatchIntegrals
+{
+  std::vector<double> face_area, arc_area, vertex_area;
+  std::vector<double> face_volume, arc_volume, vertex_volume;
+  std::size_t singular_count = 0; ///< patches integrated numerically because something cuts them
+};
+
+/// The patches of probe `probe` (> 0) rolling over atoms `centres` with radii `atom_radii`;
+/// `boundary` is that of the atoms inflated by the probe (with its pieces) and `distance` a
+/// query structure over it with reach at least twice the probe radius plus the largest
+/// inflated radius.
+///
+/// Convex patches are the exposed parts of the inflated spheres scaled onto the atoms. Toroidal
+/// patches run between the two contact circles and are cut at the axis when the probe passes
+/// between the atoms (there the torus intersects itself). Concave patches are spherical
+/// triangles on the probe. Each comes in closed form unless a probe position that does not
+/// belong to the patch comes within twice the probe radius; such singular patches are split
+/// recursively, keeping the parts no other probe position reaches.
+SesPatchIntegrals ses_patch_integrals(const std::vector<Eigen::Vector3d>& centres,
+                                      const std::vector<double>& atom_radii, double probe,
+                                      const SasBoundary& boundary, const ProbeDistance& distance,
+                                      const ParallelFor& parallel_for);
+
+} // namespace mesolens

@@ -20,7 +20,7 @@ namespace mesolens {
 namespace {
 using Vec = Eigen::Vector3d;
 constexpr double largest_radius = 20.0;        // Å: no atom, bead or probe is larger
-constexpr double largest_triangle_count = 6e7; // a finer tolerance than this allows is refused
+constexpr double largest_triangle_count = 2e7; // about 2 GB: a finer tolerance is refused
 
 /// Which grid cells of width `width` some sphere's bounding box touches, with 3D prefix sums so
 /// that any box is tested in eight lookups: the coarse test of where a surface can be.
@@ -107,7 +107,8 @@ private:
 };
 
 /// The root of `value` on the segment from a (value <= 0) to b (value > 0), by the Illinois
-/// variant of regula falsi, to 1e-9 Å.
+/// variant of regula falsi, to 1e-9 Å, kept 1e-5 of the segment from either end (so no triangle
+/// degenerates where the surface passes through a grid point).
 template<typename Value>
 Vec segment_root(const Vec& a, double value_a, const Vec& b, double value_b, Value&& value)
 {
@@ -144,6 +145,8 @@ Vec segment_root(const Vec& a, double value_a, const Vec& b, double value_b, Val
       side = 1;
     }
   }
+  // Never exactly at a grid point: vertices of different edges stay apart.
+  t = std::clamp(t, 1e-5, 1.0 - 1e-5);
   return a + t * (b - a);
 }
 
@@ -256,6 +259,32 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
   const SasBoundary boundary = sas_boundary(centre_list, radii, excluded, parallel_for);
   report(0.1);
 
+  // The tessellation: grid spacing from the chord error of triangles about sqrt(3) spacings
+  // long on the most curved patches (radius: the probe's or the smallest atom's).
+  const double curvature_radius = excluded
+    ? std::min(p, smallest)
+    : smallest + (options.kind == SurfaceKind::SolventAccessible ? p : 0.0);
+  const double spacing = std::sqrt(8.0 * options.tolerance * curvature_radius) / std::sqrt(3.0);
+  surface.grid_spacing = spacing;
+  if (options.tessellate)
+  {
+    // Refused before any work when too fine: the SES is rarely larger than 1.2 times the SAS.
+    double estimate = 0;
+    for (const double a : boundary.area)
+    {
+      estimate += a;
+    }
+    estimate *= excluded ? 1.2 : 1.0;
+    const double expected_triangles = 5.0 * estimate / (spacing * spacing);
+    if (expected_triangles > largest_triangle_count)
+    {
+      throw InvalidInput("a surface of about " + std::to_string(estimate) + " Å² at tolerance " +
+                         std::to_string(options.tolerance) + " Å would need about " +
+                         std::to_string(expected_triangles / 1e6) +
+                         " million triangles; choose a larger tolerance");
+    }
+  }
+
   // Exact figures from the patches.
   SesPatchIntegrals patches;
   if (excluded)
@@ -276,33 +305,10 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
   }
   report(0.2);
 
-  // The tessellation: grid spacing from the chord error of triangles about sqrt(3) spacings
-  // long on the most curved patches (radius: the probe's or the smallest atom's).
-  const double curvature_radius = excluded
-    ? std::min(p, smallest)
-    : smallest + (options.kind == SurfaceKind::SolventAccessible ? p : 0.0);
-  const double spacing = std::sqrt(8.0 * options.tolerance * curvature_radius) / std::sqrt(3.0);
-  surface.grid_spacing = spacing;
-
   std::vector<ContourVertex> vertices;
   std::vector<std::int64_t> triangles;
   if (options.tessellate)
   {
-    double exact_area = 0;
-    for (double a : patches.face_area)
-      exact_area += a;
-    for (double a : patches.arc_area)
-      exact_area += a;
-    for (double a : patches.vertex_area)
-      exact_area += a;
-    const double expected_triangles = 5.0 * exact_area / (spacing * spacing);
-    if (expected_triangles > largest_triangle_count)
-    {
-      throw InvalidInput("a surface of " + std::to_string(exact_area) + " Å² at tolerance " +
-                         std::to_string(options.tolerance) + " Å would need about " +
-                         std::to_string(expected_triangles / 1e6) +
-                         " million triangles; choose a larger tolerance");
-    }
     const double leaf_half_diagonal = 0.5 * std::sqrt(3.0) * spacing;
     const double reach = p * (excluded ? 1.0 : 0.0) + 4.0 * spacing;
     const ProbeDistance distance(centres, radii, boundary, reach,
@@ -332,38 +338,12 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
       };
       field.vertex = [&](const Vec& outside, double outside_value, const Vec& inside,
                          double inside_value) {
-        // Linear guess, moved along the ray from its nearest probe position onto the probe
-        // sphere; where that is not certain to land on the surface, the root along the edge.
-        const Vec guess =
-          outside + outside_value / (outside_value - inside_value) * (inside - outside);
-        ClosestPiece piece = distance.closest(guess);
-        Vec position = guess;
-        bool placed = false;
-        if (piece.kind != PieceKind::None && piece.distance > 0)
-        {
-          const Vec moved = piece.point + p / piece.distance * (guess - piece.point);
-          if (piece.distance >= p && (moved - guess).norm() <= spacing)
-          {
-            position = moved;
-            placed = true;
-          }
-          else if ((moved - guess).norm() <= spacing)
-          {
-            const ClosestPiece check = distance.closest(moved);
-            if (std::abs(check.distance - p) <= 1e-9)
-            {
-              position = moved;
-              piece = check;
-              placed = true;
-            }
-          }
-        }
-        if (!placed)
-        {
-          position = segment_root(outside, outside_value, inside, inside_value,
-                                  [&](const Vec& x) { return distance.closest(x).distance - p; });
-          piece = distance.closest(position);
-        }
+        // The root along the grid edge itself: vertices kept on their edges cannot fold
+        // triangles over one another, even at the surface's creases.
+        const Vec position =
+          segment_root(outside, outside_value, inside, inside_value,
+                       [&](const Vec& x) { return distance.closest(x).distance - p; });
+        const ClosestPiece piece = distance.closest(position);
         ContourVertex vertex;
         vertex.position = position;
         const Vec towards_probe = piece.point - position;
@@ -461,44 +441,154 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
   surface.component_count = component_count;
   surface.cavity_count = static_cast<std::size_t>(std::count(cavity.begin(), cavity.end(), 1));
 
-  // Per piece, the share of its vertices on dropped cavities: that share of its exact area and
-  // volume is dropped with them (pieces too small to carry a vertex stay).
-  const auto dropped_share = [&](std::uint8_t patch_kind, std::size_t piece_count) {
-    std::vector<double> share(piece_count, 0.0);
-    if (options.keep_cavities || surface.cavity_count == 0)
-    {
-      return share;
-    }
-    std::vector<double> total(piece_count, 0.0);
+  // Exact figures, less those of dropped cavities. Tori and concave patches go whole, with the
+  // component of their mesh vertices (or of the nearest vertex of their atoms); a sphere's
+  // convex part goes by its boundary loops, each placed by the nearest vertex on that atom, the
+  // part bounded by its cavity loops taken as one region (Gauss-Bonnet per region).
+  std::vector<double> face_area = patches.face_area, face_volume = patches.face_volume;
+  std::vector<double> arc_area = patches.arc_area, arc_volume = patches.arc_volume;
+  std::vector<double> vertex_area = patches.vertex_area, vertex_volume = patches.vertex_volume;
+  if (!options.keep_cavities && surface.cavity_count > 0)
+  {
+    std::vector<std::vector<std::uint32_t>> on_atom(n);
     for (std::size_t v = 0; v < vertices.size(); ++v)
     {
-      if (vertices[v].patch == patch_kind)
+      on_atom[std::size_t(vertices[v].atom)].push_back(static_cast<std::uint32_t>(v));
+    }
+    const auto nearest_is_cavity = [&](const Vec& x, std::initializer_list<std::uint32_t> atoms,
+                                       int patch_kind) {
+      double best = 1e300;
+      bool in_cavity = false;
+      for (const std::uint32_t atom : atoms)
       {
-        total[vertices[v].piece] += 1;
-        share[vertices[v].piece] += cavity[component[v]] ? 1 : 0;
+        for (const std::uint32_t v : on_atom[atom])
+        {
+          if (patch_kind >= 0 && vertices[v].patch != patch_kind)
+          {
+            continue;
+          }
+          const double d = (vertices[v].position - x).squaredNorm();
+          if (d < best)
+          {
+            best = d;
+            in_cavity = cavity[component[v]] != 0;
+          }
+        }
+      }
+      return in_cavity;
+    };
+    // Tori and concave patches: by vote of their vertices.
+    std::vector<int> arc_votes(boundary.arcs.size(), 0), vertex_votes(boundary.vertices.size(), 0);
+    std::vector<int> arc_seen(boundary.arcs.size(), 0), vertex_seen(boundary.vertices.size(), 0);
+    for (std::size_t v = 0; v < vertices.size(); ++v)
+    {
+      const int vote = cavity[component[v]] ? 1 : -1;
+      if (vertices[v].patch == static_cast<std::uint8_t>(SurfacePatch::Toroidal))
+      {
+        arc_votes[vertices[v].piece] += vote;
+        arc_seen[vertices[v].piece] = 1;
+      }
+      else if (vertices[v].patch == static_cast<std::uint8_t>(SurfacePatch::Concave))
+      {
+        vertex_votes[vertices[v].piece] += vote;
+        vertex_seen[vertices[v].piece] = 1;
       }
     }
-    for (std::size_t k = 0; k < piece_count; ++k)
+    for (std::size_t k = 0; k < boundary.arcs.size(); ++k)
     {
-      share[k] = total[k] > 0 ? share[k] / total[k] : 0.0;
+      const SasArc& arc = boundary.arcs[k];
+      const bool gone = arc_seen[k]
+        ? arc_votes[k] > 0
+        : nearest_is_cavity(arc.point(arc.start + 0.5 * arc.span), { arc.first, arc.second }, -1);
+      if (gone)
+      {
+        arc_area[k] = arc_volume[k] = 0;
+      }
     }
-    return share;
-  };
+    for (std::size_t k = 0; k < boundary.vertices.size(); ++k)
+    {
+      const auto& s3 = boundary.vertices[k].spheres;
+      const bool gone = vertex_seen[k]
+        ? vertex_votes[k] > 0
+        : nearest_is_cavity(boundary.vertices[k].position, { s3[0], s3[1], s3[2] }, -1);
+      if (gone)
+      {
+        vertex_area[k] = vertex_volume[k] = 0;
+      }
+    }
+    // Convex parts: per sphere, its cavity loops.
+    constexpr double two_pi = 6.28318530717958647692;
+    std::size_t first_loop = 0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      std::size_t end_loop = first_loop;
+      while (end_loop < boundary.loops.size() && boundary.loops[end_loop].sphere == i)
+      {
+        ++end_loop;
+      }
+      const double atom_scale = atom_radii[i] / radii[i]; // the SAS sphere onto the atom (SES)
+      const double scale = excluded ? atom_scale : 1.0;
+      const double surface_radius = excluded ? atom_radii[i] : radii[i];
+      std::size_t cavity_loops = 0;
+      double turning = 0;
+      Vec normal_integral = Vec::Zero();
+      for (std::size_t l = first_loop; l < end_loop; ++l)
+      {
+        const SasLoop& loop = boundary.loops[l];
+        const Vec on_surface = centres[i] + scale * (loop.sample - centres[i]);
+        if (nearest_is_cavity(on_surface, { static_cast<std::uint32_t>(i) },
+                              static_cast<int>(SurfacePatch::Convex)))
+        {
+          ++cavity_loops;
+          turning += loop.turning;
+          normal_integral += loop.normal_integral;
+        }
+      }
+      const std::size_t loop_count = end_loop - first_loop;
+      first_loop = end_loop;
+      if (face_area[i] <= 0)
+      {
+        continue;
+      }
+      if (loop_count == 0)
+      {
+        // Wholly exposed: a sphere of its own.
+        const Vec pole = centres[i] + Vec(surface_radius, 0, 0);
+        if (nearest_is_cavity(pole, { static_cast<std::uint32_t>(i) }, -1))
+        {
+          face_area[i] = face_volume[i] = 0;
+        }
+        continue;
+      }
+      if (cavity_loops == 0)
+      {
+        continue;
+      }
+      if (cavity_loops == loop_count)
+      {
+        face_area[i] = face_volume[i] = 0;
+        continue;
+      }
+      const double unit = std::max(0.0, two_pi * (2.0 - double(cavity_loops)) - turning);
+      const double area = surface_radius * surface_radius * unit;
+      const Vec normals = scale * scale * normal_integral;
+      face_area[i] = std::max(0.0, face_area[i] - area);
+      face_volume[i] -= (surface_radius * area + centres[i].dot(normals)) / 3.0;
+    }
+  }
   const auto add = [&](const std::vector<double>& area, const std::vector<double>& volume,
                        SurfacePatch kind) {
-    const std::vector<double> share = dropped_share(static_cast<std::uint8_t>(kind), area.size());
     const int slot = static_cast<int>(kind);
     for (std::size_t k = 0; k < area.size(); ++k)
     {
-      const double kept = 1.0 - share[k];
-      surface.patch_area[slot] += kept * area[k];
-      surface.volume += kept * volume[k];
-      surface.patch_count[slot] += area[k] > 0 && kept > 0 ? 1 : 0;
+      surface.patch_area[slot] += area[k];
+      surface.volume += volume[k];
+      surface.patch_count[slot] += area[k] > 0 ? 1 : 0;
     }
   };
-  add(patches.face_area, patches.face_volume, SurfacePatch::Convex);
-  add(patches.arc_area, patches.arc_volume, SurfacePatch::Toroidal);
-  add(patches.vertex_area, patches.vertex_volume, SurfacePatch::Concave);
+  add(face_area, face_volume, SurfacePatch::Convex);
+  add(arc_area, arc_volume, SurfacePatch::Toroidal);
+  add(vertex_area, vertex_volume, SurfacePatch::Concave);
   surface.area = surface.patch_area[0] + surface.patch_area[1] + surface.patch_area[2];
 
   // The mesh, less dropped cavities.

@@ -85,8 +85,17 @@ struct UnitPieces
     std::uint32_t neighbour_a = 0, neighbour_b = 0;
     Vec direction = Vec::Zero();
   };
+  /// A closed boundary curve: its share of the turning (geodesic curvature and corners), of
+  /// the normal integral, and a point on it.
+  struct Loop
+  {
+    double turning = 0;
+    Vec normal_integral = Vec::Zero();
+    Vec sample = Vec::Zero();
+  };
   std::vector<Arc> arcs;
   std::vector<Corner> corners;
+  std::vector<Loop> loops;
 };
 
 /// The exposed area of the unit sphere under `caps` (times R^2 by the caller), and in
@@ -230,6 +239,9 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral, UnitPieces
     std::size_t cap;
     double start_azimuth, end_azimuth;
     std::size_t start, end; // vertex ids
+    double turning;         // its geodesic curvature, then plus the corner at its end
+    Vec normal_integral;    // half of x cross dx along it
+    Vec middle;
   };
   std::vector<Arc> arcs;
   double turning = 0; // the boundary's geodesic curvature integrated, plus the corners
@@ -248,6 +260,8 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral, UnitPieces
         if (pieces)
         {
           pieces->arcs.push_back({ cap, 0.0, 2.0 * pi });
+          pieces->loops.push_back(
+            { -cap.height * 2.0 * pi, -pi * cap.sine * cap.sine * cap.axis, cap.point(0.0) });
         }
       }
       continue;
@@ -276,7 +290,9 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral, UnitPieces
         pieces->arcs.push_back({ cap, low, high });
       }
       const std::size_t next = k + 1 < crossings.size() ? k + 1 : 0;
-      arcs.push_back({ a, high, low, crossings[next].second, crossings[k].second });
+      arcs.push_back({ a, high, low, crossings[next].second, crossings[k].second,
+                       -cap.height * (high - low), 0.5 * along_arc,
+                       cap.point(0.5 * (low + high)) });
     }
   }
   // Corners: from the arc ending at a vertex to the arc leaving it.
@@ -286,7 +302,7 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral, UnitPieces
     leaving.emplace(arcs[k].start, k);
   }
   UnionFind chains(vertices.size());
-  for (const Arc& arc : arcs)
+  for (Arc& arc : arcs)
   {
     chains.join(arc.start, arc.end);
     const auto next = leaving.find(arc.end);
@@ -298,17 +314,29 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral, UnitPieces
     const Vec& p = vertices[arc.end];
     const Vec in_direction = caps[arc.cap].tangent(arc.end_azimuth);
     const Vec out_direction = caps[out.cap].tangent(out.start_azimuth);
-    turning +=
+    const double corner =
       std::atan2(p.dot(in_direction.cross(out_direction)), in_direction.dot(out_direction));
+    turning += corner;
+    arc.turning += corner;
   }
-  std::vector<char> root_seen(vertices.size(), 0);
+  std::vector<std::size_t> loop_of_root(vertices.size(), SIZE_MAX);
   for (const Arc& arc : arcs)
   {
     const std::size_t root = chains.find(arc.start);
-    if (!root_seen[root])
+    if (loop_of_root[root] == SIZE_MAX)
     {
-      root_seen[root] = 1;
+      loop_of_root[root] = pieces ? pieces->loops.size() : 0;
       ++loops;
+      if (pieces)
+      {
+        pieces->loops.push_back({ 0.0, Vec::Zero(), arc.middle });
+      }
+    }
+    if (pieces)
+    {
+      UnitPieces::Loop& loop = pieces->loops[loop_of_root[root]];
+      loop.turning += arc.turning;
+      loop.normal_integral += arc.normal_integral;
     }
   }
   // Gauss-Bonnet on the unit sphere: area = 2 pi chi - turning, with chi = loops + 2 - 2 unions
@@ -345,6 +373,7 @@ SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
   result.neighbours.assign(n, {});
   std::vector<std::vector<SasArc>> arcs_of(with_pieces ? n : 0);
   std::vector<std::vector<SasVertex>> vertices_of(with_pieces ? n : 0);
+  std::vector<std::vector<SasLoop>> loops_of(with_pieces ? n : 0);
   if (n == 0)
   {
     return result;
@@ -450,12 +479,18 @@ SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
         vertex.position = c + r * corner.direction;
         vertices_of[i].push_back(vertex);
       }
+      for (const UnitPieces::Loop& loop : pieces.loops)
+      {
+        loops_of[i].push_back(
+          { self, loop.turning, r * r * loop.normal_integral, c + r * loop.sample });
+      }
     }
   });
   for (std::size_t i = 0; i < arcs_of.size(); ++i)
   {
     result.arcs.insert(result.arcs.end(), arcs_of[i].begin(), arcs_of[i].end());
     result.vertices.insert(result.vertices.end(), vertices_of[i].begin(), vertices_of[i].end());
+    result.loops.insert(result.loops.end(), loops_of[i].begin(), loops_of[i].end());
   }
   return result;
 }

@@ -40,6 +40,18 @@ struct SasVertex
   Eigen::Vector3d position = Eigen::Vector3d::Zero();
 };
 
+/// A closed curve bounding a sphere's exposed part (the exposed side on its left): its share
+/// of the Gauss-Bonnet turning on the unit sphere (geodesic curvature and corners, radians) and
+/// of the normal integral (length^2), and a point on it. The exposed area of a region bounded by
+/// loops L is R^2 (2 pi (2 - |L|) - sum of their turning).
+struct SasLoop
+{
+  std::uint32_t sphere = 0;
+  double turning = 0;
+  Eigen::Vector3d normal_integral = Eigen::Vector3d::Zero();
+  Eigen::Vector3d sample = Eigen::Vector3d::Zero();
+};
+
 /// The pieces of a union's boundary. Per sphere (radius R): `area` (exposed, length^2),
 /// `normal_integral` (integral of the outward unit normal over the exposed part, length^2),
 /// `neighbours` (the spheres that overlap it). Arcs and vertices only when asked for.
@@ -50,11 +62,12 @@ struct SasBoundary
   std::vector<std::vector<std::uint32_t>> neighbours;
   std::vector<SasArc> arcs;
   std::vector<SasVertex> vertices;
+  std::vector<SasLoop> loops; ///< ordered by sphere
 };
 
 /// The exposed parts of each sphere (see sphere_union_area() for the method and the input
 /// checks), and with `with_pieces` the exposed arcs and vertices, each once, ordered by their
-/// lowest sphere (deterministic whatever `parallel_for`).
+/// lowest sphere, and every sphere's loops (deterministic whatever `parallel_for`).
 SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
                          const std::vector<double>& radii, bool with_pieces,
                          const ParallelFor& parallel_for);

@@ -53,7 +53,7 @@ struct MolecularSurfaceOptions
 };
 
 /// Exact figures of a surface and, when tessellated, its mesh. Mesh vertices lie on the exact
-/// surface (to 1e-6 Å); triangles are counter-clockwise seen from outside (the solvent).
+/// surface (to 1e-5 Å); triangles are counter-clockwise seen from outside (the solvent).
 struct MolecularSurface
 {
   double area = 0;   ///< exact, from the patches (Å²)

@@ -256,6 +256,47 @@ void SetFieldValue(vtkPolyData* output, const char* name, double value)
   output->GetFieldData()->AddArray(array);
 }
 
+bool AtomSpheres(vtkPolyData* atoms, const char* radius_array, double bead_radius,
+                 std::vector<std::array<double, 3>>& centres, std::vector<double>& radii,
+                 std::string& error)
+{
+  const vtkIdType n = atoms->GetNumberOfPoints();
+  vtkDataArray* given = nullptr;
+  if (radius_array && *radius_array)
+  {
+    given = atoms->GetPointData()->GetArray(radius_array);
+    if (!given)
+    {
+      error = std::string("The atoms have no point array `") + radius_array + "` of radii.";
+      return false;
+    }
+  }
+  vtkDataArray* elements = atoms->GetPointData()->GetArray("AtomicNumber");
+  centres.resize(static_cast<std::size_t>(n));
+  radii.resize(static_cast<std::size_t>(n));
+  for (vtkIdType a = 0; a < n; ++a)
+  {
+    double p[3];
+    atoms->GetPoint(a, p);
+    centres[std::size_t(a)] = { p[0], p[1], p[2] };
+    double radius = bead_radius;
+    if (given)
+    {
+      radius = given->GetComponent(a, 0);
+    }
+    else if (elements)
+    {
+      const int z = static_cast<int>(elements->GetComponent(a, 0));
+      if (z > 0 && z <= mesolens::max_atomic_number)
+      {
+        radius = mesolens::van_der_waals_radius(z);
+      }
+    }
+    radii[std::size_t(a)] = radius;
+  }
+  return true;
+}
+
 void SetFieldString(vtkPolyData* output, const char* name, const std::string& value)
 {
   vtkNew<vtkStringArray> array;

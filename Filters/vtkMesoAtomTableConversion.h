@@ -4,6 +4,7 @@
 #ifndef vtkMesoAtomTableConversion_h
 #define vtkMesoAtomTableConversion_h
 
+#include <array>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -46,6 +47,14 @@ void SetPeriodicBox(const mesolens::PeriodicBox& box, double length_scale, vtkPo
 
 /// Adds a one-value field-data array (replacing one of the same name).
 void SetFieldValue(vtkPolyData* output, const char* name, double value);
+
+/// The atoms as spheres: centres (Å) and radii (Å), from the point array `radius_array` when
+/// it is set and not empty, else the van der Waals radius of `AtomicNumber`, and `bead_radius`
+/// for atoms without an element. Returns false, with the reason in `error`, when the named
+/// array is missing. Radii are not checked (the Core functions do).
+bool AtomSpheres(vtkPolyData* atoms, const char* radius_array, double bead_radius,
+                 std::vector<std::array<double, 3>>& centres, std::vector<double>& radii,
+                 std::string& error);
 void SetFieldString(vtkPolyData* output, const char* name, const std::string& value);
 
 }

@@ -4,11 +4,9 @@
 #include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoParallelFor.h"
 
-#include "mesolens/elements.h"
 #include "mesolens/errors.h"
 #include "mesolens/sphere_union_area.h"
 
-#include <vtkDataArray.h>
 #include <vtkFloatArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
@@ -16,7 +14,6 @@
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 
-#include <cmath>
 #include <string>
 #include <vector>
 
@@ -41,38 +38,18 @@ int vtkMesoSurfaceArea::RequestData(vtkInformation*, vtkInformationVector** inpu
     return 0;
   }
   const vtkIdType n = atoms->GetNumberOfPoints();
-  vtkDataArray* given = nullptr;
-  if (this->RadiusArrayName && *this->RadiusArrayName)
+  std::vector<std::array<double, 3>> centres;
+  std::vector<double> radii;
+  std::string error;
+  if (!vtkMesoAtomTableConversion::AtomSpheres(atoms, this->RadiusArrayName, this->BeadRadius,
+                                               centres, radii, error))
   {
-    given = atoms->GetPointData()->GetArray(this->RadiusArrayName);
-    if (!given)
-    {
-      vtkErrorMacro("The atoms have no point array `" << this->RadiusArrayName << "` of radii.");
-      return 0;
-    }
+    vtkErrorMacro(<< error);
+    return 0;
   }
-  vtkDataArray* elements = atoms->GetPointData()->GetArray("AtomicNumber");
-  std::vector<std::array<double, 3>> centres(static_cast<std::size_t>(n));
-  std::vector<double> radii(static_cast<std::size_t>(n));
-  for (vtkIdType a = 0; a < n; ++a)
+  for (double& radius : radii)
   {
-    double p[3];
-    atoms->GetPoint(a, p);
-    centres[std::size_t(a)] = { p[0], p[1], p[2] };
-    double radius = this->BeadRadius;
-    if (given)
-    {
-      radius = given->GetComponent(a, 0);
-    }
-    else if (elements)
-    {
-      const int z = static_cast<int>(elements->GetComponent(a, 0));
-      if (z > 0 && z <= mesolens::max_atomic_number)
-      {
-        radius = mesolens::van_der_waals_radius(z);
-      }
-    }
-    radii[std::size_t(a)] = radius + this->ProbeRadius;
+    radius += this->ProbeRadius;
   }
   try
   {

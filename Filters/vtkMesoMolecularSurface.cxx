@@ -1,0 +1,199 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoMolecularSurface.h"
+
+#include "vtkMesoAtomTableConversion.h"
+#include "vtkMesoParallelFor.h"
+
+#include "mesolens/errors.h"
+#include "mesolens/molecular_surface.h"
+
+#include <vtkCellArray.h>
+#include <vtkDataArray.h>
+#include <vtkFloatArray.h>
+#include <vtkIdList.h>
+#include <vtkIdTypeArray.h>
+#include <vtkIntArray.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkObjectFactory.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
+#include <vtkStringArray.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
+vtkStandardNewMacro(vtkMesoMolecularSurface);
+
+vtkMesoMolecularSurface::vtkMesoMolecularSurface() = default;
+
+vtkMesoMolecularSurface::~vtkMesoMolecularSurface()
+{
+  this->SetRadiusArrayName(nullptr);
+}
+
+int vtkMesoMolecularSurface::RequestData(vtkInformation*, vtkInformationVector** inputVector,
+                                         vtkInformationVector* outputVector)
+{
+  vtkPolyData* atoms = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  output->Initialize();
+  if (!atoms || atoms->GetNumberOfPoints() == 0)
+  {
+    vtkErrorMacro("No atoms to wrap in a surface.");
+    return 0;
+  }
+  std::vector<std::array<double, 3>> centres;
+  std::vector<double> radii;
+  std::string error;
+  if (!vtkMesoAtomTableConversion::AtomSpheres(atoms, this->RadiusArrayName, this->BeadRadius,
+                                               centres, radii, error))
+  {
+    vtkErrorMacro(<< error);
+    return 0;
+  }
+  mesolens::MolecularSurfaceOptions options;
+  options.kind = static_cast<mesolens::SurfaceKind>(this->SurfaceType);
+  options.probe_radius = this->ProbeRadius;
+  options.tolerance = this->Tolerance;
+  options.keep_cavities = this->KeepCavities;
+  mesolens::MolecularSurface surface;
+  try
+  {
+    surface =
+      mesolens::molecular_surface(centres, radii, options, vtkMesoParallelFor::Get(),
+                                  [this](double fraction) { this->UpdateProgress(fraction); });
+  }
+  catch (const mesolens::Error& failure)
+  {
+    vtkErrorMacro("Cannot build the surface: " << failure.what());
+    return 0;
+  }
+
+  const vtkIdType vertices = static_cast<vtkIdType>(surface.atom.size());
+  const vtkIdType triangle_count = static_cast<vtkIdType>(surface.triangles.size() / 3);
+  vtkNew<vtkFloatArray> coordinates;
+  coordinates->SetNumberOfComponents(3);
+  coordinates->SetNumberOfTuples(vertices);
+  vtkNew<vtkFloatArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(vertices);
+  for (vtkIdType v = 0; v < 3 * vertices; ++v)
+  {
+    coordinates->SetValue(v, static_cast<float>(surface.points[std::size_t(v)]));
+    normals->SetValue(v, static_cast<float>(surface.normals[std::size_t(v)]));
+  }
+  vtkNew<vtkIdTypeArray> atom_ids;
+  atom_ids->SetName("AtomId");
+  atom_ids->SetNumberOfValues(vertices);
+  vtkNew<vtkUnsignedCharArray> patches;
+  patches->SetName("PatchType");
+  patches->SetNumberOfValues(vertices);
+  vtkNew<vtkIdList> from;
+  from->SetNumberOfIds(vertices);
+  for (vtkIdType v = 0; v < vertices; ++v)
+  {
+    atom_ids->SetValue(v, surface.atom[std::size_t(v)]);
+    patches->SetValue(v, static_cast<unsigned char>(surface.patch[std::size_t(v)]));
+    from->SetId(v, surface.atom[std::size_t(v)]);
+  }
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  offsets->SetNumberOfValues(triangle_count + 1);
+  connectivity->SetNumberOfValues(3 * triangle_count);
+  for (vtkIdType t = 0; t <= triangle_count; ++t)
+  {
+    offsets->SetValue(t, 3 * t);
+  }
+  for (vtkIdType k = 0; k < 3 * triangle_count; ++k)
+  {
+    connectivity->SetValue(k, surface.triangles[std::size_t(k)]);
+  }
+  vtkNew<vtkPoints> points;
+  points->SetData(coordinates);
+  output->SetPoints(points);
+  vtkNew<vtkCellArray> triangles;
+  triangles->SetData(offsets, connectivity);
+  output->SetPolys(triangles);
+
+  // Each numeric array of the atoms, carried to the vertices through their atoms. (String
+  // arrays are left out: costly per vertex, they colour nothing; AtomId leads back.)
+  vtkPointData* in = atoms->GetPointData();
+  vtkPointData* out = output->GetPointData();
+  vtkNew<vtkIdList> to;
+  to->SetNumberOfIds(vertices);
+  for (vtkIdType v = 0; v < vertices; ++v)
+  {
+    to->SetId(v, v);
+  }
+  for (int a = 0; a < in->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* array = in->GetArray(a);
+    const char* name = array ? array->GetName() : nullptr;
+    if (!array || !name || !std::strcmp(name, "Normals") || !std::strcmp(name, "AtomId") ||
+        !std::strcmp(name, "PatchType"))
+    {
+      continue;
+    }
+    vtkSmartPointer<vtkDataArray> gathered = vtk::TakeSmartPointer(array->NewInstance());
+    gathered->SetName(name);
+    gathered->SetNumberOfComponents(array->GetNumberOfComponents());
+    gathered->SetNumberOfTuples(vertices);
+    gathered->InsertTuples(to, from, array);
+    out->AddArray(gathered);
+  }
+  // Chains as numbers (in order of first appearance), to colour by chain.
+  vtkStringArray* chains = vtkStringArray::SafeDownCast(in->GetAbstractArray("ChainId"));
+  if (chains && !in->GetArray("ChainIndex"))
+  {
+    std::map<std::string, int> index_of;
+    std::vector<int> chain_of_atom(static_cast<std::size_t>(chains->GetNumberOfValues()));
+    for (vtkIdType a = 0; a < chains->GetNumberOfValues(); ++a)
+    {
+      chain_of_atom[std::size_t(a)] =
+        index_of.emplace(chains->GetValue(a), int(index_of.size())).first->second;
+    }
+    vtkNew<vtkIntArray> chain_index;
+    chain_index->SetName("ChainIndex");
+    chain_index->SetNumberOfValues(vertices);
+    for (vtkIdType v = 0; v < vertices; ++v)
+    {
+      chain_index->SetValue(v, chain_of_atom[std::size_t(surface.atom[std::size_t(v)])]);
+    }
+    out->AddArray(chain_index);
+  }
+  out->AddArray(atom_ids);
+  out->AddArray(patches);
+  out->SetNormals(normals);
+
+  using vtkMesoAtomTableConversion::SetFieldValue;
+  SetFieldValue(output, "Area", surface.area);
+  SetFieldValue(output, "Volume", surface.volume);
+  SetFieldValue(output, "ConvexArea", surface.patch_area[0]);
+  SetFieldValue(output, "ToroidalArea", surface.patch_area[1]);
+  SetFieldValue(output, "ConcaveArea", surface.patch_area[2]);
+  SetFieldValue(output, "SingularPatchCount", double(surface.singular_patch_count));
+  SetFieldValue(output, "ComponentCount", double(surface.component_count));
+  SetFieldValue(output, "CavityCount", double(surface.cavity_count));
+  SetFieldValue(output, "GridSpacing", surface.grid_spacing);
+  return 1;
+}
+
+void vtkMesoMolecularSurface::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  static const char* const types[] = { "solvent-excluded", "solvent-accessible", "van der Waals" };
+  os << indent << "SurfaceType: " << types[this->SurfaceType] << "\n";
+  os << indent << "ProbeRadius: " << this->ProbeRadius << "\n";
+  os << indent << "Tolerance: " << this->Tolerance << "\n";
+  os << indent << "KeepCavities: " << (this->KeepCavities ? "on" : "off") << "\n";
+  os << indent
+     << "RadiusArrayName: " << (this->RadiusArrayName ? this->RadiusArrayName : "(elements)")
+     << "\n";
+  os << indent << "BeadRadius: " << this->BeadRadius << "\n";
+}

@@ -7,7 +7,7 @@ depth peeling.
 The secondary structure comes from vtkMesoSecondaryStructure (DSSP: the file, 1hpv, is one
 mkdssp refuses); vtkMesoRibbons draws the cartoon; vtkMesoAtomMapper draws the inhibitor
 (residue 478) as ray-cast impostors, whose exact depth composites with the translucent
-surface. The surface is a Gaussian-splat contour of the protein's atoms.
+surface: the protein's solvent-excluded surface from vtkMesoMolecularSurface.
 
     protein_styles.py [--output protein_styles.png] [--size 600] [--cylinders]
 """
@@ -18,8 +18,6 @@ import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkIdList, vtkLookupTable, vtkPoints
 from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
-from vtkmodules.vtkFiltersCore import vtkContourFilter
-from vtkmodules.vtkImagingHybrid import vtkGaussianSplatter
 from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderer,
                                          vtkRenderWindow)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
@@ -124,15 +122,13 @@ def main():
     protein_points.SetData(numpy_to_vtk(np.ascontiguousarray(
         vtk_to_numpy(atoms.GetPoints().GetData())[~hetero], dtype=np.float32), deep=1))
     protein.SetPoints(protein_points)
-    splat = vtkGaussianSplatter()
-    splat.SetInputData(protein)
-    splat.SetSampleDimensions(80, 80, 80)
-    splat.SetRadius(0.075)
-    splat.ScalarWarpingOff()
-    splat.SetExponentFactor(-4)
-    surface = vtkContourFilter()
-    surface.SetInputConnection(splat.GetOutputPort())
-    surface.SetValue(0, 0.5)
+    elements = numpy_to_vtk(np.ascontiguousarray(
+        vtk_to_numpy(atoms.GetPointData().GetArray("AtomicNumber"))[~hetero]), deep=1)
+    elements.SetName("AtomicNumber")
+    protein.GetPointData().AddArray(elements)
+    surface = mesolens.vtkMesoMolecularSurface()
+    surface.SetInputData(protein)
+    surface.SetTolerance(0.2)
     surface_mapper = vtkPolyDataMapper()
     surface_mapper.SetInputConnection(surface.GetOutputPort())
     surface_mapper.ScalarVisibilityOff()

@@ -6,13 +6,14 @@
 //
 // Scenes: ribbons_1tii (helix ribbons, coloured by secondary structure), cylinders_1tii (helix
 // cylinders, coloured by chain), ribbons_1igy and cylinders_1igy (the antibody from
-// ../shared/data, by chain; they print "needs ../shared/data" and draw nothing without it), styles_1hpv (ribbons, the inhibitor in
-// ball-and-stick through vtkMesoAtomMapper and a translucent surface of the whole protein,
-// composited by depth peeling). --strand-width changes the strands' width (Å; a test breaks the
-// picture on purpose with it).
+// ../shared/data, by chain; they print "needs ../shared/data" and draw nothing without it),
+// styles_1hpv (ribbons, the inhibitor in ball-and-stick through vtkMesoAtomMapper and the
+// translucent solvent-excluded surface of the protein, composited by depth peeling). --strand-width
+// changes the strands' width (Å; a test breaks the picture on purpose with it).
 #include "MesoAtomScenes.h"
 #include "mesolens_test_data.h"
 #include "vtkMesoAtomMapper.h"
+#include "vtkMesoMolecularSurface.h"
 #include "vtkMesoRibbons.h"
 #include "vtkMesoSecondaryStructure.h"
 #include "vtkMesoStructureReader.h"
@@ -20,8 +21,7 @@
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
-#include <vtkContourFilter.h>
-#include <vtkGaussianSplatter.h>
+#include <vtkUnsignedShortArray.h>
 #include <vtkIdList.h>
 #include <vtkLookupTable.h>
 #include <vtkNew.h>
@@ -135,8 +135,8 @@ vtkSmartPointer<vtkRenderWindow> cartoon(const std::string& path, bool cylinders
   return window_with(renderer, 400, 400);
 }
 
-/// HIV-1 protease: ribbons, the inhibitor (residue 478) as balls and sticks, and a translucent
-/// Gaussian surface of all its atoms, composited by depth peeling.
+/// HIV-1 protease: ribbons, the inhibitor (residue 478) as balls and sticks, and the translucent
+/// solvent-excluded surface of the protein, composited by depth peeling.
 vtkSmartPointer<vtkRenderWindow> styles()
 {
   static std::unique_ptr<Cartoon> keep;
@@ -186,25 +186,26 @@ vtkSmartPointer<vtkRenderWindow> styles()
   ligand_mapper->SetBondRadius(0.3);
   static vtkNew<vtkActor> ligand_actor;
   ligand_actor->SetMapper(ligand_mapper);
-  // A smooth surface of the protein's atoms (no waters, no ligand): Gaussian splats, contoured.
+  // The solvent-excluded surface of the protein's atoms (no waters, no ligand).
   static vtkNew<vtkPolyData> protein;
   {
     vtkDataArray* hetero = atoms->GetPointData()->GetArray("IsHetAtm");
+    vtkDataArray* elements = atoms->GetPointData()->GetArray("AtomicNumber");
     vtkNew<vtkPoints> points;
+    vtkNew<vtkUnsignedShortArray> numbers;
+    numbers->SetName("AtomicNumber");
     for (vtkIdType a = 0; a < atoms->GetNumberOfPoints(); ++a)
       if (hetero->GetTuple1(a) == 0)
+      {
         points->InsertNextPoint(atoms->GetPoint(a));
+        numbers->InsertNextValue(static_cast<unsigned short>(elements->GetTuple1(a)));
+      }
     protein->SetPoints(points);
+    protein->GetPointData()->AddArray(numbers);
   }
-  static vtkNew<vtkGaussianSplatter> splat;
-  splat->SetInputData(protein);
-  splat->SetSampleDimensions(80, 80, 80);
-  splat->SetRadius(0.075);
-  splat->ScalarWarpingOff();
-  splat->SetExponentFactor(-4);
-  static vtkNew<vtkContourFilter> surface;
-  surface->SetInputConnection(splat->GetOutputPort());
-  surface->SetValue(0, 0.5);
+  static vtkNew<vtkMesoMolecularSurface> surface;
+  surface->SetInputData(protein);
+  surface->SetTolerance(0.2);
   static vtkNew<vtkPolyDataMapper> surface_mapper;
   surface_mapper->SetInputConnection(surface->GetOutputPort());
   surface_mapper->ScalarVisibilityOff();

@@ -319,7 +319,11 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
     ContourField field;
     if (excluded)
     {
-      field.value = [&](const Vec& x) { return distance.closest(x).distance - p; };
+      // Values matter near the surface only: searches stop two spacings beyond it.
+      const double value_limit = p + 2.0 * spacing;
+      field.value = [&, value_limit](const Vec& x) {
+        return distance.closest(x, {}, value_limit).distance - p;
+      };
       field.empty = [&](const Vec& x, double r) {
         if (!occupancy.any(x, r))
         {
@@ -332,18 +336,40 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
         }
         if (p + r < reach)
         {
-          return std::abs(distance.closest(x).distance - p) > r;
+          return std::abs(distance.closest(x, {}, p + r + 1e-9).distance - p) > r;
         }
         return false;
       };
       field.vertex = [&](const Vec& outside, double outside_value, const Vec& inside,
                          double inside_value) {
         // The root along the grid edge itself: vertices kept on their edges cannot fold
-        // triangles over one another, even at the surface's creases.
-        const Vec position =
-          segment_root(outside, outside_value, inside, inside_value,
-                       [&](const Vec& x) { return distance.closest(x).distance - p; });
-        const ClosestPiece piece = distance.closest(position);
+        // triangles over one another, even at the surface's creases. First along the piece
+        // nearest the linear guess alone (cheap), kept when the full field agrees there.
+        const Vec guess =
+          outside + outside_value / (outside_value - inside_value) * (inside - outside);
+        const ClosestPiece near_guess = distance.closest(guess, {}, p + 2.0 * spacing);
+        Vec position = guess;
+        ClosestPiece piece;
+        bool placed = false;
+        if (near_guess.kind != PieceKind::None && near_guess.distance > 0)
+        {
+          const auto along_piece = [&](const Vec& x) {
+            return distance.piece_distance(x, near_guess.kind, near_guess.index) - p;
+          };
+          const double at_outside = along_piece(outside), at_inside = along_piece(inside);
+          if (at_outside <= 0 && at_inside > 0)
+          {
+            position = segment_root(outside, at_outside, inside, at_inside, along_piece);
+            piece = distance.closest(position);
+            placed = std::abs(piece.distance - p) <= 1e-7;
+          }
+        }
+        if (!placed)
+        {
+          position = segment_root(outside, outside_value, inside, inside_value,
+                                  [&](const Vec& x) { return distance.closest(x).distance - p; });
+          piece = distance.closest(position);
+        }
         ContourVertex vertex;
         vertex.position = position;
         const Vec towards_probe = piece.point - position;

@@ -85,11 +85,12 @@ ProbeDistance::ProbeDistance(const std::vector<Vec>& centres, const std::vector<
   }
   build_rows(cell_count, pairs, this->vertex_start_, this->vertex_items_);
   pairs.clear();
-  // Arcs by the middles of their quarter-circle pieces, each within arc_extent_ of its middle.
+  // Arcs by the middles of their pieces of at most 22.5 degrees, each within arc_extent_ of its
+  // middle (small: queries look a little beyond their radius).
   for (std::size_t k = 0; k < boundary.arcs.size(); ++k)
   {
     const SasArc& arc = boundary.arcs[k];
-    const int pieces = std::max(1, static_cast<int>(std::ceil(arc.span / (0.25 * two_pi))));
+    const int pieces = std::max(1, static_cast<int>(std::ceil(arc.span / (two_pi / 16))));
     const double piece_span = arc.span / pieces;
     this->arc_extent_ = std::max(this->arc_extent_, 2.0 * arc.radius * std::sin(0.25 * piece_span));
     for (int piece = 0; piece < pieces; ++piece)
@@ -134,6 +135,26 @@ void ProbeDistance::for_cells(const Vec& x, double radius, const std::vector<std
     }
 }
 
+double ProbeDistance::piece_distance(const Vec& x, PieceKind kind, std::uint32_t index) const
+{
+  switch (kind)
+  {
+    case PieceKind::Face:
+      return this->radii_[index] - (x - this->centres_[index]).norm();
+    case PieceKind::Arc: {
+      const SasArc& arc = this->boundary_.arcs[index];
+      const Vec v = x - arc.centre;
+      const double along = v.dot(arc.axis);
+      const double radial = (v - along * arc.axis).norm();
+      return std::sqrt(along * along + (radial - arc.radius) * (radial - arc.radius));
+    }
+    case PieceKind::Vertex:
+      return (x - this->boundary_.vertices[index].position).norm();
+    default:
+      return this->reach_;
+  }
+}
+
 void ProbeDistance::vertices_within(const Vec& x, double radius,
                                     const std::function<void(std::uint32_t)>& visit) const
 {
@@ -163,8 +184,14 @@ double ProbeDistance::union_depth(const Vec& x, std::uint32_t* sphere) const
   return depth;
 }
 
-ClosestPiece ProbeDistance::closest(const Vec& x, const Excluded* excluded) const
+ClosestPiece ProbeDistance::closest(const Vec& x, const Filter& filter, double limit) const
 {
+  using Mode = Filter::Mode;
+  const bool filtered = filter.mode != Mode::All;
+  const auto has = [&](std::uint32_t sphere) {
+    return sphere == filter.atoms[0] || sphere == filter.atoms[1] ||
+      (filter.mode == Mode::ConcaveCutters && sphere == filter.atoms[2]);
+  };
   ClosestPiece best;
   // Spheres holding x, deepest last: the nearest exposed face point is the radial projection
   // onto the least deep one whose projection no neighbour covers.
@@ -210,7 +237,7 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Excluded* excluded) cons
   }
   // Probe positions themselves (on the boundary, to rounding) count as inside when a query
   // leaves pieces out: it asks how far the other pieces are.
-  if (deepest <= 0 && !(excluded && deepest > -1e-9))
+  if (deepest <= 0 && !(filtered && deepest > -1e-9))
   {
     // Outside the union: the nearest point of the nearest sphere.
     const Vec& c = this->centres_[deepest_sphere];
@@ -220,16 +247,20 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Excluded* excluded) cons
     best.index = deepest_sphere;
     return best;
   }
-  best.distance = this->reach_;
+  best.distance = limit > 0 ? std::min(limit, this->reach_) : this->reach_;
   std::sort(holders, holders + holder_count, [](const Holder& a, const Holder& b) {
     return a.depth < b.depth || (a.depth == b.depth && a.sphere < b.sphere);
   });
   for (std::size_t k = 0; k < holder_count; ++k)
   {
-    const std::uint32_t i = holders[k].sphere;
-    if (excluded && (*excluded)(PieceKind::Face, i))
+    if (holders[k].depth >= best.distance)
     {
-      continue;
+      break; // sorted: no nearer face follows
+    }
+    const std::uint32_t i = holders[k].sphere;
+    if (filtered)
+    {
+      break; // no face cuts a torus or concave patch
     }
     const Vec offset = x - this->centres_[i];
     const double length = offset.norm();
@@ -266,9 +297,15 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Excluded* excluded) cons
       }
       last_arc = k;
       const SasArc& arc = this->boundary_.arcs[k];
-      if (excluded && (*excluded)(PieceKind::Arc, k))
+      if (filtered)
       {
-        return;
+        const bool first = has(arc.first), second = has(arc.second);
+        const bool pinched_pair =
+          filter.mode == Mode::ConcaveCutters && first && second && arc.radius < filter.probe;
+        if ((first || second) && !pinched_pair)
+        {
+          return;
+        }
       }
       const Vec v = x - arc.centre;
       const double along = v.dot(arc.axis);
@@ -301,7 +338,11 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Excluded* excluded) cons
     });
   this->for_cells(x, best.distance, this->vertex_start_, this->vertex_items_, [&](std::uint32_t k) {
     const double distance = (x - this->boundary_.vertices[k].position).norm();
-    if (distance < best.distance && !(excluded && (*excluded)(PieceKind::Vertex, k)))
+    const auto& spheres = this->boundary_.vertices[k].spheres;
+    if (distance < best.distance &&
+        !(filter.mode == Mode::ConcaveCutters ||
+          (filter.mode == Mode::TorusCutters &&
+           (has(spheres[0]) || has(spheres[1]) || has(spheres[2])))))
     {
       best.distance = distance;
       best.point = this->boundary_.vertices[k].position;

@@ -34,6 +34,23 @@ struct ClosestPiece
   std::uint32_t index = 0;
 };
 
+/// Which pieces a query looks at: all; or those that may cut the torus between spheres
+/// `atoms[0]` and `atoms[1]` (arcs and vertices touching neither); or those that may cut the
+/// concave patch on spheres `atoms` (arcs touching none of them, and arcs between two of
+/// them of radius below `probe`, where the probe passes between that pair).
+struct PieceFilter
+{
+  enum class Mode : std::uint8_t
+  {
+    All,
+    TorusCutters,
+    ConcaveCutters,
+  };
+  Mode mode = Mode::All;
+  std::array<std::uint32_t, 3> atoms{};
+  double probe = 0;
+};
+
 /// Distance queries against the boundary of spheres `centres` with radii `radii` (those of
 /// `boundary`, built with its pieces). Queries are exact within `reach` of the boundary and
 /// may run concurrently.
@@ -45,14 +62,15 @@ public:
   ProbeDistance(const std::vector<Eigen::Vector3d>& centres, const std::vector<double>& radii,
                 const SasBoundary& boundary, double reach, double cell_at_least = 0);
 
-  /// Pieces a query leaves out: true to skip.
-  using Excluded = std::function<bool(PieceKind, std::uint32_t)>;
+  using Filter = PieceFilter;
 
   /// The nearest boundary piece of `x` and the signed distance to it. Outside the union the
   /// distance is exact at any range (the nearest sphere); inside it is exact up to the reach,
-  /// beyond which it reports the reach and PieceKind::None. With `excluded`, the nearest of the
-  /// other pieces (inside the union only).
-  ClosestPiece closest(const Eigen::Vector3d& x, const Excluded* excluded = nullptr) const;
+  /// beyond which it reports the reach and PieceKind::None. With a filter, the nearest of the
+  /// pieces it lets through (inside the union only).
+  /// `limit` (<= the reach; 0: the reach) bounds the search inside the union: pieces farther
+  /// are not looked for, and the distance reported is then the limit (PieceKind::None).
+  ClosestPiece closest(const Eigen::Vector3d& x, const Filter& filter = {}, double limit = 0) const;
 
   /// Width of the index cells: union_depth() is exact outside the union up to this width less
   /// the largest radius.
@@ -60,6 +78,11 @@ public:
   {
     return this->outside_exact_;
   }
+
+  /// The signed distance from `x` to the whole sphere, circle or point that carries a piece
+  /// (as closest() reports it for that piece, without checking that the nearest point lies on
+  /// the piece's exposed part): cheap, for root finding once the piece is known.
+  double piece_distance(const Eigen::Vector3d& x, PieceKind kind, std::uint32_t index) const;
 
   /// Calls `visit` with each vertex within `radius` (<= the reach) of `x`, in index order of
   /// their cells.

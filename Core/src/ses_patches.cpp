@@ -103,18 +103,20 @@ Integral concave_piece(const Vec& centre, double p, const Vec& a, const Vec& b, 
 struct Splitter
 {
   const ProbeDistance* distance = nullptr;
-  const ProbeDistance::Excluded* foreign = nullptr;
+  const ProbeDistance::Filter* foreign = nullptr;
   double probe = 0;
 
   /// -1 cut, +1 kept, 0 undecided, for a piece around `middle` reaching `size`.
   int decide(const Vec& middle, double size, bool last) const
   {
-    const double nearest_foreign = this->distance->closest(middle, this->foreign).distance;
-    if (nearest_foreign >= this->probe + size)
+    // Searches bounded by what each test needs.
+    const double kept_limit = this->probe + size;
+    if (this->distance->closest(middle, *this->foreign, kept_limit).distance >= kept_limit)
     {
       return 1;
     }
-    if (this->distance->closest(middle).distance < this->probe - size)
+    const double cut_limit = this->probe - size;
+    if (cut_limit > 0 && this->distance->closest(middle, {}, cut_limit).distance < cut_limit)
     {
       return -1;
     }
@@ -125,7 +127,7 @@ struct Splitter
   /// Distance to the foreign positions less p (> 0: kept).
   double clearance(const Vec& x) const
   {
-    return this->distance->closest(x, this->foreign).distance - this->probe;
+    return this->distance->closest(x, *this->foreign, 2.0 * this->probe).distance - this->probe;
   }
 };
 
@@ -353,19 +355,9 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
       // What may cut the torus: probe positions (arcs, vertices) touching neither of its atoms.
       // Those that touch one are its neighbours on the surface and meet it only at its edges;
       // positions on a single atom (faces) never reach a patch between two others.
-      const ProbeDistance::Excluded foreign = [&](PieceKind kind, std::uint32_t index) {
-        switch (kind)
-        {
-          case PieceKind::Arc:
-            return arcs[index].first == arc.first || arcs[index].first == arc.second ||
-              arcs[index].second == arc.first || arcs[index].second == arc.second;
-          case PieceKind::Vertex:
-            return contains(vertices[index].spheres, arc.first) ||
-              contains(vertices[index].spheres, arc.second);
-          default:
-            return true;
-        }
-      };
+      ProbeDistance::Filter foreign;
+      foreign.mode = ProbeDistance::Filter::Mode::TorusCutters;
+      foreign.atoms = { arc.first, arc.second, arc.second };
       Splitter splitter{ &distance, &foreign, p };
       // Pieces of at most 60 degrees of azimuth, each whole unless something cuts it.
       const int parts = std::max(1, static_cast<int>(std::ceil(arc.span / (pi / 3))));
@@ -421,19 +413,10 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
           caps.push_back({ offset / gap, gap / (2.0 * p) });
         }
       });
-      const ProbeDistance::Excluded foreign = [&](PieceKind kind, std::uint32_t index) {
-        if (kind != PieceKind::Arc)
-        {
-          return true;
-        }
-        const bool has_first = contains(vertex.spheres, arcs[index].first);
-        const bool has_second = contains(vertex.spheres, arcs[index].second);
-        if (has_first && has_second)
-        {
-          return arcs[index].radius >= p;
-        }
-        return has_first || has_second;
-      };
+      ProbeDistance::Filter foreign;
+      foreign.mode = ProbeDistance::Filter::Mode::ConcaveCutters;
+      foreign.atoms = vertex.spheres;
+      foreign.probe = p;
       Splitter splitter{ &distance, &foreign, p };
       const Integral patch = split_concave(splitter, caps, v, u[0], u[1], u[2], 0);
       const Integral whole = concave_piece(v, p, u[0], u[1], u[2]);

@@ -1,0 +1,289 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Solvent-excluded surface benchmark: vtkMesoMolecularSurface (probe 1.4 Å, element radii)
+// against EDTSurf (Debian's edtsurf, its SES at its default scale, `-s 4`) and PyMOL
+// (python3-pymol, surface_quality 1) on the same atoms (ATOM records, every alternate
+// location) in the same run. Per file: our exact area and volume; per tolerance our time, the
+// mesh's area error against the exact area, its triangles and the peak memory; the two tools'
+// area, volume and time, and the ratios of our time to theirs. Then the 79 k-atom proteasome
+// (3l5q.gro), which neither tool reads.
+//
+//   BenchmarkMolecularSurface [--repeats N]
+#include "mesolens_benchmark_timing.h"
+#include "mesolens_test_data.h"
+#include "vtkMesoMolecularSurface.h"
+#include "vtkMesoStructureReader.h"
+#include "vtkMesoTrajectoryReader.h"
+
+#include <vtkCellArray.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkIdList.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkSMPTools.h>
+#include <vtkUnsignedShortArray.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+using mesolens_test::median_seconds;
+
+double field(vtkPolyData* data, const char* name)
+{
+  return data->GetFieldData()->GetArray(name)->GetTuple1(0);
+}
+
+/// Area of the mesh's triangles, Å².
+double mesh_area(vtkPolyData* mesh)
+{
+  double area = 0;
+  vtkNew<vtkIdList> corners;
+  for (vtkIdType c = 0; c < mesh->GetNumberOfPolys(); ++c)
+  {
+    mesh->GetPolys()->GetCellAtId(c, corners);
+    double a[3], b[3], d[3];
+    mesh->GetPoint(corners->GetId(0), a);
+    mesh->GetPoint(corners->GetId(1), b);
+    mesh->GetPoint(corners->GetId(2), d);
+    const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
+    const double v[3] = { d[0] - a[0], d[1] - a[1], d[2] - a[2] };
+    area += 0.5 *
+      std::sqrt(std::pow(u[1] * v[2] - u[2] * v[1], 2) + std::pow(u[2] * v[0] - u[0] * v[2], 2) +
+                std::pow(u[0] * v[1] - u[1] * v[0], 2));
+  }
+  return area;
+}
+
+/// Peak resident memory since the last reset, MiB (Linux: VmHWM, reset through clear_refs).
+double peak_mib()
+{
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+  {
+    if (line.rfind("VmHWM:", 0) == 0)
+    {
+      return std::atof(line.c_str() + 6) / 1024.0;
+    }
+  }
+  return 0;
+}
+void reset_peak()
+{
+  std::ofstream("/proc/self/clear_refs") << "5";
+}
+
+/// The atoms of ATOM records (no HETATM), with their elements.
+vtkNew<vtkPolyData> protein_atoms(vtkPolyData* atoms)
+{
+  vtkNew<vtkPolyData> protein;
+  vtkNew<vtkPoints> points;
+  vtkNew<vtkUnsignedShortArray> elements;
+  elements->SetName("AtomicNumber");
+  vtkDataArray* hetero = atoms->GetPointData()->GetArray("IsHetAtm");
+  vtkDataArray* numbers = atoms->GetPointData()->GetArray("AtomicNumber");
+  for (vtkIdType a = 0; a < atoms->GetNumberOfPoints(); ++a)
+  {
+    if (!hetero || hetero->GetTuple1(a) == 0)
+    {
+      points->InsertNextPoint(atoms->GetPoint(a));
+      elements->InsertNextValue(static_cast<unsigned short>(numbers->GetTuple1(a)));
+    }
+  }
+  protein->SetPoints(points);
+  protein->GetPointData()->AddArray(elements);
+  return protein;
+}
+
+struct Baseline
+{
+  bool ok = false;
+  double area = 0, volume = 0, seconds = 0, wall = 0;
+  std::string note;
+};
+
+/// Runs `command`, returning its standard output and the wall time.
+std::string run(const std::string& command, double& wall)
+{
+  std::string output;
+  wall = mesolens_test::seconds_of([&] {
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe)
+    {
+      return;
+    }
+    char buffer[4096];
+    while (std::fgets(buffer, sizeof buffer, pipe))
+    {
+      output += buffer;
+    }
+    pclose(pipe);
+  });
+  return output;
+}
+
+Baseline edtsurf(const std::string& path)
+{
+  Baseline result;
+  const std::filesystem::path folder =
+    std::filesystem::temp_directory_path() / "mesolens_benchmark_edtsurf";
+  std::filesystem::create_directories(folder);
+  const std::string output =
+    run("EDTSurf -i " + path + " -s 4 -o " + (folder / "surface").string() + " 2>&1", result.wall);
+  std::istringstream lines(output);
+  std::string line;
+  double scale = 0;
+  while (std::getline(lines, line))
+  {
+    double a = 0, b = 0;
+    if (std::sscanf(line.c_str(), "Total area %lf and volume %lf", &a, &b) == 2)
+    {
+      result.area = a;
+      result.volume = b;
+      result.ok = true;
+    }
+    else if (std::sscanf(line.c_str(), "Total time %lf", &a) == 1)
+    {
+      result.seconds = a;
+    }
+    const auto at = line.find("scale factor");
+    if (at != std::string::npos)
+    {
+      scale = std::atof(line.c_str() + at + 12);
+    }
+  }
+  std::filesystem::remove_all(folder);
+  char note[64];
+  std::snprintf(note, sizeof note, "grid %.2f Å", scale > 0 ? 1.0 / scale : 0.0);
+  result.note = note;
+  return result;
+}
+
+Baseline pymol(const std::string& path)
+{
+  Baseline result;
+  const std::string script = std::string(MESOLENS_SOURCE_DIR) + "/Testing/Tools/pymol_ses.py";
+  const std::string output =
+    run("/usr/bin/python3 " + script + " " + path + " 2>/dev/null", result.wall);
+  const auto at = output.find("area=");
+  long long triangles = 0;
+  if (at != std::string::npos &&
+      std::sscanf(output.c_str() + at, "area=%lf volume=%lf seconds=%lf triangles=%lld",
+                  &result.area, &result.volume, &result.seconds, &triangles) == 4)
+  {
+    result.ok = true;
+    result.note = std::to_string(triangles) + " triangles";
+  }
+  return result;
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  const int repeats = mesolens_test::count_argument(argc, argv, "--repeats", 3);
+  std::printf("BENCH ses threads: %d\n", vtkSMPTools::GetEstimatedNumberOfThreads());
+  const bool have_edtsurf = mesolens_test::program_available("command -v EDTSurf");
+  const bool have_pymol = mesolens_test::program_available("/usr/bin/python3 -c 'import pymol'");
+  if (!have_edtsurf || !have_pymol)
+  {
+    std::printf("BENCH ses EDTSurf %s, PyMOL %s (Debian packages edtsurf, python3-pymol)\n",
+                have_edtsurf ? "found" : "missing: no EDTSurf ratios",
+                have_pymol ? "found" : "missing: no PyMOL ratios");
+  }
+  for (const std::string& path : { mesolens_test::data_file("proteins/1crn.pdb"),
+                                   mesolens_test::data_file("proteins/1tii.pdb"),
+                                   mesolens_test::shared_file("proteins/3wip.pdb"),
+                                   mesolens_test::shared_file("proteins/4jsv.pdb") })
+  {
+    if (!mesolens_test::exists(path))
+    {
+      continue;
+    }
+    const std::string name = path.substr(path.rfind('/') + 1);
+    vtkNew<vtkMesoStructureReader> reader;
+    reader->SetFileName(path.c_str());
+    reader->KeepAllAlternateLocationsOn(); // as EDTSurf and PyMOL read them
+    reader->Update();
+    auto atoms = protein_atoms(reader->GetOutput());
+    vtkNew<vtkMesoMolecularSurface> surface;
+    surface->SetInputData(atoms);
+    double time_at_interactive = 0;
+    for (const double tolerance : { 0.3, 0.1, 0.05 })
+    {
+      surface->SetTolerance(tolerance);
+      reset_peak();
+      const double seconds = median_seconds(tolerance < 0.1 ? 1 : repeats, [&] {
+        surface->Modified();
+        surface->Update();
+      });
+      vtkPolyData* out = surface->GetOutput();
+      const double exact = field(out, "Area");
+      const double error = mesh_area(out) / exact - 1.0;
+      std::printf("BENCH ses %s (%lld atoms) tolerance %.2f Å: %.3f s, mesh area %+.2f %% of the "
+                  "exact %.1f Å², volume %.1f Å³, %lld triangles, peak memory %.0f MiB, %d "
+                  "singular patches\n",
+                  name.c_str(), static_cast<long long>(atoms->GetNumberOfPoints()), tolerance,
+                  seconds, 100 * error, exact, field(out, "Volume"),
+                  static_cast<long long>(out->GetNumberOfPolys()), peak_mib(),
+                  int(field(out, "SingularPatchCount")));
+      if (tolerance == 0.1)
+      {
+        time_at_interactive = seconds;
+      }
+    }
+    const double exact_area = field(surface->GetOutput(), "Area");
+    const double exact_volume = field(surface->GetOutput(), "Volume");
+    for (const auto& [tool, baseline] :
+         { std::make_pair(std::string("EDTSurf"), have_edtsurf ? edtsurf(path) : Baseline{}),
+           std::make_pair(std::string("PyMOL"), have_pymol ? pymol(path) : Baseline{}) })
+    {
+      if (!baseline.ok)
+      {
+        continue;
+      }
+      std::printf("BENCH ses %s %s (%s): area %.1f Å² (ours %+.2f %%), volume %.1f Å³ (ours "
+                  "%+.2f %%), surface %.2f s (whole program %.2f s); ratio ours (tolerance 0.1) "
+                  "/ %s %.3f\n",
+                  name.c_str(), tool.c_str(), baseline.note.c_str(), baseline.area,
+                  100 * (exact_area / baseline.area - 1), baseline.volume,
+                  100 * (exact_volume / baseline.volume - 1), baseline.seconds, baseline.wall,
+                  tool.c_str(), time_at_interactive / baseline.seconds);
+    }
+  }
+  const std::string gro = mesolens_test::shared_file("proteins/3l5q.gro");
+  if (mesolens_test::exists(gro))
+  {
+    vtkNew<vtkMesoTrajectoryReader> reader;
+    reader->SetTopologyFileName(gro.c_str());
+    reader->Update();
+    vtkNew<vtkMesoMolecularSurface> surface;
+    surface->SetInputData(reader->GetOutput());
+    for (const double tolerance : { 0.3, 0.1 })
+    {
+      surface->SetTolerance(tolerance);
+      reset_peak();
+      const double seconds = median_seconds(1, [&] {
+        surface->Modified();
+        surface->Update();
+      });
+      vtkPolyData* out = surface->GetOutput();
+      std::printf("BENCH ses 3l5q.gro (%lld atoms) tolerance %.2f Å: %.2f s (goal 3 s: ratio "
+                  "%.2f), exact area %.0f Å², volume %.0f Å³, mesh area %+.2f %%, %lld "
+                  "triangles, peak memory %.0f MiB\n",
+                  static_cast<long long>(reader->GetOutput()->GetNumberOfPoints()), tolerance,
+                  seconds, seconds / 3.0, field(out, "Area"), field(out, "Volume"),
+                  100 * (mesh_area(out) / field(out, "Area") - 1),
+                  static_cast<long long>(out->GetNumberOfPolys()), peak_mib());
+    }
+  }
+  return 0;
+}

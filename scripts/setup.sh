@@ -10,7 +10,7 @@ BUILD_DIR=${BUILD_DIR:-build}
 
 packages="cmake g++ make pkg-config zlib1g-dev
   libvtk9-dev python3-vtk9 python3-numpy libeigen3-dev libcgal-dev libopenmesh-dev
-  libgtest-dev gemmi-dev tao-pegtl-dev libgromacs-dev dssp freesasa
+  libgtest-dev gemmi-dev tao-pegtl-dev libgromacs-dev dssp freesasa edtsurf python3-pymol
   xvfb xauth mesa-utils libgl1-mesa-dri"
 missing=""
 for package in $packages; do

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "mesolens/elements.h"
 #include "mesolens/errors.h"
+#include "mesolens/gro_topology.h"
 #include "mesolens/mesh_report.h"
 #include "mesolens/molecular_surface.h"
 #include "mesolens/sphere_union_area.h"
@@ -530,9 +531,9 @@ TEST(MolecularSurface, EveryProteinGivesAClosedSurfaceWithoutSelfIntersections)
   {
     const std::string name = entry.path().filename().string();
     const std::string extension = entry.path().extension().string();
-    // One file per structure (the PDB where both exist); 3l5q is covered by the benchmark.
+    // One file per structure (the PDB where both exist).
     if (entry.is_regular_file() &&
-        (extension == ".pdb" ||
+        (extension == ".pdb" || extension == ".gro" ||
          (extension == ".cif" &&
           !mesolens_test::exists(folder + "/" + entry.path().stem().string() + ".pdb"))))
     {
@@ -545,8 +546,10 @@ TEST(MolecularSurface, EveryProteinGivesAClosedSurfaceWithoutSelfIntersections)
   {
     SCOPED_TRACE(path);
     std::vector<double> radii;
-    const auto file = mesolens::read_structure(path);
-    const Centres centres = atoms_of(file.models[0], radii);
+    const bool gro = path.size() > 4 && path.compare(path.size() - 4, 4, ".gro") == 0;
+    const mesolens::AtomTable table =
+      gro ? mesolens::read_gro_topology(path) : mesolens::read_structure(path).models[0];
+    const Centres centres = atoms_of(table, radii);
     const MolecularSurface s = surface_of(centres, radii, 0.3);
     expect_closed_surface(s);
     EXPECT_EQ(self_intersections(s), 0u);

@@ -8,17 +8,21 @@
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
+#include <vtkIdList.h>
 #include <vtkIdTypeArray.h>
 #include <vtkIntArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSmartPointer.h>
 #include <vtkSignedCharArray.h>
 #include <vtkStringArray.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnsignedShortArray.h>
 
+#include <algorithm>
+#include <cstring>
 #include <type_traits>
 
 namespace vtkMesoAtomTableConversion {
@@ -254,6 +258,34 @@ void SetFieldValue(vtkPolyData* output, const char* name, double value)
   array->InsertNextValue(value);
   output->GetFieldData()->RemoveArray(name);
   output->GetFieldData()->AddArray(array);
+}
+
+void GatherAtomArrays(vtkPointData* atoms, vtkIdList* from, vtkPointData* out,
+                      std::initializer_list<const char*> skip)
+{
+  const vtkIdType count = from->GetNumberOfIds();
+  vtkNew<vtkIdList> to;
+  to->SetNumberOfIds(count);
+  for (vtkIdType v = 0; v < count; ++v)
+  {
+    to->SetId(v, v);
+  }
+  for (int a = 0; a < atoms->GetNumberOfArrays(); ++a)
+  {
+    vtkDataArray* array = atoms->GetArray(a);
+    const char* name = array ? array->GetName() : nullptr;
+    if (!array || !name ||
+        std::any_of(skip.begin(), skip.end(), [&](const char* s) { return !std::strcmp(name, s); }))
+    {
+      continue;
+    }
+    vtkSmartPointer<vtkDataArray> gathered = vtk::TakeSmartPointer(array->NewInstance());
+    gathered->SetName(name);
+    gathered->SetNumberOfComponents(array->GetNumberOfComponents());
+    gathered->SetNumberOfTuples(count);
+    gathered->InsertTuples(to, from, array);
+    out->AddArray(gathered);
+  }
 }
 
 bool AtomSpheres(vtkPolyData* atoms, const char* radius_array, double bead_radius,

@@ -6,9 +6,12 @@
 
 #include <array>
 #include <cstddef>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
+class vtkIdList;
+class vtkPointData;
 class vtkPolyData;
 namespace mesolens {
 struct AtomTable;
@@ -47,6 +50,12 @@ void SetPeriodicBox(const mesolens::PeriodicBox& box, double length_scale, vtkPo
 
 /// Adds a one-value field-data array (replacing one of the same name).
 void SetFieldValue(vtkPolyData* output, const char* name, double value);
+
+/// Every numeric point array of the atoms (`atoms`) onto the points of `out`: point v takes the
+/// tuple of atom from->GetId(v). String arrays are left out (costly per vertex, they colour
+/// nothing), and those named in `skip`.
+void GatherAtomArrays(vtkPointData* atoms, vtkIdList* from, vtkPointData* out,
+                      std::initializer_list<const char*> skip);
 
 /// The atoms as spheres: centres (Å) and radii (Å), from the point array `radius_array` when
 /// it is set and not empty, else the van der Waals radius of `AtomicNumber`, and `bead_radius`

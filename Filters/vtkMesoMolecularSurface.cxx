@@ -19,11 +19,9 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
-#include <vtkSmartPointer.h>
 #include <vtkStringArray.h>
 #include <vtkUnsignedCharArray.h>
 
-#include <cstring>
 #include <map>
 #include <string>
 #include <vector>
@@ -121,32 +119,10 @@ int vtkMesoMolecularSurface::RequestData(vtkInformation*, vtkInformationVector**
   triangles->SetData(offsets, connectivity);
   output->SetPolys(triangles);
 
-  // Each numeric array of the atoms, carried to the vertices through their atoms. (String
-  // arrays are left out: costly per vertex, they colour nothing; AtomId leads back.)
+  // Each numeric array of the atoms, carried to the vertices through their atoms.
   vtkPointData* in = atoms->GetPointData();
   vtkPointData* out = output->GetPointData();
-  vtkNew<vtkIdList> to;
-  to->SetNumberOfIds(vertices);
-  for (vtkIdType v = 0; v < vertices; ++v)
-  {
-    to->SetId(v, v);
-  }
-  for (int a = 0; a < in->GetNumberOfArrays(); ++a)
-  {
-    vtkDataArray* array = in->GetArray(a);
-    const char* name = array ? array->GetName() : nullptr;
-    if (!array || !name || !std::strcmp(name, "Normals") || !std::strcmp(name, "AtomId") ||
-        !std::strcmp(name, "PatchType"))
-    {
-      continue;
-    }
-    vtkSmartPointer<vtkDataArray> gathered = vtk::TakeSmartPointer(array->NewInstance());
-    gathered->SetName(name);
-    gathered->SetNumberOfComponents(array->GetNumberOfComponents());
-    gathered->SetNumberOfTuples(vertices);
-    gathered->InsertTuples(to, from, array);
-    out->AddArray(gathered);
-  }
+  vtkMesoAtomTableConversion::GatherAtomArrays(in, from, out, { "Normals", "AtomId", "PatchType" });
   // Chains as numbers (in order of first appearance), to colour by chain.
   vtkStringArray* chains = vtkStringArray::SafeDownCast(in->GetAbstractArray("ChainId"));
   if (chains && !in->GetArray("ChainIndex"))

@@ -26,15 +26,12 @@
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSMPTools.h>
-#include <vtkSmartPointer.h>
 #include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
 #include <array>
-#include <cstring>
 #include <limits>
 #include <map>
-#include <numeric>
 #include <string>
 #include <vector>
 
@@ -325,27 +322,9 @@ int vtkMesoRibbons::RequestData(vtkInformation*, vtkInformationVector** inputVec
 
     vtkPointData* in = atoms->GetPointData();
     vtkPointData* out = output->GetPointData();
-    // (String arrays are left out: costly per vertex, they colour nothing; AtomId leads back.)
     // Each numeric array of the input, gathered from the trace atoms.
-    vtkNew<vtkIdList> to;
-    to->SetNumberOfIds(vertices);
-    std::iota(to->begin(), to->end(), vtkIdType(0));
-    for (int a = 0; a < in->GetNumberOfArrays(); ++a)
-    {
-      vtkDataArray* array = in->GetArray(a);
-      const char* name = array ? array->GetName() : nullptr;
-      if (!array || !name || !std::strcmp(name, "ResidueIndex") ||
-          !std::strcmp(name, "SecondaryStructure"))
-      {
-        continue;
-      }
-      vtkSmartPointer<vtkDataArray> gathered = vtk::TakeSmartPointer(array->NewInstance());
-      gathered->SetName(name);
-      gathered->SetNumberOfComponents(array->GetNumberOfComponents());
-      gathered->SetNumberOfTuples(vertices);
-      gathered->InsertTuples(to, from, array);
-      out->AddArray(gathered);
-    }
+    vtkMesoAtomTableConversion::GatherAtomArrays(in, from, out,
+                                                 { "ResidueIndex", "SecondaryStructure" });
     out->AddArray(atom_ids);
     out->AddArray(residue_ids);
     out->AddArray(chain_ids);

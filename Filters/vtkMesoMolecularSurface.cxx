@@ -157,6 +157,14 @@ int vtkMesoMolecularSurface::RequestData(vtkInformation*, vtkInformationVector**
   SetFieldValue(output, "ComponentCount", double(surface.component_count));
   SetFieldValue(output, "CavityCount", double(surface.cavity_count));
   SetFieldValue(output, "GridSpacing", surface.grid_spacing);
+  SetFieldValue(output, "DegenerateVertexCount", double(surface.degenerate_vertex_count));
+  if (surface.degenerate_vertex_count > 0)
+  {
+    vtkWarningMacro("Four or more atoms touch one probe position at "
+                    << surface.degenerate_vertex_count
+                    << " points (a perfect lattice?): Area and Volume are unreliable there; the "
+                       "mesh is not affected.");
+  }
   return 1;
 }
 

@@ -25,7 +25,9 @@
  * `ResidueIndex`, `AtomicNumber`, `BFactor`), and `ChainIndex` (int, chains numbered in order of
  * first appearance) when the atoms have a string `ChainId`. Field data: `Area` (Å², exact),
  * `Volume` (Å³, exact), `ConvexArea`, `ToroidalArea`, `ConcaveArea`, `SingularPatchCount`,
- * `ComponentCount`, `CavityCount` and `GridSpacing` (Å).
+ * `ComponentCount`, `CavityCount`, `GridSpacing` (Å) and `DegenerateVertexCount` (points where
+ * four or more atoms touch one probe position exactly, as in a perfect lattice: a warning says
+ * that Area and Volume are then unreliable; the mesh is not affected).
  *
  * Progress events are sent while the mesh is built. Errors (no atoms, a radius or position
  * that is not finite or out of (0, 20] Å, a missing radius array, a tolerance too fine for the

@@ -257,6 +257,7 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
     }
   };
   const SasBoundary boundary = sas_boundary(centre_list, radii, excluded, parallel_for);
+  surface.degenerate_vertex_count = boundary.degenerate_vertices;
   report(0.1);
 
   // The tessellation: grid spacing from the chord error of triangles about sqrt(3) spacings

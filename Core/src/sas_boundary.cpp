@@ -96,6 +96,7 @@ struct UnitPieces
   std::vector<Arc> arcs;
   std::vector<Corner> corners;
   std::vector<Loop> loops;
+  std::size_t degenerate_corners = 0; ///< corners where a third circle passes too
 };
 
 /// The exposed area of the unit sphere under `caps` (times R^2 by the caller), and in
@@ -220,6 +221,18 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral, UnitPieces
         if (inside_third)
         {
           continue;
+        }
+        if (pieces)
+        {
+          // A third circle through the crossing (to rounding): four spheres meet at one point.
+          for (const std::uint32_t c : overlapping[a])
+          {
+            if (c != b && std::abs(u.dot(caps[c].axis) - caps[c].height) < 1e-9)
+            {
+              ++pieces->degenerate_corners;
+              break;
+            }
+          }
         }
         const std::size_t id = vertices.size();
         vertices.push_back(u);
@@ -374,6 +387,7 @@ SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
   std::vector<std::vector<SasArc>> arcs_of(with_pieces ? n : 0);
   std::vector<std::vector<SasVertex>> vertices_of(with_pieces ? n : 0);
   std::vector<std::vector<SasLoop>> loops_of(with_pieces ? n : 0);
+  std::vector<std::size_t> degenerate_of(with_pieces ? n : 0, 0);
   if (n == 0)
   {
     return result;
@@ -479,6 +493,7 @@ SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
         vertex.position = c + r * corner.direction;
         vertices_of[i].push_back(vertex);
       }
+      degenerate_of[i] = pieces.degenerate_corners;
       for (const UnitPieces::Loop& loop : pieces.loops)
       {
         loops_of[i].push_back(
@@ -491,6 +506,7 @@ SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
     result.arcs.insert(result.arcs.end(), arcs_of[i].begin(), arcs_of[i].end());
     result.vertices.insert(result.vertices.end(), vertices_of[i].begin(), vertices_of[i].end());
     result.loops.insert(result.loops.end(), loops_of[i].begin(), loops_of[i].end());
+    result.degenerate_vertices += degenerate_of[i];
   }
   return result;
 }

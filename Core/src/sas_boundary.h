@@ -63,6 +63,9 @@ struct SasBoundary
   std::vector<SasArc> arcs;
   std::vector<SasVertex> vertices;
   std::vector<SasLoop> loops; ///< ordered by sphere
+  /// Vertices where four or more spheres meet (to 1e-9 of the unit sphere), as each sphere
+  /// sees them: there the pieces are ambiguous and the SES's exact figures unreliable.
+  std::size_t degenerate_vertices = 0;
 };
 
 /// The exposed parts of each sphere (see sphere_union_area() for the method and the input

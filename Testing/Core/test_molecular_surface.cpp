@@ -394,6 +394,7 @@ TEST(MolecularSurface, CrambinAgainstItsRefinedMeshAndEdtSurf)
   EXPECT_NEAR(area, fine.area, 5e-4 * fine.area);
   EXPECT_NEAR(volume, fine.volume, 5e-4 * fine.volume);
   EXPECT_GT(fine.singular_patch_count, 0u);
+  EXPECT_EQ(fine.degenerate_vertex_count, 0u);
   // EDTSurf (a grid, its own radii) gives 2311.5 Å2.
   EXPECT_NEAR(fine.area, 2311.5, 0.01 * 2311.5);
   // Every atom with exposed surface has vertices, and the vertices' atoms are near them.
@@ -441,6 +442,23 @@ TEST(MolecularSurface, CavitiesAreKeptOrDropped)
     EXPECT_NEAR(mesh_figures(*s).area, s->area, 0.03 * s->area);
     EXPECT_NEAR(mesh_figures(*s).volume, s->volume, 0.03 * s->volume);
   }
+}
+
+TEST(MolecularSurface, FourAtomsOnOneProbePositionAreReported)
+{
+  // A cube of eight atoms: on each face four inflated spheres pass through two points.
+  Centres cube;
+  for (int k = 0; k < 8; ++k)
+  {
+    cube.push_back({ 4.0 * (k & 1), 4.0 * ((k >> 1) & 1), 4.0 * ((k >> 2) & 1) });
+  }
+  const MolecularSurface exact = surface_of(cube, std::vector<double>(8, 1.5), 0.2);
+  EXPECT_GT(exact.degenerate_vertex_count, 0u);
+  expect_closed_surface(exact); // the mesh is fine regardless
+  // Nothing is reported for a general position.
+  EXPECT_EQ(surface_of({ { 0, 0, 0 }, { 2.5, 0, 0 }, { 1.2, 2.1, 0.3 } }, { 1.5, 1.6, 1.7 }, 0.2)
+              .degenerate_vertex_count,
+            0u);
 }
 
 TEST(MolecularSurface, SameResultOnOneAndTwoThreads)

@@ -41,9 +41,11 @@ struct MolecularSurfaceOptions
   SurfaceKind kind = SurfaceKind::SolventExcluded;
   /// Radius of the solvent probe, Å (length units of the input), (0, 20]; default 1.4 (water).
   double probe_radius = 1.4;
-  /// Largest distance between a triangle and the exact surface it stands for (chord error),
-  /// Å, [0.005, 1]: the grid spacing of the tessellation follows from it and the smallest
-  /// radius of curvature. 0.1 suits interaction, 0.02 figures.
+  /// Largest distance between a triangle and the exact surface it stands for (chord error) on
+  /// smooth patches, Å, [0.005, 1]: the grid spacing of the tessellation follows from it and
+  /// the smallest radius of curvature. At creases (the SAS and vdW seams, the SES's cusps) the
+  /// error stays within the grid spacing. 0.1 suits interaction (mesh area about 0.5 % below
+  /// the exact one), 0.02-0.05 figures.
   double tolerance = 0.1;
   /// Keep the surfaces of cavities inside the molecule (closed components whose normals face
   /// inwards). Default true.
@@ -62,14 +64,19 @@ struct MolecularSurface
   std::array<double, 3> patch_area{};
   /// Number of patches: convex (atoms with exposed surface), toroidal, concave; and how many of
   /// the toroidal and concave ones are cut by the surface's singularities (a probe passing
-  /// between two atoms, probes overlapping), whose area is integrated numerically (about
-  /// 1e-6 of the patch's area) rather than in closed form.
+  /// between two atoms beyond the torus's own cut at the axis, probes overlapping), whose area
+  /// is integrated numerically (pieces split four levels deep) rather than in closed form: on
+  /// proteins the total area then agrees with the refined mesh within 0.1 %.
   std::array<std::size_t, 3> patch_count{};
   std::size_t singular_patch_count = 0;
   /// Closed components of the mesh, and how many of them are cavities (dropped when
   /// keep_cavities is false).
   std::size_t component_count = 0;
   std::size_t cavity_count = 0;
+  /// Points where four or more inflated atoms meet exactly (one probe touching four atoms, as
+  /// in a perfect lattice): where not 0, the exact area and volume are unreliable (the mesh is
+  /// not affected). Counted once per sphere through the point.
+  std::size_t degenerate_vertex_count = 0;
   /// Grid spacing the tessellation used, Å.
   double grid_spacing = 0;
 
@@ -88,12 +95,14 @@ using SurfaceProgress = std::function<void(double)>;
 /// exposed spheres, arcs where two meet and points where three meet are the probe's positions;
 /// each patch's area and volume term comes in closed form, and singular patches are integrated
 /// numerically where they are cut. The mesh is the zero set of the exact distance to those probe
-/// positions minus the probe radius, contoured on a sparse grid (marching tetrahedra, so it is
-/// watertight and 2-manifold by construction) with every vertex moved onto the exact surface.
+/// positions minus the probe radius, contoured on a sparse grid by marching tetrahedra with
+/// every vertex found on its own grid edge: watertight, 2-manifold and free of
+/// self-intersections by construction. Exactly degenerate inputs (four atoms touching one probe
+/// position, as in a perfect lattice) may give wrong exact figures; the mesh stays right.
 ///
 /// Throws InvalidInput for lists of different lengths, a non-finite centre or radius, a radius
-/// <= 0 or > 20 Å, or an option out of range. No atoms give an empty surface. Deterministic
-/// whatever `parallel_for`.
+/// <= 0 or > 20 Å, an option out of range, or a tolerance that would need more than 2e7
+/// triangles. No atoms give an empty surface. Deterministic whatever `parallel_for`.
 MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& centres,
                                    const std::vector<double>& radii,
                                    const MolecularSurfaceOptions& options = {},

@@ -85,6 +85,7 @@ ProbeDistance::ProbeDistance(const std::vector<Vec>& centres, const std::vector<
   }
   build_rows(cell_count, pairs, this->vertex_start_, this->vertex_items_);
   pairs.clear();
+  std::vector<Vec> middles;
   // Arcs by the middles of their pieces of at most 22.5 degrees, each within arc_extent_ of its
   // middle (small: queries look a little beyond their radius).
   for (std::size_t k = 0; k < boundary.arcs.size(); ++k)
@@ -97,10 +98,28 @@ ProbeDistance::ProbeDistance(const std::vector<Vec>& centres, const std::vector<
     {
       const Vec middle = arc.point(arc.start + (piece + 0.5) * piece_span);
       pairs.emplace_back(this->cell_of(middle, ijk), static_cast<std::uint32_t>(k));
+      middles.push_back(middle);
     }
   }
   this->arc_extent_ += 1e-9;
-  build_rows(cell_count, pairs, this->arc_start_, this->arc_items_);
+  {
+    // Entries point at (arc, piece middle) pairs, in cell order.
+    std::vector<std::pair<std::int64_t, std::uint32_t>> entries(pairs.size());
+    for (std::size_t e = 0; e < pairs.size(); ++e)
+    {
+      entries[e] = { pairs[e].first, static_cast<std::uint32_t>(e) };
+    }
+    build_rows(cell_count, entries, this->arc_start_, this->arc_entries_);
+    this->arc_items_.resize(pairs.size());
+    this->arc_piece_middle_.resize(pairs.size());
+    for (std::size_t e = 0; e < this->arc_entries_.size(); ++e)
+    {
+      const std::uint32_t original = this->arc_entries_[e];
+      this->arc_items_[e] = pairs[original].second;
+      this->arc_piece_middle_[e] = middles[original];
+      this->arc_entries_[e] = static_cast<std::uint32_t>(e);
+    }
+  }
 }
 
 std::int64_t ProbeDistance::cell_of(const Vec& x, std::array<std::int64_t, 3>& ijk) const
@@ -204,20 +223,28 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Filter& filter, double l
   std::size_t holder_count = 0;
   double deepest = -std::numeric_limits<double>::max();
   std::uint32_t deepest_sphere = 0;
-  const auto visit_sphere = [&](std::uint32_t i) {
-    const double d = this->radii_[i] - (x - this->centres_[i]).norm();
-    if (d > deepest)
-    {
-      deepest = d;
-      deepest_sphere = i;
-    }
-    if (d > 0 && d < this->reach_ && holder_count < 128)
-    {
-      holders[holder_count++] = { d, i };
-    }
-  };
-  this->for_cells(x, this->largest_, this->sphere_start_, this->sphere_items_, visit_sphere);
-  if (deepest <= 0)
+  bool inside = false;
+  this->for_cells(x, this->largest_, this->sphere_start_, this->sphere_items_,
+                  [&](std::uint32_t i) {
+                    const double squared = (x - this->centres_[i]).squaredNorm();
+                    const double r = this->radii_[i];
+                    if (squared >= r * r)
+                    {
+                      return; // a root only for the spheres holding x
+                    }
+                    inside = true;
+                    const double d = r - std::sqrt(squared);
+                    if (d > deepest)
+                    {
+                      deepest = d;
+                      deepest_sphere = i;
+                    }
+                    if (d < this->reach_ && holder_count < 128)
+                    {
+                      holders[holder_count++] = { d, i };
+                    }
+                  });
+  if (!inside)
   {
     // Outside every sphere: the nearest may lie farther.
     this->for_cells(x, this->outside_exact_, this->sphere_start_, this->sphere_items_,
@@ -290,7 +317,15 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Filter& filter, double l
   }
   std::uint32_t last_arc = UINT32_MAX;
   this->for_cells(
-    x, best.distance + this->arc_extent_, this->arc_start_, this->arc_items_, [&](std::uint32_t k) {
+    x, best.distance + this->arc_extent_, this->arc_start_, this->arc_entries_,
+    [&](std::uint32_t entry) {
+      // A piece whose bounding ball lies beyond the best so far is skipped cheaply.
+      const double reach = best.distance + this->arc_extent_;
+      if ((x - this->arc_piece_middle_[entry]).squaredNorm() >= reach * reach)
+      {
+        return;
+      }
+      const std::uint32_t k = this->arc_items_[entry];
       if (k == last_arc)
       {
         return; // the next piece of the same arc

@@ -117,7 +117,9 @@ private:
   // Per cell (compressed rows): the spheres centred in it, the arcs whose bounding ball
   // overlaps it, the vertices in it.
   std::vector<std::uint32_t> sphere_start_, sphere_items_;
-  std::vector<std::uint32_t> arc_start_, arc_items_;
+  std::vector<std::uint32_t> arc_start_, arc_entries_; ///< entries: indices into the two below
+  std::vector<std::uint32_t> arc_items_;               ///< per entry, the arc
+  std::vector<Eigen::Vector3d> arc_piece_middle_;      ///< per entry, its piece's middle
   std::vector<std::uint32_t> vertex_start_, vertex_items_;
 };
 

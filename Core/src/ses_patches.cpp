@@ -197,19 +197,21 @@ Integral split_concave(const Splitter& splitter, const std::vector<ProbeCap>& ca
 {
   const double p = splitter.probe;
   const Vec middle = (a + b + c).normalized();
-  // Neighbouring probes cut exactly: caps on this probe's sphere.
-  bool cut_by_cap = false;
+  // Neighbouring probes cut exactly: caps on this probe's sphere. Only those meeting this
+  // piece can meet its parts, so they alone go down.
+  std::vector<ProbeCap> meeting;
   for (const ProbeCap& cap : caps)
   {
-    if (-largest_dot(a, b, c, -cap.axis) > cap.height)
-    {
-      return {}; // wholly inside a neighbour
-    }
     if (largest_dot(a, b, c, cap.axis) > cap.height)
     {
-      cut_by_cap = true;
+      if (-largest_dot(a, b, c, -cap.axis) > cap.height)
+      {
+        return {}; // wholly inside a neighbour
+      }
+      meeting.push_back(cap);
     }
   }
+  const bool cut_by_cap = !meeting.empty();
   const double size =
     ball_slack * p * std::max({ (middle - a).norm(), (middle - b).norm(), (middle - c).norm() });
   int verdict = splitter.decide(centre + p * middle, size, depth == deepest_split);
@@ -229,7 +231,7 @@ Integral split_concave(const Splitter& splitter, const std::vector<ProbeCap>& ca
   {
     const auto clearance = [&](const Vec& u) {
       double g = splitter.clearance(centre + p * u);
-      for (const ProbeCap& cap : caps)
+      for (const ProbeCap& cap : meeting)
       {
         g = std::min(g, p * (cap.height - u.dot(cap.axis)));
       }
@@ -243,10 +245,10 @@ Integral split_concave(const Splitter& splitter, const std::vector<ProbeCap>& ca
   }
   const Vec ab = (a + b).normalized(), bc = (b + c).normalized(), ca = (c + a).normalized();
   Integral sum;
-  sum += split_concave(splitter, caps, centre, a, ab, ca, depth + 1);
-  sum += split_concave(splitter, caps, centre, ab, b, bc, depth + 1);
-  sum += split_concave(splitter, caps, centre, ca, bc, c, depth + 1);
-  sum += split_concave(splitter, caps, centre, ab, bc, ca, depth + 1);
+  sum += split_concave(splitter, meeting, centre, a, ab, ca, depth + 1);
+  sum += split_concave(splitter, meeting, centre, ab, b, bc, depth + 1);
+  sum += split_concave(splitter, meeting, centre, ca, bc, c, depth + 1);
+  sum += split_concave(splitter, meeting, centre, ab, bc, ca, depth + 1);
   return sum;
 }
 

@@ -361,15 +361,17 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
           if (at_outside <= 0 && at_inside > 0)
           {
             position = segment_root(outside, at_outside, inside, at_inside, along_piece);
-            piece = distance.closest(position);
+            piece = distance.closest(position, {}, p + 1e-6);
             placed = std::abs(piece.distance - p) <= 1e-7;
           }
         }
         if (!placed)
         {
-          position = segment_root(outside, outside_value, inside, inside_value,
-                                  [&](const Vec& x) { return distance.closest(x).distance - p; });
-          piece = distance.closest(position);
+          const double limit = p + 2.0 * spacing;
+          position = segment_root(outside, outside_value, inside, inside_value, [&](const Vec& x) {
+            return distance.closest(x, {}, limit).distance - p;
+          });
+          piece = distance.closest(position, {}, limit);
         }
         ContourVertex vertex;
         vertex.position = position;

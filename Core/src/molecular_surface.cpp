@@ -335,7 +335,9 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
         {
           return true;
         }
-        if (p + r < reach)
+        // Single cells are not tested: their corners cost little more than the test, and
+        // cells the surface misses give no triangles.
+        if (p + r < reach && r > leaf_half_diagonal * 1.001)
         {
           return std::abs(distance.closest(x, {}, p + r + 1e-9).distance - p) > r;
         }

@@ -44,7 +44,6 @@ public:
     }
     const std::int64_t nx = this->dims_[0] + 1, ny = this->dims_[1] + 1, nz = this->dims_[2] + 1;
     this->sums_.assign(static_cast<std::size_t>(nx * ny * nz), 0);
-    std::vector<std::int32_t> marks(static_cast<std::size_t>(nx * ny * nz), 0);
     for (std::size_t i = 0; i < centres.size(); ++i)
     {
       const auto from = this->cell(centres[i] - Vec::Constant(radii[i]));
@@ -53,18 +52,17 @@ public:
         for (std::int64_t y = from[1]; y <= to[1]; ++y)
           for (std::int64_t x = from[0]; x <= to[0]; ++x)
           {
-            marks[this->at(x + 1, y + 1, z + 1)] = 1;
+            this->sums_[this->at(x + 1, y + 1, z + 1)] = 1; // marks, summed in place below
           }
     }
     for (std::int64_t z = 1; z < nz; ++z)
       for (std::int64_t y = 1; y < ny; ++y)
         for (std::int64_t x = 1; x < nx; ++x)
         {
-          this->sums_[this->at(x, y, z)] = marks[this->at(x, y, z)] +
-            this->sums_[this->at(x - 1, y, z)] + this->sums_[this->at(x, y - 1, z)] +
-            this->sums_[this->at(x, y, z - 1)] - this->sums_[this->at(x - 1, y - 1, z)] -
-            this->sums_[this->at(x - 1, y, z - 1)] - this->sums_[this->at(x, y - 1, z - 1)] +
-            this->sums_[this->at(x - 1, y - 1, z - 1)];
+          this->sums_[this->at(x, y, z)] += this->sums_[this->at(x - 1, y, z)] +
+            this->sums_[this->at(x, y - 1, z)] + this->sums_[this->at(x, y, z - 1)] -
+            this->sums_[this->at(x - 1, y - 1, z)] - this->sums_[this->at(x - 1, y, z - 1)] -
+            this->sums_[this->at(x, y - 1, z - 1)] + this->sums_[this->at(x - 1, y - 1, z - 1)];
         }
   }
 

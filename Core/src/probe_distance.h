@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -92,11 +93,6 @@ public:
   /// max over spheres of (R - |x - c|): the signed distance outside the union, a lower bound of
   /// it inside. -reach when no sphere is within reach. `sphere` gets the maximising sphere.
   double union_depth(const Eigen::Vector3d& x, std::uint32_t* sphere = nullptr) const;
-
-  double reach() const
-  {
-    return this->reach_;
-  }
 
 private:
   template<typename Visit>

@@ -12,7 +12,7 @@ namespace mesolens {
 namespace {
 using Vec = Eigen::Vector3d;
 constexpr double pi = 3.14159265358979323846;
-constexpr int deepest_split = 4;   // singular patches: at most 4^6 pieces, near the cuts only
+constexpr int deepest_split = 4;   // singular patches: at most 4^4 pieces, near the cuts only
 constexpr double ball_slack = 1.1; // sub-patches lie within this times their corner distance
 
 /// Area and x . n integral of a patch piece.
@@ -107,7 +107,7 @@ struct Splitter
   double probe = 0;
 
   /// -1 cut, +1 kept, 0 undecided, for a piece around `middle` reaching `size`.
-  int decide(const Vec& middle, double size, bool last) const
+  int decide(const Vec& middle, double size) const
   {
     // Searches bounded by what each test needs.
     const double kept_limit = this->probe + size;
@@ -120,7 +120,6 @@ struct Splitter
     {
       return -1;
     }
-    (void)last;
     return 0;
   }
 
@@ -214,7 +213,7 @@ Integral split_concave(const Splitter& splitter, const std::vector<ProbeCap>& ca
   const bool cut_by_cap = !meeting.empty();
   const double size =
     ball_slack * p * std::max({ (middle - a).norm(), (middle - b).norm(), (middle - c).norm() });
-  int verdict = splitter.decide(centre + p * middle, size, depth == deepest_split);
+  int verdict = splitter.decide(centre + p * middle, size);
   if (verdict > 0 && cut_by_cap)
   {
     verdict = 0;
@@ -265,7 +264,7 @@ Integral split_torus(const Splitter& splitter, const Torus& torus, double phi0, 
       size = std::max(size, (torus.point(corner_phi, corner_t) - middle).norm());
     }
   }
-  const int verdict = splitter.decide(middle, ball_slack * size, depth == deepest_split);
+  const int verdict = splitter.decide(middle, ball_slack * size);
   if (verdict < 0)
   {
     return {};
@@ -292,11 +291,6 @@ Integral split_torus(const Splitter& splitter, const Torus& torus, double phi0, 
   sum += split_torus(splitter, torus, phi0, phi, t, t1, depth + 1);
   sum += split_torus(splitter, torus, phi, phi1, t, t1, depth + 1);
   return sum;
-}
-
-bool contains(const std::array<std::uint32_t, 3>& spheres, std::uint32_t s)
-{
-  return spheres[0] == s || spheres[1] == s || spheres[2] == s;
 }
 } // namespace
 

@@ -96,56 +96,31 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
       static_cast<std::int64_t>((b / std::size_t(blocks[0])) % std::size_t(blocks[1]));
     const std::int64_t bz = static_cast<std::int64_t>(b / std::size_t(blocks[0] * blocks[1]));
     const std::int64_t x0 = bx * block_cells, y0 = by * block_cells, z0 = bz * block_cells;
-    // Octree culling down to single cells.
-    std::vector<std::array<std::int64_t, 3>> candidates;
-    std::vector<std::array<std::int64_t, 4>> stack = { { x0, y0, z0, block_cells } };
-    while (!stack.empty())
-    {
-      const auto node = stack.back();
-      stack.pop_back();
-      const std::int64_t size = node[3];
-      const Vec centre =
-        position(node[0], node[1], node[2]) + Vec::Constant(0.5 * spacing * double(size));
-      if (field.empty(centre, 0.5 * std::sqrt(3.0) * spacing * double(size)))
-      {
-        continue;
-      }
-      if (size == 1)
-      {
-        candidates.push_back({ node[0], node[1], node[2] });
-        continue;
-      }
-      const std::int64_t half = size / 2;
-      for (int child = 7; child >= 0; --child)
-      {
-        const std::int64_t cx = node[0] + (child & 1 ? half : 0);
-        const std::int64_t cy = node[1] + (child & 2 ? half : 0);
-        const std::int64_t cz = node[2] + (child & 4 ? half : 0);
-        if (cx < cells[0] && cy < cells[1] && cz < cells[2])
-        {
-          stack.push_back({ cx, cy, cz, half });
-        }
-      }
-    }
-    if (candidates.empty())
+    const Vec block_centre =
+      position(x0, y0, z0) + Vec::Constant(0.5 * spacing * double(block_cells));
+    if (field.empty(block_centre, 0.5 * std::sqrt(3.0) * spacing * double(block_cells)))
     {
       return;
     }
+    const std::unique_ptr<LocalContourField> local = field.local();
     // Corner values on the block's points (block_cells + 1 per axis), computed once.
     constexpr int side = block_cells + 1;
-    std::vector<double> values(side * side * side, std::numeric_limits<double>::quiet_NaN());
+    std::vector<double> values;
     const auto value_at = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+      if (values.empty())
+      {
+        values.assign(side * side * side, std::numeric_limits<double>::quiet_NaN());
+      }
       double& v = values[std::size_t((x - x0) + side * ((y - y0) + side * (z - z0)))];
       if (std::isnan(v))
       {
-        v = field.value(position(x, y, z));
+        v = local->value(position(x, y, z));
       }
       return v;
     };
     BlockOutput& out = outputs[b];
     std::unordered_map<std::uint64_t, char> made;
-    for (const auto& cell : candidates)
-    {
+    const auto contour_cell = [&](const std::array<std::int64_t, 3>& cell) {
       std::array<double, 8> corner_value{};
       std::array<Vec, 8> corner_position;
       for (int m = 0; m < 8; ++m)
@@ -168,8 +143,8 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
           const int outside = corner_value[a] > 0 ? b : a;
           const int inside = corner_value[a] > 0 ? a : b;
           out.vertices.emplace_back(key,
-                                    field.vertex(corner_position[outside], corner_value[outside],
-                                                 corner_position[inside], corner_value[inside]));
+                                    local->vertex(corner_position[outside], corner_value[outside],
+                                                  corner_position[inside], corner_value[inside]));
         }
         return key;
       };
@@ -226,7 +201,36 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
         out.triangles.push_back({ ac, ad, bd });
         out.triangles.push_back({ ac, bd, bc });
       }
-    }
+    };
+    // Octree descent: each node focuses the field on its ball, from its parent's focus, and
+    // nodes the surface misses are dropped with all they hold.
+    const auto visit = [&](const auto& self, std::int64_t x, std::int64_t y, std::int64_t z,
+                           std::int64_t size, int level) -> void {
+      const Vec centre = position(x, y, z) + Vec::Constant(0.5 * spacing * double(size));
+      // A little more than half the diagonal, against rounding at the corners.
+      const double radius = 0.5 * std::sqrt(3.0) * spacing * double(size) * (1.0 + 1e-9);
+      if (!local->focus(level, centre, radius))
+      {
+        return;
+      }
+      if (size == 1)
+      {
+        contour_cell({ x, y, z });
+        return;
+      }
+      const std::int64_t half = size / 2;
+      for (int child = 0; child < 8; ++child)
+      {
+        const std::int64_t cx = x + (child & 1 ? half : 0);
+        const std::int64_t cy = y + (child & 2 ? half : 0);
+        const std::int64_t cz = z + (child & 4 ? half : 0);
+        if (cx < cells[0] && cy < cells[1] && cz < cells[2])
+        {
+          self(self, cx, cy, cz, half, level + 1);
+        }
+      }
+    };
+    visit(visit, x0, y0, z0, block_cells, 0);
   };
 
   // Blocks in rounds, so progress is reported from this thread.

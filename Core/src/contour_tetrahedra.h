@@ -9,6 +9,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 namespace mesolens {
@@ -23,19 +24,35 @@ struct ContourVertex
   std::uint32_t piece = 0; ///< the field's own label (which boundary piece)
 };
 
+/// The field near one octree node at a time, with buffers of its own: each block of the grid
+/// asks one of these, so that it may prepare once per node what the queries inside need, from
+/// what it prepared for the node's parent.
+class LocalContourField
+{
+public:
+  virtual ~LocalContourField() = default;
+  /// Prepares for queries within `radius` of `centre`; false when no zero lies within. Level 0
+  /// is a block; a ball of level k > 0 lies inside the last ball focused at level k - 1.
+  virtual bool focus(int level, const Eigen::Vector3d& centre, double radius) = 0;
+  /// The value at a point within the last focus.
+  virtual double value(const Eigen::Vector3d& x) = 0;
+  /// The surface vertex on the segment (within the focus) from `outside` (value <= 0) to
+  /// `inside` (value > 0).
+  virtual ContourVertex vertex(const Eigen::Vector3d& outside, double outside_value,
+                               const Eigen::Vector3d& inside, double inside_value) = 0;
+};
+
 /// The field to contour: positive inside, negative outside, changing by at most the distance
 /// between two points (1-Lipschitz), so a ball where |value| exceeds the radius holds none of
-/// the surface.
+/// the surface. Values must not depend on which focus they were asked under (their signs at
+/// least), as neighbouring cells share corners.
 struct ContourField
 {
-  /// The value at a point.
-  std::function<double(const Eigen::Vector3d&)> value;
-  /// True when no zero lies within `radius` of the point (may be conservative: false).
+  /// True when no zero lies within `radius` of the point (may be conservative: false): a cheap
+  /// test of whole blocks before any focus.
   std::function<bool(const Eigen::Vector3d&, double radius)> empty;
-  /// The surface vertex on the segment from `outside` (value <= 0) to `inside` (value > 0).
-  std::function<ContourVertex(const Eigen::Vector3d& outside, double outside_value,
-                              const Eigen::Vector3d& inside, double inside_value)>
-    vertex;
+  /// A new local view of the field (called once per block, from any thread).
+  std::function<std::unique_ptr<LocalContourField>()> local;
 };
 
 struct ContourMesh
@@ -47,9 +64,9 @@ struct ContourMesh
 /// Contours `field` over the box [low, high] on a grid of `spacing` (> 0). The grid's points
 /// are those of the box's low corner plus integer multiples of the spacing; the field must be
 /// negative on the box's faces for the mesh to be closed. Cells are found by octree culling with
-/// `field.empty`, each cell is cut into six tetrahedra of one diagonal (Kuhn's), so the mesh is
-/// watertight and 2-manifold without ambiguous cases. `progress` (may be empty) gets the
-/// fraction done from the calling thread. Deterministic whatever `parallel_for`.
+/// `LocalContourField::focus`, each cell is cut into six tetrahedra of one diagonal (Kuhn's), so
+/// the mesh is watertight and 2-manifold without ambiguous cases. `progress` (may be empty) gets
+/// the fraction done from the calling thread. Deterministic whatever `parallel_for`.
 ContourMesh contour_tetrahedra(const ContourField& field, const Eigen::Vector3d& low,
                                const Eigen::Vector3d& high, double spacing,
                                const ParallelFor& parallel_for,

@@ -9,6 +9,7 @@
 #include "probe_distance.h"
 #include "sas_boundary.h"
 #include "ses_patches.h"
+#include "surface_contour_fields.h"
 
 #include <algorithm>
 #include <cmath>
@@ -103,50 +104,6 @@ private:
   std::array<std::int64_t, 3> dims_{};
   std::vector<std::int32_t> sums_;
 };
-
-/// The root of `value` on the segment from a (value <= 0) to b (value > 0), by the Illinois
-/// variant of regula falsi, to 1e-9 Å, kept 1e-5 of the segment from either end (so no triangle
-/// degenerates where the surface passes through a grid point).
-template<typename Value>
-Vec segment_root(const Vec& a, double value_a, const Vec& b, double value_b, Value&& value)
-{
-  double t0 = 0, t1 = 1, f0 = value_a, f1 = value_b;
-  const double length = (b - a).norm();
-  int side = 0;
-  double t = f0 / (f0 - f1);
-  for (int iteration = 0; iteration < 60 && (t1 - t0) * length > 1e-9; ++iteration)
-  {
-    t = (t0 * f1 - t1 * f0) / (f1 - f0);
-    const double f = value(a + t * (b - a));
-    if (f == 0)
-    {
-      break;
-    }
-    if (f < 0)
-    {
-      t0 = t;
-      f0 = f;
-      if (side == -1)
-      {
-        f1 *= 0.5;
-      }
-      side = -1;
-    }
-    else
-    {
-      t1 = t;
-      f1 = f;
-      if (side == 1)
-      {
-        f0 *= 0.5;
-      }
-      side = 1;
-    }
-  }
-  // Never exactly at a grid point: vertices of different edges stay apart.
-  t = std::clamp(t, 1e-5, 1.0 - 1e-5);
-  return a + t * (b - a);
-}
 
 void check_input(const std::vector<std::array<double, 3>>& centres,
                  const std::vector<double>& radii, const MolecularSurfaceOptions& options)
@@ -314,126 +271,28 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
                                  largest + 2.0 * leaf_half_diagonal);
     const Occupancy occupancy(centres, radii, 2.0);
     const double outside_range = distance.cell_width() - largest;
-    const auto depth = [&](const Vec& x) { return distance.union_depth(x); };
     ContourField field;
+    // Blocks wholly outside the union, or deeper in it than the surface lies, hold nothing.
+    const double surface_depth = excluded ? p : 0.0;
+    field.empty = [&, surface_depth](const Vec& x, double r) {
+      if (!occupancy.any(x, r))
+      {
+        return true;
+      }
+      const double depth = distance.union_depth(x);
+      return depth - surface_depth > r || (r <= outside_range && depth < -r);
+    };
     if (excluded)
     {
       // Values matter near the surface only: searches stop two spacings beyond it.
       const double value_limit = p + 2.0 * spacing;
-      field.value = [&, value_limit](const Vec& x) {
-        return distance.closest(x, {}, value_limit).distance - p;
-      };
-      field.empty = [&](const Vec& x, double r) {
-        if (!occupancy.any(x, r))
-        {
-          return true;
-        }
-        const double depth = distance.union_depth(x);
-        if (depth - p > r || (r <= outside_range && depth < -r))
-        {
-          return true;
-        }
-        // Single cells are not tested: their corners cost little more than the test, and
-        // cells the surface misses give no triangles.
-        if (p + r < reach && r > leaf_half_diagonal * 1.001)
-        {
-          return std::abs(distance.closest(x, {}, p + r + 1e-9).distance - p) > r;
-        }
-        return false;
-      };
-      field.vertex = [&](const Vec& outside, double outside_value, const Vec& inside,
-                         double inside_value) {
-        // The root along the grid edge itself: vertices kept on their edges cannot fold
-        // triangles over one another, even at the surface's creases. First along the piece
-        // nearest the linear guess alone (cheap), kept when the full field agrees there.
-        const Vec guess =
-          outside + outside_value / (outside_value - inside_value) * (inside - outside);
-        const ClosestPiece near_guess = distance.closest(guess, {}, p + 2.0 * spacing);
-        Vec position = guess;
-        ClosestPiece piece;
-        bool placed = false;
-        if (near_guess.kind != PieceKind::None && near_guess.distance > 0)
-        {
-          const auto along_piece = [&](const Vec& x) {
-            return distance.piece_distance(x, near_guess.kind, near_guess.index) - p;
-          };
-          const double at_outside = along_piece(outside), at_inside = along_piece(inside);
-          if (at_outside <= 0 && at_inside > 0)
-          {
-            position = segment_root(outside, at_outside, inside, at_inside, along_piece);
-            piece = distance.closest(position, {}, p + 1e-6);
-            placed = std::abs(piece.distance - p) <= 1e-7;
-          }
-        }
-        if (!placed)
-        {
-          const double limit = p + 2.0 * spacing;
-          position = segment_root(outside, outside_value, inside, inside_value, [&](const Vec& x) {
-            return distance.closest(x, {}, limit).distance - p;
-          });
-          piece = distance.closest(position, {}, limit);
-        }
-        ContourVertex vertex;
-        vertex.position = position;
-        const Vec towards_probe = piece.point - position;
-        vertex.normal = towards_probe.norm() > 0 ? Vec(towards_probe.normalized()) : Vec::UnitZ();
-        vertex.piece = piece.index;
-        // The atom: the face's own, else the one whose surface is nearest.
-        std::array<std::uint32_t, 3> candidates{};
-        int candidate_count = 0;
-        switch (piece.kind)
-        {
-          case PieceKind::Arc:
-            vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Toroidal);
-            candidates = { boundary.arcs[piece.index].first, boundary.arcs[piece.index].second, 0 };
-            candidate_count = 2;
-            break;
-          case PieceKind::Vertex:
-            vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Concave);
-            candidates = boundary.vertices[piece.index].spheres;
-            candidate_count = 3;
-            break;
-          default:
-            vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Convex);
-            candidates = { piece.index, 0, 0 };
-            candidate_count = 1;
-        }
-        double nearest = 1e300;
-        for (int c = 0; c < candidate_count; ++c)
-        {
-          const double gap = (position - centres[candidates[c]]).norm() - atom_radii[candidates[c]];
-          if (gap < nearest)
-          {
-            nearest = gap;
-            vertex.atom = static_cast<std::int32_t>(candidates[c]);
-          }
-        }
-        return vertex;
+      field.local = [&, value_limit] {
+        return excluded_surface_field(distance, boundary, centres, atom_radii, p, value_limit);
       };
     }
     else
     {
-      field.value = depth;
-      field.empty = [&](const Vec& x, double r) {
-        if (!occupancy.any(x, r))
-        {
-          return true;
-        }
-        const double d = distance.union_depth(x);
-        return d > r || (r <= outside_range && d < -r);
-      };
-      field.vertex = [&](const Vec& outside, double outside_value, const Vec& inside,
-                         double inside_value) {
-        ContourVertex vertex;
-        vertex.position = segment_root(outside, outside_value, inside, inside_value, depth);
-        std::uint32_t sphere = 0;
-        distance.union_depth(vertex.position, &sphere);
-        vertex.normal = (vertex.position - centres[sphere]).normalized();
-        vertex.atom = static_cast<std::int32_t>(sphere);
-        vertex.piece = sphere;
-        vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Convex);
-        return vertex;
-      };
+      field.local = [&] { return union_surface_field(distance, centres, radii); };
     }
     // The grid: the spheres' box with two cells to spare, shifted off any symmetry of the input.
     Vec low = Vec::Constant(1e300), high = -low;

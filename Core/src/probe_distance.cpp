@@ -33,6 +33,30 @@ void build_rows(std::size_t cell_count, std::vector<std::pair<std::int64_t, std:
     items[k] = pairs[k].second;
   }
 }
+/// How far from a ball's centre its points' nearest pieces may lie: a point lies within
+/// centre_distance + radius of the boundary (1-Lipschitz), and searches stop at the limit.
+/// Sorts pieces by distance; lists refined from a parent's come nearly sorted, where insertion
+/// is linear.
+void sort_nearly_sorted(std::vector<std::pair<double, std::uint32_t>>& pieces)
+{
+  for (std::size_t k = 1; k < pieces.size(); ++k)
+  {
+    const auto piece = pieces[k];
+    std::size_t j = k;
+    for (; j > 0 && piece < pieces[j - 1]; --j)
+    {
+      pieces[j] = pieces[j - 1];
+    }
+    pieces[j] = piece;
+  }
+}
+
+constexpr std::size_t max_holders = 128; // spheres holding one point: far fewer in practice
+
+double local_bound(const LocalPieces& local)
+{
+  return std::min(local.centre_distance + local.radius, local.limit) + local.radius;
+}
 } // namespace
 
 ProbeDistance::ProbeDistance(const std::vector<Vec>& centres, const std::vector<double>& radii,
@@ -102,6 +126,13 @@ ProbeDistance::ProbeDistance(const std::vector<Vec>& centres, const std::vector<
     }
   }
   this->arc_extent_ += 1e-9;
+  this->arc_ends_.reserve(boundary.arcs.size());
+  for (const SasArc& arc : boundary.arcs)
+  {
+    const double end = arc.start + arc.span;
+    this->arc_ends_.push_back(
+      { std::cos(arc.start), std::sin(arc.start), std::cos(end), std::sin(end) });
+  }
   {
     // Entries point at (arc, piece middle) pairs, in cell order.
     std::vector<std::pair<std::int64_t, std::uint32_t>> entries(pairs.size());
@@ -203,6 +234,284 @@ double ProbeDistance::union_depth(const Vec& x, std::uint32_t* sphere) const
   return depth;
 }
 
+bool ProbeDistance::exposed_projection(std::uint32_t i, const Vec& x, Vec& y) const
+{
+  const Vec offset = x - this->centres_[i];
+  const double length = offset.norm();
+  if (length == 0 || this->boundary_.area[i] <= 0)
+  {
+    return false;
+  }
+  y = this->centres_[i] + this->radii_[i] / length * offset;
+  for (const std::uint32_t j : this->boundary_.neighbours[i])
+  {
+    const double rj = this->radii_[j];
+    if ((y - this->centres_[j]).squaredNorm() < rj * rj * (1.0 - 1e-12))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool ProbeDistance::nearest_face(const Holder* holders, std::size_t holder_count, double deepest,
+                                 const Vec& x, ClosestPiece& best) const
+{
+  // Every sphere holding x lies inside the union, so the boundary is at least as far as that
+  // sphere's surface: the distance is at least the deepest holder's depth, a shallower holder's
+  // projection lies inside the deepest one, and the deepest's projection, when exposed, is the
+  // nearest boundary point. Holders as deep (to rounding) are tried too: the lowest index wins.
+  if (deepest >= best.distance)
+  {
+    return false;
+  }
+  std::uint32_t chosen = UINT32_MAX;
+  Vec chosen_point;
+  for (std::size_t k = 0; k < holder_count; ++k)
+  {
+    Vec y;
+    if (holders[k].depth >= deepest - 1e-12 && holders[k].sphere < chosen &&
+        this->exposed_projection(holders[k].sphere, x, y))
+    {
+      chosen = holders[k].sphere;
+      chosen_point = y;
+    }
+  }
+  if (chosen == UINT32_MAX)
+  {
+    return false;
+  }
+  best.distance = deepest;
+  best.point = chosen_point;
+  best.kind = PieceKind::Face;
+  best.index = chosen;
+  return true;
+}
+
+void ProbeDistance::try_arc(std::uint32_t k, const Vec& x, ClosestPiece& best) const
+{
+  const SasArc& arc = this->boundary_.arcs[k];
+  const Vec v = x - arc.centre;
+  const double along = v.dot(arc.axis);
+  const double a1 = v.dot(arc.e1), a2 = v.dot(arc.e2);
+  const double radial = std::sqrt(a1 * a1 + a2 * a2);
+  const double squared = along * along + (radial - arc.radius) * (radial - arc.radius);
+  if (squared >= best.distance * best.distance)
+  {
+    return;
+  }
+  Vec point;
+  if (radial > 1e-12)
+  {
+    // Within the exposed span, by the signs of cross products with its ends (no angles).
+    if (arc.span < two_pi)
+    {
+      const ArcEnds& ends = this->arc_ends_[k];
+      const bool after_start = ends.start_cos * a2 - ends.start_sin * a1 >= 0;
+      const bool before_end = a1 * ends.end_sin - a2 * ends.end_cos >= 0;
+      if (arc.span <= 0.5 * two_pi ? !(after_start && before_end) : !(after_start || before_end))
+      {
+        return; // nearest circle point not on the exposed arc: an end vertex is nearer
+      }
+    }
+    point = arc.centre + arc.radius / radial * (a1 * arc.e1 + a2 * arc.e2);
+  }
+  else
+  {
+    point = arc.point(arc.start); // on the axis: every circle point is as near
+  }
+  best.distance = std::sqrt(squared);
+  best.point = point;
+  best.kind = PieceKind::Arc;
+  best.index = k;
+}
+
+void ProbeDistance::spheres_near(const Vec& centre, double radius,
+                                 std::vector<std::uint32_t>& spheres) const
+{
+  this->for_cells(centre, this->largest_ + radius, this->sphere_start_, this->sphere_items_,
+                  [&](std::uint32_t i) {
+                    const double reach = this->radii_[i] + radius;
+                    if ((centre - this->centres_[i]).squaredNorm() < reach * reach)
+                    {
+                      spheres.push_back(i);
+                    }
+                  });
+}
+
+void ProbeDistance::gather(const Vec& centre, double radius, double limit, LocalPieces& local) const
+{
+  local.centre = centre;
+  local.radius = radius;
+  local.limit = limit;
+  local.spheres.clear();
+  local.arcs.clear();
+  local.vertices.clear();
+  local.centre_distance =
+    this->closest(centre, {}, std::min(limit + radius, this->reach_)).distance;
+  this->spheres_near(centre, radius, local.spheres);
+  const double bound = local_bound(local);
+  if (bound <= 0)
+  {
+    return; // the ball lies outside the union: spheres alone matter
+  }
+  std::uint32_t last_arc = UINT32_MAX;
+  this->for_cells(centre, bound + this->arc_extent_, this->arc_start_, this->arc_entries_,
+                  [&](std::uint32_t entry) {
+                    const double reach = bound + this->arc_extent_;
+                    const std::uint32_t k = this->arc_items_[entry];
+                    if (k != last_arc &&
+                        (centre - this->arc_piece_middle_[entry]).squaredNorm() < reach * reach)
+                    {
+                      last_arc = k;
+                      local.arcs.push_back({ 0.0, k });
+                    }
+                  });
+  std::sort(local.arcs.begin(), local.arcs.end(),
+            [](const auto& a, const auto& b) { return a.second < b.second; });
+  local.arcs.erase(std::unique(local.arcs.begin(), local.arcs.end(),
+                               [](const auto& a, const auto& b) { return a.second == b.second; }),
+                   local.arcs.end());
+  std::size_t kept = 0;
+  for (const auto& arc : local.arcs)
+  {
+    const double d = this->piece_distance(centre, PieceKind::Arc, arc.second);
+    if (d < bound)
+    {
+      local.arcs[kept++] = { d, arc.second };
+    }
+  }
+  local.arcs.resize(kept);
+  std::sort(local.arcs.begin(), local.arcs.end());
+  this->vertices_within(centre, bound, [&](std::uint32_t k) {
+    local.vertices.push_back({ (this->boundary_.vertices[k].position - centre).norm(), k });
+  });
+  std::sort(local.vertices.begin(), local.vertices.end());
+}
+
+void ProbeDistance::refine(const LocalPieces& parent, const Vec& centre, double radius,
+                           LocalPieces& local) const
+{
+  local.centre = centre;
+  local.radius = radius;
+  local.limit = parent.limit;
+  local.centre_distance = this->closest(parent, centre).distance;
+  local.spheres.clear();
+  for (const std::uint32_t i : parent.spheres)
+  {
+    const double reach = this->radii_[i] + radius;
+    if ((centre - this->centres_[i]).squaredNorm() < reach * reach)
+    {
+      local.spheres.push_back(i);
+    }
+  }
+  local.arcs.clear();
+  local.vertices.clear();
+  const double bound = local_bound(local);
+  if (bound <= 0)
+  {
+    return;
+  }
+  // Pieces within the bound of this centre lie within bound + offset of the parent's, and the
+  // parent's lists are sorted by that distance.
+  const double offset = (centre - parent.centre).norm();
+  for (const auto& arc : parent.arcs)
+  {
+    if (arc.first >= bound + offset)
+    {
+      break;
+    }
+    const double d = this->piece_distance(centre, PieceKind::Arc, arc.second);
+    if (d < bound)
+    {
+      local.arcs.push_back({ d, arc.second });
+    }
+  }
+  sort_nearly_sorted(local.arcs);
+  for (const auto& vertex : parent.vertices)
+  {
+    if (vertex.first >= bound + offset)
+    {
+      break;
+    }
+    const double d = (this->boundary_.vertices[vertex.second].position - centre).norm();
+    if (d < bound)
+    {
+      local.vertices.push_back({ d, vertex.second });
+    }
+  }
+  sort_nearly_sorted(local.vertices);
+}
+
+ClosestPiece ProbeDistance::closest(const LocalPieces& local, const Vec& x) const
+{
+  ClosestPiece best;
+  Holder holders[max_holders];
+  std::size_t holder_count = 0;
+  double deepest = -std::numeric_limits<double>::max();
+  std::uint32_t deepest_sphere = 0;
+  for (const std::uint32_t i : local.spheres)
+  {
+    const double d = this->radii_[i] - (x - this->centres_[i]).norm();
+    if (d > deepest || (d == deepest && i < deepest_sphere))
+    {
+      deepest = d;
+      deepest_sphere = i;
+    }
+    if (d > 0 && holder_count < max_holders)
+    {
+      holders[holder_count++] = { d, i };
+    }
+  }
+  if (deepest == -std::numeric_limits<double>::max())
+  {
+    best.distance = -this->reach_;
+    return best;
+  }
+  if (deepest <= 0)
+  {
+    const Vec& c = this->centres_[deepest_sphere];
+    best.distance = deepest;
+    best.point = c + this->radii_[deepest_sphere] * (x - c).normalized();
+    best.kind = PieceKind::Face;
+    best.index = deepest_sphere;
+    return best;
+  }
+  best.distance = local.limit;
+  if (this->nearest_face(holders, holder_count, deepest, x, best))
+  {
+    return best;
+  }
+  // Sorted by distance from the centre, which bounds each piece's from below: stop where the
+  // bound passes the best.
+  const double offset = (x - local.centre).norm();
+  for (const auto& arc : local.arcs)
+  {
+    if (arc.first - offset >= best.distance)
+    {
+      break;
+    }
+    this->try_arc(arc.second, x, best);
+  }
+  for (const auto& vertex : local.vertices)
+  {
+    if (vertex.first - offset >= best.distance)
+    {
+      break;
+    }
+    const std::uint32_t k = vertex.second;
+    const double distance = (x - this->boundary_.vertices[k].position).norm();
+    if (distance < best.distance)
+    {
+      best.distance = distance;
+      best.point = this->boundary_.vertices[k].position;
+      best.kind = PieceKind::Vertex;
+      best.index = k;
+    }
+  }
+  return best;
+}
+
 ClosestPiece ProbeDistance::closest(const Vec& x, const Filter& filter, double limit) const
 {
   using Mode = Filter::Mode;
@@ -212,14 +521,8 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Filter& filter, double l
       (filter.mode == Mode::ConcaveCutters && sphere == filter.atoms[2]);
   };
   ClosestPiece best;
-  // Spheres holding x, deepest last: the nearest exposed face point is the radial projection
-  // onto the least deep one whose projection no neighbour covers.
-  struct Holder
-  {
-    double depth;
-    std::uint32_t sphere;
-  };
-  Holder holders[128];
+  // Spheres holding x: only the deepest can carry the nearest face point (see nearest_face).
+  Holder holders[max_holders];
   std::size_t holder_count = 0;
   double deepest = -std::numeric_limits<double>::max();
   std::uint32_t deepest_sphere = 0;
@@ -234,12 +537,12 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Filter& filter, double l
                     }
                     inside = true;
                     const double d = r - std::sqrt(squared);
-                    if (d > deepest)
+                    if (d > deepest || (d == deepest && i < deepest_sphere))
                     {
                       deepest = d;
                       deepest_sphere = i;
                     }
-                    if (d < this->reach_ && holder_count < 128)
+                    if (holder_count < max_holders)
                     {
                       holders[holder_count++] = { d, i };
                     }
@@ -275,102 +578,39 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Filter& filter, double l
     return best;
   }
   best.distance = limit > 0 ? std::min(limit, this->reach_) : this->reach_;
-  std::sort(holders, holders + holder_count, [](const Holder& a, const Holder& b) {
-    return a.depth < b.depth || (a.depth == b.depth && a.sphere < b.sphere);
-  });
-  for (std::size_t k = 0; k < holder_count; ++k)
+  // No face cuts a torus or concave patch.
+  if (!filtered && this->nearest_face(holders, holder_count, deepest, x, best))
   {
-    if (holders[k].depth >= best.distance)
-    {
-      break; // sorted: no nearer face follows
-    }
-    const std::uint32_t i = holders[k].sphere;
-    if (filtered)
-    {
-      break; // no face cuts a torus or concave patch
-    }
-    const Vec offset = x - this->centres_[i];
-    const double length = offset.norm();
-    if (length == 0)
-    {
-      continue;
-    }
-    const Vec y = this->centres_[i] + this->radii_[i] / length * offset;
-    bool covered = this->boundary_.area[i] <= 0;
-    for (const std::uint32_t j : this->boundary_.neighbours[i])
-    {
-      const double rj = this->radii_[j];
-      if ((y - this->centres_[j]).squaredNorm() < rj * rj * (1.0 - 1e-12))
-      {
-        covered = true;
-        break;
-      }
-    }
-    if (!covered)
-    {
-      best.distance = holders[k].depth;
-      best.point = y;
-      best.kind = PieceKind::Face;
-      best.index = i;
-      break;
-    }
+    return best;
   }
   std::uint32_t last_arc = UINT32_MAX;
-  this->for_cells(
-    x, best.distance + this->arc_extent_, this->arc_start_, this->arc_entries_,
-    [&](std::uint32_t entry) {
-      // A piece whose bounding ball lies beyond the best so far is skipped cheaply.
-      const double reach = best.distance + this->arc_extent_;
-      if ((x - this->arc_piece_middle_[entry]).squaredNorm() >= reach * reach)
-      {
-        return;
-      }
-      const std::uint32_t k = this->arc_items_[entry];
-      if (k == last_arc)
-      {
-        return; // the next piece of the same arc
-      }
-      last_arc = k;
-      const SasArc& arc = this->boundary_.arcs[k];
-      if (filtered)
-      {
-        const bool first = has(arc.first), second = has(arc.second);
-        const bool pinched_pair =
-          filter.mode == Mode::ConcaveCutters && first && second && arc.radius < filter.probe;
-        if ((first || second) && !pinched_pair)
-        {
-          return;
-        }
-      }
-      const Vec v = x - arc.centre;
-      const double along = v.dot(arc.axis);
-      const Vec across = v - along * arc.axis;
-      const double radial = across.norm();
-      const double distance =
-        std::sqrt(along * along + (radial - arc.radius) * (radial - arc.radius));
-      if (distance >= best.distance)
-      {
-        return;
-      }
-      double azimuth = arc.start;
-      if (radial > 1e-12)
-      {
-        azimuth = std::atan2(across.dot(arc.e2), across.dot(arc.e1));
-        double offset = std::fmod(azimuth - arc.start, two_pi);
-        if (offset < 0)
-        {
-          offset += two_pi;
-        }
-        if (offset > arc.span)
-        {
-          return; // nearest circle point not on the exposed arc: an end vertex is nearer
-        }
-      }
-      best.distance = distance;
-      best.point = arc.point(azimuth);
-      best.kind = PieceKind::Arc;
-      best.index = k;
-    });
+  this->for_cells(x, best.distance + this->arc_extent_, this->arc_start_, this->arc_entries_,
+                  [&](std::uint32_t entry) {
+                    // A piece whose bounding ball lies beyond the best so far is skipped cheaply.
+                    const double reach = best.distance + this->arc_extent_;
+                    if ((x - this->arc_piece_middle_[entry]).squaredNorm() >= reach * reach)
+                    {
+                      return;
+                    }
+                    const std::uint32_t k = this->arc_items_[entry];
+                    if (k == last_arc)
+                    {
+                      return; // the next piece of the same arc
+                    }
+                    last_arc = k;
+                    const SasArc& arc = this->boundary_.arcs[k];
+                    if (filtered)
+                    {
+                      const bool first = has(arc.first), second = has(arc.second);
+                      const bool pinched_pair = filter.mode == Mode::ConcaveCutters && first &&
+                        second && arc.radius < filter.probe;
+                      if ((first || second) && !pinched_pair)
+                      {
+                        return;
+                      }
+                    }
+                    this->try_arc(k, x, best);
+                  });
   this->for_cells(x, best.distance, this->vertex_start_, this->vertex_items_, [&](std::uint32_t k) {
     const double distance = (x - this->boundary_.vertices[k].position).norm();
     const auto& spheres = this->boundary_.vertices[k].spheres;

@@ -13,6 +13,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <utility>
 #include <vector>
 
 namespace mesolens {
@@ -52,6 +53,21 @@ struct PieceFilter
   double probe = 0;
 };
 
+/// The pieces that may be nearest to some point of a ball: gathered once, they let many queries
+/// inside the ball look at a handful of pieces instead of the index.
+struct LocalPieces
+{
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double radius = 0; ///< of the ball, Å
+  double limit = 0;  ///< queries are exact up to this distance inside the union
+  /// Signed distance from the centre to the boundary (capped at limit + radius).
+  double centre_distance = 0;
+  std::vector<std::uint32_t> spheres; ///< those that may hold a point of the ball
+  /// Arcs and vertices that may be nearest to a point of the ball: (distance from the centre
+  /// to the arc's whole circle or to the vertex, index), nearest first.
+  std::vector<std::pair<double, std::uint32_t>> arcs, vertices;
+};
+
 /// Distance queries against the boundary of spheres `centres` with radii `radii` (those of
 /// `boundary`, built with its pieces). Queries are exact within `reach` of the boundary and
 /// may run concurrently.
@@ -72,6 +88,25 @@ public:
   /// `limit` (<= the reach; 0: the reach) bounds the search inside the union: pieces farther
   /// are not looked for, and the distance reported is then the limit (PieceKind::None).
   ClosestPiece closest(const Eigen::Vector3d& x, const Filter& filter = {}, double limit = 0) const;
+
+  /// The pieces that may be nearest to a point within `radius` (> 0) of `centre`, for searches
+  /// up to `limit` (<= the reach) inside the union, into `local` (its buffers are reused).
+  void gather(const Eigen::Vector3d& centre, double radius, double limit, LocalPieces& local) const;
+
+  /// gather() for a ball inside the ball of `parent`, from the parent's pieces alone.
+  void refine(const LocalPieces& parent, const Eigen::Vector3d& centre, double radius,
+              LocalPieces& local) const;
+
+  /// The spheres that may hold a point within `radius` of `centre` (|c - centre| < R + radius),
+  /// appended to `spheres`.
+  void spheres_near(const Eigen::Vector3d& centre, double radius,
+                    std::vector<std::uint32_t>& spheres) const;
+
+  /// closest() for a point within `local.radius` of its centre, among the gathered pieces
+  /// alone: the same answer up to `local.limit` inside the union and outside it. Spheres that do
+  /// not reach the ball give no outside distance: there it may be more negative than the exact
+  /// one (the sign is right).
+  ClosestPiece closest(const LocalPieces& local, const Eigen::Vector3d& x) const;
 
   /// Width of the index cells: union_depth() is exact outside the union up to this width less
   /// the largest radius.
@@ -99,6 +134,25 @@ private:
   void for_cells(const Eigen::Vector3d& x, double radius, const std::vector<std::uint32_t>& starts,
                  const std::vector<std::uint32_t>& items, Visit&& visit) const;
   std::int64_t cell_of(const Eigen::Vector3d& x, std::array<std::int64_t, 3>& ijk) const;
+  struct Holder
+  {
+    double depth; ///< R - |x - c| > 0
+    std::uint32_t sphere;
+  };
+  /// When the nearest boundary point of `x` is on a face (the projection onto the deepest of
+  /// the spheres holding it, `deepest` deep) nearer than `best`: sets `best`, true.
+  bool nearest_face(const Holder* holders, std::size_t holder_count, double deepest,
+                    const Eigen::Vector3d& x, ClosestPiece& best) const;
+  /// The radial projection of `x` onto sphere `i`, when no other sphere covers it.
+  bool exposed_projection(std::uint32_t i, const Eigen::Vector3d& x, Eigen::Vector3d& y) const;
+  /// Arc `k` as the nearest piece when nearer than `best.distance`: updates `best`.
+  void try_arc(std::uint32_t k, const Eigen::Vector3d& x, ClosestPiece& best) const;
+
+  /// Per arc: cosine and sine of its start and end azimuths, for the span test.
+  struct ArcEnds
+  {
+    double start_cos, start_sin, end_cos, end_sin;
+  };
 
   const std::vector<Eigen::Vector3d>& centres_;
   const std::vector<double>& radii_;
@@ -117,6 +171,7 @@ private:
   std::vector<std::uint32_t> arc_items_;               ///< per entry, the arc
   std::vector<Eigen::Vector3d> arc_piece_middle_;      ///< per entry, its piece's middle
   std::vector<std::uint32_t> vertex_start_, vertex_items_;
+  std::vector<ArcEnds> arc_ends_;
 };
 
 } // namespace mesolens

@@ -1,0 +1,286 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <Eigen/Dense>
+
+#include "surface_contour_fields.h"
+
+#include "mesolens/molecular_surface.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace mesolens {
+
+namespace {
+using Vec = Eigen::Vector3d;
+
+/// The root of `value` on the segment from a (value <= 0) to b (value > 0), by the Illinois
+/// variant of regula falsi, to 1e-9 Å, kept 1e-5 of the segment from either end (so no triangle
+/// degenerates where the surface passes through a grid point).
+template<typename Value>
+Vec segment_root(const Vec& a, double value_a, const Vec& b, double value_b, Value&& value)
+{
+  double t0 = 0, t1 = 1, f0 = value_a, f1 = value_b;
+  const double length = (b - a).norm();
+  int side = 0;
+  double t = f0 / (f0 - f1);
+  for (int iteration = 0; iteration < 60 && (t1 - t0) * length > 1e-9; ++iteration)
+  {
+    t = (t0 * f1 - t1 * f0) / (f1 - f0);
+    const double f = value(a + t * (b - a));
+    if (f == 0)
+    {
+      break;
+    }
+    if (f < 0)
+    {
+      t0 = t;
+      f0 = f;
+      if (side == -1)
+      {
+        f1 *= 0.5;
+      }
+      side = -1;
+    }
+    else
+    {
+      t1 = t;
+      f1 = f;
+      if (side == 1)
+      {
+        f0 *= 0.5;
+      }
+      side = 1;
+    }
+  }
+  // Never exactly at a grid point: vertices of different edges stay apart.
+  t = std::clamp(t, 1e-5, 1.0 - 1e-5);
+  return a + t * (b - a);
+}
+
+class ExcludedSurfaceField final : public LocalContourField
+{
+public:
+  ExcludedSurfaceField(const ProbeDistance& distance, const SasBoundary& boundary,
+                       const std::vector<Vec>& centres, const std::vector<double>& atom_radii,
+                       double probe, double limit)
+    : distance_(distance)
+    , boundary_(boundary)
+    , centres_(centres)
+    , atom_radii_(atom_radii)
+    , probe_(probe)
+    , limit_(limit)
+  {
+  }
+
+  bool focus(int level, const Vec& centre, double radius) override
+  {
+    if (static_cast<std::size_t>(level) >= this->levels_.size())
+    {
+      this->levels_.resize(static_cast<std::size_t>(level) + 1);
+    }
+    LocalPieces& local = this->levels_[static_cast<std::size_t>(level)];
+    if (level == 0)
+    {
+      this->distance_.gather(centre, radius, this->limit_, local);
+    }
+    else
+    {
+      this->distance_.refine(this->levels_[static_cast<std::size_t>(level) - 1], centre, radius,
+                             local);
+    }
+    this->local_ = &local;
+    return std::abs(local.centre_distance - this->probe_) <= radius;
+  }
+
+  double value(const Vec& x) override
+  {
+    return this->distance_.closest(*this->local_, x).distance - this->probe_;
+  }
+
+  ContourVertex vertex(const Vec& outside, double outside_value, const Vec& inside,
+                       double inside_value) override
+  {
+    const double p = this->probe_;
+    // The root along the grid edge itself: vertices kept on their edges cannot fold triangles
+    // over one another, even at the surface's creases. First along the piece nearest the
+    // linear guess alone (cheapest), kept when the full field agrees there.
+    const Vec guess = outside + outside_value / (outside_value - inside_value) * (inside - outside);
+    const ClosestPiece near_guess = this->distance_.closest(*this->local_, guess);
+    Vec position = guess;
+    ClosestPiece piece;
+    bool placed = false;
+    if (near_guess.kind != PieceKind::None && near_guess.distance > 0)
+    {
+      const auto along_piece = [&](const Vec& x) {
+        return this->distance_.piece_distance(x, near_guess.kind, near_guess.index) - p;
+      };
+      const double at_outside = along_piece(outside), at_inside = along_piece(inside);
+      if (at_outside <= 0 && at_inside > 0)
+      {
+        position = segment_root(outside, at_outside, inside, at_inside, along_piece);
+        piece = this->distance_.closest(*this->local_, position);
+        placed = std::abs(piece.distance - p) <= 1e-7;
+      }
+    }
+    if (!placed)
+    {
+      position = segment_root(outside, outside_value, inside, inside_value,
+                              [&](const Vec& x) { return this->value(x); });
+      piece = this->distance_.closest(*this->local_, position);
+    }
+    ContourVertex vertex;
+    vertex.position = position;
+    const Vec towards_probe = piece.point - position;
+    vertex.normal = towards_probe.norm() > 0 ? Vec(towards_probe.normalized()) : Vec::UnitZ();
+    vertex.piece = piece.index;
+    // The atom: the face's own, else the one whose surface is nearest.
+    std::array<std::uint32_t, 3> candidates{};
+    int candidate_count = 0;
+    switch (piece.kind)
+    {
+      case PieceKind::Arc:
+        vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Toroidal);
+        candidates = { this->boundary_.arcs[piece.index].first,
+                       this->boundary_.arcs[piece.index].second, 0 };
+        candidate_count = 2;
+        break;
+      case PieceKind::Vertex:
+        vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Concave);
+        candidates = this->boundary_.vertices[piece.index].spheres;
+        candidate_count = 3;
+        break;
+      default:
+        vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Convex);
+        candidates = { piece.index, 0, 0 };
+        candidate_count = 1;
+    }
+    double nearest = 1e300;
+    for (int c = 0; c < candidate_count; ++c)
+    {
+      const double gap =
+        (position - this->centres_[candidates[c]]).norm() - this->atom_radii_[candidates[c]];
+      if (gap < nearest)
+      {
+        nearest = gap;
+        vertex.atom = static_cast<std::int32_t>(candidates[c]);
+      }
+    }
+    return vertex;
+  }
+
+private:
+  const ProbeDistance& distance_;
+  const SasBoundary& boundary_;
+  const std::vector<Vec>& centres_;
+  const std::vector<double>& atom_radii_;
+  double probe_, limit_;
+  std::vector<LocalPieces> levels_;    ///< per octree level, the pieces of its last focus
+  const LocalPieces* local_ = nullptr; ///< the last focus
+};
+
+class UnionSurfaceField final : public LocalContourField
+{
+public:
+  UnionSurfaceField(const ProbeDistance& distance, const std::vector<Vec>& centres,
+                    const std::vector<double>& radii)
+    : distance_(distance)
+    , centres_(centres)
+    , radii_(radii)
+  {
+  }
+
+  bool focus(int level, const Vec& centre, double radius) override
+  {
+    if (static_cast<std::size_t>(level) >= this->levels_.size())
+    {
+      this->levels_.resize(static_cast<std::size_t>(level) + 1);
+    }
+    std::vector<std::uint32_t>& spheres = this->levels_[static_cast<std::size_t>(level)];
+    spheres.clear();
+    if (level == 0)
+    {
+      this->distance_.spheres_near(centre, radius, spheres);
+    }
+    else
+    {
+      for (const std::uint32_t i : this->levels_[static_cast<std::size_t>(level) - 1])
+      {
+        const double reach = this->radii_[i] + radius;
+        if ((centre - this->centres_[i]).squaredNorm() < reach * reach)
+        {
+          spheres.push_back(i);
+        }
+      }
+    }
+    this->spheres_ = &spheres;
+    // Every sphere reaching the ball is here, so the depth at the centre is exact where it
+    // matters (above -radius).
+    return std::abs(this->depth(centre)) <= radius;
+  }
+
+  double value(const Vec& x) override
+  {
+    return this->depth(x);
+  }
+
+  ContourVertex vertex(const Vec& outside, double outside_value, const Vec& inside,
+                       double inside_value) override
+  {
+    ContourVertex vertex;
+    vertex.position = segment_root(outside, outside_value, inside, inside_value,
+                                   [&](const Vec& x) { return this->depth(x); });
+    std::uint32_t sphere = 0;
+    this->depth(vertex.position, &sphere);
+    vertex.normal = (vertex.position - this->centres_[sphere]).normalized();
+    vertex.atom = static_cast<std::int32_t>(sphere);
+    vertex.piece = sphere;
+    vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Convex);
+    return vertex;
+  }
+
+private:
+  double depth(const Vec& x, std::uint32_t* deepest = nullptr) const
+  {
+    double best = -1e300;
+    for (const std::uint32_t i : *this->spheres_)
+    {
+      const double d = this->radii_[i] - (x - this->centres_[i]).norm();
+      if (d > best)
+      {
+        best = d;
+        if (deepest)
+        {
+          *deepest = i;
+        }
+      }
+    }
+    return best;
+  }
+
+  const ProbeDistance& distance_;
+  const std::vector<Vec>& centres_;
+  const std::vector<double>& radii_;
+  std::vector<std::vector<std::uint32_t>> levels_; ///< per octree level, its last focus's
+  const std::vector<std::uint32_t>* spheres_ = nullptr;
+};
+} // namespace
+
+std::unique_ptr<LocalContourField> excluded_surface_field(const ProbeDistance& distance,
+                                                          const SasBoundary& boundary,
+                                                          const std::vector<Vec>& centres,
+                                                          const std::vector<double>& atom_radii,
+                                                          double probe, double limit)
+{
+  return std::make_unique<ExcludedSurfaceField>(distance, boundary, centres, atom_radii, probe,
+                                                limit);
+}
+
+std::unique_ptr<LocalContourField> union_surface_field(const ProbeDistance& distance,
+                                                       const std::vector<Vec>& centres,
+                                                       const std::vector<double>& radii)
+{
+  return std::make_unique<UnionSurfaceField>(distance, centres, radii);
+}
+
+} // namespace mesolens

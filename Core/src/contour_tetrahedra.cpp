@@ -7,7 +7,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
 namespace mesolens {
 
@@ -57,10 +56,13 @@ int pair_order(int a, int b, int order[4])
   return k;
 }
 
+/// What one block made: its vertices (with the grid key of their edge) and its triangles as
+/// indices into them.
 struct BlockOutput
 {
-  std::vector<std::pair<std::uint64_t, ContourVertex>> vertices;
-  std::vector<std::array<std::uint64_t, 3>> triangles;
+  std::vector<ContourVertex> vertices;
+  std::vector<std::uint64_t> keys;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
 };
 } // namespace
 
@@ -119,7 +121,8 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
       return v;
     };
     BlockOutput& out = outputs[b];
-    std::unordered_map<std::uint64_t, char> made;
+    // Per block point and Kuhn direction (1 to 7), the index of the vertex on that edge.
+    std::vector<std::int32_t> made(std::size_t(side * side * side * 8), -1);
     const auto contour_cell = [&](const std::array<std::int64_t, 3>& cell) {
       std::array<double, 8> corner_value{};
       std::array<Vec, 8> corner_position;
@@ -134,19 +137,20 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
         // Kuhn edges join a corner to one whose bits include its own: key by the lower corner
         // and the offset.
         const int from = std::min(a, b), to = std::max(a, b);
-        const std::uint64_t key = point_key(cell[0] + (from & 1), cell[1] + ((from >> 1) & 1),
-                                            cell[2] + ((from >> 2) & 1)) *
-            8 +
-          std::uint64_t(to ^ from);
-        if (made.emplace(key, 1).second)
+        const std::int64_t x = cell[0] + (from & 1), y = cell[1] + ((from >> 1) & 1),
+                           z = cell[2] + ((from >> 2) & 1);
+        std::int32_t& index =
+          made[std::size_t(8 * ((x - x0) + side * ((y - y0) + side * (z - z0))) + (to ^ from))];
+        if (index < 0)
         {
           const int outside = corner_value[a] > 0 ? b : a;
           const int inside = corner_value[a] > 0 ? a : b;
-          out.vertices.emplace_back(key,
-                                    local->vertex(corner_position[outside], corner_value[outside],
-                                                  corner_position[inside], corner_value[inside]));
+          index = static_cast<std::int32_t>(out.vertices.size());
+          out.vertices.push_back(local->vertex(corner_position[outside], corner_value[outside],
+                                               corner_position[inside], corner_value[inside]));
+          out.keys.push_back(point_key(x, y, z) * 8 + std::uint64_t(to ^ from));
         }
-        return key;
+        return static_cast<std::uint32_t>(index);
       };
       for (const auto& tet : tets)
       {
@@ -197,7 +201,7 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
         int order[4];
         pair_order(pair[0], pair[1], order);
         const int a = tet[order[0]], b = tet[order[1]], c = tet[order[2]], d = tet[order[3]];
-        const std::uint64_t ac = edge(a, c), ad = edge(a, d), bd = edge(b, d), bc = edge(b, c);
+        const std::uint32_t ac = edge(a, c), ad = edge(a, d), bd = edge(b, d), bc = edge(b, c);
         out.triangles.push_back({ ac, ad, bd });
         out.triangles.push_back({ ac, bd, bc });
       }
@@ -250,42 +254,53 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
     }
   }
 
-  // One vertex per edge key (blocks share their faces' edges), ordered by key.
-  std::vector<std::pair<std::uint64_t, ContourVertex>> all;
-  std::size_t triangle_count = 0;
-  for (BlockOutput& out : outputs)
+  // One vertex per edge key (blocks share their faces' edges): the first block's, and vertices
+  // ordered by key.
+  struct Entry
   {
-    all.insert(all.end(), out.vertices.begin(), out.vertices.end());
-    triangle_count += out.triangles.size();
-    out.vertices.clear();
-    out.vertices.shrink_to_fit();
-  }
-  std::stable_sort(all.begin(), all.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
-  all.erase(std::unique(all.begin(), all.end(),
-                        [](const auto& a, const auto& b) { return a.first == b.first; }),
-            all.end());
-  std::vector<std::uint64_t> keys(all.size());
-  mesh.vertices.resize(all.size());
-  for (std::size_t k = 0; k < all.size(); ++k)
-  {
-    keys[k] = all[k].first;
-    mesh.vertices[k] = all[k].second;
-  }
-  const auto index_of = [&](std::uint64_t key) {
-    return static_cast<std::int64_t>(std::lower_bound(keys.begin(), keys.end(), key) -
-                                     keys.begin());
+    std::uint64_t key;
+    std::uint32_t block, index;
   };
-  mesh.triangles.reserve(3 * triangle_count);
-  for (const BlockOutput& out : outputs)
+  std::vector<Entry> entries;
+  std::size_t triangle_count = 0;
+  for (std::size_t b = 0; b < block_count; ++b)
   {
-    for (const auto& triangle : out.triangles)
+    for (std::size_t k = 0; k < outputs[b].keys.size(); ++k)
     {
-      for (const std::uint64_t key : triangle)
+      entries.push_back(
+        { outputs[b].keys[k], static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(k) });
+    }
+    triangle_count += outputs[b].triangles.size();
+  }
+  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
+    return a.key < b.key || (a.key == b.key && a.block < b.block);
+  });
+  std::vector<std::vector<std::int64_t>> global(block_count);
+  for (std::size_t b = 0; b < block_count; ++b)
+  {
+    global[b].resize(outputs[b].keys.size());
+  }
+  for (std::size_t e = 0; e < entries.size(); ++e)
+  {
+    if (e == 0 || entries[e].key != entries[e - 1].key)
+    {
+      mesh.vertices.push_back(outputs[entries[e].block].vertices[entries[e].index]);
+    }
+    global[entries[e].block][entries[e].index] =
+      static_cast<std::int64_t>(mesh.vertices.size()) - 1;
+  }
+  entries = {};
+  mesh.triangles.reserve(3 * triangle_count);
+  for (std::size_t b = 0; b < block_count; ++b)
+  {
+    for (const auto& triangle : outputs[b].triangles)
+    {
+      for (const std::uint32_t v : triangle)
       {
-        mesh.triangles.push_back(index_of(key));
+        mesh.triangles.push_back(global[b][v]);
       }
     }
+    outputs[b] = {};
   }
   return mesh;
 }

@@ -51,6 +51,33 @@ void sort_nearly_sorted(std::vector<std::pair<double, std::uint32_t>>& pieces)
   }
 }
 
+/// Whether a filtered query looks at an arc or a vertex (see PieceFilter).
+bool has_atom(const PieceFilter& filter, std::uint32_t sphere)
+{
+  return sphere == filter.atoms[0] || sphere == filter.atoms[1] ||
+    (filter.mode == PieceFilter::Mode::ConcaveCutters && sphere == filter.atoms[2]);
+}
+
+bool admits_arc(const PieceFilter& filter, const SasArc& arc)
+{
+  if (filter.mode == PieceFilter::Mode::All)
+  {
+    return true;
+  }
+  const bool first = has_atom(filter, arc.first), second = has_atom(filter, arc.second);
+  const bool pinched_pair = filter.mode == PieceFilter::Mode::ConcaveCutters && first && second &&
+    arc.radius < filter.probe;
+  return !(first || second) || pinched_pair;
+}
+
+bool admits_vertex(const PieceFilter& filter, const SasVertex& vertex)
+{
+  const auto& spheres = vertex.spheres;
+  return filter.mode == PieceFilter::Mode::All ||
+    (filter.mode == PieceFilter::Mode::TorusCutters && !has_atom(filter, spheres[0]) &&
+     !has_atom(filter, spheres[1]) && !has_atom(filter, spheres[2]));
+}
+
 constexpr std::size_t max_holders = 128; // spheres holding one point: far fewer in practice
 
 double local_bound(const LocalPieces& local)
@@ -339,7 +366,8 @@ void ProbeDistance::spheres_near(const Vec& centre, double radius,
                   });
 }
 
-void ProbeDistance::gather(const Vec& centre, double radius, double limit, LocalPieces& local) const
+void ProbeDistance::gather(const Vec& centre, double radius, double limit, LocalPieces& local,
+                           bool for_filters) const
 {
   local.centre = centre;
   local.radius = radius;
@@ -350,7 +378,8 @@ void ProbeDistance::gather(const Vec& centre, double radius, double limit, Local
   local.centre_distance =
     this->closest(centre, {}, std::min(limit + radius, this->reach_)).distance;
   this->spheres_near(centre, radius, local.spheres);
-  const double bound = local_bound(local);
+  // Filtered queries skip the nearest pieces: every piece within the limit counts for them.
+  const double bound = for_filters ? limit + radius : local_bound(local);
   if (bound <= 0)
   {
     return; // the ball lies outside the union: spheres alone matter
@@ -443,8 +472,15 @@ void ProbeDistance::refine(const LocalPieces& parent, const Vec& centre, double 
   sort_nearly_sorted(local.vertices);
 }
 
-ClosestPiece ProbeDistance::closest(const LocalPieces& local, const Vec& x) const
+ClosestPiece ProbeDistance::closest(const LocalPieces& local, const Vec& x, const Filter& filter,
+                                    double limit) const
 {
+  limit = limit > 0 ? std::min(limit, local.limit) : local.limit;
+  if ((x - local.centre).squaredNorm() > local.radius * local.radius)
+  {
+    return this->closest(x, filter, limit); // outside the ball: the index decides
+  }
+  const bool filtered = filter.mode != Filter::Mode::All;
   ClosestPiece best;
   Holder holders[max_holders];
   std::size_t holder_count = 0;
@@ -468,7 +504,7 @@ ClosestPiece ProbeDistance::closest(const LocalPieces& local, const Vec& x) cons
     best.distance = -this->reach_;
     return best;
   }
-  if (deepest <= 0)
+  if (deepest <= 0 && !(filtered && deepest > -1e-9)) // as in the index's closest()
   {
     const Vec& c = this->centres_[deepest_sphere];
     best.distance = deepest;
@@ -477,8 +513,8 @@ ClosestPiece ProbeDistance::closest(const LocalPieces& local, const Vec& x) cons
     best.index = deepest_sphere;
     return best;
   }
-  best.distance = local.limit;
-  if (this->nearest_face(holders, holder_count, deepest, x, best))
+  best.distance = limit;
+  if (!filtered && this->nearest_face(holders, holder_count, deepest, x, best))
   {
     return best;
   }
@@ -491,7 +527,10 @@ ClosestPiece ProbeDistance::closest(const LocalPieces& local, const Vec& x) cons
     {
       break;
     }
-    this->try_arc(arc.second, x, best);
+    if (!filtered || admits_arc(filter, this->boundary_.arcs[arc.second]))
+    {
+      this->try_arc(arc.second, x, best);
+    }
   }
   for (const auto& vertex : local.vertices)
   {
@@ -501,7 +540,8 @@ ClosestPiece ProbeDistance::closest(const LocalPieces& local, const Vec& x) cons
     }
     const std::uint32_t k = vertex.second;
     const double distance = (x - this->boundary_.vertices[k].position).norm();
-    if (distance < best.distance)
+    if (distance < best.distance &&
+        (!filtered || admits_vertex(filter, this->boundary_.vertices[k])))
     {
       best.distance = distance;
       best.point = this->boundary_.vertices[k].position;
@@ -514,12 +554,7 @@ ClosestPiece ProbeDistance::closest(const LocalPieces& local, const Vec& x) cons
 
 ClosestPiece ProbeDistance::closest(const Vec& x, const Filter& filter, double limit) const
 {
-  using Mode = Filter::Mode;
-  const bool filtered = filter.mode != Mode::All;
-  const auto has = [&](std::uint32_t sphere) {
-    return sphere == filter.atoms[0] || sphere == filter.atoms[1] ||
-      (filter.mode == Mode::ConcaveCutters && sphere == filter.atoms[2]);
-  };
+  const bool filtered = filter.mode != Filter::Mode::All;
   ClosestPiece best;
   // Spheres holding x: only the deepest can carry the nearest face point (see nearest_face).
   Holder holders[max_holders];
@@ -598,26 +633,14 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Filter& filter, double l
                       return; // the next piece of the same arc
                     }
                     last_arc = k;
-                    const SasArc& arc = this->boundary_.arcs[k];
-                    if (filtered)
+                    if (admits_arc(filter, this->boundary_.arcs[k]))
                     {
-                      const bool first = has(arc.first), second = has(arc.second);
-                      const bool pinched_pair = filter.mode == Mode::ConcaveCutters && first &&
-                        second && arc.radius < filter.probe;
-                      if ((first || second) && !pinched_pair)
-                      {
-                        return;
-                      }
+                      this->try_arc(k, x, best);
                     }
-                    this->try_arc(k, x, best);
                   });
   this->for_cells(x, best.distance, this->vertex_start_, this->vertex_items_, [&](std::uint32_t k) {
     const double distance = (x - this->boundary_.vertices[k].position).norm();
-    const auto& spheres = this->boundary_.vertices[k].spheres;
-    if (distance < best.distance &&
-        !(filter.mode == Mode::ConcaveCutters ||
-          (filter.mode == Mode::TorusCutters &&
-           (has(spheres[0]) || has(spheres[1]) || has(spheres[2])))))
+    if (distance < best.distance && admits_vertex(filter, this->boundary_.vertices[k]))
     {
       best.distance = distance;
       best.point = this->boundary_.vertices[k].position;

@@ -90,8 +90,10 @@ public:
   ClosestPiece closest(const Eigen::Vector3d& x, const Filter& filter = {}, double limit = 0) const;
 
   /// The pieces that may be nearest to a point within `radius` (> 0) of `centre`, for searches
-  /// up to `limit` (<= the reach) inside the union, into `local` (its buffers are reused).
-  void gather(const Eigen::Vector3d& centre, double radius, double limit, LocalPieces& local) const;
+  /// up to `limit` (<= the reach) inside the union, into `local` (its buffers are reused). With
+  /// `for_filters`, every piece within the limit of the ball, as filtered queries need.
+  void gather(const Eigen::Vector3d& centre, double radius, double limit, LocalPieces& local,
+              bool for_filters = false) const;
 
   /// gather() for a ball inside the ball of `parent`, from the parent's pieces alone.
   void refine(const LocalPieces& parent, const Eigen::Vector3d& centre, double radius,
@@ -102,11 +104,14 @@ public:
   void spheres_near(const Eigen::Vector3d& centre, double radius,
                     std::vector<std::uint32_t>& spheres) const;
 
-  /// closest() for a point within `local.radius` of its centre, among the gathered pieces
-  /// alone: the same answer up to `local.limit` inside the union and outside it. Spheres that do
-  /// not reach the ball give no outside distance: there it may be more negative than the exact
-  /// one (the sign is right).
-  ClosestPiece closest(const LocalPieces& local, const Eigen::Vector3d& x) const;
+  /// closest() among the gathered pieces alone, for a point within `local.radius` of their
+  /// centre (farther points are answered from the index): the same answer up to `local.limit`
+  /// inside the union and outside it. Spheres that do not reach the ball give no outside
+  /// distance: there it may be more negative than the exact one (the sign is right). Filters
+  /// need pieces gathered for them. `limit` (0: the local limit) bounds the search as in the
+  /// index's closest().
+  ClosestPiece closest(const LocalPieces& local, const Eigen::Vector3d& x,
+                       const Filter& filter = {}, double limit = 0) const;
 
   /// Width of the index cells: union_depth() is exact outside the union up to this width less
   /// the largest radius.

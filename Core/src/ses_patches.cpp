@@ -105,18 +105,29 @@ struct Splitter
   const ProbeDistance* distance = nullptr;
   const ProbeDistance::Filter* foreign = nullptr;
   double probe = 0;
+  /// Once a patch needs splitting, the pieces around it (gathered for the filter), which every
+  /// query inside looks at instead of the index; null before.
+  const LocalPieces* local = nullptr;
+
+  ClosestPiece closest(const Vec& x, const ProbeDistance::Filter& filter, double limit) const
+  {
+    return this->local && limit <= this->local->limit
+      ? this->distance->closest(*this->local, x, filter, limit)
+      : this->distance->closest(x, filter, limit);
+  }
 
   /// -1 cut, +1 kept, 0 undecided, for a piece around `middle` reaching `size`.
   int decide(const Vec& middle, double size) const
   {
-    // Searches bounded by what each test needs.
+    // Searches bounded by what each test needs (the gathered pieces answer up to their limit,
+    // a little farther than some tests ask: the same verdicts).
     const double kept_limit = this->probe + size;
-    if (this->distance->closest(middle, *this->foreign, kept_limit).distance >= kept_limit)
+    if (this->closest(middle, *this->foreign, kept_limit).distance >= kept_limit)
     {
       return 1;
     }
     const double cut_limit = this->probe - size;
-    if (cut_limit > 0 && this->distance->closest(middle, {}, cut_limit).distance < cut_limit)
+    if (cut_limit > 0 && this->closest(middle, {}, cut_limit).distance < cut_limit)
     {
       return -1;
     }
@@ -126,7 +137,24 @@ struct Splitter
   /// Distance to the foreign positions less p (> 0: kept).
   double clearance(const Vec& x) const
   {
-    return this->distance->closest(x, *this->foreign, 2.0 * this->probe).distance - this->probe;
+    return this->closest(x, *this->foreign, 2.0 * this->probe).distance - this->probe;
+  }
+
+  /// Where focus() gathers pieces (per thread); none: every query asks the index.
+  LocalPieces* scratch = nullptr;
+
+  /// This splitter, looking at the pieces near a patch (around `middle`, within `size`) once it
+  /// needs splitting: from the top of the split only, as sub-patches lie within their parent's
+  /// ball (points outside are answered from the index anyway).
+  Splitter focused(const Vec& middle, double size, int depth) const
+  {
+    Splitter result = *this;
+    if (depth == 0 && this->scratch && !this->local)
+    {
+      this->distance->gather(middle, size, 2.0 * this->probe, *this->scratch, true);
+      result.local = this->scratch;
+    }
+    return result;
   }
 };
 
@@ -226,10 +254,11 @@ Integral split_concave(const Splitter& splitter, const std::vector<ProbeCap>& ca
   {
     return concave_piece(centre, p, a, b, c);
   }
+  const Splitter inner = splitter.focused(centre + p * middle, size, depth);
   if (depth == deepest_split)
   {
     const auto clearance = [&](const Vec& u) {
-      double g = splitter.clearance(centre + p * u);
+      double g = inner.clearance(centre + p * u);
       for (const ProbeCap& cap : meeting)
       {
         g = std::min(g, p * (cap.height - u.dot(cap.axis)));
@@ -244,10 +273,10 @@ Integral split_concave(const Splitter& splitter, const std::vector<ProbeCap>& ca
   }
   const Vec ab = (a + b).normalized(), bc = (b + c).normalized(), ca = (c + a).normalized();
   Integral sum;
-  sum += split_concave(splitter, meeting, centre, a, ab, ca, depth + 1);
-  sum += split_concave(splitter, meeting, centre, ab, b, bc, depth + 1);
-  sum += split_concave(splitter, meeting, centre, ca, bc, c, depth + 1);
-  sum += split_concave(splitter, meeting, centre, ab, bc, ca, depth + 1);
+  sum += split_concave(inner, meeting, centre, a, ab, ca, depth + 1);
+  sum += split_concave(inner, meeting, centre, ab, b, bc, depth + 1);
+  sum += split_concave(inner, meeting, centre, ca, bc, c, depth + 1);
+  sum += split_concave(inner, meeting, centre, ab, bc, ca, depth + 1);
   return sum;
 }
 
@@ -273,12 +302,13 @@ Integral split_torus(const Splitter& splitter, const Torus& torus, double phi0, 
   {
     return torus.piece(phi0, phi1, t0, t1);
   }
+  const Splitter inner = splitter.focused(middle, ball_slack * size, depth);
   if (depth == deepest_split)
   {
-    const double g00 = splitter.clearance(torus.point(phi0, t0));
-    const double g10 = splitter.clearance(torus.point(phi1, t0));
-    const double g01 = splitter.clearance(torus.point(phi0, t1));
-    const double g11 = splitter.clearance(torus.point(phi1, t1));
+    const double g00 = inner.clearance(torus.point(phi0, t0));
+    const double g10 = inner.clearance(torus.point(phi1, t0));
+    const double g01 = inner.clearance(torus.point(phi0, t1));
+    const double g11 = inner.clearance(torus.point(phi1, t1));
     const double kept = 0.5 * (positive_fraction(g00, g10, g11) + positive_fraction(g00, g11, g01));
     Integral piece = torus.piece(phi0, phi1, t0, t1);
     piece.area *= kept;
@@ -286,10 +316,10 @@ Integral split_torus(const Splitter& splitter, const Torus& torus, double phi0, 
     return piece;
   }
   Integral sum;
-  sum += split_torus(splitter, torus, phi0, phi, t0, t, depth + 1);
-  sum += split_torus(splitter, torus, phi, phi1, t0, t, depth + 1);
-  sum += split_torus(splitter, torus, phi0, phi, t, t1, depth + 1);
-  sum += split_torus(splitter, torus, phi, phi1, t, t1, depth + 1);
+  sum += split_torus(inner, torus, phi0, phi, t0, t, depth + 1);
+  sum += split_torus(inner, torus, phi, phi1, t0, t, depth + 1);
+  sum += split_torus(inner, torus, phi0, phi, t, t1, depth + 1);
+  sum += split_torus(inner, torus, phi, phi1, t, t1, depth + 1);
   return sum;
 }
 } // namespace
@@ -320,6 +350,7 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
   out.arc_volume.assign(arcs.size(), 0.0);
   std::vector<char> arc_singular(arcs.size(), 0);
   run_parallel(parallel_for, arcs.size(), [&](std::size_t begin, std::size_t end) {
+    LocalPieces pieces; // reused by the patches of this range
     for (std::size_t k = begin; k < end; ++k)
     {
       const SasArc& arc = arcs[k];
@@ -355,6 +386,7 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
       foreign.mode = ProbeDistance::Filter::Mode::TorusCutters;
       foreign.atoms = { arc.first, arc.second, arc.second };
       Splitter splitter{ &distance, &foreign, p };
+      splitter.scratch = &pieces;
       // Pieces of at most 60 degrees of azimuth, each whole unless something cuts it.
       const int parts = std::max(1, static_cast<int>(std::ceil(arc.span / (pi / 3))));
       Integral total;
@@ -383,6 +415,7 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
   out.vertex_volume.assign(vertices.size(), 0.0);
   std::vector<char> vertex_singular(vertices.size(), 0);
   run_parallel(parallel_for, vertices.size(), [&](std::size_t begin, std::size_t end) {
+    LocalPieces pieces; // reused by the patches of this range
     for (std::size_t k = begin; k < end; ++k)
     {
       const SasVertex& vertex = vertices[k];
@@ -414,6 +447,7 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
       foreign.atoms = vertex.spheres;
       foreign.probe = p;
       Splitter splitter{ &distance, &foreign, p };
+      splitter.scratch = &pieces;
       const Integral patch = split_concave(splitter, caps, v, u[0], u[1], u[2], 0);
       const Integral whole = concave_piece(v, p, u[0], u[1], u[2]);
       if (std::abs(patch.area - whole.area) > 1e-12 * std::max(1.0, whole.area))

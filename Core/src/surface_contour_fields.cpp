@@ -79,6 +79,12 @@ public:
     {
       this->levels_.resize(static_cast<std::size_t>(level) + 1);
     }
+    if (level == 3)
+    {
+      const LocalPieces& parent = this->levels_[2];
+      this->local_ = &parent;
+      return std::abs(this->distance_.closest(parent, centre).distance - this->probe_) <= radius;
+    }
     LocalPieces& local = this->levels_[static_cast<std::size_t>(level)];
     if (level == 0)
     {

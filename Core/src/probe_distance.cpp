@@ -375,8 +375,10 @@ void ProbeDistance::gather(const Vec& centre, double radius, double limit, Local
   local.spheres.clear();
   local.arcs.clear();
   local.vertices.clear();
+  // Filtered queries need every piece within the limit, whatever the nearest: no bound from
+  // the centre's distance (left 0).
   local.centre_distance =
-    this->closest(centre, {}, std::min(limit + radius, this->reach_)).distance;
+    for_filters ? 0.0 : this->closest(centre, {}, std::min(limit + radius, this->reach_)).distance;
   this->spheres_near(centre, radius, local.spheres);
   // Filtered queries skip the nearest pieces: every piece within the limit counts for them.
   const double bound = for_filters ? limit + radius : local_bound(local);

@@ -60,7 +60,8 @@ struct LocalPieces
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   double radius = 0; ///< of the ball, Å
   double limit = 0;  ///< queries are exact up to this distance inside the union
-  /// Signed distance from the centre to the boundary (capped at limit + radius).
+  /// Signed distance from the centre to the boundary (capped at limit + radius; 0 when gathered
+  /// for filters).
   double centre_distance = 0;
   std::vector<std::uint32_t> spheres; ///< those that may hold a point of the ball
   /// Arcs and vertices that may be nearest to a point of the ball: (distance from the centre

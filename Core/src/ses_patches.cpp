@@ -95,11 +95,12 @@ Integral concave_piece(const Vec& centre, double p, const Vec& a, const Vec& b, 
   return result;
 }
 
-/// Splits a patch until each piece is certainly kept or certainly cut away: cut when even the
-/// nearest of all probe positions is closer than p less the piece's size, kept when every
-/// position foreign to the patch is farther than p plus its size. At the deepest split, a piece
-/// counts by the fraction of it where the clearance (distance to foreign positions less p),
-/// interpolated linearly between its corners, is positive: second-order accurate in its size.
+/// Splits a patch until each piece is certainly kept: when every position foreign to the patch
+/// is farther than p plus its size. At the deepest split, a piece counts by the fraction of it
+/// where the clearance (distance to foreign positions less p), interpolated linearly between
+/// its corners, is positive: second-order accurate in its size. (Pieces certainly cut away, all
+/// probe positions nearer than p less their size, are too rare on molecules to test for: the cut
+/// regions are thin.)
 struct Splitter
 {
   const ProbeDistance* distance = nullptr;
@@ -116,22 +117,11 @@ struct Splitter
       : this->distance->closest(x, filter, limit);
   }
 
-  /// -1 cut, +1 kept, 0 undecided, for a piece around `middle` reaching `size`.
-  int decide(const Vec& middle, double size) const
+  /// Whether a piece around `middle` reaching `size` is certainly kept whole.
+  bool kept(const Vec& middle, double size) const
   {
-    // Searches bounded by what each test needs (the gathered pieces answer up to their limit,
-    // a little farther than some tests ask: the same verdicts).
-    const double kept_limit = this->probe + size;
-    if (this->closest(middle, *this->foreign, kept_limit).distance >= kept_limit)
-    {
-      return 1;
-    }
-    const double cut_limit = this->probe - size;
-    if (cut_limit > 0 && this->closest(middle, {}, cut_limit).distance < cut_limit)
-    {
-      return -1;
-    }
-    return 0;
+    const double limit = this->probe + size; // the search goes no farther than the test needs
+    return this->closest(middle, *this->foreign, limit).distance >= limit;
   }
 
   /// Distance to the foreign positions less p (> 0: kept).
@@ -241,16 +231,7 @@ Integral split_concave(const Splitter& splitter, const std::vector<ProbeCap>& ca
   const bool cut_by_cap = !meeting.empty();
   const double size =
     ball_slack * p * std::max({ (middle - a).norm(), (middle - b).norm(), (middle - c).norm() });
-  int verdict = splitter.decide(centre + p * middle, size);
-  if (verdict > 0 && cut_by_cap)
-  {
-    verdict = 0;
-  }
-  if (verdict < 0)
-  {
-    return {};
-  }
-  if (verdict > 0)
+  if (!cut_by_cap && splitter.kept(centre + p * middle, size))
   {
     return concave_piece(centre, p, a, b, c);
   }
@@ -293,12 +274,7 @@ Integral split_torus(const Splitter& splitter, const Torus& torus, double phi0, 
       size = std::max(size, (torus.point(corner_phi, corner_t) - middle).norm());
     }
   }
-  const int verdict = splitter.decide(middle, ball_slack * size);
-  if (verdict < 0)
-  {
-    return {};
-  }
-  if (verdict > 0)
+  if (splitter.kept(middle, ball_slack * size))
   {
     return torus.piece(phi0, phi1, t0, t1);
   }

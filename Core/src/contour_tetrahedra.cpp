@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace mesolens {
 
@@ -56,12 +57,17 @@ int pair_order(int a, int b, int order[4])
   return k;
 }
 
-/// What one block made: its vertices (with the grid key of their edge) and its triangles as
-/// indices into them.
+/// Triangle corners refer to a block's own vertices, or (with this bit) to its foreign ones.
+constexpr std::uint32_t foreign_bit = 0x80000000u;
+
+/// What one block made: the vertices it owns (those on edges whose lower point lies in it),
+/// with the grid key of their edge; the keys of the edges it uses but another block owns; and
+/// its triangles, as indices into those.
 struct BlockOutput
 {
   std::vector<ContourVertex> vertices;
   std::vector<std::uint64_t> keys;
+  std::vector<std::uint64_t> foreign_keys;
   std::vector<std::array<std::uint32_t, 3>> triangles;
 };
 } // namespace
@@ -90,9 +96,25 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
     return Vec(low[0] + spacing * double(x), low[1] + spacing * double(y),
                low[2] + spacing * double(z));
   };
+  // The block owning a grid point (points on the far faces belong to the last blocks).
+  const auto owner_of = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    const std::int64_t bx = std::min(x / block_cells, blocks[0] - 1);
+    const std::int64_t by = std::min(y / block_cells, blocks[1] - 1);
+    const std::int64_t bz = std::min(z / block_cells, blocks[2] - 1);
+    return static_cast<std::size_t>(bx + blocks[0] * (by + blocks[1] * bz));
+  };
+  const auto key_point = [&](std::uint64_t key) {
+    const std::uint64_t point = key / 8;
+    return std::array<std::int64_t, 3>{
+      static_cast<std::int64_t>(point % std::uint64_t(points[0])),
+      static_cast<std::int64_t>((point / std::uint64_t(points[0])) % std::uint64_t(points[1])),
+      static_cast<std::int64_t>(point / std::uint64_t(points[0] * points[1]))
+    };
+  };
 
   std::vector<BlockOutput> outputs(block_count);
-  const auto run_block = [&](std::size_t b) {
+  const auto run_block = [&](std::size_t b_index) {
+    const std::size_t b = b_index;
     const std::int64_t bx = static_cast<std::int64_t>(b % std::size_t(blocks[0]));
     const std::int64_t by =
       static_cast<std::int64_t>((b / std::size_t(blocks[0])) % std::size_t(blocks[1]));
@@ -122,7 +144,7 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
     };
     BlockOutput& out = outputs[b];
     // Per block point and Kuhn direction (1 to 7), the index of the vertex on that edge.
-    std::vector<std::int32_t> made(std::size_t(side * side * side * 8), -1);
+    std::vector<std::int64_t> made(std::size_t(side * side * side * 8), -1);
     const auto contour_cell = [&](const std::array<std::int64_t, 3>& cell) {
       std::array<double, 8> corner_value{};
       std::array<Vec, 8> corner_position;
@@ -139,16 +161,27 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
         const int from = std::min(a, b), to = std::max(a, b);
         const std::int64_t x = cell[0] + (from & 1), y = cell[1] + ((from >> 1) & 1),
                            z = cell[2] + ((from >> 2) & 1);
-        std::int32_t& index =
+        std::int64_t& index =
           made[std::size_t(8 * ((x - x0) + side * ((y - y0) + side * (z - z0))) + (to ^ from))];
         if (index < 0)
         {
-          const int outside = corner_value[a] > 0 ? b : a;
-          const int inside = corner_value[a] > 0 ? a : b;
-          index = static_cast<std::int32_t>(out.vertices.size());
-          out.vertices.push_back(local->vertex(corner_position[outside], corner_value[outside],
-                                               corner_position[inside], corner_value[inside]));
-          out.keys.push_back(point_key(x, y, z) * 8 + std::uint64_t(to ^ from));
+          const std::uint64_t key = point_key(x, y, z) * 8 + std::uint64_t(to ^ from);
+          if (owner_of(x, y, z) == b_index)
+          {
+            const int outside = corner_value[a] > 0 ? b : a;
+            const int inside = corner_value[a] > 0 ? a : b;
+            index = static_cast<std::int64_t>(out.vertices.size());
+            out.vertices.push_back(local->vertex(corner_position[outside], corner_value[outside],
+                                                 corner_position[inside], corner_value[inside]));
+            out.keys.push_back(key);
+          }
+          else
+          {
+            // The owner computes it: every cell holding a crossed edge is contoured, as the
+            // signs at grid points do not depend on the block asking.
+            index = static_cast<std::int64_t>(out.foreign_keys.size() | foreign_bit);
+            out.foreign_keys.push_back(key);
+          }
         }
         return static_cast<std::uint32_t>(index);
       };
@@ -213,7 +246,7 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
       const Vec centre = position(x, y, z) + Vec::Constant(0.5 * spacing * double(size));
       // A little more than half the diagonal, against rounding at the corners.
       const double radius = 0.5 * std::sqrt(3.0) * spacing * double(size) * (1.0 + 1e-9);
-      if (!local->focus(level, centre, radius))
+      if (!local->focus(level, centre, radius, size == 1))
       {
         return;
       }
@@ -254,53 +287,70 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
     }
   }
 
-  // One vertex per edge key (blocks share their faces' edges): the first block's, and vertices
-  // ordered by key.
-  struct Entry
-  {
-    std::uint64_t key;
-    std::uint32_t block, index;
-  };
-  std::vector<Entry> entries;
-  std::size_t triangle_count = 0;
+  // Vertices numbered block by block; foreign references found in their owners' keys.
+  std::vector<std::int64_t> first_vertex(block_count + 1, 0), first_triangle(block_count + 1, 0);
   for (std::size_t b = 0; b < block_count; ++b)
   {
-    for (std::size_t k = 0; k < outputs[b].keys.size(); ++k)
-    {
-      entries.push_back(
-        { outputs[b].keys[k], static_cast<std::uint32_t>(b), static_cast<std::uint32_t>(k) });
-    }
-    triangle_count += outputs[b].triangles.size();
+    first_vertex[b + 1] = first_vertex[b] + std::int64_t(outputs[b].vertices.size());
+    first_triangle[b + 1] = first_triangle[b] + std::int64_t(outputs[b].triangles.size());
   }
-  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
-    return a.key < b.key || (a.key == b.key && a.block < b.block);
-  });
-  std::vector<std::vector<std::int64_t>> global(block_count);
-  for (std::size_t b = 0; b < block_count; ++b)
-  {
-    global[b].resize(outputs[b].keys.size());
-  }
-  for (std::size_t e = 0; e < entries.size(); ++e)
-  {
-    if (e == 0 || entries[e].key != entries[e - 1].key)
+  std::vector<std::vector<std::pair<std::uint64_t, std::uint32_t>>> owned(block_count);
+  run_parallel(parallel_for, block_count, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; ++b)
     {
-      mesh.vertices.push_back(outputs[entries[e].block].vertices[entries[e].index]);
-    }
-    global[entries[e].block][entries[e].index] =
-      static_cast<std::int64_t>(mesh.vertices.size()) - 1;
-  }
-  entries = {};
-  mesh.triangles.reserve(3 * triangle_count);
-  for (std::size_t b = 0; b < block_count; ++b)
-  {
-    for (const auto& triangle : outputs[b].triangles)
-    {
-      for (const std::uint32_t v : triangle)
+      auto& sorted = owned[b];
+      sorted.resize(outputs[b].keys.size());
+      for (std::size_t k = 0; k < sorted.size(); ++k)
       {
-        mesh.triangles.push_back(global[b][v]);
+        sorted[k] = { outputs[b].keys[k], static_cast<std::uint32_t>(k) };
       }
+      std::sort(sorted.begin(), sorted.end());
     }
-    outputs[b] = {};
+  });
+  const auto global_of = [&](std::uint64_t key) -> std::int64_t {
+    const auto point = key_point(key);
+    const std::size_t owner = owner_of(point[0], point[1], point[2]);
+    const auto& sorted = owned[owner];
+    const auto found = std::lower_bound(sorted.begin(), sorted.end(),
+                                        std::pair<std::uint64_t, std::uint32_t>(key, 0));
+    if (found == sorted.end() || found->first != key)
+    {
+      return -1;
+    }
+    return first_vertex[owner] + std::int64_t(found->second);
+  };
+  mesh.vertices.resize(std::size_t(first_vertex[block_count]));
+  mesh.triangles.resize(3 * std::size_t(first_triangle[block_count]));
+  // Signs at grid points do not depend on the block asking, so every cell holding a crossed
+  // edge is contoured and each foreign vertex has been made by its owner.
+  std::vector<char> complete(block_count, 1);
+  run_parallel(parallel_for, block_count, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; ++b)
+    {
+      BlockOutput& out = outputs[b];
+      std::copy(out.vertices.begin(), out.vertices.end(), mesh.vertices.begin() + first_vertex[b]);
+      std::vector<std::int64_t> foreign(out.foreign_keys.size());
+      for (std::size_t k = 0; k < foreign.size(); ++k)
+      {
+        foreign[k] = global_of(out.foreign_keys[k]);
+        complete[b] = complete[b] && foreign[k] >= 0;
+      }
+      std::int64_t* corner = mesh.triangles.data() + 3 * first_triangle[b];
+      for (const auto& triangle : out.triangles)
+      {
+        for (const std::uint32_t v : triangle)
+        {
+          *corner++ =
+            (v & foreign_bit) ? foreign[v & ~foreign_bit] : first_vertex[b] + std::int64_t(v);
+        }
+      }
+      out = {};
+    }
+  });
+  if (std::find(complete.begin(), complete.end(), 0) != complete.end())
+  {
+    throw std::logic_error("contour_tetrahedra: a field gave a grid point different signs in "
+                           "different blocks");
   }
   return mesh;
 }

@@ -33,7 +33,8 @@ public:
   virtual ~LocalContourField() = default;
   /// Prepares for queries within `radius` of `centre`; false when no zero lies within. Level 0
   /// is a block; a ball of level k > 0 lies inside the last ball focused at level k - 1.
-  virtual bool focus(int level, const Eigen::Vector3d& centre, double radius) = 0;
+  /// `single_cell`: the ball is a grid cell's, whose corners and edges come next.
+  virtual bool focus(int level, const Eigen::Vector3d& centre, double radius, bool single_cell) = 0;
   /// The value at a point within the last focus.
   virtual double value(const Eigen::Vector3d& x) = 0;
   /// The surface vertex on the segment (within the focus) from `outside` (value <= 0) to
@@ -45,7 +46,8 @@ public:
 /// The field to contour: positive inside, negative outside, changing by at most the distance
 /// between two points (1-Lipschitz), so a ball where |value| exceeds the radius holds none of
 /// the surface. Values must not depend on which focus they were asked under (their signs at
-/// least), as neighbouring cells share corners.
+/// least), as neighbouring blocks share grid points; contour_tetrahedra() throws
+/// std::logic_error when they do.
 struct ContourField
 {
   /// True when no zero lies within `radius` of the point (may be conservative: false): a cheap

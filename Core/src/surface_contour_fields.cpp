@@ -73,15 +73,16 @@ public:
   {
   }
 
-  bool focus(int level, const Vec& centre, double radius) override
+  bool focus(int level, const Vec& centre, double radius, bool single_cell) override
   {
     if (static_cast<std::size_t>(level) >= this->levels_.size())
     {
       this->levels_.resize(static_cast<std::size_t>(level) + 1);
     }
-    if (level == 3)
+    if (single_cell && level > 0)
     {
-      const LocalPieces& parent = this->levels_[2];
+      // A cell asks few queries: its parent's pieces serve them, unrefined.
+      const LocalPieces& parent = this->levels_[static_cast<std::size_t>(level) - 1];
       this->local_ = &parent;
       return std::abs(this->distance_.closest(parent, centre).distance - this->probe_) <= radius;
     }
@@ -196,7 +197,7 @@ public:
   {
   }
 
-  bool focus(int level, const Vec& centre, double radius) override
+  bool focus(int level, const Vec& centre, double radius, bool /*single_cell*/) override
   {
     if (static_cast<std::size_t>(level) >= this->levels_.size())
     {

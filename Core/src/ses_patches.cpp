@@ -27,6 +27,18 @@ struct Integral
   }
 };
 
+/// An angle with its cosine and sine, computed once.
+struct Angle
+{
+  double value = 0, cos = 1, sin = 0;
+  explicit Angle(double radians)
+    : value(radians)
+    , cos(std::cos(radians))
+    , sin(std::sin(radians))
+  {
+  }
+};
+
 /// The generating arc of a torus: in the plane of the axis and the radial direction d(phi),
 /// points o + rho d + p (cos t a + sin t d) for t in the arc's range, where the probe touches
 /// the first atom at t = first and the second at t = second.
@@ -36,26 +48,26 @@ struct Torus
   double probe = 0;
   double first = 0, second = 0;
 
-  Vec point(double phi, double t) const
+  Vec point(const Angle& phi, const Angle& t) const
   {
-    const Vec d = std::cos(phi) * this->arc->e1 + std::sin(phi) * this->arc->e2;
+    const Vec d = phi.cos * this->arc->e1 + phi.sin * this->arc->e2;
     return this->arc->centre + this->arc->radius * d +
-      this->probe * (std::cos(t) * this->arc->axis + std::sin(t) * d);
+      this->probe * (t.cos * this->arc->axis + t.sin * d);
   }
 
   /// The piece over azimuths [phi0, phi1] and arc angles [t0, t1] (where the distance to the
   /// axis, rho + p sin t, is >= 0): area = int p (rho + p sin t) dt dphi, and with the outward
   /// normal n = -(cos t a + sin t d), x . n = -(o.a cos t + (o.d + rho) sin t + p).
-  Integral piece(double phi0, double phi1, double t0, double t1) const
+  Integral piece(const Angle& phi0, const Angle& phi1, const Angle& t0, const Angle& t1) const
   {
     const SasArc& a = *this->arc;
-    const double p = this->probe, rho = a.radius, span = phi1 - phi0, dt = t1 - t0;
-    const Vec along_d =
-      a.e1 * (std::sin(phi1) - std::sin(phi0)) - a.e2 * (std::cos(phi1) - std::cos(phi0));
-    const double c_int = std::sin(t1) - std::sin(t0);
-    const double s_int = -(std::cos(t1) - std::cos(t0));
-    const double sc_int = 0.5 * (std::sin(t1) * std::sin(t1) - std::sin(t0) * std::sin(t0));
-    const double ss_int = 0.5 * dt - 0.25 * (std::sin(2 * t1) - std::sin(2 * t0));
+    const double p = this->probe, rho = a.radius, span = phi1.value - phi0.value,
+                 dt = t1.value - t0.value;
+    const Vec along_d = a.e1 * (phi1.sin - phi0.sin) - a.e2 * (phi1.cos - phi0.cos);
+    const double c_int = t1.sin - t0.sin;
+    const double s_int = -(t1.cos - t0.cos);
+    const double sc_int = 0.5 * (t1.sin * t1.sin - t0.sin * t0.sin);
+    const double ss_int = 0.5 * dt - 0.5 * (t1.sin * t1.cos - t0.sin * t0.cos);
     const double A = a.centre.dot(a.axis) * span;
     const double B = a.centre.dot(along_d) + rho * span;
     const double C = p * span;
@@ -172,34 +184,58 @@ double positive_fraction(double g0, double g1, double g2)
   return lone_sign ? corner : 1.0 - corner;
 }
 
-/// The largest u . e over the spherical triangle (a, b, c) (counter-clockwise, unit corners):
-/// at e itself when inside, else on an edge's great circle or at a corner.
-double largest_dot(const Vec& a, const Vec& b, const Vec& c, const Vec& e)
+/// A spherical triangle (counter-clockwise unit corners) prepared for the range of u . e over
+/// it, for many directions e.
+class SphericalTriangle
 {
-  if (e.dot(a.cross(b)) >= 0 && e.dot(b.cross(c)) >= 0 && e.dot(c.cross(a)) >= 0)
+public:
+  SphericalTriangle(const Vec& a, const Vec& b, const Vec& c)
+    : corner_{ a, b, c }
   {
-    return 1.0;
-  }
-  double best = std::max({ e.dot(a), e.dot(b), e.dot(c) });
-  const Vec corners[3] = { a, b, c };
-  for (int k = 0; k < 3; ++k)
-  {
-    const Vec& from = corners[k];
-    const Vec& to = corners[(k + 1) % 3];
-    const Vec normal = from.cross(to).normalized();
-    const Vec in_plane = e - e.dot(normal) * normal;
-    const double length = in_plane.norm();
-    if (length > 0)
+    for (int k = 0; k < 3; ++k)
     {
-      const Vec direction = in_plane / length;
-      if (from.cross(direction).dot(normal) >= 0 && direction.cross(to).dot(normal) >= 0)
-      {
-        best = std::max(best, length);
-      }
+      const Vec& from = this->corner_[k];
+      const Vec& to = this->corner_[(k + 1) % 3];
+      this->normal_[k] = from.cross(to).normalized();
+      this->after_[k] = this->normal_[k].cross(from);
+      this->before_[k] = to.cross(this->normal_[k]);
     }
   }
-  return best;
-}
+
+  /// The smallest and largest u . e over the triangle (e a unit vector): at +-e itself when
+  /// inside, else on an edge's great circle (where the plane through e and the edge's normal
+  /// meets the edge) or at a corner.
+  std::pair<double, double> dot_range(const Vec& e) const
+  {
+    double low =
+      std::min({ e.dot(this->corner_[0]), e.dot(this->corner_[1]), e.dot(this->corner_[2]) });
+    double high =
+      std::max({ e.dot(this->corner_[0]), e.dot(this->corner_[1]), e.dot(this->corner_[2]) });
+    int above = 0, below = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      const double across = e.dot(this->normal_[k]);
+      above += across >= 0;
+      below += across <= 0;
+      // The nearest point of the edge's great circle to e, and its dot product: within the
+      // edge when on the inner side of both ends.
+      const double length = std::sqrt(std::max(0.0, 1.0 - across * across));
+      const double after = e.dot(this->after_[k]), before = e.dot(this->before_[k]);
+      if (after >= 0 && before >= 0)
+      {
+        high = std::max(high, length);
+      }
+      if (after <= 0 && before <= 0)
+      {
+        low = std::min(low, -length);
+      }
+    }
+    return { below == 3 ? -1.0 : low, above == 3 ? 1.0 : high };
+  }
+
+private:
+  Vec corner_[3], normal_[3], after_[3], before_[3];
+};
 
 /// The part of a probe sphere inside a neighbouring probe at `other`: the directions u with
 /// u . axis > height.
@@ -209,19 +245,26 @@ struct ProbeCap
   double height = 1;
 };
 
+/// Caps meeting the pieces of a concave patch, per depth of the split (reused).
+using CapsByDepth = std::array<std::vector<ProbeCap>, deepest_split + 1>;
+
 Integral split_concave(const Splitter& splitter, const std::vector<ProbeCap>& caps,
-                       const Vec& centre, const Vec& a, const Vec& b, const Vec& c, int depth)
+                       CapsByDepth& caps_by_depth, const Vec& centre, const Vec& a, const Vec& b,
+                       const Vec& c, int depth)
 {
   const double p = splitter.probe;
   const Vec middle = (a + b + c).normalized();
   // Neighbouring probes cut exactly: caps on this probe's sphere. Only those meeting this
   // piece can meet its parts, so they alone go down.
-  std::vector<ProbeCap> meeting;
+  std::vector<ProbeCap>& meeting = caps_by_depth[std::size_t(depth)];
+  meeting.clear();
+  const SphericalTriangle triangle(a, b, c);
   for (const ProbeCap& cap : caps)
   {
-    if (largest_dot(a, b, c, cap.axis) > cap.height)
+    const auto range = triangle.dot_range(cap.axis);
+    if (range.second > cap.height)
     {
-      if (-largest_dot(a, b, c, -cap.axis) > cap.height)
+      if (range.first > cap.height)
       {
         return {}; // wholly inside a neighbour
       }
@@ -254,25 +297,24 @@ Integral split_concave(const Splitter& splitter, const std::vector<ProbeCap>& ca
   }
   const Vec ab = (a + b).normalized(), bc = (b + c).normalized(), ca = (c + a).normalized();
   Integral sum;
-  sum += split_concave(inner, meeting, centre, a, ab, ca, depth + 1);
-  sum += split_concave(inner, meeting, centre, ab, b, bc, depth + 1);
-  sum += split_concave(inner, meeting, centre, ca, bc, c, depth + 1);
-  sum += split_concave(inner, meeting, centre, ab, bc, ca, depth + 1);
+  sum += split_concave(inner, meeting, caps_by_depth, centre, a, ab, ca, depth + 1);
+  sum += split_concave(inner, meeting, caps_by_depth, centre, ab, b, bc, depth + 1);
+  sum += split_concave(inner, meeting, caps_by_depth, centre, ca, bc, c, depth + 1);
+  sum += split_concave(inner, meeting, caps_by_depth, centre, ab, bc, ca, depth + 1);
   return sum;
 }
 
-Integral split_torus(const Splitter& splitter, const Torus& torus, double phi0, double phi1,
-                     double t0, double t1, int depth)
+Integral split_torus(const Splitter& splitter, const Torus& torus, const Angle& phi0,
+                     const Angle& phi1, const Angle& t0, const Angle& t1, int depth)
 {
-  const double phi = 0.5 * (phi0 + phi1), t = 0.5 * (t0 + t1);
+  const Angle phi(0.5 * (phi0.value + phi1.value)), t(0.5 * (t0.value + t1.value));
   const Vec middle = torus.point(phi, t);
+  const Vec corners[4] = { torus.point(phi0, t0), torus.point(phi1, t0), torus.point(phi0, t1),
+                           torus.point(phi1, t1) };
   double size = 0;
-  for (const double corner_phi : { phi0, phi1 })
+  for (const Vec& corner : corners)
   {
-    for (const double corner_t : { t0, t1 })
-    {
-      size = std::max(size, (torus.point(corner_phi, corner_t) - middle).norm());
-    }
+    size = std::max(size, (corner - middle).norm());
   }
   if (splitter.kept(middle, ball_slack * size))
   {
@@ -281,10 +323,10 @@ Integral split_torus(const Splitter& splitter, const Torus& torus, double phi0, 
   const Splitter inner = splitter.focused(middle, ball_slack * size, depth);
   if (depth == deepest_split)
   {
-    const double g00 = inner.clearance(torus.point(phi0, t0));
-    const double g10 = inner.clearance(torus.point(phi1, t0));
-    const double g01 = inner.clearance(torus.point(phi0, t1));
-    const double g11 = inner.clearance(torus.point(phi1, t1));
+    const double g00 = inner.clearance(corners[0]);
+    const double g10 = inner.clearance(corners[1]);
+    const double g01 = inner.clearance(corners[2]);
+    const double g11 = inner.clearance(corners[3]);
     const double kept = 0.5 * (positive_fraction(g00, g10, g11) + positive_fraction(g00, g11, g01));
     Integral piece = torus.piece(phi0, phi1, t0, t1);
     piece.area *= kept;
@@ -368,13 +410,13 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
       Integral total;
       for (int part = 0; part < parts; ++part)
       {
-        const double phi0 = arc.start + arc.span * part / parts;
-        const double phi1 = arc.start + arc.span * (part + 1) / parts;
+        const Angle phi0(arc.start + arc.span * part / parts);
+        const Angle phi1(arc.start + arc.span * (part + 1) / parts);
         for (const auto& range : ranges)
         {
-          const Integral whole = torus.piece(phi0, phi1, range.first, range.second);
-          const Integral kept =
-            split_torus(splitter, torus, phi0, phi1, range.first, range.second, 0);
+          const Angle t0(range.first), t1(range.second);
+          const Integral whole = torus.piece(phi0, phi1, t0, t1);
+          const Integral kept = split_torus(splitter, torus, phi0, phi1, t0, t1, 0);
           if (std::abs(kept.area - whole.area) > 1e-12 * std::max(1.0, whole.area))
           {
             arc_singular[k] = 1;
@@ -392,6 +434,7 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
   std::vector<char> vertex_singular(vertices.size(), 0);
   run_parallel(parallel_for, vertices.size(), [&](std::size_t begin, std::size_t end) {
     LocalPieces pieces; // reused by the patches of this range
+    CapsByDepth caps_by_depth;
     for (std::size_t k = begin; k < end; ++k)
     {
       const SasVertex& vertex = vertices[k];
@@ -424,7 +467,7 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
       foreign.probe = p;
       Splitter splitter{ &distance, &foreign, p };
       splitter.scratch = &pieces;
-      const Integral patch = split_concave(splitter, caps, v, u[0], u[1], u[2], 0);
+      const Integral patch = split_concave(splitter, caps, caps_by_depth, v, u[0], u[1], u[2], 0);
       const Integral whole = concave_piece(v, p, u[0], u[1], u[2]);
       if (std::abs(patch.area - whole.area) > 1e-12 * std::max(1.0, whole.area))
       {

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <thread>
 
 namespace {
@@ -408,6 +409,89 @@ TEST(MolecularSurface, CrambinAgainstItsRefinedMeshAndEdtSurf)
     ASSERT_GE(gap, -1e-6);
     ASSERT_LE(gap, 1.4 + 1e-6);
   }
+}
+
+// Every vertex checked against the atoms alone: its probe (the vertex moved the probe radius
+// along its normal) touches the atoms without entering any (to 1e-5 Å), and no probe position,
+// sampled densely over the accessible surface, lies nearer to it than the probe radius less the
+// sampling gap.
+TEST(MolecularSurface, CrambinVerticesLieOnTheSurfaceTheirProbesTrace)
+{
+  std::vector<double> radii;
+  const auto file = mesolens::read_structure(mesolens_test::data_file("proteins/1crn.pdb"));
+  const Centres centres = atoms_of(file.models[0], radii);
+  const double p = 1.4;
+  const MolecularSurface s = surface_of(centres, radii, 0.1);
+  ASSERT_GT(s.atom.size(), 1000u);
+  const auto gap_to_inflated = [&](const double* x, std::size_t i) {
+    return std::hypot(x[0] - centres[i][0], x[1] - centres[i][1], x[2] - centres[i][2]) -
+      (radii[i] + p);
+  };
+  // Probe positions: 2000 golden-spiral points per inflated atom, kept where no other covers.
+  constexpr int per_atom = 2000;
+  std::vector<std::array<double, 3>> samples;
+  for (std::size_t i = 0; i < centres.size(); ++i)
+  {
+    for (int k = 0; k < per_atom; ++k)
+    {
+      const double z = 1.0 - (2.0 * k + 1.0) / per_atom;
+      const double ring = std::sqrt(1.0 - z * z), angle = k * 2.399963229728653;
+      const double x[3] = { centres[i][0] + (radii[i] + p) * ring * std::cos(angle),
+                            centres[i][1] + (radii[i] + p) * ring * std::sin(angle),
+                            centres[i][2] + (radii[i] + p) * z };
+      bool covered = false;
+      for (std::size_t j = 0; j < centres.size() && !covered; ++j)
+      {
+        covered = j != i && gap_to_inflated(x, j) < 0;
+      }
+      if (!covered)
+      {
+        samples.push_back({ x[0], x[1], x[2] });
+      }
+    }
+  }
+  // Samples by cells of the probe radius: a vertex looks at the 27 around its own.
+  const auto cell_of = [&](const double* x) {
+    return std::array<long, 3>{ long(std::floor(x[0] / p)), long(std::floor(x[1] / p)),
+                                long(std::floor(x[2] / p)) };
+  };
+  std::map<std::array<long, 3>, std::vector<std::size_t>> cells;
+  for (std::size_t k = 0; k < samples.size(); ++k)
+  {
+    cells[cell_of(samples[k].data())].push_back(k);
+  }
+  double worst_touch = 0, nearest_other = 1e300;
+  for (std::size_t v = 0; v < s.atom.size(); ++v)
+  {
+    const double* y = &s.points[3 * v];
+    const double probe[3] = { y[0] + p * s.normals[3 * v], y[1] + p * s.normals[3 * v + 1],
+                              y[2] + p * s.normals[3 * v + 2] };
+    double touch = 1e300;
+    for (std::size_t i = 0; i < centres.size(); ++i)
+    {
+      touch = std::min(touch, gap_to_inflated(probe, i));
+    }
+    worst_touch = std::max(worst_touch, std::abs(touch));
+    const auto home = cell_of(y);
+    for (long dz = -1; dz <= 1; ++dz)
+      for (long dy = -1; dy <= 1; ++dy)
+        for (long dx = -1; dx <= 1; ++dx)
+        {
+          const auto found = cells.find({ home[0] + dx, home[1] + dy, home[2] + dz });
+          if (found == cells.end())
+          {
+            continue;
+          }
+          for (const std::size_t k : found->second)
+          {
+            const auto& q = samples[k];
+            nearest_other =
+              std::min(nearest_other, std::hypot(y[0] - q[0], y[1] - q[1], y[2] - q[2]));
+          }
+        }
+  }
+  EXPECT_LT(worst_touch, 1e-5);       // vertices lie on the exact surface to 1e-5 Å
+  EXPECT_GT(nearest_other, p - 1e-5); // within the probe radius of no probe position
 }
 
 TEST(MolecularSurface, CavitiesAreKeptOrDropped)

@@ -315,6 +315,37 @@ bool ProbeDistance::nearest_face(const Holder* holders, std::size_t holder_count
   return true;
 }
 
+bool ProbeDistance::within_span(std::uint32_t k, double a1, double a2) const
+{
+  const SasArc& arc = this->boundary_.arcs[k];
+  if (arc.span >= two_pi)
+  {
+    return true;
+  }
+  // By the signs of cross products with its ends (no angles).
+  const ArcEnds& ends = this->arc_ends_[k];
+  const bool after_start = ends.start_cos * a2 - ends.start_sin * a1 >= 0;
+  const bool before_end = a1 * ends.end_sin - a2 * ends.end_cos >= 0;
+  return arc.span <= 0.5 * two_pi ? after_start && before_end : after_start || before_end;
+}
+
+double ProbeDistance::arc_distance(std::uint32_t k, const Vec& x) const
+{
+  const SasArc& arc = this->boundary_.arcs[k];
+  const Vec v = x - arc.centre;
+  const double along = v.dot(arc.axis);
+  const double a1 = v.dot(arc.e1), a2 = v.dot(arc.e2);
+  const double radial = std::sqrt(a1 * a1 + a2 * a2);
+  if (radial <= 1e-12 || this->within_span(k, a1, a2))
+  {
+    return std::sqrt(along * along + (radial - arc.radius) * (radial - arc.radius));
+  }
+  const ArcEnds& ends = this->arc_ends_[k];
+  const Vec start = arc.centre + arc.radius * (ends.start_cos * arc.e1 + ends.start_sin * arc.e2);
+  const Vec end = arc.centre + arc.radius * (ends.end_cos * arc.e1 + ends.end_sin * arc.e2);
+  return std::sqrt(std::min((x - start).squaredNorm(), (x - end).squaredNorm()));
+}
+
 void ProbeDistance::try_arc(std::uint32_t k, const Vec& x, ClosestPiece& best) const
 {
   const SasArc& arc = this->boundary_.arcs[k];
@@ -330,16 +361,9 @@ void ProbeDistance::try_arc(std::uint32_t k, const Vec& x, ClosestPiece& best) c
   Vec point;
   if (radial > 1e-12)
   {
-    // Within the exposed span, by the signs of cross products with its ends (no angles).
-    if (arc.span < two_pi)
+    if (!this->within_span(k, a1, a2))
     {
-      const ArcEnds& ends = this->arc_ends_[k];
-      const bool after_start = ends.start_cos * a2 - ends.start_sin * a1 >= 0;
-      const bool before_end = a1 * ends.end_sin - a2 * ends.end_cos >= 0;
-      if (arc.span <= 0.5 * two_pi ? !(after_start && before_end) : !(after_start || before_end))
-      {
-        return; // nearest circle point not on the exposed arc: an end vertex is nearer
-      }
+      return; // nearest circle point not on the exposed arc: an end vertex is nearer
     }
     point = arc.centre + arc.radius / radial * (a1 * arc.e1 + a2 * arc.e2);
   }
@@ -406,7 +430,7 @@ void ProbeDistance::gather(const Vec& centre, double radius, double limit, Local
   std::size_t kept = 0;
   for (const auto& arc : local.arcs)
   {
-    const double d = this->piece_distance(centre, PieceKind::Arc, arc.second);
+    const double d = this->arc_distance(arc.second, centre);
     if (d < bound)
     {
       local.arcs[kept++] = { d, arc.second };
@@ -452,7 +476,7 @@ void ProbeDistance::refine(const LocalPieces& parent, const Vec& centre, double 
     {
       break;
     }
-    const double d = this->piece_distance(centre, PieceKind::Arc, arc.second);
+    const double d = this->arc_distance(arc.second, centre);
     if (d < bound)
     {
       local.arcs.push_back({ d, arc.second });

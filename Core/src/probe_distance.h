@@ -65,7 +65,7 @@ struct LocalPieces
   double centre_distance = 0;
   std::vector<std::uint32_t> spheres; ///< those that may hold a point of the ball
   /// Arcs and vertices that may be nearest to a point of the ball: (distance from the centre
-  /// to the arc's whole circle or to the vertex, index), nearest first.
+  /// to the exposed arc or to the vertex, index), nearest first.
   std::vector<std::pair<double, std::uint32_t>> arcs, vertices;
 };
 
@@ -151,6 +151,11 @@ private:
                     const Eigen::Vector3d& x, ClosestPiece& best) const;
   /// The radial projection of `x` onto sphere `i`, when no other sphere covers it.
   bool exposed_projection(std::uint32_t i, const Eigen::Vector3d& x, Eigen::Vector3d& y) const;
+  /// Whether the point of arc `k`'s circle at in-plane coordinates (a1, a2) (along e1, e2 from
+  /// its centre) lies on the exposed arc.
+  bool within_span(std::uint32_t k, double a1, double a2) const;
+  /// The distance from `x` to exposed arc `k` (its ends included).
+  double arc_distance(std::uint32_t k, const Eigen::Vector3d& x) const;
   /// Arc `k` as the nearest piece when nearer than `best.distance`: updates `best`.
   void try_arc(std::uint32_t k, const Eigen::Vector3d& x, ClosestPiece& best) const;
 

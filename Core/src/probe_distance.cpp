@@ -512,17 +512,33 @@ ClosestPiece ProbeDistance::closest(const LocalPieces& local, const Vec& x, cons
   std::size_t holder_count = 0;
   double deepest = -std::numeric_limits<double>::max();
   std::uint32_t deepest_sphere = 0;
-  for (const std::uint32_t i : local.spheres)
-  {
-    const double d = this->radii_[i] - (x - this->centres_[i]).norm();
+  // Depths by square roots only for the spheres holding x, unless none does.
+  const auto consider = [&](std::uint32_t i, double d) {
     if (d > deepest || (d == deepest && i < deepest_sphere))
     {
       deepest = d;
       deepest_sphere = i;
     }
-    if (d > 0 && holder_count < max_holders)
+  };
+  for (const std::uint32_t i : local.spheres)
+  {
+    const double squared = (x - this->centres_[i]).squaredNorm();
+    const double r = this->radii_[i];
+    if (squared < r * r)
     {
-      holders[holder_count++] = { d, i };
+      const double d = r - std::sqrt(squared);
+      consider(i, d);
+      if (d > 0 && holder_count < max_holders)
+      {
+        holders[holder_count++] = { d, i };
+      }
+    }
+  }
+  if (holder_count == 0)
+  {
+    for (const std::uint32_t i : local.spheres)
+    {
+      consider(i, this->radii_[i] - (x - this->centres_[i]).norm());
     }
   }
   if (deepest == -std::numeric_limits<double>::max())

@@ -281,26 +281,82 @@ bool ProbeDistance::exposed_projection(std::uint32_t i, const Vec& x, Vec& y) co
   return true;
 }
 
-bool ProbeDistance::nearest_face(const Holder* holders, std::size_t holder_count, double deepest,
-                                 const Vec& x, ClosestPiece& best) const
+/// The spheres holding a query point (as deep as they hold it), and the deepest sphere of those
+/// looked at (ties: the lowest index).
+struct ProbeDistance::SphereScan
+{
+  struct Holder
+  {
+    double depth; ///< R - |x - c| > 0
+    std::uint32_t sphere;
+  };
+  Holder holders[max_holders];
+  std::size_t holder_count = 0;
+  double deepest = -std::numeric_limits<double>::max();
+  std::uint32_t deepest_sphere = 0;
+
+  void consider(std::uint32_t sphere, double depth)
+  {
+    if (depth > this->deepest || (depth == this->deepest && sphere < this->deepest_sphere))
+    {
+      this->deepest = depth;
+      this->deepest_sphere = sphere;
+    }
+  }
+  void hold(std::uint32_t sphere, double depth)
+  {
+    this->consider(sphere, depth);
+    if (depth > 0 && this->holder_count < max_holders)
+    {
+      this->holders[this->holder_count++] = { depth, sphere };
+    }
+  }
+};
+
+bool ProbeDistance::outside_union(const SphereScan& scan, const Vec& x, bool filtered,
+                                  ClosestPiece& best) const
+{
+  if (scan.deepest == -std::numeric_limits<double>::max())
+  {
+    best.distance = -this->reach_; // far from every sphere
+    return true;
+  }
+  // Probe positions themselves (on the boundary, to rounding) count as inside when a query
+  // leaves pieces out: it asks how far the other pieces are.
+  if (scan.deepest <= 0 && !(filtered && scan.deepest > -1e-9))
+  {
+    // Outside the union: the nearest point of the nearest sphere.
+    const Vec& c = this->centres_[scan.deepest_sphere];
+    best.distance = scan.deepest;
+    best.point = c + this->radii_[scan.deepest_sphere] * (x - c).normalized();
+    best.kind = PieceKind::Face;
+    best.index = scan.deepest_sphere;
+    return true;
+  }
+  return false;
+}
+
+bool ProbeDistance::nearest_face(const SphereScan& scan, const Vec& x, ClosestPiece& best) const
 {
   // Every sphere holding x lies inside the union, so the boundary is at least as far as that
   // sphere's surface: the distance is at least the deepest holder's depth, a shallower holder's
   // projection lies inside the deepest one, and the deepest's projection, when exposed, is the
   // nearest boundary point. Holders as deep (to rounding) are tried too: the lowest index wins.
+  const double deepest = scan.deepest;
   if (deepest >= best.distance)
   {
     return false;
   }
   std::uint32_t chosen = UINT32_MAX;
   Vec chosen_point;
-  for (std::size_t k = 0; k < holder_count; ++k)
+  for (std::size_t k = 0; k < scan.holder_count; ++k)
   {
+    const SphereScan::Holder& holder = scan.holders[k];
     Vec y;
-    if (holders[k].depth >= deepest - 1e-12 && holders[k].sphere < chosen &&
-        this->exposed_projection(holders[k].sphere, x, y))
+    if (holder.depth >= deepest - 1e-12 && holder.sphere < chosen &&
+        this->exposed_projection(holder.sphere, x, y))
     {
-      chosen = holders[k].sphere;
+      chosen = holder.sphere;
       chosen_point = y;
     }
   }
@@ -508,55 +564,30 @@ ClosestPiece ProbeDistance::closest(const LocalPieces& local, const Vec& x, cons
   }
   const bool filtered = filter.mode != Filter::Mode::All;
   ClosestPiece best;
-  Holder holders[max_holders];
-  std::size_t holder_count = 0;
-  double deepest = -std::numeric_limits<double>::max();
-  std::uint32_t deepest_sphere = 0;
   // Depths by square roots only for the spheres holding x, unless none does.
-  const auto consider = [&](std::uint32_t i, double d) {
-    if (d > deepest || (d == deepest && i < deepest_sphere))
-    {
-      deepest = d;
-      deepest_sphere = i;
-    }
-  };
+  SphereScan scan;
   for (const std::uint32_t i : local.spheres)
   {
     const double squared = (x - this->centres_[i]).squaredNorm();
     const double r = this->radii_[i];
     if (squared < r * r)
     {
-      const double d = r - std::sqrt(squared);
-      consider(i, d);
-      if (d > 0 && holder_count < max_holders)
-      {
-        holders[holder_count++] = { d, i };
-      }
+      scan.hold(i, r - std::sqrt(squared));
     }
   }
-  if (holder_count == 0)
+  if (scan.holder_count == 0)
   {
     for (const std::uint32_t i : local.spheres)
     {
-      consider(i, this->radii_[i] - (x - this->centres_[i]).norm());
+      scan.consider(i, this->radii_[i] - (x - this->centres_[i]).norm());
     }
   }
-  if (deepest == -std::numeric_limits<double>::max())
+  if (this->outside_union(scan, x, filtered, best))
   {
-    best.distance = -this->reach_;
-    return best;
-  }
-  if (deepest <= 0 && !(filtered && deepest > -1e-9)) // as in the index's closest()
-  {
-    const Vec& c = this->centres_[deepest_sphere];
-    best.distance = deepest;
-    best.point = c + this->radii_[deepest_sphere] * (x - c).normalized();
-    best.kind = PieceKind::Face;
-    best.index = deepest_sphere;
     return best;
   }
   best.distance = limit;
-  if (!filtered && this->nearest_face(holders, holder_count, deepest, x, best))
+  if (!filtered && this->nearest_face(scan, x, best))
   {
     return best;
   }
@@ -599,64 +630,30 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Filter& filter, double l
   const bool filtered = filter.mode != Filter::Mode::All;
   ClosestPiece best;
   // Spheres holding x: only the deepest can carry the nearest face point (see nearest_face).
-  Holder holders[max_holders];
-  std::size_t holder_count = 0;
-  double deepest = -std::numeric_limits<double>::max();
-  std::uint32_t deepest_sphere = 0;
-  bool inside = false;
+  SphereScan scan;
   this->for_cells(x, this->largest_, this->sphere_start_, this->sphere_items_,
                   [&](std::uint32_t i) {
                     const double squared = (x - this->centres_[i]).squaredNorm();
                     const double r = this->radii_[i];
-                    if (squared >= r * r)
+                    if (squared < r * r)
                     {
-                      return; // a root only for the spheres holding x
-                    }
-                    inside = true;
-                    const double d = r - std::sqrt(squared);
-                    if (d > deepest || (d == deepest && i < deepest_sphere))
-                    {
-                      deepest = d;
-                      deepest_sphere = i;
-                    }
-                    if (holder_count < max_holders)
-                    {
-                      holders[holder_count++] = { d, i };
+                      scan.hold(i, r - std::sqrt(squared)); // a root only for those holding x
                     }
                   });
-  if (!inside)
+  if (scan.deepest == -std::numeric_limits<double>::max())
   {
     // Outside every sphere: the nearest may lie farther.
-    this->for_cells(x, this->outside_exact_, this->sphere_start_, this->sphere_items_,
-                    [&](std::uint32_t i) {
-                      const double d = this->radii_[i] - (x - this->centres_[i]).norm();
-                      if (d > deepest)
-                      {
-                        deepest = d;
-                        deepest_sphere = i;
-                      }
-                    });
+    this->for_cells(
+      x, this->outside_exact_, this->sphere_start_, this->sphere_items_,
+      [&](std::uint32_t i) { scan.consider(i, this->radii_[i] - (x - this->centres_[i]).norm()); });
   }
-  if (deepest == -std::numeric_limits<double>::max())
+  if (this->outside_union(scan, x, filtered, best))
   {
-    best.distance = -this->reach_; // far from every sphere
-    return best;
-  }
-  // Probe positions themselves (on the boundary, to rounding) count as inside when a query
-  // leaves pieces out: it asks how far the other pieces are.
-  if (deepest <= 0 && !(filtered && deepest > -1e-9))
-  {
-    // Outside the union: the nearest point of the nearest sphere.
-    const Vec& c = this->centres_[deepest_sphere];
-    best.distance = deepest;
-    best.point = c + this->radii_[deepest_sphere] * (x - c).normalized();
-    best.kind = PieceKind::Face;
-    best.index = deepest_sphere;
     return best;
   }
   best.distance = limit > 0 ? std::min(limit, this->reach_) : this->reach_;
   // No face cuts a torus or concave patch.
-  if (!filtered && this->nearest_face(holders, holder_count, deepest, x, best))
+  if (!filtered && this->nearest_face(scan, x, best))
   {
     return best;
   }

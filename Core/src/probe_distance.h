@@ -140,15 +140,15 @@ private:
   void for_cells(const Eigen::Vector3d& x, double radius, const std::vector<std::uint32_t>& starts,
                  const std::vector<std::uint32_t>& items, Visit&& visit) const;
   std::int64_t cell_of(const Eigen::Vector3d& x, std::array<std::int64_t, 3>& ijk) const;
-  struct Holder
-  {
-    double depth; ///< R - |x - c| > 0
-    std::uint32_t sphere;
-  };
+  /// The spheres holding a query point, and the deepest sphere (see the source).
+  struct SphereScan;
+  /// Settles a query from its spheres when it can (far from all, or outside the union): sets
+  /// `best`, true.
+  bool outside_union(const SphereScan& scan, const Eigen::Vector3d& x, bool filtered,
+                     ClosestPiece& best) const;
   /// When the nearest boundary point of `x` is on a face (the projection onto the deepest of
-  /// the spheres holding it, `deepest` deep) nearer than `best`: sets `best`, true.
-  bool nearest_face(const Holder* holders, std::size_t holder_count, double deepest,
-                    const Eigen::Vector3d& x, ClosestPiece& best) const;
+  /// the spheres holding it) nearer than `best`: sets `best`, true.
+  bool nearest_face(const SphereScan& scan, const Eigen::Vector3d& x, ClosestPiece& best) const;
   /// The radial projection of `x` onto sphere `i`, when no other sphere covers it.
   bool exposed_projection(std::uint32_t i, const Eigen::Vector3d& x, Eigen::Vector3d& y) const;
   /// Whether the point of arc `k`'s circle at in-plane coordinates (a1, a2) (along e1, e2 from

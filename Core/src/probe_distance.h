@@ -126,7 +126,7 @@ public:
   /// the piece's exposed part): cheap, for root finding once the piece is known.
   double piece_distance(const Eigen::Vector3d& x, PieceKind kind, std::uint32_t index) const;
 
-  /// Calls `visit` with each vertex within `radius` (<= the reach) of `x`, in index order of
+  /// Calls `visit` with each vertex within `radius` of `x`, in index order of
   /// their cells.
   void vertices_within(const Eigen::Vector3d& x, double radius,
                        const std::function<void(std::uint32_t)>& visit) const;

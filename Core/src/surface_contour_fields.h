@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // The fields whose zero sets are the molecular surfaces, as the tessellation asks them (private
-// to MesoLensCore): per grid cell, the boundary pieces near it are gathered once and every
-// corner value and vertex inside looks at those alone.
+// to MesoLensCore): per octree node, the boundary pieces near it are gathered once (from its
+// parent's), and every corner value and vertex inside looks at those alone.
 #pragma once
 
 #include "contour_tetrahedra.h"
@@ -17,7 +17,7 @@ namespace mesolens {
 
 /// The solvent-excluded surface: the distance to the probe positions (the inflated spheres'
 /// boundary, `distance`) less the probe radius `probe`, exact up to `limit` (> probe) inside the
-/// union. Vertices lie on the exact surface to 1e-9 Å, each on its own grid edge; they carry the
+/// union. Vertices lie on the exact surface to 1e-5 Å, each on its own grid edge; they carry the
 /// outward normal (towards the probe), the patch kind, the boundary piece and the nearest atom
 /// of that piece (`centres`, `atom_radii`: the uninflated atoms).
 std::unique_ptr<LocalContourField> excluded_surface_field(

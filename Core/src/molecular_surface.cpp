@@ -479,21 +479,35 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
   add(vertex_area, vertex_volume, SurfacePatch::Concave);
   surface.area = surface.patch_area[0] + surface.patch_area[1] + surface.patch_area[2];
 
-  // The mesh, less dropped cavities.
+  // The mesh, less dropped cavities (arrays sized first, then filled in place).
   std::vector<std::int64_t> new_index(vertices.size(), -1);
+  std::size_t kept = 0;
   for (std::size_t v = 0; v < vertices.size(); ++v)
   {
     if (options.keep_cavities || !cavity[component[v]])
     {
-      new_index[v] = static_cast<std::int64_t>(surface.atom.size());
-      const ContourVertex& vertex = vertices[v];
-      surface.points.insert(surface.points.end(),
-                            { vertex.position[0], vertex.position[1], vertex.position[2] });
-      surface.normals.insert(surface.normals.end(),
-                             { vertex.normal[0], vertex.normal[1], vertex.normal[2] });
-      surface.atom.push_back(vertex.atom);
-      surface.patch.push_back(static_cast<SurfacePatch>(vertex.patch));
+      new_index[v] = static_cast<std::int64_t>(kept++);
     }
+  }
+  surface.points.resize(3 * kept);
+  surface.normals.resize(3 * kept);
+  surface.atom.resize(kept);
+  surface.patch.resize(kept);
+  for (std::size_t v = 0; v < vertices.size(); ++v)
+  {
+    if (new_index[v] < 0)
+    {
+      continue;
+    }
+    const std::size_t k = static_cast<std::size_t>(new_index[v]);
+    const ContourVertex& vertex = vertices[v];
+    for (int a = 0; a < 3; ++a)
+    {
+      surface.points[3 * k + std::size_t(a)] = vertex.position[a];
+      surface.normals[3 * k + std::size_t(a)] = vertex.normal[a];
+    }
+    surface.atom[k] = vertex.atom;
+    surface.patch[k] = static_cast<SurfacePatch>(vertex.patch);
   }
   surface.triangles.reserve(triangles.size());
   for (const std::int64_t v : triangles)

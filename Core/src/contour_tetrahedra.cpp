@@ -113,12 +113,11 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
   };
 
   std::vector<BlockOutput> outputs(block_count);
-  const auto run_block = [&](std::size_t b_index) {
-    const std::size_t b = b_index;
-    const std::int64_t bx = static_cast<std::int64_t>(b % std::size_t(blocks[0]));
+  const auto run_block = [&](std::size_t block) {
+    const std::int64_t bx = static_cast<std::int64_t>(block % std::size_t(blocks[0]));
     const std::int64_t by =
-      static_cast<std::int64_t>((b / std::size_t(blocks[0])) % std::size_t(blocks[1]));
-    const std::int64_t bz = static_cast<std::int64_t>(b / std::size_t(blocks[0] * blocks[1]));
+      static_cast<std::int64_t>((block / std::size_t(blocks[0])) % std::size_t(blocks[1]));
+    const std::int64_t bz = static_cast<std::int64_t>(block / std::size_t(blocks[0] * blocks[1]));
     const std::int64_t x0 = bx * block_cells, y0 = by * block_cells, z0 = bz * block_cells;
     const Vec block_centre =
       position(x0, y0, z0) + Vec::Constant(0.5 * spacing * double(block_cells));
@@ -142,7 +141,7 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
       }
       return v;
     };
-    BlockOutput& out = outputs[b];
+    BlockOutput& out = outputs[block];
     // Per block point and Kuhn direction (1 to 7), the index of the vertex on that edge.
     std::vector<std::int64_t> made(std::size_t(side * side * side * 8), -1);
     const auto contour_cell = [&](const std::array<std::int64_t, 3>& cell) {
@@ -166,7 +165,7 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
         if (index < 0)
         {
           const std::uint64_t key = point_key(x, y, z) * 8 + std::uint64_t(to ^ from);
-          if (owner_of(x, y, z) == b_index)
+          if (owner_of(x, y, z) == block)
           {
             const int outside = corner_value[a] > 0 ? b : a;
             const int inside = corner_value[a] > 0 ? a : b;

@@ -265,22 +265,15 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
   std::vector<std::int64_t> triangles;
   if (options.tessellate)
   {
-    const double leaf_half_diagonal = 0.5 * std::sqrt(3.0) * spacing;
     const double reach = p * (excluded ? 1.0 : 0.0) + 4.0 * spacing;
-    const ProbeDistance distance(centres, radii, boundary, reach,
-                                 largest + 2.0 * leaf_half_diagonal);
+    const ProbeDistance distance(centres, radii, boundary, reach);
     const Occupancy occupancy(centres, radii, 2.0);
-    const double outside_range = distance.cell_width() - largest;
     ContourField field;
-    // Blocks wholly outside the union, or deeper in it than the surface lies, hold nothing.
+    // Blocks far from every sphere, or deeper in the union than the surface lies, hold
+    // nothing; the focus on a block's pieces decides the rest.
     const double surface_depth = excluded ? p : 0.0;
     field.empty = [&, surface_depth](const Vec& x, double r) {
-      if (!occupancy.any(x, r))
-      {
-        return true;
-      }
-      const double depth = distance.union_depth(x);
-      return depth - surface_depth > r || (r <= outside_range && depth < -r);
+      return !occupancy.any(x, r) || distance.union_depth(x) - surface_depth > r;
     };
     if (excluded)
     {

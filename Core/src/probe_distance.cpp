@@ -33,8 +33,6 @@ void build_rows(std::size_t cell_count, std::vector<std::pair<std::int64_t, std:
     items[k] = pairs[k].second;
   }
 }
-/// How far from a ball's centre its points' nearest pieces may lie: a point lies within
-/// centre_distance + radius of the boundary (1-Lipschitz), and searches stop at the limit.
 /// Sorts pieces by distance; lists refined from a parent's come nearly sorted, where insertion
 /// is linear.
 void sort_nearly_sorted(std::vector<std::pair<double, std::uint32_t>>& pieces)
@@ -80,6 +78,8 @@ bool admits_vertex(const PieceFilter& filter, const SasVertex& vertex)
 
 constexpr std::size_t max_holders = 128; // spheres holding one point: far fewer in practice
 
+/// How far from a ball's centre its points' nearest pieces may lie: a point lies within
+/// centre_distance + radius of the boundary (1-Lipschitz), and searches stop at the limit.
 double local_bound(const LocalPieces& local)
 {
   return std::min(local.centre_distance + local.radius, local.limit) + local.radius;
@@ -87,7 +87,7 @@ double local_bound(const LocalPieces& local)
 } // namespace
 
 ProbeDistance::ProbeDistance(const std::vector<Vec>& centres, const std::vector<double>& radii,
-                             const SasBoundary& boundary, double reach, double cell_at_least)
+                             const SasBoundary& boundary, double reach)
   : centres_(centres)
   , radii_(radii)
   , boundary_(boundary)
@@ -102,11 +102,10 @@ ProbeDistance::ProbeDistance(const std::vector<Vec>& centres, const std::vector<
     low = low.cwiseMin(centres[i]);
     high = high.cwiseMax(centres[i]);
   }
-  // Every sphere holding a point, and every piece within reach of it, lies in the 27 cells
-  // around the point's cell.
-  // Fine cells, visited out to the radius each query needs.
+  // Cells a quarter of the larger of the reach and the largest radius wide, visited out to the
+  // radius each query needs.
   this->largest_ = largest;
-  this->outside_exact_ = std::max({ largest, reach, cell_at_least });
+  this->outside_exact_ = std::max(largest, reach);
   this->cell_ = std::max(0.25 * this->outside_exact_, 0.5);
   if (centres.empty())
   {
@@ -218,13 +217,8 @@ double ProbeDistance::piece_distance(const Vec& x, PieceKind kind, std::uint32_t
   {
     case PieceKind::Face:
       return this->radii_[index] - (x - this->centres_[index]).norm();
-    case PieceKind::Arc: {
-      const SasArc& arc = this->boundary_.arcs[index];
-      const Vec v = x - arc.centre;
-      const double along = v.dot(arc.axis);
-      const double radial = (v - along * arc.axis).norm();
-      return std::sqrt(along * along + (radial - arc.radius) * (radial - arc.radius));
-    }
+    case PieceKind::Arc:
+      return std::sqrt(this->arc_frame(index, x).squared);
     case PieceKind::Vertex:
       return (x - this->boundary_.vertices[index].position).norm();
     default:
@@ -385,17 +379,28 @@ bool ProbeDistance::within_span(std::uint32_t k, double a1, double a2) const
   return arc.span <= 0.5 * two_pi ? after_start && before_end : after_start || before_end;
 }
 
-double ProbeDistance::arc_distance(std::uint32_t k, const Vec& x) const
+ProbeDistance::ArcFrame ProbeDistance::arc_frame(std::uint32_t k, const Vec& x) const
 {
   const SasArc& arc = this->boundary_.arcs[k];
   const Vec v = x - arc.centre;
-  const double along = v.dot(arc.axis);
-  const double a1 = v.dot(arc.e1), a2 = v.dot(arc.e2);
-  const double radial = std::sqrt(a1 * a1 + a2 * a2);
-  if (radial <= 1e-12 || this->within_span(k, a1, a2))
+  ArcFrame frame;
+  frame.along = v.dot(arc.axis);
+  frame.a1 = v.dot(arc.e1);
+  frame.a2 = v.dot(arc.e2);
+  frame.radial = std::sqrt(frame.a1 * frame.a1 + frame.a2 * frame.a2);
+  frame.squared =
+    frame.along * frame.along + (frame.radial - arc.radius) * (frame.radial - arc.radius);
+  return frame;
+}
+
+double ProbeDistance::arc_distance(std::uint32_t k, const Vec& x) const
+{
+  const ArcFrame frame = this->arc_frame(k, x);
+  if (frame.radial <= 1e-12 || this->within_span(k, frame.a1, frame.a2))
   {
-    return std::sqrt(along * along + (radial - arc.radius) * (radial - arc.radius));
+    return std::sqrt(frame.squared);
   }
+  const SasArc& arc = this->boundary_.arcs[k];
   const ArcEnds& ends = this->arc_ends_[k];
   const Vec start = arc.centre + arc.radius * (ends.start_cos * arc.e1 + ends.start_sin * arc.e2);
   const Vec end = arc.centre + arc.radius * (ends.end_cos * arc.e1 + ends.end_sin * arc.e2);
@@ -404,33 +409,49 @@ double ProbeDistance::arc_distance(std::uint32_t k, const Vec& x) const
 
 void ProbeDistance::try_arc(std::uint32_t k, const Vec& x, ClosestPiece& best) const
 {
-  const SasArc& arc = this->boundary_.arcs[k];
-  const Vec v = x - arc.centre;
-  const double along = v.dot(arc.axis);
-  const double a1 = v.dot(arc.e1), a2 = v.dot(arc.e2);
-  const double radial = std::sqrt(a1 * a1 + a2 * a2);
-  const double squared = along * along + (radial - arc.radius) * (radial - arc.radius);
-  if (squared >= best.distance * best.distance)
+  const ArcFrame frame = this->arc_frame(k, x);
+  if (frame.squared >= best.distance * best.distance)
   {
     return;
   }
+  const SasArc& arc = this->boundary_.arcs[k];
   Vec point;
-  if (radial > 1e-12)
+  if (frame.radial > 1e-12)
   {
-    if (!this->within_span(k, a1, a2))
+    if (!this->within_span(k, frame.a1, frame.a2))
     {
       return; // nearest circle point not on the exposed arc: an end vertex is nearer
     }
-    point = arc.centre + arc.radius / radial * (a1 * arc.e1 + a2 * arc.e2);
+    point = arc.centre + arc.radius / frame.radial * (frame.a1 * arc.e1 + frame.a2 * arc.e2);
   }
   else
   {
     point = arc.point(arc.start); // on the axis: every circle point is as near
   }
-  best.distance = std::sqrt(squared);
+  best.distance = std::sqrt(frame.squared);
   best.point = point;
   best.kind = PieceKind::Arc;
   best.index = k;
+}
+
+void ProbeDistance::try_vertex(std::uint32_t k, const Vec& x, const Filter& filter,
+                               ClosestPiece& best) const
+{
+  const SasVertex& vertex = this->boundary_.vertices[k];
+  const double distance = (x - vertex.position).norm();
+  if (distance < best.distance && admits_vertex(filter, vertex))
+  {
+    best.distance = distance;
+    best.point = vertex.position;
+    best.kind = PieceKind::Vertex;
+    best.index = k;
+  }
+}
+
+bool ProbeDistance::sphere_reaches(std::uint32_t i, const Vec& centre, double radius) const
+{
+  const double reach = this->radii_[i] + radius;
+  return (centre - this->centres_[i]).squaredNorm() < reach * reach;
 }
 
 void ProbeDistance::spheres_near(const Vec& centre, double radius,
@@ -438,12 +459,23 @@ void ProbeDistance::spheres_near(const Vec& centre, double radius,
 {
   this->for_cells(centre, this->largest_ + radius, this->sphere_start_, this->sphere_items_,
                   [&](std::uint32_t i) {
-                    const double reach = this->radii_[i] + radius;
-                    if ((centre - this->centres_[i]).squaredNorm() < reach * reach)
+                    if (this->sphere_reaches(i, centre, radius))
                     {
                       spheres.push_back(i);
                     }
                   });
+}
+
+void ProbeDistance::spheres_near(const std::vector<std::uint32_t>& candidates, const Vec& centre,
+                                 double radius, std::vector<std::uint32_t>& spheres) const
+{
+  for (const std::uint32_t i : candidates)
+  {
+    if (this->sphere_reaches(i, centre, radius))
+    {
+      spheres.push_back(i);
+    }
+  }
 }
 
 void ProbeDistance::gather(const Vec& centre, double radius, double limit, LocalPieces& local,
@@ -508,14 +540,7 @@ void ProbeDistance::refine(const LocalPieces& parent, const Vec& centre, double 
   local.limit = parent.limit;
   local.centre_distance = this->closest(parent, centre).distance;
   local.spheres.clear();
-  for (const std::uint32_t i : parent.spheres)
-  {
-    const double reach = this->radii_[i] + radius;
-    if ((centre - this->centres_[i]).squaredNorm() < reach * reach)
-    {
-      local.spheres.push_back(i);
-    }
-  }
+  this->spheres_near(parent.spheres, centre, radius, local.spheres);
   local.arcs.clear();
   local.vertices.clear();
   const double bound = local_bound(local);
@@ -600,7 +625,7 @@ ClosestPiece ProbeDistance::closest(const LocalPieces& local, const Vec& x, cons
     {
       break;
     }
-    if (!filtered || admits_arc(filter, this->boundary_.arcs[arc.second]))
+    if (admits_arc(filter, this->boundary_.arcs[arc.second]))
     {
       this->try_arc(arc.second, x, best);
     }
@@ -611,16 +636,7 @@ ClosestPiece ProbeDistance::closest(const LocalPieces& local, const Vec& x, cons
     {
       break;
     }
-    const std::uint32_t k = vertex.second;
-    const double distance = (x - this->boundary_.vertices[k].position).norm();
-    if (distance < best.distance &&
-        (!filtered || admits_vertex(filter, this->boundary_.vertices[k])))
-    {
-      best.distance = distance;
-      best.point = this->boundary_.vertices[k].position;
-      best.kind = PieceKind::Vertex;
-      best.index = k;
-    }
+    this->try_vertex(vertex.second, x, filter, best);
   }
   return best;
 }
@@ -646,6 +662,15 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Filter& filter, double l
     this->for_cells(
       x, this->outside_exact_, this->sphere_start_, this->sphere_items_,
       [&](std::uint32_t i) { scan.consider(i, this->radii_[i] - (x - this->centres_[i]).norm()); });
+    // Spheres beyond the search are at least this far below zero: when none nearer was found,
+    // the distance is reported as that bound (nearer zero than the truth may be), so that a
+    // ball around x is never judged farther from the surface than it is.
+    const double unseen = this->largest_ - this->outside_exact_;
+    if (scan.deepest < unseen)
+    {
+      best.distance = unseen;
+      return best;
+    }
   }
   if (this->outside_union(scan, x, filtered, best))
   {
@@ -677,16 +702,8 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Filter& filter, double l
                       this->try_arc(k, x, best);
                     }
                   });
-  this->for_cells(x, best.distance, this->vertex_start_, this->vertex_items_, [&](std::uint32_t k) {
-    const double distance = (x - this->boundary_.vertices[k].position).norm();
-    if (distance < best.distance && admits_vertex(filter, this->boundary_.vertices[k]))
-    {
-      best.distance = distance;
-      best.point = this->boundary_.vertices[k].position;
-      best.kind = PieceKind::Vertex;
-      best.index = k;
-    }
-  });
+  this->for_cells(x, best.distance, this->vertex_start_, this->vertex_items_,
+                  [&](std::uint32_t k) { this->try_vertex(k, x, filter, best); });
   return best;
 }
 

@@ -75,16 +75,17 @@ struct LocalPieces
 class ProbeDistance
 {
 public:
-  /// `reach` > 0; index cells are at least `cell_at_least` wide (and the largest radius and
-  /// the reach), so union_depth() sees every sphere within that width less the largest radius.
+  /// `reach` > 0.
   ProbeDistance(const std::vector<Eigen::Vector3d>& centres, const std::vector<double>& radii,
-                const SasBoundary& boundary, double reach, double cell_at_least = 0);
+                const SasBoundary& boundary, double reach);
 
   using Filter = PieceFilter;
 
   /// The nearest boundary piece of `x` and the signed distance to it. Outside the union the
-  /// distance is exact at any range (the nearest sphere); inside it is exact up to the reach,
-  /// beyond which it reports the reach and PieceKind::None. With a filter, the nearest of the
+  /// distance is exact (the nearest sphere) up to max(reach, largest radius) less the largest
+  /// radius; farther out it reports that bound, nearer zero than the truth, and
+  /// PieceKind::None. Inside it is exact up to the reach, beyond which it reports the reach and
+  /// PieceKind::None. With a filter, the nearest of the
   /// pieces it lets through (inside the union only).
   /// `limit` (<= the reach; 0: the reach) bounds the search inside the union: pieces farther
   /// are not looked for, and the distance reported is then the limit (PieceKind::None).
@@ -101,9 +102,12 @@ public:
               LocalPieces& local) const;
 
   /// The spheres that may hold a point within `radius` of `centre` (|c - centre| < R + radius),
-  /// appended to `spheres`.
+  /// appended to `spheres`: from the index, or from `candidates` (those of a larger ball
+  /// holding this one).
   void spheres_near(const Eigen::Vector3d& centre, double radius,
                     std::vector<std::uint32_t>& spheres) const;
+  void spheres_near(const std::vector<std::uint32_t>& candidates, const Eigen::Vector3d& centre,
+                    double radius, std::vector<std::uint32_t>& spheres) const;
 
   /// closest() among the gathered pieces alone, for a point within `local.radius` of their
   /// centre (farther points are answered from the index): the same answer up to `local.limit`
@@ -113,13 +117,6 @@ public:
   /// index's closest().
   ClosestPiece closest(const LocalPieces& local, const Eigen::Vector3d& x,
                        const Filter& filter = {}, double limit = 0) const;
-
-  /// Width of the index cells: union_depth() is exact outside the union up to this width less
-  /// the largest radius.
-  double cell_width() const
-  {
-    return this->outside_exact_;
-  }
 
   /// The signed distance from `x` to the whole sphere, circle or point that carries a piece
   /// (as closest() reports it for that piece, without checking that the nearest point lies on
@@ -151,11 +148,24 @@ private:
   bool nearest_face(const SphereScan& scan, const Eigen::Vector3d& x, ClosestPiece& best) const;
   /// The radial projection of `x` onto sphere `i`, when no other sphere covers it.
   bool exposed_projection(std::uint32_t i, const Eigen::Vector3d& x, Eigen::Vector3d& y) const;
+  /// Where a point lies about arc `k`'s circle: along its axis, in its plane (along e1 and e2
+  /// from its centre), how far from the axis, and the squared distance to the circle.
+  struct ArcFrame
+  {
+    double along, a1, a2, radial, squared;
+  };
+  ArcFrame arc_frame(std::uint32_t k, const Eigen::Vector3d& x) const;
   /// Whether the point of arc `k`'s circle at in-plane coordinates (a1, a2) (along e1, e2 from
   /// its centre) lies on the exposed arc.
   bool within_span(std::uint32_t k, double a1, double a2) const;
   /// The distance from `x` to exposed arc `k` (its ends included).
   double arc_distance(std::uint32_t k, const Eigen::Vector3d& x) const;
+  /// Vertex `k` as the nearest piece when the filter admits it and it is nearer than
+  /// `best.distance`: updates `best`.
+  void try_vertex(std::uint32_t k, const Eigen::Vector3d& x, const Filter& filter,
+                  ClosestPiece& best) const;
+  /// Whether sphere `i` may hold a point within `radius` of `centre`.
+  bool sphere_reaches(std::uint32_t i, const Eigen::Vector3d& centre, double radius) const;
   /// Arc `k` as the nearest piece when nearer than `best.distance`: updates `best`.
   void try_arc(std::uint32_t k, const Eigen::Vector3d& x, ClosestPiece& best) const;
 

@@ -146,12 +146,12 @@ struct Splitter
   LocalPieces* scratch = nullptr;
 
   /// This splitter, looking at the pieces near a patch (around `middle`, within `size`) once it
-  /// needs splitting: from the top of the split only, as sub-patches lie within their parent's
-  /// ball (points outside are answered from the index anyway).
-  Splitter focused(const Vec& middle, double size, int depth) const
+  /// needs splitting: gathered at the top of the split only, as sub-patches lie within their
+  /// parent's ball (points outside are answered from the index anyway).
+  Splitter focused(const Vec& middle, double size) const
   {
     Splitter result = *this;
-    if (depth == 0 && this->scratch && !this->local)
+    if (this->scratch && !this->local)
     {
       this->distance->gather(middle, size, 2.0 * this->probe, *this->scratch, true);
       result.local = this->scratch;
@@ -278,7 +278,7 @@ Integral split_concave(const Splitter& splitter, const std::vector<ProbeCap>& ca
   {
     return concave_piece(centre, p, a, b, c);
   }
-  const Splitter inner = splitter.focused(centre + p * middle, size, depth);
+  const Splitter inner = splitter.focused(centre + p * middle, size);
   if (depth == deepest_split)
   {
     const auto clearance = [&](const Vec& u) {
@@ -320,7 +320,7 @@ Integral split_torus(const Splitter& splitter, const Torus& torus, const Angle& 
   {
     return torus.piece(phi0, phi1, t0, t1);
   }
-  const Splitter inner = splitter.focused(middle, ball_slack * size, depth);
+  const Splitter inner = splitter.focused(middle, ball_slack * size);
   if (depth == deepest_split)
   {
     const double g00 = inner.clearance(corners[0]);

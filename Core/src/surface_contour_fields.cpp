@@ -211,14 +211,8 @@ public:
     }
     else
     {
-      for (const std::uint32_t i : this->levels_[static_cast<std::size_t>(level) - 1])
-      {
-        const double reach = this->radii_[i] + radius;
-        if ((centre - this->centres_[i]).squaredNorm() < reach * reach)
-        {
-          spheres.push_back(i);
-        }
-      }
+      this->distance_.spheres_near(this->levels_[static_cast<std::size_t>(level) - 1], centre,
+                                   radius, spheres);
     }
     this->spheres_ = &spheres;
     // Every sphere reaching the ball is here, so the depth at the centre is exact where it

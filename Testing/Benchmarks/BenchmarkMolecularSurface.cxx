@@ -11,20 +11,17 @@
 //   BenchmarkMolecularSurface [--repeats N]
 #include "mesolens_benchmark_timing.h"
 #include "mesolens_test_data.h"
+#include "mesolens_test_protein.h"
 #include "vtkMesoMolecularSurface.h"
 #include "vtkMesoStructureReader.h"
 #include "vtkMesoTrajectoryReader.h"
 
-#include <vtkCellArray.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
-#include <vtkIdList.h>
+#include <vtkMassProperties.h>
 #include <vtkNew.h>
-#include <vtkPointData.h>
-#include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSMPTools.h>
-#include <vtkUnsignedShortArray.h>
 
 #include <array>
 #include <cmath>
@@ -46,22 +43,10 @@ double field(vtkPolyData* data, const char* name)
 /// Area of the mesh's triangles, Å².
 double mesh_area(vtkPolyData* mesh)
 {
-  double area = 0;
-  vtkNew<vtkIdList> corners;
-  for (vtkIdType c = 0; c < mesh->GetNumberOfPolys(); ++c)
-  {
-    mesh->GetPolys()->GetCellAtId(c, corners);
-    double a[3], b[3], d[3];
-    mesh->GetPoint(corners->GetId(0), a);
-    mesh->GetPoint(corners->GetId(1), b);
-    mesh->GetPoint(corners->GetId(2), d);
-    const double u[3] = { b[0] - a[0], b[1] - a[1], b[2] - a[2] };
-    const double v[3] = { d[0] - a[0], d[1] - a[1], d[2] - a[2] };
-    area += 0.5 *
-      std::sqrt(std::pow(u[1] * v[2] - u[2] * v[1], 2) + std::pow(u[2] * v[0] - u[0] * v[2], 2) +
-                std::pow(u[0] * v[1] - u[1] * v[0], 2));
-  }
-  return area;
+  vtkNew<vtkMassProperties> properties;
+  properties->SetInputData(mesh);
+  properties->Update();
+  return properties->GetSurfaceArea();
 }
 
 /// Peak resident memory since the last reset, MiB (Linux: VmHWM, reset through clear_refs).
@@ -81,28 +66,6 @@ double peak_mib()
 void reset_peak()
 {
   std::ofstream("/proc/self/clear_refs") << "5";
-}
-
-/// The atoms of ATOM records (no HETATM), with their elements.
-vtkNew<vtkPolyData> protein_atoms(vtkPolyData* atoms)
-{
-  vtkNew<vtkPolyData> protein;
-  vtkNew<vtkPoints> points;
-  vtkNew<vtkUnsignedShortArray> elements;
-  elements->SetName("AtomicNumber");
-  vtkDataArray* hetero = atoms->GetPointData()->GetArray("IsHetAtm");
-  vtkDataArray* numbers = atoms->GetPointData()->GetArray("AtomicNumber");
-  for (vtkIdType a = 0; a < atoms->GetNumberOfPoints(); ++a)
-  {
-    if (!hetero || hetero->GetTuple1(a) == 0)
-    {
-      points->InsertNextPoint(atoms->GetPoint(a));
-      elements->InsertNextValue(static_cast<unsigned short>(numbers->GetTuple1(a)));
-    }
-  }
-  protein->SetPoints(points);
-  protein->GetPointData()->AddArray(elements);
-  return protein;
 }
 
 struct Baseline
@@ -214,7 +177,7 @@ int main(int argc, char* argv[])
     reader->SetFileName(path.c_str());
     reader->KeepAllAlternateLocationsOn(); // as EDTSurf and PyMOL read them
     reader->Update();
-    auto atoms = protein_atoms(reader->GetOutput());
+    auto atoms = mesolens_test::protein_atoms(reader->GetOutput());
     vtkNew<vtkMesoMolecularSurface> surface;
     surface->SetInputData(atoms);
     double time_at_interactive = 0;

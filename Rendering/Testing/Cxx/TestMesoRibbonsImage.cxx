@@ -12,6 +12,7 @@
 // changes the strands' width (Å; a test breaks the picture on purpose with it).
 #include "MesoAtomScenes.h"
 #include "mesolens_test_data.h"
+#include "mesolens_test_protein.h"
 #include "vtkMesoAtomMapper.h"
 #include "vtkMesoMolecularSurface.h"
 #include "vtkMesoRibbons.h"
@@ -21,7 +22,6 @@
 #include <vtkActor.h>
 #include <vtkCamera.h>
 #include <vtkCellArray.h>
-#include <vtkUnsignedShortArray.h>
 #include <vtkIdList.h>
 #include <vtkLookupTable.h>
 #include <vtkNew.h>
@@ -188,21 +188,7 @@ vtkSmartPointer<vtkRenderWindow> styles()
   ligand_actor->SetMapper(ligand_mapper);
   // The solvent-excluded surface of the protein's atoms (no waters, no ligand).
   static vtkNew<vtkPolyData> protein;
-  {
-    vtkDataArray* hetero = atoms->GetPointData()->GetArray("IsHetAtm");
-    vtkDataArray* elements = atoms->GetPointData()->GetArray("AtomicNumber");
-    vtkNew<vtkPoints> points;
-    vtkNew<vtkUnsignedShortArray> numbers;
-    numbers->SetName("AtomicNumber");
-    for (vtkIdType a = 0; a < atoms->GetNumberOfPoints(); ++a)
-      if (hetero->GetTuple1(a) == 0)
-      {
-        points->InsertNextPoint(atoms->GetPoint(a));
-        numbers->InsertNextValue(static_cast<unsigned short>(elements->GetTuple1(a)));
-      }
-    protein->SetPoints(points);
-    protein->GetPointData()->AddArray(numbers);
-  }
+  protein->ShallowCopy(mesolens_test::protein_atoms(atoms));
   static vtkNew<vtkMesoMolecularSurface> surface;
   surface->SetInputData(protein);
   surface->SetTolerance(0.2);

@@ -2,12 +2,12 @@
 #include "vtkMesoMolecularSurface.h"
 
 #include "vtkMesoAtomTableConversion.h"
+#include "vtkMesoSurfaceConversion.h"
 #include "vtkMesoParallelFor.h"
 
 #include "mesolens/errors.h"
 #include "mesolens/molecular_surface.h"
 
-#include <vtkCellArray.h>
 #include <vtkDataArray.h>
 #include <vtkFloatArray.h>
 #include <vtkIdList.h>
@@ -74,7 +74,6 @@ int vtkMesoMolecularSurface::RequestData(vtkInformation*, vtkInformationVector**
   }
 
   const vtkIdType vertices = static_cast<vtkIdType>(surface.atom.size());
-  const vtkIdType triangle_count = static_cast<vtkIdType>(surface.triangles.size() / 3);
   vtkNew<vtkFloatArray> coordinates;
   coordinates->SetNumberOfComponents(3);
   coordinates->SetNumberOfTuples(vertices);
@@ -101,23 +100,10 @@ int vtkMesoMolecularSurface::RequestData(vtkInformation*, vtkInformationVector**
     patches->SetValue(v, static_cast<unsigned char>(surface.patch[std::size_t(v)]));
     from->SetId(v, surface.atom[std::size_t(v)]);
   }
-  vtkNew<vtkIdTypeArray> offsets, connectivity;
-  offsets->SetNumberOfValues(triangle_count + 1);
-  connectivity->SetNumberOfValues(3 * triangle_count);
-  for (vtkIdType t = 0; t <= triangle_count; ++t)
-  {
-    offsets->SetValue(t, 3 * t);
-  }
-  for (vtkIdType k = 0; k < 3 * triangle_count; ++k)
-  {
-    connectivity->SetValue(k, surface.triangles[std::size_t(k)]);
-  }
   vtkNew<vtkPoints> points;
   points->SetData(coordinates);
   output->SetPoints(points);
-  vtkNew<vtkCellArray> triangles;
-  triangles->SetData(offsets, connectivity);
-  output->SetPolys(triangles);
+  vtkMesoSurfaceConversion::SetTriangles(surface.triangles, output);
 
   // Each numeric array of the atoms, carried to the vertices through their atoms.
   vtkPointData* in = atoms->GetPointData();

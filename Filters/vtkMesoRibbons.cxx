@@ -2,6 +2,7 @@
 #include "vtkMesoRibbons.h"
 
 #include "vtkMesoAtomTableConversion.h"
+#include "vtkMesoSurfaceConversion.h"
 #include "vtkMesoParallelFor.h"
 #include "vtkMesoStamp.h"
 
@@ -11,7 +12,6 @@
 #include "mesolens/protein_backbone.h"
 #include "mesolens/ribbon_geometry.h"
 
-#include <vtkCellArray.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
@@ -248,7 +248,6 @@ int vtkMesoRibbons::RequestData(vtkInformation*, vtkInformationVector** inputVec
       mesolens::ribbon_mesh(residues, settings, vtkMesoParallelFor::Get());
 
     const vtkIdType vertices = vtkIdType(mesh.vertex_count());
-    const vtkIdType triangle_count = vtkIdType(mesh.triangle_count());
     vtkNew<vtkFloatArray> coordinates;
     coordinates->SetNumberOfComponents(3);
     coordinates->SetNumberOfTuples(vertices);
@@ -256,10 +255,6 @@ int vtkMesoRibbons::RequestData(vtkInformation*, vtkInformationVector** inputVec
     normals->SetName("Normals");
     normals->SetNumberOfComponents(3);
     normals->SetNumberOfTuples(vertices);
-    vtkNew<vtkIdTypeArray> offsets;
-    offsets->SetNumberOfValues(triangle_count + 1);
-    vtkNew<vtkIdTypeArray> connectivity;
-    connectivity->SetNumberOfValues(3 * triangle_count);
     vtkNew<vtkIdList> from;
     from->SetNumberOfIds(vertices);
     vtkNew<vtkIdTypeArray> atom_ids;
@@ -300,25 +295,10 @@ int vtkMesoRibbons::RequestData(vtkInformation*, vtkInformationVector** inputVec
           mesolens::from_dssp_letter(mesh.vertex_secondary_structure[std::size_t(v)]));
       }
     });
-    vtkIdType* offset = offsets->GetPointer(0);
-    vtkIdType* corner = connectivity->GetPointer(0);
-    vtkSMPTools::For(0, triangle_count, [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType t = begin; t < end; ++t)
-      {
-        offset[t] = 3 * t;
-        for (int k = 0; k < 3; ++k)
-        {
-          corner[3 * t + k] = mesh.triangles[3 * std::size_t(t) + std::size_t(k)];
-        }
-      }
-    });
-    offset[triangle_count] = 3 * triangle_count;
     vtkNew<vtkPoints> points;
     points->SetData(coordinates);
     output->SetPoints(points);
-    vtkNew<vtkCellArray> triangles;
-    triangles->SetData(offsets, connectivity);
-    output->SetPolys(triangles);
+    vtkMesoSurfaceConversion::SetTriangles(mesh.triangles, output);
 
     vtkPointData* in = atoms->GetPointData();
     vtkPointData* out = output->GetPointData();

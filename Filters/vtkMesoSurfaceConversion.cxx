@@ -13,6 +13,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkSMPTools.h>
 
 #include <algorithm>
 #include <cmath>
@@ -63,17 +64,32 @@ void FromTriangleMesh(const mesolens::TriangleMesh& mesh, vtkPolyData* output)
   {
     points->SetPoint(static_cast<vtkIdType>(i), mesh.points.data() + 3 * i);
   }
-  vtkNew<vtkCellArray> triangles;
-  triangles->AllocateExact(static_cast<vtkIdType>(mesh.triangle_count()),
-                           static_cast<vtkIdType>(3 * mesh.triangle_count()));
-  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
-  {
-    const vtkIdType ids[3] = { mesh.triangles[3 * t], mesh.triangles[3 * t + 1],
-                               mesh.triangles[3 * t + 2] };
-    triangles->InsertNextCell(3, ids);
-  }
   output->SetPoints(points);
-  output->SetPolys(triangles);
+  SetTriangles(mesh.triangles, output);
+}
+
+void SetTriangles(const std::vector<std::int64_t>& triangles, vtkPolyData* output)
+{
+  const vtkIdType count = static_cast<vtkIdType>(triangles.size() / 3);
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  offsets->SetNumberOfValues(count + 1);
+  connectivity->SetNumberOfValues(3 * count);
+  vtkIdType* offset = offsets->GetPointer(0);
+  vtkIdType* corner = connectivity->GetPointer(0);
+  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType t = begin; t < end; ++t)
+    {
+      offset[t] = 3 * t;
+      for (int k = 0; k < 3; ++k)
+      {
+        corner[3 * t + k] = triangles[3 * std::size_t(t) + std::size_t(k)];
+      }
+    }
+  });
+  offset[count] = 3 * count;
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets, connectivity);
+  output->SetPolys(cells);
 }
 
 void GeodesicDiskBuilder::SetSurface(vtkPolyData* surface, vtkMTimeType surfaceTime)

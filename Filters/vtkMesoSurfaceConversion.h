@@ -11,7 +11,9 @@
 #include <vtkType.h>
 
 #include <array>
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 class vtkPolyData;
 
@@ -23,6 +25,10 @@ mesolens::TriangleMesh ToTriangleMesh(vtkPolyData* surface);
 
 /// Fills `output` with the points (double) and triangles of `mesh`.
 void FromTriangleMesh(const mesolens::TriangleMesh& mesh, vtkPolyData* output);
+
+/// Sets the polygons of `output` to `triangles` (3 vertex indices each), written in parallel
+/// straight into the cell array's memory: meshes can have millions of triangles.
+void SetTriangles(const std::vector<std::int64_t>& triangles, vtkPolyData* output);
 
 /// A geodesic solver for the surface of one filter, rebuilt only when the surface changes, and
 /// the disk grown from a seed given as a 3D point.

@@ -49,33 +49,6 @@ void sort_nearly_sorted(std::vector<std::pair<double, std::uint32_t>>& pieces)
   }
 }
 
-/// Whether a filtered query looks at an arc or a vertex (see PieceFilter).
-bool has_atom(const PieceFilter& filter, std::uint32_t sphere)
-{
-  return sphere == filter.atoms[0] || sphere == filter.atoms[1] ||
-    (filter.mode == PieceFilter::Mode::ConcaveCutters && sphere == filter.atoms[2]);
-}
-
-bool admits_arc(const PieceFilter& filter, const SasArc& arc)
-{
-  if (filter.mode == PieceFilter::Mode::All)
-  {
-    return true;
-  }
-  const bool first = has_atom(filter, arc.first), second = has_atom(filter, arc.second);
-  const bool pinched_pair = filter.mode == PieceFilter::Mode::ConcaveCutters && first && second &&
-    arc.radius < filter.probe;
-  return !(first || second) || pinched_pair;
-}
-
-bool admits_vertex(const PieceFilter& filter, const SasVertex& vertex)
-{
-  const auto& spheres = vertex.spheres;
-  return filter.mode == PieceFilter::Mode::All ||
-    (filter.mode == PieceFilter::Mode::TorusCutters && !has_atom(filter, spheres[0]) &&
-     !has_atom(filter, spheres[1]) && !has_atom(filter, spheres[2]));
-}
-
 constexpr std::size_t max_holders = 128; // spheres holding one point: far fewer in practice
 
 /// How far from a ball's centre its points' nearest pieces may lie: a point lies within
@@ -235,6 +208,20 @@ void ProbeDistance::vertices_within(const Vec& x, double radius,
       visit(k);
     }
   });
+}
+
+void ProbeDistance::arcs_within(const Vec& x, double radius, std::vector<std::uint32_t>& arcs) const
+{
+  const std::size_t first = arcs.size();
+  const double reach = radius + this->arc_extent_;
+  this->for_cells(x, reach, this->arc_start_, this->arc_entries_, [&](std::uint32_t entry) {
+    if ((x - this->arc_piece_middle_[entry]).squaredNorm() < reach * reach)
+    {
+      arcs.push_back(this->arc_items_[entry]);
+    }
+  });
+  std::sort(arcs.begin() + std::ptrdiff_t(first), arcs.end());
+  arcs.erase(std::unique(arcs.begin() + std::ptrdiff_t(first), arcs.end()), arcs.end());
 }
 
 double ProbeDistance::union_depth(const Vec& x, std::uint32_t* sphere) const
@@ -439,7 +426,7 @@ void ProbeDistance::try_vertex(std::uint32_t k, const Vec& x, const Filter& filt
 {
   const SasVertex& vertex = this->boundary_.vertices[k];
   const double distance = (x - vertex.position).norm();
-  if (distance < best.distance && admits_vertex(filter, vertex))
+  if (distance < best.distance && filter.admits(vertex))
   {
     best.distance = distance;
     best.point = vertex.position;
@@ -625,7 +612,7 @@ ClosestPiece ProbeDistance::closest(const LocalPieces& local, const Vec& x, cons
     {
       break;
     }
-    if (admits_arc(filter, this->boundary_.arcs[arc.second]))
+    if (filter.admits(this->boundary_.arcs[arc.second]))
     {
       this->try_arc(arc.second, x, best);
     }
@@ -697,7 +684,7 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Filter& filter, double l
                       return; // the next piece of the same arc
                     }
                     last_arc = k;
-                    if (admits_arc(filter, this->boundary_.arcs[k]))
+                    if (filter.admits(this->boundary_.arcs[k]))
                     {
                       this->try_arc(k, x, best);
                     }

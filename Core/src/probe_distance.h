@@ -51,6 +51,33 @@ struct PieceFilter
   Mode mode = Mode::All;
   std::array<std::uint32_t, 3> atoms{};
   double probe = 0;
+
+  /// Whether a query with this filter looks at the arc, or at the vertex.
+  bool admits(const SasArc& arc) const
+  {
+    if (this->mode == Mode::All)
+    {
+      return true;
+    }
+    const bool first = this->has_atom(arc.first), second = this->has_atom(arc.second);
+    const bool pinched_pair =
+      this->mode == Mode::ConcaveCutters && first && second && arc.radius < this->probe;
+    return !(first || second) || pinched_pair;
+  }
+  bool admits(const SasVertex& vertex) const
+  {
+    const auto& spheres = vertex.spheres;
+    return this->mode == Mode::All ||
+      (this->mode == Mode::TorusCutters && !this->has_atom(spheres[0]) &&
+       !this->has_atom(spheres[1]) && !this->has_atom(spheres[2]));
+  }
+
+private:
+  bool has_atom(std::uint32_t sphere) const
+  {
+    return sphere == this->atoms[0] || sphere == this->atoms[1] ||
+      (this->mode == Mode::ConcaveCutters && sphere == this->atoms[2]);
+  }
 };
 
 /// The pieces that may be nearest to some point of a ball: gathered once, they let many queries
@@ -122,6 +149,10 @@ public:
   /// (as closest() reports it for that piece, without checking that the nearest point lies on
   /// the piece's exposed part): cheap, for root finding once the piece is known.
   double piece_distance(const Eigen::Vector3d& x, PieceKind kind, std::uint32_t index) const;
+
+  /// Appends to `arcs` (sorted, each once) every arc with an exposed point within `radius` of
+  /// `x`, and perhaps a few a little farther.
+  void arcs_within(const Eigen::Vector3d& x, double radius, std::vector<std::uint32_t>& arcs) const;
 
   /// Calls `visit` with each vertex within `radius` of `x`, in index order of
   /// their cells.

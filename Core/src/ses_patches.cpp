@@ -3,6 +3,9 @@
 
 #include "ses_patches.h"
 
+#include "patch_clearance.h"
+#include "spherical_triangle.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -53,6 +56,30 @@ struct Torus
     const Vec d = phi.cos * this->arc->e1 + phi.sin * this->arc->e2;
     return this->arc->centre + this->arc->radius * d +
       this->probe * (t.cos * this->arc->axis + t.sin * d);
+  }
+
+  /// How far the piece over [phi0, phi1] x [t0, t1] reaches from `middle`, exactly. For each t
+  /// the squared distance grows with |phi - phi_m| (its coefficient in -cos(phi - phi_m) is
+  /// 2 (rho + p sin t)(rho + p sin t_m), distances to the axis, >= 0), so the farthest point
+  /// lies on an azimuth edge, where it is the maximum of a sinusoid in t.
+  double reach(const Vec& middle, const Angle& phi0, const Angle& phi1, const Angle& t0,
+               const Angle& t1) const
+  {
+    const SasArc& a = *this->arc;
+    const double p = this->probe;
+    double farthest = 0;
+    for (const Angle* phi : { &phi0, &phi1 })
+    {
+      const Vec d = phi->cos * a.e1 + phi->sin * a.e2;
+      const Vec u = a.centre + a.radius * d - middle;
+      // max over [t0, t1] (at most half a turn) of x cos t + y sin t.
+      const double x = u.dot(a.axis), y = u.dot(d);
+      const bool inside = t0.cos * y - t0.sin * x >= 0 && x * t1.sin - y * t1.cos >= 0;
+      const double most = inside ? std::sqrt(x * x + y * y)
+                                 : std::max(x * t0.cos + y * t0.sin, x * t1.cos + y * t1.sin);
+      farthest = std::max(farthest, u.squaredNorm() + p * p + 2.0 * p * most);
+    }
+    return std::sqrt(std::max(0.0, farthest));
   }
 
   /// The piece over azimuths [phi0, phi1] and arc angles [t0, t1] (where the distance to the
@@ -118,47 +145,96 @@ struct Splitter
   const ProbeDistance* distance = nullptr;
   const ProbeDistance::Filter* foreign = nullptr;
   double probe = 0;
-  /// Once a patch needs splitting, the pieces around it (gathered for the filter), which every
-  /// query inside looks at instead of the index; null before.
-  const LocalPieces* local = nullptr;
+  /// The foreign pieces that may cut the patch (see gather_cutters()), with the spheres around
+  /// it: queries look at these alone, so distances are those to possible cutters, exact
+  /// wherever they are below p (where the clearance's sign is decided).
+  const LocalPieces* cutters = nullptr;
 
-  ClosestPiece closest(const Vec& x, const ProbeDistance::Filter& filter, double limit) const
+  bool none() const
   {
-    return this->local && limit <= this->local->limit
-      ? this->distance->closest(*this->local, x, filter, limit)
-      : this->distance->closest(x, filter, limit);
+    return this->cutters->arcs.empty() && this->cutters->vertices.empty();
   }
 
   /// Whether a piece around `middle` reaching `size` is certainly kept whole.
   bool kept(const Vec& middle, double size) const
   {
     const double limit = this->probe + size; // the search goes no farther than the test needs
-    return this->closest(middle, *this->foreign, limit).distance >= limit;
+    return this->none() ||
+      this->distance->closest(*this->cutters, middle, *this->foreign, limit).distance >= limit;
   }
 
-  /// Distance to the foreign positions less p (> 0: kept).
+  /// Distance to the foreign positions less p (> 0: kept), at most p.
   double clearance(const Vec& x) const
   {
-    return this->closest(x, *this->foreign, 2.0 * this->probe).distance - this->probe;
-  }
-
-  /// Where focus() gathers pieces (per thread); none: every query asks the index.
-  LocalPieces* scratch = nullptr;
-
-  /// This splitter, looking at the pieces near a patch (around `middle`, within `size`) once it
-  /// needs splitting: gathered at the top of the split only, as sub-patches lie within their
-  /// parent's ball (points outside are answered from the index anyway).
-  Splitter focused(const Vec& middle, double size) const
-  {
-    Splitter result = *this;
-    if (this->scratch && !this->local)
-    {
-      this->distance->gather(middle, size, 2.0 * this->probe, *this->scratch, true);
-      result.local = this->scratch;
-    }
-    return result;
+    return this->none()
+      ? this->probe
+      : this->distance->closest(*this->cutters, x, *this->foreign, 2.0 * this->probe).distance -
+        this->probe;
   }
 };
+
+/// Whether no piece `foreign` admits comes within p of the ball of `radius` about `centre`: a
+/// single index query, which settles most patches.
+bool clear_of_all(const ProbeDistance& distance, const ProbeDistance::Filter& foreign, double p,
+                  const Vec& centre, double radius)
+{
+  const double limit = p + radius;
+  return distance.closest(centre, foreign, limit).distance >= limit;
+}
+
+/// Buffers of gather_cutters(), reused from patch to patch.
+struct CutterSearch
+{
+  std::vector<std::uint32_t> arcs, vertices;
+  LocalPieces cutters;
+};
+
+/// The pieces `foreign` admits that may come within p of a patch lying within `radius` of
+/// `centre`: those within p of that ball that `clear_of_arc` or `clear_of_vertex` do not
+/// certify (see patch_clearance.h). False when there are none; else `search.cutters` holds them
+/// with the spheres reaching the ball.
+template<typename ClearOfArc, typename ClearOfVertex>
+bool gather_cutters(const ProbeDistance& distance, const SasBoundary& boundary,
+                    const ProbeDistance::Filter& foreign, double p, const Vec& centre,
+                    double radius, ClearOfArc&& clear_of_arc, ClearOfVertex&& clear_of_vertex,
+                    CutterSearch& search)
+{
+  search.arcs.clear();
+  distance.arcs_within(centre, radius + p, search.arcs);
+  const auto arcs_end =
+    std::remove_if(search.arcs.begin(), search.arcs.end(), [&](std::uint32_t k) {
+      return !foreign.admits(boundary.arcs[k]) || clear_of_arc(boundary.arcs[k]);
+    });
+  search.arcs.erase(arcs_end, search.arcs.end());
+  search.vertices.clear();
+  distance.vertices_within(centre, radius + p, [&](std::uint32_t k) {
+    if (foreign.admits(boundary.vertices[k]) && !clear_of_vertex(boundary.vertices[k]))
+    {
+      search.vertices.push_back(k);
+    }
+  });
+  if (search.arcs.empty() && search.vertices.empty())
+  {
+    return false;
+  }
+  // The rare patch something may cut: the pieces around it, less those certified clear.
+  LocalPieces& cutters = search.cutters;
+  distance.gather(centre, radius, p, cutters, true);
+  std::sort(search.vertices.begin(), search.vertices.end());
+  const auto listed = [](const std::vector<std::uint32_t>& kept) {
+    return [&kept](const std::pair<double, std::uint32_t>& piece) {
+      return !std::binary_search(kept.begin(), kept.end(), piece.second);
+    };
+  };
+  cutters.arcs.erase(std::remove_if(cutters.arcs.begin(), cutters.arcs.end(), listed(search.arcs)),
+                     cutters.arcs.end());
+  cutters.vertices.erase(
+    std::remove_if(cutters.vertices.begin(), cutters.vertices.end(), listed(search.vertices)),
+    cutters.vertices.end());
+  // The clearance asks up to 2 p: the pieces left are all that can bring it below p.
+  cutters.limit = 2.0 * p;
+  return true;
+}
 
 /// The part of a triangle where the linear interpolant of corner values is positive.
 double positive_fraction(double g0, double g1, double g2)
@@ -183,59 +259,6 @@ double positive_fraction(double g0, double g1, double g2)
   const double corner = (a / (a - b)) * (a / (a - c));
   return lone_sign ? corner : 1.0 - corner;
 }
-
-/// A spherical triangle (counter-clockwise unit corners) prepared for the range of u . e over
-/// it, for many directions e.
-class SphericalTriangle
-{
-public:
-  SphericalTriangle(const Vec& a, const Vec& b, const Vec& c)
-    : corner_{ a, b, c }
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      const Vec& from = this->corner_[k];
-      const Vec& to = this->corner_[(k + 1) % 3];
-      this->normal_[k] = from.cross(to).normalized();
-      this->after_[k] = this->normal_[k].cross(from);
-      this->before_[k] = to.cross(this->normal_[k]);
-    }
-  }
-
-  /// The smallest and largest u . e over the triangle (e a unit vector): at +-e itself when
-  /// inside, else on an edge's great circle (where the plane through e and the edge's normal
-  /// meets the edge) or at a corner.
-  std::pair<double, double> dot_range(const Vec& e) const
-  {
-    double low =
-      std::min({ e.dot(this->corner_[0]), e.dot(this->corner_[1]), e.dot(this->corner_[2]) });
-    double high =
-      std::max({ e.dot(this->corner_[0]), e.dot(this->corner_[1]), e.dot(this->corner_[2]) });
-    int above = 0, below = 0;
-    for (int k = 0; k < 3; ++k)
-    {
-      const double across = e.dot(this->normal_[k]);
-      above += across >= 0;
-      below += across <= 0;
-      // The nearest point of the edge's great circle to e, and its dot product: within the
-      // edge when on the inner side of both ends.
-      const double length = std::sqrt(std::max(0.0, 1.0 - across * across));
-      const double after = e.dot(this->after_[k]), before = e.dot(this->before_[k]);
-      if (after >= 0 && before >= 0)
-      {
-        high = std::max(high, length);
-      }
-      if (after <= 0 && before <= 0)
-      {
-        low = std::min(low, -length);
-      }
-    }
-    return { below == 3 ? -1.0 : low, above == 3 ? 1.0 : high };
-  }
-
-private:
-  Vec corner_[3], normal_[3], after_[3], before_[3];
-};
 
 /// The part of a probe sphere inside a neighbouring probe at `other`: the directions u with
 /// u . axis > height.
@@ -278,7 +301,7 @@ Integral split_concave(const Splitter& splitter, const std::vector<ProbeCap>& ca
   {
     return concave_piece(centre, p, a, b, c);
   }
-  const Splitter inner = splitter.focused(centre + p * middle, size);
+  const Splitter& inner = splitter;
   if (depth == deepest_split)
   {
     const auto clearance = [&](const Vec& u) {
@@ -309,24 +332,17 @@ Integral split_torus(const Splitter& splitter, const Torus& torus, const Angle& 
 {
   const Angle phi(0.5 * (phi0.value + phi1.value)), t(0.5 * (t0.value + t1.value));
   const Vec middle = torus.point(phi, t);
-  const Vec corners[4] = { torus.point(phi0, t0), torus.point(phi1, t0), torus.point(phi0, t1),
-                           torus.point(phi1, t1) };
-  double size = 0;
-  for (const Vec& corner : corners)
-  {
-    size = std::max(size, (corner - middle).norm());
-  }
-  if (splitter.kept(middle, ball_slack * size))
+  if (splitter.kept(middle, torus.reach(middle, phi0, phi1, t0, t1)))
   {
     return torus.piece(phi0, phi1, t0, t1);
   }
-  const Splitter inner = splitter.focused(middle, ball_slack * size);
+  const Splitter& inner = splitter;
   if (depth == deepest_split)
   {
-    const double g00 = inner.clearance(corners[0]);
-    const double g10 = inner.clearance(corners[1]);
-    const double g01 = inner.clearance(corners[2]);
-    const double g11 = inner.clearance(corners[3]);
+    const double g00 = inner.clearance(torus.point(phi0, t0));
+    const double g10 = inner.clearance(torus.point(phi1, t0));
+    const double g01 = inner.clearance(torus.point(phi0, t1));
+    const double g11 = inner.clearance(torus.point(phi1, t1));
     const double kept = 0.5 * (positive_fraction(g00, g10, g11) + positive_fraction(g00, g11, g01));
     Integral piece = torus.piece(phi0, phi1, t0, t1);
     piece.area *= kept;
@@ -368,7 +384,7 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
   out.arc_volume.assign(arcs.size(), 0.0);
   std::vector<char> arc_singular(arcs.size(), 0);
   run_parallel(parallel_for, arcs.size(), [&](std::size_t begin, std::size_t end) {
-    LocalPieces pieces; // reused by the patches of this range
+    CutterSearch search; // reused by the patches of this range
     for (std::size_t k = begin; k < end; ++k)
     {
       const SasArc& arc = arcs[k];
@@ -403,8 +419,7 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
       ProbeDistance::Filter foreign;
       foreign.mode = ProbeDistance::Filter::Mode::TorusCutters;
       foreign.atoms = { arc.first, arc.second, arc.second };
-      Splitter splitter{ &distance, &foreign, p };
-      splitter.scratch = &pieces;
+      Splitter splitter{ &distance, &foreign, p, &search.cutters };
       // Pieces of at most 60 degrees of azimuth, each whole unless something cuts it.
       const int parts = std::max(1, static_cast<int>(std::ceil(arc.span / (pi / 3))));
       Integral total;
@@ -416,7 +431,22 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
         {
           const Angle t0(range.first), t1(range.second);
           const Integral whole = torus.piece(phi0, phi1, t0, t1);
-          const Integral kept = split_torus(splitter, torus, phi0, phi1, t0, t1, 0);
+          // Whole when no foreign piece comes within p of the ball around the piece (one index
+          // query), else when each that does is certified clear of the piece itself.
+          const Vec middle =
+            torus.point(Angle(0.5 * (phi0.value + phi1.value)), Angle(0.5 * (t0.value + t1.value)));
+          const double reach = torus.reach(middle, phi0, phi1, t0, t1);
+          const TorusPatchPiece piece{ &arc, p, phi0.value, phi1.value, t0.value, t1.value };
+          const bool may_be_cut = !clear_of_all(distance, foreign, p, middle, reach) &&
+            gather_cutters(
+              distance, boundary, foreign, p, middle, reach,
+              [&](const SasArc& other) { return torus_clear_of_arc(piece, other); },
+              [&](const SasVertex& other) {
+                return torus_clear_of_position(piece, other.position);
+              },
+              search);
+          const Integral kept =
+            may_be_cut ? split_torus(splitter, torus, phi0, phi1, t0, t1, 0) : whole;
           if (std::abs(kept.area - whole.area) > 1e-12 * std::max(1.0, whole.area))
           {
             arc_singular[k] = 1;
@@ -433,7 +463,7 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
   out.vertex_volume.assign(vertices.size(), 0.0);
   std::vector<char> vertex_singular(vertices.size(), 0);
   run_parallel(parallel_for, vertices.size(), [&](std::size_t begin, std::size_t end) {
-    LocalPieces pieces; // reused by the patches of this range
+    CutterSearch search; // reused by the patches of this range
     CapsByDepth caps_by_depth;
     for (std::size_t k = begin; k < end; ++k)
     {
@@ -465,8 +495,24 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
       foreign.mode = ProbeDistance::Filter::Mode::ConcaveCutters;
       foreign.atoms = vertex.spheres;
       foreign.probe = p;
-      Splitter splitter{ &distance, &foreign, p };
-      splitter.scratch = &pieces;
+      // The patch lies within the corners' cap about its middle direction (under 90 degrees,
+      // so convex), whose chord is at most p times the farthest corner's distance.
+      const Vec middle = (u[0] + u[1] + u[2]).normalized();
+      const double reach =
+        p * std::max({ (middle - u[0]).norm(), (middle - u[1]).norm(), (middle - u[2]).norm() });
+      const SphericalTriangle triangle(u[0], u[1], u[2]);
+      const bool may_be_cut =
+        !clear_of_all(distance, foreign, p, v + p * middle, ball_slack * reach) &&
+        gather_cutters(
+          distance, boundary, foreign, p, v + p * middle, ball_slack * reach,
+          [&](const SasArc& other) { return concave_clear_of_arc(v, p, triangle, other); },
+          [](const SasVertex&) { return false; }, search);
+      if (!may_be_cut)
+      {
+        search.cutters.arcs.clear();
+        search.cutters.vertices.clear();
+      }
+      Splitter splitter{ &distance, &foreign, p, &search.cutters };
       const Integral patch = split_concave(splitter, caps, caps_by_depth, v, u[0], u[1], u[2], 0);
       const Integral whole = concave_piece(v, p, u[0], u[1], u[2]);
       if (std::abs(patch.area - whole.area) > 1e-12 * std::max(1.0, whole.area))

@@ -1,0 +1,42 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Whether a probe position foreign to a solvent-excluded patch comes within the probe radius
+// of it (private to MesoLensCore): certificates that let a patch be integrated in closed form
+// instead of being split to find where it is cut.
+#pragma once
+
+#include "sas_boundary.h"
+#include "spherical_triangle.h"
+
+#include <Eigen/Core>
+
+namespace mesolens {
+
+/// A piece of the toroidal patch that probe `probe` (Å, > 0) sweeps rolling along `arc`: the
+/// points C(phi) + probe (cos t axis + sin t d(phi)) for azimuths phi in [phi0, phi1] and arc
+/// angles t in [t0, t1], where d(phi) = cos phi e1 + sin phi e2 and C(phi) = centre + radius
+/// d(phi) is the probe's centre (phi1 - phi0 and t1 - t0 at most pi).
+struct TorusPatchPiece
+{
+  const SasArc* arc = nullptr;
+  double probe = 0;
+  double phi0 = 0, phi1 = 0, t0 = 0, t1 = 0;
+};
+
+// Each test answers true only when certain that every point of the patch lies at least the
+// probe radius from every position of the foreign piece (bounds on the squared distance less
+// p^2, bisected where the bound is loose, within a fixed budget). False means the piece cuts
+// the patch or could not be ruled out within the budget: the caller then splits the patch.
+
+/// Whether the probe position `position` (Å) stays clear of the torus piece.
+bool torus_clear_of_position(const TorusPatchPiece& torus, const Eigen::Vector3d& position);
+
+/// Whether every probe position on exposed arc `other` (its ends included) stays clear of the
+/// torus piece.
+bool torus_clear_of_arc(const TorusPatchPiece& torus, const SasArc& other);
+
+/// Whether every probe position on exposed arc `other` stays clear of the concave patch
+/// `triangle` (unit directions) on the probe sphere of radius `probe` at `probe_centre`.
+bool concave_clear_of_arc(const Eigen::Vector3d& probe_centre, double probe,
+                          const SphericalTriangle& triangle, const SasArc& other);
+
+} // namespace mesolens

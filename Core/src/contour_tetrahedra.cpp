@@ -129,30 +129,33 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
     // Corner values on the block's points (block_cells + 1 per axis), computed once.
     constexpr int side = block_cells + 1;
     std::vector<double> values;
-    const auto value_at = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    std::vector<std::uint32_t> hints;
+    const auto sample_at = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
       if (values.empty())
       {
         values.assign(side * side * side, std::numeric_limits<double>::quiet_NaN());
+        hints.assign(side * side * side, 0);
       }
-      double& v = values[std::size_t((x - x0) + side * ((y - y0) + side * (z - z0)))];
-      if (std::isnan(v))
+      const std::size_t at = std::size_t((x - x0) + side * ((y - y0) + side * (z - z0)));
+      LocalContourField::Sample sample{ position(x, y, z), values[at], hints[at] };
+      if (std::isnan(sample.value))
       {
-        v = local->value(position(x, y, z));
+        sample.value = values[at] = local->value(sample.position, sample.hint);
+        hints[at] = sample.hint;
       }
-      return v;
+      return sample;
     };
     BlockOutput& out = outputs[block];
     // Per block point and Kuhn direction (1 to 7), the index of the vertex on that edge.
     std::vector<std::int64_t> made(std::size_t(side * side * side * 8), -1);
     const auto contour_cell = [&](const std::array<std::int64_t, 3>& cell) {
+      std::array<LocalContourField::Sample, 8> corner;
       std::array<double, 8> corner_value{};
-      std::array<Vec, 8> corner_position;
       for (int m = 0; m < 8; ++m)
       {
-        const std::int64_t x = cell[0] + (m & 1), y = cell[1] + ((m >> 1) & 1),
-                           z = cell[2] + ((m >> 2) & 1);
-        corner_value[m] = value_at(x, y, z);
-        corner_position[m] = position(x, y, z);
+        corner[m] =
+          sample_at(cell[0] + (m & 1), cell[1] + ((m >> 1) & 1), cell[2] + ((m >> 2) & 1));
+        corner_value[m] = corner[m].value;
       }
       const auto edge = [&](int a, int b) {
         // Kuhn edges join a corner to one whose bits include its own: key by the lower corner
@@ -170,8 +173,7 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
             const int outside = corner_value[a] > 0 ? b : a;
             const int inside = corner_value[a] > 0 ? a : b;
             index = static_cast<std::int64_t>(out.vertices.size());
-            out.vertices.push_back(local->vertex(corner_position[outside], corner_value[outside],
-                                                 corner_position[inside], corner_value[inside]));
+            out.vertices.push_back(local->vertex(corner[outside], corner[inside]));
             out.keys.push_back(key);
           }
           else

@@ -35,12 +35,19 @@ public:
   /// is a block; a ball of level k > 0 lies inside the last ball focused at level k - 1.
   /// `single_cell`: the ball is a grid cell's, whose corners and edges come next.
   virtual bool focus(int level, const Eigen::Vector3d& centre, double radius, bool single_cell) = 0;
-  /// The value at a point within the last focus.
-  virtual double value(const Eigen::Vector3d& x) = 0;
+  /// The value at a point within the last focus, and in `hint` what the field may want to
+  /// know about the point when it places a vertex near it (its own label).
+  virtual double value(const Eigen::Vector3d& x, std::uint32_t& hint) = 0;
+  /// A grid point's value and hint, as value() gave them.
+  struct Sample
+  {
+    Eigen::Vector3d position;
+    double value;
+    std::uint32_t hint;
+  };
   /// The surface vertex on the segment (within the focus) from `outside` (value <= 0) to
   /// `inside` (value > 0).
-  virtual ContourVertex vertex(const Eigen::Vector3d& outside, double outside_value,
-                               const Eigen::Vector3d& inside, double inside_value) = 0;
+  virtual ContourVertex vertex(const Sample& outside, const Sample& inside) = 0;
 };
 
 /// The field to contour: positive inside, negative outside, changing by at most the distance

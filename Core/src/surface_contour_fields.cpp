@@ -58,6 +58,13 @@ Vec segment_root(const Vec& a, double value_a, const Vec& b, double value_b, Val
   return a + t * (b - a);
 }
 
+/// A piece as a field's hint: its kind in the top two bits, its index below.
+constexpr std::uint32_t index_mask = (1u << 30) - 1;
+std::uint32_t encode(PieceKind kind, std::uint32_t index)
+{
+  return (static_cast<std::uint32_t>(kind) << 30) | (index & index_mask);
+}
+
 class ExcludedSurfaceField final : public LocalContourField
 {
 public:
@@ -100,40 +107,60 @@ public:
     return std::abs(local.centre_distance - this->probe_) <= radius;
   }
 
-  double value(const Vec& x) override
+  double value(const Vec& x, std::uint32_t& hint) override
   {
-    return this->distance_.closest(*this->local_, x).distance - this->probe_;
+    const ClosestPiece piece = this->distance_.closest(*this->local_, x);
+    hint = encode(piece.kind, piece.index);
+    return piece.distance - this->probe_;
   }
 
-  ContourVertex vertex(const Vec& outside, double outside_value, const Vec& inside,
-                       double inside_value) override
+  ContourVertex vertex(const Sample& outside, const Sample& inside) override
   {
     const double p = this->probe_;
     // The root along the grid edge itself: vertices kept on their edges cannot fold triangles
-    // over one another, even at the surface's creases. First along the piece nearest the
-    // linear guess alone (cheapest), kept when the full field agrees there.
-    const Vec guess = outside + outside_value / (outside_value - inside_value) * (inside - outside);
-    const ClosestPiece near_guess = this->distance_.closest(*this->local_, guess);
-    Vec position = guess;
+    // over one another, even at the surface's creases. First along the pieces nearest the
+    // edge's ends (mostly one piece for both), then along the one nearest the linear guess
+    // (cheap roots on one piece, each kept when the full field agrees there), else on the field.
+    Vec position;
     ClosestPiece piece;
-    bool placed = false;
-    if (near_guess.kind != PieceKind::None && near_guess.distance > 0)
-    {
-      const auto along_piece = [&](const Vec& x) {
-        return this->distance_.piece_distance(x, near_guess.kind, near_guess.index) - p;
-      };
-      const double at_outside = along_piece(outside), at_inside = along_piece(inside);
-      if (at_outside <= 0 && at_inside > 0)
+    std::uint32_t tried[3];
+    int tried_count = 0;
+    const auto along = [&](std::uint32_t hint) {
+      const PieceKind kind = static_cast<PieceKind>(hint >> 30);
+      const std::uint32_t index = hint & index_mask;
+      if (kind == PieceKind::None ||
+          std::find(tried, tried + tried_count, hint) != tried + tried_count)
       {
-        position = segment_root(outside, at_outside, inside, at_inside, along_piece);
-        piece = this->distance_.closest(*this->local_, position);
-        placed = std::abs(piece.distance - p) <= 1e-7;
+        return false;
       }
+      tried[tried_count++] = hint;
+      const auto along_piece = [&](const Vec& x) {
+        return this->distance_.piece_distance(x, kind, index) - p;
+      };
+      const double at_outside = along_piece(outside.position);
+      const double at_inside = along_piece(inside.position);
+      if (!(at_outside <= 0 && at_inside > 0))
+      {
+        return false;
+      }
+      position =
+        segment_root(outside.position, at_outside, inside.position, at_inside, along_piece);
+      piece = this->distance_.closest(*this->local_, position);
+      return std::abs(piece.distance - p) <= 1e-7;
+    };
+    bool placed = along(inside.hint) || along(outside.hint);
+    if (!placed)
+    {
+      const Vec guess = outside.position +
+        outside.value / (outside.value - inside.value) * (inside.position - outside.position);
+      const ClosestPiece near_guess = this->distance_.closest(*this->local_, guess);
+      placed = near_guess.distance > 0 && along(encode(near_guess.kind, near_guess.index));
     }
     if (!placed)
     {
-      position = segment_root(outside, outside_value, inside, inside_value,
-                              [&](const Vec& x) { return this->value(x); });
+      std::uint32_t hint = 0;
+      position = segment_root(outside.position, outside.value, inside.position, inside.value,
+                              [&](const Vec& x) { return this->value(x, hint); });
       piece = this->distance_.closest(*this->local_, position);
     }
     ContourVertex vertex;
@@ -220,16 +247,15 @@ public:
     return std::abs(this->depth(centre)) <= radius;
   }
 
-  double value(const Vec& x) override
+  double value(const Vec& x, std::uint32_t& hint) override
   {
-    return this->depth(x);
+    return this->depth(x, &hint);
   }
 
-  ContourVertex vertex(const Vec& outside, double outside_value, const Vec& inside,
-                       double inside_value) override
+  ContourVertex vertex(const Sample& outside, const Sample& inside) override
   {
     ContourVertex vertex;
-    vertex.position = segment_root(outside, outside_value, inside, inside_value,
+    vertex.position = segment_root(outside.position, outside.value, inside.position, inside.value,
                                    [&](const Vec& x) { return this->depth(x); });
     std::uint32_t sphere = 0;
     this->depth(vertex.position, &sphere);

@@ -472,12 +472,14 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
   add(vertex_area, vertex_volume, SurfacePatch::Concave);
   surface.area = surface.patch_area[0] + surface.patch_area[1] + surface.patch_area[2];
 
-  // The mesh, less dropped cavities (arrays sized first, then filled in place).
-  std::vector<std::int64_t> new_index(vertices.size(), -1);
-  std::size_t kept = 0;
-  for (std::size_t v = 0; v < vertices.size(); ++v)
+  // The mesh, less dropped cavities (arrays sized first, then filled in place; when every
+  // vertex stays, the triangles keep their indices).
+  const bool keep_all = options.keep_cavities || surface.cavity_count == 0;
+  std::vector<std::int64_t> new_index(keep_all ? 0 : vertices.size(), -1);
+  std::size_t kept = keep_all ? vertices.size() : 0;
+  for (std::size_t v = 0; v < new_index.size(); ++v)
   {
-    if (options.keep_cavities || !cavity[component[v]])
+    if (!cavity[component[v]])
     {
       new_index[v] = static_cast<std::int64_t>(kept++);
     }
@@ -486,28 +488,37 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
   surface.normals.resize(3 * kept);
   surface.atom.resize(kept);
   surface.patch.resize(kept);
-  for (std::size_t v = 0; v < vertices.size(); ++v)
+  run_parallel(parallel_for, vertices.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v)
+    {
+      const std::int64_t k = keep_all ? static_cast<std::int64_t>(v) : new_index[v];
+      if (k < 0)
+      {
+        continue;
+      }
+      const std::size_t at = static_cast<std::size_t>(k);
+      const ContourVertex& vertex = vertices[v];
+      for (int a = 0; a < 3; ++a)
+      {
+        surface.points[3 * at + std::size_t(a)] = vertex.position[a];
+        surface.normals[3 * at + std::size_t(a)] = vertex.normal[a];
+      }
+      surface.atom[at] = vertex.atom;
+      surface.patch[at] = static_cast<SurfacePatch>(vertex.patch);
+    }
+  });
+  if (keep_all)
   {
-    if (new_index[v] < 0)
-    {
-      continue;
-    }
-    const std::size_t k = static_cast<std::size_t>(new_index[v]);
-    const ContourVertex& vertex = vertices[v];
-    for (int a = 0; a < 3; ++a)
-    {
-      surface.points[3 * k + std::size_t(a)] = vertex.position[a];
-      surface.normals[3 * k + std::size_t(a)] = vertex.normal[a];
-    }
-    surface.atom[k] = vertex.atom;
-    surface.patch[k] = static_cast<SurfacePatch>(vertex.patch);
+    surface.triangles = std::move(triangles);
   }
-  surface.triangles.reserve(triangles.size());
-  for (const std::int64_t v : triangles)
+  else
   {
-    if (new_index[std::size_t(v)] >= 0)
+    for (const std::int64_t v : triangles)
     {
-      surface.triangles.push_back(new_index[std::size_t(v)]);
+      if (new_index[std::size_t(v)] >= 0)
+      {
+        surface.triangles.push_back(new_index[std::size_t(v)]);
+      }
     }
   }
   if (!options.keep_cavities)

@@ -48,12 +48,14 @@ struct Cap
   }
 };
 
+/// Disjoint sets of 0 .. n - 1 in a buffer reused from sphere to sphere.
 struct UnionFind
 {
-  std::vector<std::size_t> parent;
-  explicit UnionFind(std::size_t n)
-    : parent(n)
+  std::vector<std::size_t>& parent;
+  UnionFind(std::vector<std::size_t>& buffer, std::size_t n)
+    : parent(buffer)
   {
+    parent.resize(n);
     std::iota(parent.begin(), parent.end(), std::size_t(0));
   }
   std::size_t find(std::size_t x)
@@ -99,10 +101,47 @@ struct UnitPieces
   std::size_t degenerate_corners = 0; ///< corners where a third circle passes too
 };
 
+/// An exposed arc of a cap's circle as exposed_unit_area() follows it.
+struct ExposedArc
+{
+  std::size_t cap;
+  double start_azimuth, end_azimuth;
+  std::size_t start, end; // vertex ids
+  double turning;         // its geodesic curvature, then plus the corner at its end
+  Vec normal_integral;    // half of x cross dx along it
+  Vec middle;
+};
+
+/// The buffers of exposed_unit_area(), reused from sphere to sphere (their capacity stays).
+struct UnitWorkspace
+{
+  std::vector<Cap> kept;
+  std::vector<std::vector<std::uint32_t>> overlapping;
+  std::vector<Vec> vertices;
+  std::vector<std::vector<std::pair<double, std::size_t>>> on_circle;
+  std::vector<ExposedArc> arcs;
+  std::vector<std::size_t> leaving, groups, chains, loop_of_root;
+};
+
+/// Resizes a list of lists to `count`, each emptied (keeping their capacity).
+template<typename List>
+void reset_lists(std::vector<List>& lists, std::size_t count)
+{
+  if (lists.size() < count)
+  {
+    lists.resize(count);
+  }
+  for (std::size_t k = 0; k < count; ++k)
+  {
+    lists[k].clear();
+  }
+}
+
 /// The exposed area of the unit sphere under `caps` (times R^2 by the caller), and in
 /// `normal_integral` the integral of the outward unit normal over it (for the volume). With
 /// `pieces`, also the arcs and corners that bound it.
-double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral, UnitPieces* pieces)
+double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPieces* pieces,
+                         UnitWorkspace& work)
 {
   normal_integral = Vec::Zero();
   // Caps inside another cap bound nothing: dropped (cap b lies in cap a when the angle between
@@ -110,7 +149,8 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral, UnitPieces
   {
     std::sort(caps.begin(), caps.end(),
               [](const Cap& x, const Cap& y) { return x.height < y.height; }); // largest first
-    std::vector<Cap> kept;
+    std::vector<Cap>& kept = work.kept;
+    kept.clear();
     for (const Cap& cap : caps)
     {
       bool inside = false;
@@ -145,8 +185,9 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral, UnitPieces
   }
   // Overlapping caps (between < angle a + angle b <=> cos(between) > cos(a + b)): they make
   // the union's components, and only they can cover a point of each other's circles.
-  UnionFind cap_groups(count);
-  std::vector<std::vector<std::uint32_t>> overlapping(count);
+  UnionFind cap_groups(work.groups, count);
+  auto& overlapping = work.overlapping;
+  reset_lists(overlapping, count);
   for (std::size_t a = 0; a < count; ++a)
   {
     for (std::size_t b = a + 1; b < count; ++b)
@@ -177,8 +218,10 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral, UnitPieces
   };
 
   // The crossing points of the caps' circles, and on each circle their azimuths.
-  std::vector<Vec> vertices;
-  std::vector<std::vector<std::pair<double, std::size_t>>> on_circle(count);
+  std::vector<Vec>& vertices = work.vertices;
+  vertices.clear();
+  auto& on_circle = work.on_circle;
+  reset_lists(on_circle, count);
   for (std::size_t a = 0; a < count; ++a)
   {
     for (const std::uint32_t b : overlapping[a])
@@ -209,10 +252,13 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral, UnitPieces
         const Vec u = (w + side * gamma * m).normalized();
         // A crossing inside a third cap is no corner of the exposed part: exposure along a
         // circle changes only at crossings no other cap covers, so those alone cut the arcs.
+        // (A cap holding a point of both circles overlaps both caps: the shorter list will do.)
         bool inside_third = false;
-        for (const std::uint32_t c : overlapping[a])
+        const std::size_t fewer = overlapping[a].size() <= overlapping[b].size() ? a : b;
+        const std::size_t other = fewer == a ? b : a;
+        for (const std::uint32_t c : overlapping[fewer])
         {
-          if (c != b && u.dot(caps[c].axis) > caps[c].height)
+          if (c != other && u.dot(caps[c].axis) > caps[c].height)
           {
             inside_third = true;
             break;
@@ -247,16 +293,8 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral, UnitPieces
   }
 
   // The exposed arcs: travelled clockwise about each axis (uncovered side on the left).
-  struct Arc
-  {
-    std::size_t cap;
-    double start_azimuth, end_azimuth;
-    std::size_t start, end; // vertex ids
-    double turning;         // its geodesic curvature, then plus the corner at its end
-    Vec normal_integral;    // half of x cross dx along it
-    Vec middle;
-  };
-  std::vector<Arc> arcs;
+  std::vector<ExposedArc>& arcs = work.arcs;
+  arcs.clear();
   double turning = 0; // the boundary's geodesic curvature integrated, plus the corners
   std::size_t loops = 0;
   for (std::size_t a = 0; a < count; ++a)
@@ -309,21 +347,24 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral, UnitPieces
     }
   }
   // Corners: from the arc ending at a vertex to the arc leaving it.
-  std::unordered_map<std::size_t, std::size_t> leaving;
+  std::vector<std::size_t>& leaving = work.leaving; // per vertex, the first arc leaving it
+  leaving.assign(vertices.size(), SIZE_MAX);
   for (std::size_t k = 0; k < arcs.size(); ++k)
   {
-    leaving.emplace(arcs[k].start, k);
+    if (leaving[arcs[k].start] == SIZE_MAX)
+    {
+      leaving[arcs[k].start] = k;
+    }
   }
-  UnionFind chains(vertices.size());
-  for (Arc& arc : arcs)
+  UnionFind chains(work.chains, vertices.size());
+  for (ExposedArc& arc : arcs)
   {
     chains.join(arc.start, arc.end);
-    const auto next = leaving.find(arc.end);
-    if (next == leaving.end())
+    if (leaving[arc.end] == SIZE_MAX)
     {
       continue; // a degenerate crossing (three circles through a point): no corner counted
     }
-    const Arc& out = arcs[next->second];
+    const ExposedArc& out = arcs[leaving[arc.end]];
     const Vec& p = vertices[arc.end];
     const Vec in_direction = caps[arc.cap].tangent(arc.end_azimuth);
     const Vec out_direction = caps[out.cap].tangent(out.start_azimuth);
@@ -332,8 +373,9 @@ double exposed_unit_area(std::vector<Cap> caps, Vec& normal_integral, UnitPieces
     turning += corner;
     arc.turning += corner;
   }
-  std::vector<std::size_t> loop_of_root(vertices.size(), SIZE_MAX);
-  for (const Arc& arc : arcs)
+  std::vector<std::size_t>& loop_of_root = work.loop_of_root;
+  loop_of_root.assign(vertices.size(), SIZE_MAX);
+  for (const ExposedArc& arc : arcs)
   {
     const std::size_t root = chains.find(arc.start);
     if (loop_of_root[root] == SIZE_MAX)
@@ -400,12 +442,15 @@ SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
     cells[grid_cell_key(grid_cell(centres[i], cell))].push_back(static_cast<std::uint32_t>(i));
   }
   run_parallel(parallel_for, n, [&](std::size_t begin, std::size_t end) {
+    std::vector<Cap> caps; // these buffers are reused by the spheres of this range
+    UnitPieces pieces;
+    UnitWorkspace work;
     for (std::size_t i = begin; i < end; ++i)
     {
       const Vec c(centres[i][0], centres[i][1], centres[i][2]);
       const double r = radii[i];
       const GridCell home = grid_cell(centres[i], cell);
-      std::vector<Cap> caps;
+      caps.clear();
       bool buried = false;
       for (int dx = -1; dx <= 1 && !buried; ++dx)
         for (int dy = -1; dy <= 1 && !buried; ++dy)
@@ -453,9 +498,12 @@ SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
         continue;
       }
       Vec normal_integral = Vec::Zero();
-      UnitPieces pieces;
+      pieces.arcs.clear();
+      pieces.corners.clear();
+      pieces.loops.clear();
+      pieces.degenerate_corners = 0;
       const double solid_angle =
-        exposed_unit_area(caps, normal_integral, with_pieces ? &pieces : nullptr);
+        exposed_unit_area(caps, normal_integral, with_pieces ? &pieces : nullptr, work);
       result.area[i] = r * r * solid_angle;
       result.normal_integral[i] = r * r * normal_integral;
       if (!with_pieces)

@@ -22,6 +22,7 @@
 #include <vtkStringArray.h>
 #include <vtkUnsignedCharArray.h>
 
+#include <cmath>
 #include <map>
 #include <string>
 #include <vector>
@@ -60,6 +61,7 @@ int vtkMesoMolecularSurface::RequestData(vtkInformation*, vtkInformationVector**
   options.probe_radius = this->ProbeRadius;
   options.tolerance = this->Tolerance;
   options.keep_cavities = this->KeepCavities;
+  options.exact_figures = this->ComputeExactFigures;
   mesolens::MolecularSurface surface;
   try
   {
@@ -134,12 +136,15 @@ int vtkMesoMolecularSurface::RequestData(vtkInformation*, vtkInformationVector**
   out->SetNormals(normals);
 
   using vtkMesoAtomTableConversion::SetFieldValue;
-  SetFieldValue(output, "Area", surface.area);
-  SetFieldValue(output, "Volume", surface.volume);
-  SetFieldValue(output, "ConvexArea", surface.patch_area[0]);
-  SetFieldValue(output, "ToroidalArea", surface.patch_area[1]);
-  SetFieldValue(output, "ConcaveArea", surface.patch_area[2]);
-  SetFieldValue(output, "SingularPatchCount", double(surface.singular_patch_count));
+  if (std::isfinite(surface.area)) // else not asked for
+  {
+    SetFieldValue(output, "Area", surface.area);
+    SetFieldValue(output, "Volume", surface.volume);
+    SetFieldValue(output, "ConvexArea", surface.patch_area[0]);
+    SetFieldValue(output, "ToroidalArea", surface.patch_area[1]);
+    SetFieldValue(output, "ConcaveArea", surface.patch_area[2]);
+    SetFieldValue(output, "SingularPatchCount", double(surface.singular_patch_count));
+  }
   SetFieldValue(output, "ComponentCount", double(surface.component_count));
   SetFieldValue(output, "CavityCount", double(surface.cavity_count));
   SetFieldValue(output, "GridSpacing", surface.grid_spacing);
@@ -161,6 +166,7 @@ void vtkMesoMolecularSurface::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SurfaceType: " << types[this->SurfaceType] << "\n";
   os << indent << "ProbeRadius: " << this->ProbeRadius << "\n";
   os << indent << "Tolerance: " << this->Tolerance << "\n";
+  os << indent << "ComputeExactFigures: " << (this->ComputeExactFigures ? "on" : "off") << "\n";
   os << indent << "KeepCavities: " << (this->KeepCavities ? "on" : "off") << "\n";
   os << indent
      << "RadiusArrayName: " << (this->RadiusArrayName ? this->RadiusArrayName : "(elements)")

@@ -89,6 +89,16 @@ public:
   ///@}
 
   ///@{
+  /// Compute the exact Area and Volume; default on. For the solvent-excluded surface they take
+  /// a quarter to a third of the time on large proteins: off gives the mesh alone (e.g. while
+  /// only the Tolerance changes), without the field arrays Area, Volume, ConvexArea,
+  /// ToroidalArea, ConcaveArea and SingularPatchCount. The other surfaces' figures cost nothing
+  /// and are always there.
+  vtkSetMacro(ComputeExactFigures, bool);
+  vtkGetMacro(ComputeExactFigures, bool);
+  vtkBooleanMacro(ComputeExactFigures, bool);
+  ///@}
+  ///@{
   /// Keep the closed surfaces of cavities inside the molecule; default on. Off drops them from
   /// the mesh and from Area and Volume.
   vtkSetMacro(KeepCavities, bool);
@@ -119,6 +129,7 @@ protected:
   int SurfaceType = SOLVENT_EXCLUDED;
   double ProbeRadius = 1.4;
   double Tolerance = 0.1;
+  bool ComputeExactFigures = true;
   bool KeepCavities = true;
   char* RadiusArrayName = nullptr;
   double BeadRadius = 2.35;

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <string>
 
@@ -242,14 +243,15 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
   }
 
   // Exact figures from the patches.
+  const bool figures = !excluded || options.exact_figures;
   SesPatchIntegrals patches;
-  if (excluded)
+  if (excluded && figures)
   {
     const ProbeDistance patch_distance(centres, radii, boundary, 2.0 * p + 0.6 * largest);
     patches = ses_patch_integrals(centres, atom_radii, p, boundary, patch_distance, parallel_for);
     surface.singular_patch_count = patches.singular_count;
   }
-  else
+  else if (figures)
   {
     patches.face_area = boundary.area;
     patches.face_volume.resize(n);
@@ -329,7 +331,7 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
   std::vector<double> face_area = patches.face_area, face_volume = patches.face_volume;
   std::vector<double> arc_area = patches.arc_area, arc_volume = patches.arc_volume;
   std::vector<double> vertex_area = patches.vertex_area, vertex_volume = patches.vertex_volume;
-  if (!options.keep_cavities && surface.cavity_count > 0)
+  if (figures && !options.keep_cavities && surface.cavity_count > 0)
   {
     std::vector<std::vector<std::uint32_t>> on_atom(n);
     for (std::size_t v = 0; v < vertices.size(); ++v)
@@ -471,6 +473,11 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
   add(arc_area, arc_volume, SurfacePatch::Toroidal);
   add(vertex_area, vertex_volume, SurfacePatch::Concave);
   surface.area = surface.patch_area[0] + surface.patch_area[1] + surface.patch_area[2];
+  if (!figures)
+  {
+    surface.area = surface.volume = std::numeric_limits<double>::quiet_NaN();
+    surface.patch_area.fill(std::numeric_limits<double>::quiet_NaN());
+  }
 
   // The mesh, less dropped cavities (arrays sized first, then filled in place; when every
   // vertex stays, the triangles keep their indices).

@@ -561,6 +561,30 @@ TEST(MolecularSurface, SameResultOnOneAndTwoThreads)
   EXPECT_EQ(one.volume, two.volume);
 }
 
+TEST(MolecularSurface, TheMeshAloneIsTheSameMeshWithoutFigures)
+{
+  std::vector<double> radii;
+  const auto file = mesolens::read_structure(mesolens_test::data_file("proteins/1crn.pdb"));
+  const Centres centres = atoms_of(file.models[0], radii);
+  MolecularSurfaceOptions options;
+  options.tolerance = 0.2;
+  const MolecularSurface full = mesolens::molecular_surface(centres, radii, options);
+  options.exact_figures = false;
+  const MolecularSurface mesh = mesolens::molecular_surface(centres, radii, options);
+  EXPECT_EQ(full.points, mesh.points);
+  EXPECT_EQ(full.triangles, mesh.triangles);
+  EXPECT_EQ(full.component_count, mesh.component_count);
+  EXPECT_GT(full.area, 2000.0);
+  EXPECT_TRUE(std::isnan(mesh.area));
+  EXPECT_TRUE(std::isnan(mesh.volume));
+  EXPECT_TRUE(std::isnan(mesh.patch_area[1]));
+  EXPECT_EQ(mesh.singular_patch_count, 0u);
+  // The accessible surface's figures come with its boundary: always there.
+  options.kind = SurfaceKind::SolventAccessible;
+  const MolecularSurface accessible = mesolens::molecular_surface(centres, radii, options);
+  EXPECT_GT(accessible.area, full.area);
+}
+
 TEST(MolecularSurface, ProgressRisesToOne)
 {
   std::vector<double> fractions;

@@ -139,6 +139,14 @@ TEST(vtkMesoMolecularSurface, EnterotoxinByChainWithProgress)
   EXPECT_EQ(field(surface->GetOutput(), "ComponentCount"), 1);
   EXPECT_LT(field(surface->GetOutput(), "Area"), with_cavities);
   EXPECT_EQ(open_edges(surface->GetOutput()), 0);
+  // The mesh alone: the same triangles, no exact figures.
+  const vtkIdType triangles = surface->GetOutput()->GetNumberOfCells();
+  surface->ComputeExactFiguresOff();
+  surface->Update();
+  EXPECT_EQ(surface->GetOutput()->GetNumberOfCells(), triangles);
+  EXPECT_EQ(surface->GetOutput()->GetFieldData()->GetArray("Area"), nullptr);
+  EXPECT_EQ(surface->GetOutput()->GetFieldData()->GetArray("Volume"), nullptr);
+  EXPECT_EQ(field(surface->GetOutput(), "ComponentCount"), 1);
 }
 
 TEST(vtkMesoMolecularSurface, AccessibleAreaMatchesTheSurfaceAreaFilter)

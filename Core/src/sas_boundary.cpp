@@ -101,6 +101,35 @@ struct UnitPieces
   std::size_t degenerate_corners = 0; ///< corners where a third circle passes too
 };
 
+/// Where the circles of two overlapping caps cross (false when they do not: one inside the
+/// other, tangent or concentric), into `points`.
+bool circle_crossings(const Cap& a, const Cap& b, Vec (&points)[2], double* closeness = nullptr)
+{
+  // The circles cross when |angle a - angle b| < between (between < a + b holds already).
+  const double g = std::clamp(a.axis.dot(b.axis), -1.0, 1.0);
+  if (!(g < a.height * b.height + a.sine * b.sine) || 1.0 - g * g <= 1e-24)
+  {
+    return false;
+  }
+  const double alpha = (a.height - b.height * g) / (1.0 - g * g);
+  const double beta = (b.height - a.height * g) / (1.0 - g * g);
+  const Vec w = alpha * a.axis + beta * b.axis;
+  const Vec m = a.axis.cross(b.axis);
+  const double rest = 1.0 - w.squaredNorm();
+  if (closeness)
+  {
+    *closeness = rest; // how far from tangent
+  }
+  if (rest <= 0)
+  {
+    return false;
+  }
+  const double gamma = std::sqrt(rest / m.squaredNorm());
+  points[0] = (w - gamma * m).normalized();
+  points[1] = (w + gamma * m).normalized();
+  return true;
+}
+
 /// An exposed arc of a cap's circle as exposed_unit_area() follows it.
 struct ExposedArc
 {
@@ -230,26 +259,13 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
       {
         continue;
       }
-      // The circles cross when |angle a - angle b| < between (between < a + b holds already).
-      const double g = std::clamp(caps[a].axis.dot(caps[b].axis), -1.0, 1.0);
-      if (!(g < caps[a].height * caps[b].height + caps[a].sine * caps[b].sine) ||
-          1.0 - g * g <= 1e-24)
+      Vec crossing[2];
+      if (!circle_crossings(caps[a], caps[b], crossing))
       {
         continue;
       }
-      const double alpha = (caps[a].height - caps[b].height * g) / (1.0 - g * g);
-      const double beta = (caps[b].height - caps[a].height * g) / (1.0 - g * g);
-      const Vec w = alpha * caps[a].axis + beta * caps[b].axis;
-      const Vec m = caps[a].axis.cross(caps[b].axis);
-      const double rest = 1.0 - w.squaredNorm();
-      if (rest <= 0)
+      for (const Vec& u : crossing)
       {
-        continue;
-      }
-      const double gamma = std::sqrt(rest / m.squaredNorm());
-      for (double side : { -1.0, 1.0 })
-      {
-        const Vec u = (w + side * gamma * m).normalized();
         // A crossing inside a third cap is no corner of the exposed part: exposure along a
         // circle changes only at crossings no other cap covers, so those alone cut the arcs.
         // (A cap holding a point of both circles overlaps both caps: the shorter list will do.)
@@ -400,6 +416,48 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
   return std::clamp(2.0 * pi * chi - turning, 0.0, 4.0 * pi);
 }
 } // namespace
+
+bool uncovered_unit_area(const std::vector<UnitCap>& unit_caps, double& area,
+                         Vec& direction_integral)
+{
+  std::vector<Cap> caps(unit_caps.size());
+  for (std::size_t k = 0; k < caps.size(); ++k)
+  {
+    caps[k].axis = unit_caps[k].axis;
+    caps[k].height = unit_caps[k].height;
+    caps[k].sine = std::sqrt(std::max(0.0, 1.0 - caps[k].height * caps[k].height));
+    caps[k].neighbour = static_cast<std::uint32_t>(k);
+  }
+  // Refused near degeneracy: circles nearly tangent, or a third through their crossing (the
+  // arrangement would depend on rounding).
+  constexpr double near = 1e-9;
+  for (std::size_t a = 0; a < caps.size(); ++a)
+  {
+    for (std::size_t b = a + 1; b < caps.size(); ++b)
+    {
+      Vec crossing[2];
+      double closeness = 1;
+      const bool cross = circle_crossings(caps[a], caps[b], crossing, &closeness);
+      if (std::abs(closeness) < near)
+      {
+        return false;
+      }
+      for (std::size_t c = 0; cross && c < caps.size(); ++c)
+      {
+        for (const Vec& u : crossing)
+        {
+          if (c != a && c != b && std::abs(u.dot(caps[c].axis) - caps[c].height) < near)
+          {
+            return false;
+          }
+        }
+      }
+    }
+  }
+  UnitWorkspace work;
+  area = exposed_unit_area(caps, direction_integral, nullptr, work);
+  return true;
+}
 
 SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
                          const std::vector<double>& radii, bool with_pieces,

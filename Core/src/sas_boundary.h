@@ -68,6 +68,22 @@ struct SasBoundary
   std::size_t degenerate_vertices = 0;
 };
 
+/// A cap of the unit sphere: the directions u with u . axis > height (axis a unit vector,
+/// height in (-1, 1)).
+struct UnitCap
+{
+  Eigen::Vector3d axis = Eigen::Vector3d::UnitZ();
+  double height = 0;
+};
+
+/// The part of the unit sphere that no cap covers, exactly (the arrangement of the caps'
+/// circles and Gauss-Bonnet, as for each sphere of sas_boundary()): its `area` (steradians) and
+/// `direction_integral`, the integral of u over it. False, and nothing set, when two circles
+/// are within 1e-9 of tangent or a third passes within 1e-9 of their crossing, where the
+/// arrangement would depend on rounding.
+bool uncovered_unit_area(const std::vector<UnitCap>& caps, double& area,
+                         Eigen::Vector3d& direction_integral);
+
 /// The exposed parts of each sphere (see sphere_union_area() for the method and the input
 /// checks), and with `with_pieces` the exposed arcs and vertices, each once, ordered by their
 /// lowest sphere, and every sphere's loops (deterministic whatever `parallel_for`).

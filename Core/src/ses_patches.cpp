@@ -268,6 +268,49 @@ struct ProbeCap
   double height = 1;
 };
 
+/// A concave patch that only neighbouring probes cut (caps on its sphere), exactly: the part of
+/// the probe's unit sphere that neither the caps meeting the triangle nor the hemispheres beyond
+/// its three edges cover. False when that arrangement is degenerate (see
+/// uncovered_unit_area()): the caller splits the patch instead. `unit_caps` is a buffer.
+bool uncovered_concave(const Vec& centre, double p, const Vec (&u)[3],
+                       const SphericalTriangle& triangle, const std::vector<ProbeCap>& caps,
+                       std::vector<UnitCap>& unit_caps, Integral& result)
+{
+  unit_caps.clear();
+  for (const ProbeCap& cap : caps)
+  {
+    const auto range = triangle.dot_range(cap.axis);
+    if (range.second > cap.height)
+    {
+      if (range.first > cap.height)
+      {
+        result = {}; // wholly inside a neighbour
+        return true;
+      }
+      unit_caps.push_back({ cap.axis, cap.height });
+    }
+  }
+  if (unit_caps.empty())
+  {
+    result = concave_piece(centre, p, u[0], u[1], u[2]);
+    return true;
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    // The triangle (counter-clockwise) lies on the positive side of each edge's great circle.
+    unit_caps.push_back({ -u[k].cross(u[(k + 1) % 3]).normalized(), 0.0 });
+  }
+  double area = 0;
+  Vec direction_integral = Vec::Zero();
+  if (!uncovered_unit_area(unit_caps, area, direction_integral))
+  {
+    return false;
+  }
+  result.area = p * p * area;
+  result.flux = -(centre.dot(p * p * direction_integral) + p * result.area);
+  return true;
+}
+
 /// Caps meeting the pieces of a concave patch, per depth of the split (reused).
 using CapsByDepth = std::array<std::vector<ProbeCap>, deepest_split + 1>;
 
@@ -465,6 +508,7 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
   run_parallel(parallel_for, vertices.size(), [&](std::size_t begin, std::size_t end) {
     CutterSearch search; // reused by the patches of this range
     CapsByDepth caps_by_depth;
+    std::vector<UnitCap> unit_caps;
     for (std::size_t k = begin; k < end; ++k)
     {
       const SasVertex& vertex = vertices[k];
@@ -513,7 +557,11 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
         search.cutters.vertices.clear();
       }
       Splitter splitter{ &distance, &foreign, p, &search.cutters };
-      const Integral patch = split_concave(splitter, caps, caps_by_depth, v, u[0], u[1], u[2], 0);
+      Integral patch;
+      if (may_be_cut || !uncovered_concave(v, p, u, triangle, caps, unit_caps, patch))
+      {
+        patch = split_concave(splitter, caps, caps_by_depth, v, u[0], u[1], u[2], 0);
+      }
       const Integral whole = concave_piece(v, p, u[0], u[1], u[2]);
       if (std::abs(patch.area - whole.area) > 1e-12 * std::max(1.0, whole.area))
       {

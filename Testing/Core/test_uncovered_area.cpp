@@ -1,0 +1,69 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The exact uncovered part of the unit sphere under caps (a private part of MesoLensCore, used
+// for concave patches that neighbouring probes cut): closed forms, and degenerate arrangements
+// refused.
+#include "sas_boundary.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include <cmath>
+
+namespace {
+using Vec = Eigen::Vector3d;
+using mesolens::UnitCap;
+constexpr double pi = 3.14159265358979323846;
+
+void expect_near(const Vec& a, const Vec& b, double tolerance)
+{
+  EXPECT_NEAR((a - b).norm(), 0.0, tolerance) << a.transpose() << " against " << b.transpose();
+}
+} // namespace
+
+TEST(UncoveredArea, OneCapLeavesTheRestOfTheSphere)
+{
+  const Vec axis = Vec(0.3, -0.5, 0.8).normalized();
+  const double height = 0.35;
+  double area = 0;
+  Vec direction = Vec::Zero();
+  ASSERT_TRUE(mesolens::uncovered_unit_area({ { axis, height } }, area, direction));
+  EXPECT_NEAR(area, 2 * pi * (1 + height), 1e-12);
+  // The cap's own integral of u is pi (1 - h^2) along its axis; the whole sphere's is zero.
+  expect_near(direction, -pi * (1 - height * height) * axis, 1e-12);
+}
+
+TEST(UncoveredArea, ThreeHemispheresLeaveAnOctantAndACapInsideItIsTakenOut)
+{
+  std::vector<UnitCap> caps = { { -Vec::UnitX(), 0.0 },
+                                { -Vec::UnitY(), 0.0 },
+                                { -Vec::UnitZ(), 0.0 } };
+  double area = 0;
+  Vec direction = Vec::Zero();
+  ASSERT_TRUE(mesolens::uncovered_unit_area(caps, area, direction));
+  EXPECT_NEAR(area, pi / 2, 1e-12);
+  expect_near(direction, Vec::Constant(pi / 4), 1e-12);
+  // A cap of 25.8 degrees about the octant's middle (35.3 degrees from its sides).
+  const Vec middle = Vec::Ones().normalized();
+  caps.push_back({ middle, 0.9 });
+  ASSERT_TRUE(mesolens::uncovered_unit_area(caps, area, direction));
+  EXPECT_NEAR(area, pi / 2 - 2 * pi * (1 - 0.9), 1e-12);
+  expect_near(direction, Vec::Constant(pi / 4) - pi * (1 - 0.81) * middle, 1e-12);
+  // One cutting across a side: the octant less a cap about the x axis's end, whose quarter
+  // lies in the octant.
+  caps.back() = { Vec::UnitX(), 0.6 };
+  ASSERT_TRUE(mesolens::uncovered_unit_area(caps, area, direction));
+  EXPECT_NEAR(area, pi / 2 - 0.25 * 2 * pi * (1 - 0.6), 1e-12);
+}
+
+TEST(UncoveredArea, ThreeCirclesThroughOnePointAreRefused)
+{
+  // The great circles x = 0, y = 0 and x = y all pass through the poles.
+  const std::vector<UnitCap> caps = { { -Vec::UnitX(), 0.0 },
+                                      { -Vec::UnitY(), 0.0 },
+                                      { Vec(1, -1, 0).normalized(), 0.0 } };
+  double area = -1;
+  Vec direction = Vec::Zero();
+  EXPECT_FALSE(mesolens::uncovered_unit_area(caps, area, direction));
+  EXPECT_EQ(area, -1);
+}

@@ -15,7 +15,7 @@ namespace mesolens {
 namespace {
 using Vec = Eigen::Vector3d;
 constexpr double pi = 3.14159265358979323846;
-constexpr int deepest_split = 4;   // singular patches: at most 4^4 pieces, near the cuts only
+constexpr int deepest_split = 5;   // singular patches: at most 4^5 pieces, near the cuts only
 constexpr double ball_slack = 1.1; // sub-patches lie within this times their corner distance
 
 /// Area and x . n integral of a patch piece.

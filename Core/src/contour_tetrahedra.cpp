@@ -113,7 +113,15 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
   };
 
   std::vector<BlockOutput> outputs(block_count);
-  const auto run_block = [&](std::size_t block) {
+  // What a thread reuses from block to block: the field's local view and the block's tables.
+  struct BlockBuffers
+  {
+    std::unique_ptr<LocalContourField> local;
+    std::vector<double> values;
+    std::vector<std::uint32_t> hints;
+    std::vector<std::int64_t> made;
+  };
+  const auto run_block = [&](std::size_t block, BlockBuffers& buffers) {
     const std::int64_t bx = static_cast<std::int64_t>(block % std::size_t(blocks[0]));
     const std::int64_t by =
       static_cast<std::int64_t>((block / std::size_t(blocks[0])) % std::size_t(blocks[1]));
@@ -125,16 +133,22 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
     {
       return;
     }
-    const std::unique_ptr<LocalContourField> local = field.local();
+    if (!buffers.local)
+    {
+      buffers.local = field.local();
+    }
+    LocalContourField* const local = buffers.local.get();
     // Corner values on the block's points (block_cells + 1 per axis), computed once.
     constexpr int side = block_cells + 1;
-    std::vector<double> values;
-    std::vector<std::uint32_t> hints;
+    std::vector<double>& values = buffers.values;
+    std::vector<std::uint32_t>& hints = buffers.hints;
+    bool sampled = false;
     const auto sample_at = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
-      if (values.empty())
+      if (!sampled)
       {
         values.assign(side * side * side, std::numeric_limits<double>::quiet_NaN());
         hints.assign(side * side * side, 0);
+        sampled = true;
       }
       const std::size_t at = std::size_t((x - x0) + side * ((y - y0) + side * (z - z0)));
       LocalContourField::Sample sample{ position(x, y, z), values[at], hints[at] };
@@ -147,7 +161,8 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
     };
     BlockOutput& out = outputs[block];
     // Per block point and Kuhn direction (1 to 7), the index of the vertex on that edge.
-    std::vector<std::int64_t> made(std::size_t(side * side * side * 8), -1);
+    std::vector<std::int64_t>& made = buffers.made;
+    made.assign(std::size_t(side * side * side * 8), -1);
     const auto contour_cell = [&](const std::array<std::int64_t, 3>& cell) {
       std::array<LocalContourField::Sample, 8> corner;
       std::array<double, 8> corner_value{};
@@ -277,9 +292,10 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
   {
     const std::size_t count = std::min(round, block_count - first);
     run_parallel(parallel_for, count, [&](std::size_t begin, std::size_t end) {
+      BlockBuffers buffers;
       for (std::size_t k = begin; k < end; ++k)
       {
-        run_block(first + k);
+        run_block(first + k, buffers);
       }
     });
     if (progress)

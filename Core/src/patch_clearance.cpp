@@ -90,10 +90,50 @@ struct ForeignPositions
 {
   Vec centre = Vec::Zero(), e1 = Vec::UnitX(), e2 = Vec::UnitY();
   double radius = 0;
+};
 
-  Vec point(double psi) const
+/// An interval of azimuths with the cosines and sines of its ends, so that halving it needs no
+/// trigonometry: under half a turn, the middle's direction is the normalised sum of the ends'.
+struct AzimuthRange
+{
+  double low = 0, high = 0;
+  double cos_low = 1, sin_low = 0, cos_high = 1, sin_high = 0;
+
+  static AzimuthRange of(double low, double high)
   {
-    return this->centre + this->radius * (std::cos(psi) * this->e1 + std::sin(psi) * this->e2);
+    return { low, high, std::cos(low), std::sin(low), std::cos(high), std::sin(high) };
+  }
+  double middle() const
+  {
+    return 0.5 * (this->low + this->high);
+  }
+  double half_width() const
+  {
+    return 0.5 * (this->high - this->low);
+  }
+  /// The cosine and sine of the middle.
+  void middle_direction(double& cos_middle, double& sin_middle) const
+  {
+    if (this->high - this->low < 3.0)
+    {
+      const double x = this->cos_low + this->cos_high, y = this->sin_low + this->sin_high;
+      const double length = std::sqrt(x * x + y * y);
+      cos_middle = x / length;
+      sin_middle = y / length;
+    }
+    else
+    {
+      cos_middle = std::cos(this->middle());
+      sin_middle = std::sin(this->middle());
+    }
+  }
+  AzimuthRange lower(double cos_middle, double sin_middle) const
+  {
+    return { this->low, this->middle(), this->cos_low, this->sin_low, cos_middle, sin_middle };
+  }
+  AzimuthRange upper(double cos_middle, double sin_middle) const
+  {
+    return { this->middle(), this->high, cos_middle, sin_middle, this->cos_high, this->sin_high };
   }
 };
 
@@ -107,8 +147,8 @@ struct ForeignPositions
 //   d|q|^2/dpsi = -2 rho' q . D', dA/dpsi = -rho' D' . a,   dB/dpsi = -rho' D' . d,
 // and second derivatives of the gap at most 2 (rho + p)(rho + |q|) in phi, 2 rho' (rho' + |q|
 // + p) in psi and 2 rho' (rho + p) across. Where |q| >= 2 p the gap is >= 0 whatever t.
-bool torus_gap_range(const TorusFrame& frame, const ForeignPositions& other, double phi_low,
-                     double phi_high, double psi_low, double psi_high, int& budget)
+bool torus_gap_range(const TorusFrame& frame, const ForeignPositions& other,
+                     const AzimuthRange& phi, const AzimuthRange& psi, int& budget)
 {
   if (--budget < 0)
   {
@@ -116,12 +156,12 @@ bool torus_gap_range(const TorusFrame& frame, const ForeignPositions& other, dou
   }
   const SasArc& arc = *frame.piece.arc;
   const double p = frame.piece.probe, rho = arc.radius, rho_other = other.radius;
-  const double phi = 0.5 * (phi_low + phi_high), phi_delta = 0.5 * (phi_high - phi_low);
-  const double psi = 0.5 * (psi_low + psi_high), psi_delta = 0.5 * (psi_high - psi_low);
-  const double cos_phi = std::cos(phi), sin_phi = std::sin(phi);
+  const double phi_delta = phi.half_width(), psi_delta = psi.half_width();
+  double cos_phi = 1, sin_phi = 0, cos_psi = 1, sin_psi = 0;
+  phi.middle_direction(cos_phi, sin_phi);
+  psi.middle_direction(cos_psi, sin_psi);
   const Vec d = cos_phi * arc.e1 + sin_phi * arc.e2;
   const Vec d_turn = -sin_phi * arc.e1 + cos_phi * arc.e2;
-  const double cos_psi = std::cos(psi), sin_psi = std::sin(psi);
   const Vec q =
     arc.centre + rho * d - (other.centre + rho_other * (cos_psi * other.e1 + sin_psi * other.e2));
   const double length = q.norm();
@@ -166,11 +206,11 @@ bool torus_gap_range(const TorusFrame& frame, const ForeignPositions& other, dou
   // Halve the azimuth along which the patch's points move farther.
   if ((rho + p) * phi_delta >= rho_other * psi_delta)
   {
-    return torus_gap_range(frame, other, phi_low, phi, psi_low, psi_high, budget) &&
-      torus_gap_range(frame, other, phi, phi_high, psi_low, psi_high, budget);
+    return torus_gap_range(frame, other, phi.lower(cos_phi, sin_phi), psi, budget) &&
+      torus_gap_range(frame, other, phi.upper(cos_phi, sin_phi), psi, budget);
   }
-  return torus_gap_range(frame, other, phi_low, phi_high, psi_low, psi, budget) &&
-    torus_gap_range(frame, other, phi_low, phi_high, psi, psi_high, budget);
+  return torus_gap_range(frame, other, phi, psi.lower(cos_psi, sin_psi), budget) &&
+    torus_gap_range(frame, other, phi, psi.upper(cos_psi, sin_psi), budget);
 }
 
 // On the concave patch x = v + p u (u in the triangle), with q = v - C'(psi):
@@ -215,7 +255,8 @@ bool torus_clear_of_position(const TorusPatchPiece& torus, const Vec& position)
   single.centre = position;
   const TorusFrame frame(torus);
   int budget = budget_one_parameter;
-  return torus_gap_range(frame, single, torus.phi0, torus.phi1, 0.0, 0.0, budget);
+  return torus_gap_range(frame, single, AzimuthRange::of(torus.phi0, torus.phi1), AzimuthRange{},
+                         budget);
 }
 
 bool torus_clear_of_arc(const TorusPatchPiece& torus, const SasArc& other)
@@ -229,11 +270,13 @@ bool torus_clear_of_arc(const TorusPatchPiece& torus, const SasArc& other)
                      2.0 * torus.probe + 2.0 * torus.arc->radius * std::sin(half), ranges);
   const ForeignPositions positions{ other.centre, other.e1, other.e2, other.radius };
   const TorusFrame frame(torus);
+  const AzimuthRange phi = AzimuthRange::of(torus.phi0, torus.phi1);
   int budget = budget_two_parameters;
   for (int k = 0; k < count; ++k)
   {
-    if (!torus_gap_range(frame, positions, torus.phi0, torus.phi1, ranges[std::size_t(k)].first,
-                         ranges[std::size_t(k)].second, budget))
+    if (!torus_gap_range(
+          frame, positions, phi,
+          AzimuthRange::of(ranges[std::size_t(k)].first, ranges[std::size_t(k)].second), budget))
     {
       return false;
     }

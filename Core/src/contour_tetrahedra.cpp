@@ -165,12 +165,10 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
     made.assign(std::size_t(side * side * side * 8), -1);
     const auto contour_cell = [&](const std::array<std::int64_t, 3>& cell) {
       std::array<LocalContourField::Sample, 8> corner;
-      std::array<double, 8> corner_value{};
       for (int m = 0; m < 8; ++m)
       {
         corner[m] =
           sample_at(cell[0] + (m & 1), cell[1] + ((m >> 1) & 1), cell[2] + ((m >> 2) & 1));
-        corner_value[m] = corner[m].value;
       }
       const auto edge = [&](int a, int b) {
         // Kuhn edges join a corner to one whose bits include its own: key by the lower corner
@@ -185,8 +183,8 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
           const std::uint64_t key = point_key(x, y, z) * 8 + std::uint64_t(to ^ from);
           if (owner_of(x, y, z) == block)
           {
-            const int outside = corner_value[a] > 0 ? b : a;
-            const int inside = corner_value[a] > 0 ? a : b;
+            const int outside = corner[a].value > 0 ? b : a;
+            const int inside = corner[a].value > 0 ? a : b;
             index = static_cast<std::int64_t>(out.vertices.size());
             out.vertices.push_back(local->vertex(corner[outside], corner[inside]));
             out.keys.push_back(key);
@@ -206,7 +204,7 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
         int inside_mask = 0, inside_count = 0;
         for (int k = 0; k < 4; ++k)
         {
-          if (corner_value[tet[k]] > 0)
+          if (corner[tet[k]].value > 0)
           {
             inside_mask |= 1 << k;
             ++inside_count;

@@ -328,9 +328,13 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
   // component of their mesh vertices (or of the nearest vertex of their atoms); a sphere's
   // convex part goes by its boundary loops, each placed by the nearest vertex on that atom, the
   // part bounded by its cavity loops taken as one region (Gauss-Bonnet per region).
-  std::vector<double> face_area = patches.face_area, face_volume = patches.face_volume;
-  std::vector<double> arc_area = patches.arc_area, arc_volume = patches.arc_volume;
-  std::vector<double> vertex_area = patches.vertex_area, vertex_volume = patches.vertex_volume;
+  // (In place: the patch integrals are not needed afterwards.)
+  std::vector<double>& face_area = patches.face_area;
+  std::vector<double>& face_volume = patches.face_volume;
+  std::vector<double>& arc_area = patches.arc_area;
+  std::vector<double>& arc_volume = patches.arc_volume;
+  std::vector<double>& vertex_area = patches.vertex_area;
+  std::vector<double>& vertex_volume = patches.vertex_volume;
   if (figures && !options.keep_cavities && surface.cavity_count > 0)
   {
     std::vector<std::vector<std::uint32_t>> on_atom(n);
@@ -469,11 +473,14 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
       surface.patch_count[slot] += area[k] > 0 ? 1 : 0;
     }
   };
-  add(face_area, face_volume, SurfacePatch::Convex);
-  add(arc_area, arc_volume, SurfacePatch::Toroidal);
-  add(vertex_area, vertex_volume, SurfacePatch::Concave);
-  surface.area = surface.patch_area[0] + surface.patch_area[1] + surface.patch_area[2];
-  if (!figures)
+  if (figures)
+  {
+    add(face_area, face_volume, SurfacePatch::Convex);
+    add(arc_area, arc_volume, SurfacePatch::Toroidal);
+    add(vertex_area, vertex_volume, SurfacePatch::Concave);
+    surface.area = surface.patch_area[0] + surface.patch_area[1] + surface.patch_area[2];
+  }
+  else
   {
     surface.area = surface.volume = std::numeric_limits<double>::quiet_NaN();
     surface.patch_area.fill(std::numeric_limits<double>::quiet_NaN());

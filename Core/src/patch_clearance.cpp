@@ -34,15 +34,10 @@ struct TorusFrame
   {
   }
 
-  /// min over t in [t0, t1] of a cos t + b sin t: -sqrt(a^2 + b^2) where the direction
-  /// (-a, -b) lies within the range (at most half a turn), else at an end.
+  /// min over t in [t0, t1] of a cos t + b sin t.
   double least(double a, double b) const
   {
-    if (this->cos0 * -b - this->sin0 * -a >= 0 && -a * this->sin1 - -b * this->cos1 >= 0)
-    {
-      return -std::sqrt(a * a + b * b);
-    }
-    return std::min(a * this->cos0 + b * this->sin0, a * this->cos1 + b * this->sin1);
+    return least_sinusoid(a, b, this->cos0, this->sin0, this->cos1, this->sin1);
   }
 };
 

@@ -9,6 +9,9 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
+#include <cmath>
+
 namespace mesolens {
 
 /// A piece of the toroidal patch that probe `probe` (Å, > 0) sweeps rolling along `arc`: the
@@ -21,6 +24,18 @@ struct TorusPatchPiece
   double probe = 0;
   double phi0 = 0, phi1 = 0, t0 = 0, t1 = 0;
 };
+
+/// The least of a cos t + b sin t over arc angles t in [t0, t1] (at most half a turn), given
+/// the ends' cosines and sines: -sqrt(a^2 + b^2) where the direction (-a, -b) lies within the
+/// range, else at an end. (The greatest is -least_sinusoid(-a, -b, ...).)
+inline double least_sinusoid(double a, double b, double cos0, double sin0, double cos1, double sin1)
+{
+  if (cos0 * -b - sin0 * -a >= 0 && -a * sin1 - -b * cos1 >= 0)
+  {
+    return -std::sqrt(a * a + b * b);
+  }
+  return std::min(a * cos0 + b * sin0, a * cos1 + b * sin1);
+}
 
 // Each test answers true only when certain that every point of the patch lies at least the
 // probe radius from every position of the foreign piece (bounds on the squared distance less

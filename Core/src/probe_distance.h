@@ -112,8 +112,8 @@ public:
   /// distance is exact (the nearest sphere) up to max(reach, largest radius) less the largest
   /// radius; farther out it reports that bound, nearer zero than the truth, and
   /// PieceKind::None. Inside it is exact up to the reach, beyond which it reports the reach and
-  /// PieceKind::None. With a filter, the nearest of the
-  /// pieces it lets through (inside the union only).
+  /// PieceKind::None. With a filter, the nearest of the pieces it lets through (inside the
+  /// union only).
   /// `limit` (<= the reach; 0: the reach) bounds the search inside the union: pieces farther
   /// are not looked for, and the distance reported is then the limit (PieceKind::None).
   ClosestPiece closest(const Eigen::Vector3d& x, const Filter& filter = {}, double limit = 0) const;

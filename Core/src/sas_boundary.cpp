@@ -99,6 +99,14 @@ struct UnitPieces
   std::vector<Corner> corners;
   std::vector<Loop> loops;
   std::size_t degenerate_corners = 0; ///< corners where a third circle passes too
+
+  void clear()
+  {
+    this->arcs.clear();
+    this->corners.clear();
+    this->loops.clear();
+    this->degenerate_corners = 0;
+  }
 };
 
 /// Where the circles of two overlapping caps cross (false when they do not: one inside the
@@ -420,7 +428,10 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
 bool uncovered_unit_area(const std::vector<UnitCap>& unit_caps, double& area,
                          Vec& direction_integral)
 {
-  std::vector<Cap> caps(unit_caps.size());
+  // Buffers kept per thread: this runs once per cut concave patch.
+  thread_local std::vector<Cap> caps;
+  thread_local UnitWorkspace work;
+  caps.resize(unit_caps.size());
   for (std::size_t k = 0; k < caps.size(); ++k)
   {
     caps[k].axis = unit_caps[k].axis;
@@ -454,7 +465,6 @@ bool uncovered_unit_area(const std::vector<UnitCap>& unit_caps, double& area,
       }
     }
   }
-  UnitWorkspace work;
   area = exposed_unit_area(caps, direction_integral, nullptr, work);
   return true;
 }
@@ -556,10 +566,7 @@ SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
         continue;
       }
       Vec normal_integral = Vec::Zero();
-      pieces.arcs.clear();
-      pieces.corners.clear();
-      pieces.loops.clear();
-      pieces.degenerate_corners = 0;
+      pieces.clear();
       const double solid_angle =
         exposed_unit_area(caps, normal_integral, with_pieces ? &pieces : nullptr, work);
       result.area[i] = r * r * solid_angle;

@@ -16,7 +16,7 @@ namespace {
 using Vec = Eigen::Vector3d;
 constexpr double pi = 3.14159265358979323846;
 constexpr int deepest_split = 5;   // singular patches: at most 4^5 pieces, near the cuts only
-constexpr double ball_slack = 1.1; // sub-patches lie within this times their corner distance
+constexpr double ball_slack = 1.1; // concave pieces lie within their corner distance: a margin
 
 /// Area and x . n integral of a patch piece.
 struct Integral
@@ -72,11 +72,9 @@ struct Torus
     {
       const Vec d = phi->cos * a.e1 + phi->sin * a.e2;
       const Vec u = a.centre + a.radius * d - middle;
-      // max over [t0, t1] (at most half a turn) of x cos t + y sin t.
-      const double x = u.dot(a.axis), y = u.dot(d);
-      const bool inside = t0.cos * y - t0.sin * x >= 0 && x * t1.sin - y * t1.cos >= 0;
-      const double most = inside ? std::sqrt(x * x + y * y)
-                                 : std::max(x * t0.cos + y * t0.sin, x * t1.cos + y * t1.sin);
+      // max over [t0, t1] of x cos t + y sin t.
+      const double most =
+        -least_sinusoid(-u.dot(a.axis), -u.dot(d), t0.cos, t0.sin, t1.cos, t1.sin);
       farthest = std::max(farthest, u.squaredNorm() + p * p + 2.0 * p * most);
     }
     return std::sqrt(std::max(0.0, farthest));
@@ -147,12 +145,12 @@ struct Splitter
   double probe = 0;
   /// The foreign pieces that may cut the patch (see gather_cutters()), with the spheres around
   /// it: queries look at these alone, so distances are those to possible cutters, exact
-  /// wherever they are below p (where the clearance's sign is decided).
+  /// wherever they are below p (where the clearance's sign is decided). Null: none may.
   const LocalPieces* cutters = nullptr;
 
   bool none() const
   {
-    return this->cutters->arcs.empty() && this->cutters->vertices.empty();
+    return !this->cutters || (this->cutters->arcs.empty() && this->cutters->vertices.empty());
   }
 
   /// Whether a piece around `middle` reaching `size` is certainly kept whole.
@@ -260,35 +258,39 @@ double positive_fraction(double g0, double g1, double g2)
   return lone_sign ? corner : 1.0 - corner;
 }
 
-/// The part of a probe sphere inside a neighbouring probe at `other`: the directions u with
-/// u . axis > height.
-struct ProbeCap
+/// Into `meeting`, the caps (parts of a probe's sphere inside neighbouring probes) that meet
+/// the spherical triangle; false when one of them holds it whole.
+bool caps_meeting(const SphericalTriangle& triangle, const std::vector<UnitCap>& caps,
+                  std::vector<UnitCap>& meeting)
 {
-  Vec axis = Vec::UnitZ();
-  double height = 1;
-};
-
-/// A concave patch that only neighbouring probes cut (caps on its sphere), exactly: the part of
-/// the probe's unit sphere that neither the caps meeting the triangle nor the hemispheres beyond
-/// its three edges cover. False when that arrangement is degenerate (see
-/// uncovered_unit_area()): the caller splits the patch instead. `unit_caps` is a buffer.
-bool uncovered_concave(const Vec& centre, double p, const Vec (&u)[3],
-                       const SphericalTriangle& triangle, const std::vector<ProbeCap>& caps,
-                       std::vector<UnitCap>& unit_caps, Integral& result)
-{
-  unit_caps.clear();
-  for (const ProbeCap& cap : caps)
+  meeting.clear();
+  for (const UnitCap& cap : caps)
   {
     const auto range = triangle.dot_range(cap.axis);
     if (range.second > cap.height)
     {
       if (range.first > cap.height)
       {
-        result = {}; // wholly inside a neighbour
-        return true;
+        return false;
       }
-      unit_caps.push_back({ cap.axis, cap.height });
+      meeting.push_back(cap);
     }
+  }
+  return true;
+}
+
+/// A concave patch that only neighbouring probes cut (caps on its sphere), exactly: the part of
+/// the probe's unit sphere that neither the caps meeting the triangle nor the hemispheres beyond
+/// its three edges cover. False when that arrangement is degenerate (see
+/// uncovered_unit_area()): the caller splits the patch instead. `unit_caps` is a buffer.
+bool uncovered_concave(const Vec& centre, double p, const Vec (&u)[3],
+                       const SphericalTriangle& triangle, const std::vector<UnitCap>& caps,
+                       std::vector<UnitCap>& unit_caps, Integral& result)
+{
+  if (!caps_meeting(triangle, caps, unit_caps))
+  {
+    result = {}; // wholly inside a neighbour
+    return true;
   }
   if (unit_caps.empty())
   {
@@ -312,9 +314,9 @@ bool uncovered_concave(const Vec& centre, double p, const Vec (&u)[3],
 }
 
 /// Caps meeting the pieces of a concave patch, per depth of the split (reused).
-using CapsByDepth = std::array<std::vector<ProbeCap>, deepest_split + 1>;
+using CapsByDepth = std::array<std::vector<UnitCap>, deepest_split + 1>;
 
-Integral split_concave(const Splitter& splitter, const std::vector<ProbeCap>& caps,
+Integral split_concave(const Splitter& splitter, const std::vector<UnitCap>& caps,
                        CapsByDepth& caps_by_depth, const Vec& centre, const Vec& a, const Vec& b,
                        const Vec& c, int depth)
 {
@@ -322,20 +324,10 @@ Integral split_concave(const Splitter& splitter, const std::vector<ProbeCap>& ca
   const Vec middle = (a + b + c).normalized();
   // Neighbouring probes cut exactly: caps on this probe's sphere. Only those meeting this
   // piece can meet its parts, so they alone go down.
-  std::vector<ProbeCap>& meeting = caps_by_depth[std::size_t(depth)];
-  meeting.clear();
-  const SphericalTriangle triangle(a, b, c);
-  for (const ProbeCap& cap : caps)
+  std::vector<UnitCap>& meeting = caps_by_depth[std::size_t(depth)];
+  if (!caps_meeting(SphericalTriangle(a, b, c), caps, meeting))
   {
-    const auto range = triangle.dot_range(cap.axis);
-    if (range.second > cap.height)
-    {
-      if (range.first > cap.height)
-      {
-        return {}; // wholly inside a neighbour
-      }
-      meeting.push_back(cap);
-    }
+    return {}; // wholly inside a neighbour
   }
   const bool cut_by_cap = !meeting.empty();
   const double size =
@@ -344,12 +336,11 @@ Integral split_concave(const Splitter& splitter, const std::vector<ProbeCap>& ca
   {
     return concave_piece(centre, p, a, b, c);
   }
-  const Splitter& inner = splitter;
   if (depth == deepest_split)
   {
     const auto clearance = [&](const Vec& u) {
-      double g = inner.clearance(centre + p * u);
-      for (const ProbeCap& cap : meeting)
+      double g = splitter.clearance(centre + p * u);
+      for (const UnitCap& cap : meeting)
       {
         g = std::min(g, p * (cap.height - u.dot(cap.axis)));
       }
@@ -363,10 +354,10 @@ Integral split_concave(const Splitter& splitter, const std::vector<ProbeCap>& ca
   }
   const Vec ab = (a + b).normalized(), bc = (b + c).normalized(), ca = (c + a).normalized();
   Integral sum;
-  sum += split_concave(inner, meeting, caps_by_depth, centre, a, ab, ca, depth + 1);
-  sum += split_concave(inner, meeting, caps_by_depth, centre, ab, b, bc, depth + 1);
-  sum += split_concave(inner, meeting, caps_by_depth, centre, ca, bc, c, depth + 1);
-  sum += split_concave(inner, meeting, caps_by_depth, centre, ab, bc, ca, depth + 1);
+  sum += split_concave(splitter, meeting, caps_by_depth, centre, a, ab, ca, depth + 1);
+  sum += split_concave(splitter, meeting, caps_by_depth, centre, ab, b, bc, depth + 1);
+  sum += split_concave(splitter, meeting, caps_by_depth, centre, ca, bc, c, depth + 1);
+  sum += split_concave(splitter, meeting, caps_by_depth, centre, ab, bc, ca, depth + 1);
   return sum;
 }
 
@@ -379,13 +370,12 @@ Integral split_torus(const Splitter& splitter, const Torus& torus, const Angle& 
   {
     return torus.piece(phi0, phi1, t0, t1);
   }
-  const Splitter& inner = splitter;
   if (depth == deepest_split)
   {
-    const double g00 = inner.clearance(torus.point(phi0, t0));
-    const double g10 = inner.clearance(torus.point(phi1, t0));
-    const double g01 = inner.clearance(torus.point(phi0, t1));
-    const double g11 = inner.clearance(torus.point(phi1, t1));
+    const double g00 = splitter.clearance(torus.point(phi0, t0));
+    const double g10 = splitter.clearance(torus.point(phi1, t0));
+    const double g01 = splitter.clearance(torus.point(phi0, t1));
+    const double g11 = splitter.clearance(torus.point(phi1, t1));
     const double kept = 0.5 * (positive_fraction(g00, g10, g11) + positive_fraction(g00, g11, g01));
     Integral piece = torus.piece(phi0, phi1, t0, t1);
     piece.area *= kept;
@@ -393,10 +383,10 @@ Integral split_torus(const Splitter& splitter, const Torus& torus, const Angle& 
     return piece;
   }
   Integral sum;
-  sum += split_torus(inner, torus, phi0, phi, t0, t, depth + 1);
-  sum += split_torus(inner, torus, phi, phi1, t0, t, depth + 1);
-  sum += split_torus(inner, torus, phi0, phi, t, t1, depth + 1);
-  sum += split_torus(inner, torus, phi, phi1, t, t1, depth + 1);
+  sum += split_torus(splitter, torus, phi0, phi, t0, t, depth + 1);
+  sum += split_torus(splitter, torus, phi, phi1, t0, t, depth + 1);
+  sum += split_torus(splitter, torus, phi0, phi, t, t1, depth + 1);
+  sum += split_torus(splitter, torus, phi, phi1, t, t1, depth + 1);
   return sum;
 }
 } // namespace
@@ -526,7 +516,7 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
       // 2 p), exactly as caps on its sphere; and, by distance, the arcs touching none of its
       // atoms, and those between two of them where the probe passes between that pair. The
       // other pieces are its neighbours on the surface and meet it only at its edges.
-      std::vector<ProbeCap> caps;
+      std::vector<UnitCap> caps;
       distance.vertices_within(v, 2.0 * p, [&](std::uint32_t other) {
         const Vec offset = vertices[other].position - v;
         const double gap = offset.norm();
@@ -551,12 +541,7 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
           distance, boundary, foreign, p, v + p * middle, ball_slack * reach,
           [&](const SasArc& other) { return concave_clear_of_arc(v, p, triangle, other); },
           [](const SasVertex&) { return false; }, search);
-      if (!may_be_cut)
-      {
-        search.cutters.arcs.clear();
-        search.cutters.vertices.clear();
-      }
-      Splitter splitter{ &distance, &foreign, p, &search.cutters };
+      const Splitter splitter{ &distance, &foreign, p, may_be_cut ? &search.cutters : nullptr };
       Integral patch;
       if (may_be_cut || !uncovered_concave(v, p, u, triangle, caps, unit_caps, patch))
       {

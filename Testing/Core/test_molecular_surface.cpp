@@ -249,6 +249,13 @@ Centres atoms_of(const mesolens::AtomTable& table, std::vector<double>& radii)
   }
   return centres;
 }
+
+/// Crambin's atoms (1crn, from Data/) and their radii.
+Centres crambin(std::vector<double>& radii)
+{
+  const auto file = mesolens::read_structure(mesolens_test::data_file("proteins/1crn.pdb"));
+  return atoms_of(file.models[0], radii);
+}
 } // namespace
 
 TEST(MolecularSurface, OneAtomIsItsSphereInEveryKind)
@@ -355,8 +362,7 @@ TEST(MolecularSurface, ThreeAndFourAtomsAgreeWithTheirRefinedMeshes)
 TEST(MolecularSurface, AccessibleAndVanDerWaalsFiguresAreTheSphereUnions)
 {
   std::vector<double> radii;
-  const auto file = mesolens::read_structure(mesolens_test::data_file("proteins/1crn.pdb"));
-  const Centres centres = atoms_of(file.models[0], radii);
+  const Centres centres = crambin(radii);
   std::vector<double> inflated = radii;
   for (double& r : inflated)
   {
@@ -383,8 +389,7 @@ TEST(MolecularSurface, AccessibleAndVanDerWaalsFiguresAreTheSphereUnions)
 TEST(MolecularSurface, CrambinAgainstItsRefinedMeshAndEdtSurf)
 {
   std::vector<double> radii;
-  const auto file = mesolens::read_structure(mesolens_test::data_file("proteins/1crn.pdb"));
-  const Centres centres = atoms_of(file.models[0], radii);
+  const Centres centres = crambin(radii);
   const MolecularSurface coarse = surface_of(centres, radii, 0.04);
   const MolecularSurface fine = surface_of(centres, radii, 0.02);
   expect_closed_surface(fine);
@@ -418,8 +423,7 @@ TEST(MolecularSurface, CrambinAgainstItsRefinedMeshAndEdtSurf)
 TEST(MolecularSurface, CrambinVerticesLieOnTheSurfaceTheirProbesTrace)
 {
   std::vector<double> radii;
-  const auto file = mesolens::read_structure(mesolens_test::data_file("proteins/1crn.pdb"));
-  const Centres centres = atoms_of(file.models[0], radii);
+  const Centres centres = crambin(radii);
   const double p = 1.4;
   const MolecularSurface s = surface_of(centres, radii, 0.1);
   ASSERT_GT(s.atom.size(), 1000u);
@@ -548,8 +552,7 @@ TEST(MolecularSurface, FourAtomsOnOneProbePositionAreReported)
 TEST(MolecularSurface, SameResultOnOneAndTwoThreads)
 {
   std::vector<double> radii;
-  const auto file = mesolens::read_structure(mesolens_test::data_file("proteins/1crn.pdb"));
-  const Centres centres = atoms_of(file.models[0], radii);
+  const Centres centres = crambin(radii);
   MolecularSurfaceOptions options;
   options.tolerance = 0.2;
   const MolecularSurface one = mesolens::molecular_surface(centres, radii, options);
@@ -564,8 +567,7 @@ TEST(MolecularSurface, SameResultOnOneAndTwoThreads)
 TEST(MolecularSurface, TheMeshAloneIsTheSameMeshWithoutFigures)
 {
   std::vector<double> radii;
-  const auto file = mesolens::read_structure(mesolens_test::data_file("proteins/1crn.pdb"));
-  const Centres centres = atoms_of(file.models[0], radii);
+  const Centres centres = crambin(radii);
   MolecularSurfaceOptions options;
   options.tolerance = 0.2;
   const MolecularSurface full = mesolens::molecular_surface(centres, radii, options);

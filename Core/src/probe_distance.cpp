@@ -604,8 +604,18 @@ ClosestPiece ProbeDistance::closest(const LocalPieces& local, const Vec& x, cons
     return best;
   }
   // Sorted by distance from the centre, which bounds each piece's from below: stop where the
-  // bound passes the best.
+  // bound passes the best. Vertices first: a point's distance is one root, and the nearest
+  // vertex bounds the arcs' distances (every arc ends at vertices or closes on itself) so
+  // that fewer arcs need their frame.
   const double offset = (x - local.centre).norm();
+  for (const auto& vertex : local.vertices)
+  {
+    if (vertex.first - offset >= best.distance)
+    {
+      break;
+    }
+    this->try_vertex(vertex.second, x, filter, best);
+  }
   for (const auto& arc : local.arcs)
   {
     if (arc.first - offset >= best.distance)
@@ -616,14 +626,6 @@ ClosestPiece ProbeDistance::closest(const LocalPieces& local, const Vec& x, cons
     {
       this->try_arc(arc.second, x, best);
     }
-  }
-  for (const auto& vertex : local.vertices)
-  {
-    if (vertex.first - offset >= best.distance)
-    {
-      break;
-    }
-    this->try_vertex(vertex.second, x, filter, best);
   }
   return best;
 }

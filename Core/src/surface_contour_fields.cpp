@@ -3,6 +3,8 @@
 
 #include "surface_contour_fields.h"
 
+#include "segment_roots.h"
+
 #include "mesolens/molecular_surface.h"
 
 #include <algorithm>
@@ -13,50 +15,6 @@ namespace mesolens {
 
 namespace {
 using Vec = Eigen::Vector3d;
-
-/// The root of `value` on the segment from a (value <= 0) to b (value > 0), by the Illinois
-/// variant of regula falsi, to 1e-9 Å, kept 1e-5 of the segment from either end (so no triangle
-/// degenerates where the surface passes through a grid point).
-template<typename Value>
-Vec segment_root(const Vec& a, double value_a, const Vec& b, double value_b, Value&& value)
-{
-  double t0 = 0, t1 = 1, f0 = value_a, f1 = value_b;
-  const double length = (b - a).norm();
-  int side = 0;
-  double t = f0 / (f0 - f1);
-  for (int iteration = 0; iteration < 60 && (t1 - t0) * length > 1e-9; ++iteration)
-  {
-    t = (t0 * f1 - t1 * f0) / (f1 - f0);
-    const double f = value(a + t * (b - a));
-    if (f == 0)
-    {
-      break;
-    }
-    if (f < 0)
-    {
-      t0 = t;
-      f0 = f;
-      if (side == -1)
-      {
-        f1 *= 0.5;
-      }
-      side = -1;
-    }
-    else
-    {
-      t1 = t;
-      f1 = f;
-      if (side == 1)
-      {
-        f0 *= 0.5;
-      }
-      side = 1;
-    }
-  }
-  // Never exactly at a grid point: vertices of different edges stay apart.
-  t = std::clamp(t, 1e-5, 1.0 - 1e-5);
-  return a + t * (b - a);
-}
 
 /// A piece as a field's hint: its kind in the top two bits, its index below.
 constexpr std::uint32_t index_mask = (1u << 30) - 1;
@@ -91,7 +49,10 @@ public:
       // A cell asks few queries: its parent's pieces serve them, unrefined.
       const LocalPieces& parent = this->levels_[static_cast<std::size_t>(level) - 1];
       this->local_ = &parent;
-      return std::abs(this->distance_.closest(parent, centre).distance - this->probe_) <= radius;
+      // Whether the distance lies within the radius of the probe's: no need to look farther.
+      const double beyond = this->probe_ + radius * (1.0 + 1e-9);
+      return std::abs(this->distance_.closest(parent, centre, {}, beyond).distance -
+                      this->probe_) <= radius;
     }
     LocalPieces& local = this->levels_[static_cast<std::size_t>(level)];
     if (level == 0)
@@ -143,9 +104,23 @@ public:
       {
         return false;
       }
-      position =
-        segment_root(outside.position, at_outside, inside.position, at_inside, along_piece);
-      piece = this->distance_.closest(*this->local_, position);
+      // Spheres in closed form: the atom's own for a face (the inflated sphere less the
+      // probe), the probe's at a vertex; circles by regula falsi.
+      if (kind == PieceKind::Arc)
+      {
+        position =
+          segment_root(outside.position, at_outside, inside.position, at_inside, along_piece);
+      }
+      else
+      {
+        const bool face = kind == PieceKind::Face;
+        const Vec& centre = face ? this->centres_[index] : this->boundary_.vertices[index].position;
+        const double radius = face ? this->atom_radii_[index] : p;
+        position = on_segment(outside.position, inside.position,
+                              sphere_crossing(outside.position, inside.position, centre, radius));
+      }
+      // Kept when no piece is nearer: the search need not look past the probe radius.
+      piece = this->distance_.closest(*this->local_, position, {}, p + 1e-6);
       return std::abs(piece.distance - p) <= 1e-7;
     };
     bool placed = along(inside.hint) || along(outside.hint);

@@ -1,0 +1,77 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Where a grid edge crosses a surface (private to MesoLensCore): the molecular surfaces'
+// vertices, on one sphere in closed form, on any other piece by regula falsi.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+
+namespace mesolens {
+
+/// The point at parameter t of the segment from a to b, never exactly at an end, so that
+/// vertices of different edges stay apart where the surface passes through a grid point.
+inline Eigen::Vector3d on_segment(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double t)
+{
+  return a + std::clamp(t, 1e-5, 1.0 - 1e-5) * (b - a);
+}
+
+/// Where the segment from a to b crosses the sphere (`centre`, `radius`) when one end lies
+/// inside it and the other outside: the parameter in [0, 1] of the one crossing, from the
+/// quadratic formula in its cancellation-free form. Precondition: a != b.
+inline double sphere_crossing(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                              const Eigen::Vector3d& centre, double radius)
+{
+  const Eigen::Vector3d d = b - a, e = a - centre;
+  const double dd = d.squaredNorm(), ed = e.dot(d), c = e.squaredNorm() - radius * radius;
+  const double q = -(ed + std::copysign(std::sqrt(std::max(0.0, ed * ed - dd * c)), ed));
+  const double first = q / dd, second = q != 0 ? c / q : first;
+  const auto miss = [](double t) { return t < 0 ? -t : std::max(0.0, t - 1); };
+  return std::clamp(miss(first) <= miss(second) ? first : second, 0.0, 1.0);
+}
+
+/// The root of `value` on the segment from a (value <= 0) to b (value > 0), by the Illinois
+/// variant of regula falsi, to 1e-9 Å, kept 1e-5 of the segment from either end (so no triangle
+/// degenerates where the surface passes through a grid point).
+template<typename Value>
+Eigen::Vector3d segment_root(const Eigen::Vector3d& a, double value_a, const Eigen::Vector3d& b,
+                             double value_b, Value&& value)
+{
+  double t0 = 0, t1 = 1, f0 = value_a, f1 = value_b;
+  const double length = (b - a).norm();
+  int side = 0;
+  double t = f0 / (f0 - f1);
+  for (int iteration = 0; iteration < 60 && (t1 - t0) * length > 1e-9; ++iteration)
+  {
+    t = (t0 * f1 - t1 * f0) / (f1 - f0);
+    const double f = value(a + t * (b - a));
+    if (f == 0)
+    {
+      break;
+    }
+    if (f < 0)
+    {
+      t0 = t;
+      f0 = f;
+      if (side == -1)
+      {
+        f1 *= 0.5;
+      }
+      side = -1;
+    }
+    else
+    {
+      t1 = t;
+      f1 = f;
+      if (side == 1)
+      {
+        f0 *= 0.5;
+      }
+      side = 1;
+    }
+  }
+  return on_segment(a, b, t);
+}
+
+} // namespace mesolens

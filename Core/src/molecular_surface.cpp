@@ -5,6 +5,7 @@
 
 #include "mesolens/errors.h"
 
+#include "chord_refinement.h"
 #include "contour_tetrahedra.h"
 #include "probe_distance.h"
 #include "sas_boundary.h"
@@ -23,6 +24,13 @@ namespace {
 using Vec = Eigen::Vector3d;
 constexpr double largest_radius = 20.0;        // Å: no atom, bead or probe is larger
 constexpr double largest_triangle_count = 2e7; // about 2 GB: a finer tolerance is refused
+/// The grid's chord error: the tolerance's times grid_tolerance_ratio, at most
+/// coarse_grid_tolerance (Å), and the splits bring the mesh to the tolerance. Finer grids cost
+/// more than the splits that refine a coarse mesh as far; coarser ones would miss narrow necks
+/// and small cavities of the probe's size; and creases, which splits leave as the grid made
+/// them, must shrink with the tolerance for the mesh's area to converge to the exact one.
+constexpr double coarse_grid_tolerance = 0.3;
+constexpr double grid_tolerance_ratio = 4.0;
 
 /// Which grid cells of width `width` some sphere's bounding box touches, with 3D prefix sums so
 /// that any box is tested in eight lookups: the coarse test of where a surface can be.
@@ -216,23 +224,33 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
   surface.degenerate_vertex_count = boundary.degenerate_vertices;
   report(0.1);
 
-  // The tessellation: grid spacing from the chord error of triangles about sqrt(3) spacings
-  // long on the most curved patches (radius: the probe's or the smallest atom's).
+  // The tessellation: a grid for the surface's shape, then edges split where they stray from
+  // the surface. A grid spacing gives a chord error of triangles about sqrt(3) spacings long on
+  // the most curved patches (radius: the probe's or the smallest atom's); the grid's is coarser
+  // than the tolerance (see grid_tolerance_ratio), and the splits bring each edge's midpoint
+  // within three quarters of the tolerance (so the triangles' centres within it).
   const double curvature_radius = excluded
     ? std::min(p, smallest)
     : smallest + (options.kind == SurfaceKind::SolventAccessible ? p : 0.0);
-  const double spacing = std::sqrt(8.0 * options.tolerance * curvature_radius) / std::sqrt(3.0);
+  const auto spacing_for = [curvature_radius](double tolerance) {
+    return std::sqrt(8.0 * tolerance * curvature_radius) / std::sqrt(3.0);
+  };
+  const double grid_tolerance = std::max(
+    options.tolerance, std::min(coarse_grid_tolerance, grid_tolerance_ratio * options.tolerance));
+  const double spacing = spacing_for(grid_tolerance);
   surface.grid_spacing = spacing;
   if (options.tessellate)
   {
-    // Refused before any work when too fine: the SES is rarely larger than 1.2 times the SAS.
+    // Refused before any work when too fine: the SES is rarely larger than 1.2 times the SAS,
+    // and a mesh refined to a tolerance has fewer triangles than a grid as fine would give.
     double estimate = 0;
     for (const double a : boundary.area)
     {
       estimate += a;
     }
     estimate *= excluded ? 1.2 : 1.0;
-    const double expected_triangles = 5.0 * estimate / (spacing * spacing);
+    const double fine_spacing = spacing_for(options.tolerance);
+    const double expected_triangles = 5.0 * estimate / (fine_spacing * fine_spacing);
     if (expected_triangles > largest_triangle_count)
     {
       throw InvalidInput("a surface of about " + std::to_string(estimate) + " Å² at tolerance " +
@@ -299,7 +317,32 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
     low -= Vec(2.0 + 0.318309886, 2.0 + 0.271828183, 2.0 + 0.141421356) * spacing;
     high += Vec::Constant(3.0 * spacing);
     ContourMesh mesh = contour_tetrahedra(field, low, high, spacing, parallel_for,
-                                          [&](double f) { report(0.2 + 0.75 * f); });
+                                          [&](double f) { report(0.2 + 0.7 * f); });
+    // Each round of splits divides an edge's deviation by about four: enough rounds to go from
+    // the grid's chord error to the tolerance, and two for edges the grid left longer.
+    const double split_tolerance = 0.75 * options.tolerance;
+    const int rounds =
+      std::min(8,
+               2 +
+                 static_cast<int>(std::ceil(
+                   std::log(std::max(1.0, grid_tolerance / options.tolerance)) / std::log(4.0))));
+    SurfaceProjection projection;
+    if (excluded)
+    {
+      const double projection_limit = p + 2.0 * spacing;
+      projection = [&, projection_limit] {
+        return excluded_surface_projection(distance, boundary, centres, atom_radii, p,
+                                           projection_limit);
+      };
+    }
+    else
+    {
+      projection = [&] {
+        return union_surface_projection(distance, centres, radii, 2.0 * spacing);
+      };
+    }
+    refine_chords(mesh, projection, split_tolerance, 2.0 * spacing, rounds, parallel_for);
+    report(0.95);
     vertices = std::move(mesh.vertices);
     triangles = std::move(mesh.triangles);
   }
@@ -423,8 +466,7 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
       {
         const SasLoop& loop = boundary.loops[l];
         const Vec on_surface = centres[i] + scale * (loop.sample - centres[i]);
-        if (nearest_is_cavity(on_surface, { static_cast<std::uint32_t>(i) },
-                              static_cast<int>(SurfacePatch::Convex)))
+        if (nearest_is_cavity(on_surface, { static_cast<std::uint32_t>(i) }, -1))
         {
           ++cavity_loops;
           turning += loop.turning;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 namespace mesolens {
 
@@ -23,18 +24,66 @@ std::uint32_t encode(PieceKind kind, std::uint32_t index)
   return (static_cast<std::uint32_t>(kind) << 30) | (index & index_mask);
 }
 
+/// The vertex at `position` on the solvent-excluded surface, whose nearest boundary piece (a
+/// probe position) is `piece`: its normal towards the probe, patch kind, piece and atom (the
+/// face's own, else the one of the piece's atoms whose surface is nearest).
+ContourVertex excluded_vertex(const Vec& position, const ClosestPiece& piece,
+                              const SasBoundary& boundary, const std::vector<Vec>& centres,
+                              const std::vector<double>& atom_radii)
+{
+  ContourVertex vertex;
+  vertex.position = position;
+  const Vec towards_probe = piece.point - position;
+  vertex.normal = towards_probe.norm() > 0 ? Vec(towards_probe.normalized()) : Vec::UnitZ();
+  vertex.piece = piece.index;
+  std::array<std::uint32_t, 3> candidates{};
+  int candidate_count = 0;
+  switch (piece.kind)
+  {
+    case PieceKind::Arc:
+      vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Toroidal);
+      candidates = { boundary.arcs[piece.index].first, boundary.arcs[piece.index].second, 0 };
+      candidate_count = 2;
+      break;
+    case PieceKind::Vertex:
+      vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Concave);
+      candidates = boundary.vertices[piece.index].spheres;
+      candidate_count = 3;
+      break;
+    default:
+      vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Convex);
+      candidates = { piece.index, 0, 0 };
+      candidate_count = 1;
+  }
+  double nearest = 1e300;
+  for (int c = 0; c < candidate_count; ++c)
+  {
+    const double gap = (position - centres[candidates[c]]).norm() - atom_radii[candidates[c]];
+    if (gap < nearest)
+    {
+      nearest = gap;
+      vertex.atom = static_cast<std::int32_t>(candidates[c]);
+    }
+  }
+  return vertex;
+}
+
+/// What the solvent-excluded surface's field and projection look at (see
+/// excluded_surface_field()).
+struct ExcludedSurface
+{
+  const ProbeDistance& distance;
+  const SasBoundary& boundary;
+  const std::vector<Vec>& centres;
+  const std::vector<double>& atom_radii;
+  double probe, limit;
+};
+
 class ExcludedSurfaceField final : public LocalContourField
 {
 public:
-  ExcludedSurfaceField(const ProbeDistance& distance, const SasBoundary& boundary,
-                       const std::vector<Vec>& centres, const std::vector<double>& atom_radii,
-                       double probe, double limit)
-    : distance_(distance)
-    , boundary_(boundary)
-    , centres_(centres)
-    , atom_radii_(atom_radii)
-    , probe_(probe)
-    , limit_(limit)
+  explicit ExcludedSurfaceField(const ExcludedSurface& surface)
+    : surface_(surface)
   {
   }
 
@@ -50,34 +99,34 @@ public:
       const LocalPieces& parent = this->levels_[static_cast<std::size_t>(level) - 1];
       this->local_ = &parent;
       // Whether the distance lies within the radius of the probe's: no need to look farther.
-      const double beyond = this->probe_ + radius * (1.0 + 1e-9);
-      return std::abs(this->distance_.closest(parent, centre, {}, beyond).distance -
-                      this->probe_) <= radius;
+      const double beyond = this->surface_.probe + radius * (1.0 + 1e-9);
+      return std::abs(this->surface_.distance.closest(parent, centre, {}, beyond).distance -
+                      this->surface_.probe) <= radius;
     }
     LocalPieces& local = this->levels_[static_cast<std::size_t>(level)];
     if (level == 0)
     {
-      this->distance_.gather(centre, radius, this->limit_, local);
+      this->surface_.distance.gather(centre, radius, this->surface_.limit, local);
     }
     else
     {
-      this->distance_.refine(this->levels_[static_cast<std::size_t>(level) - 1], centre, radius,
-                             local);
+      this->surface_.distance.refine(this->levels_[static_cast<std::size_t>(level) - 1], centre,
+                                     radius, local);
     }
     this->local_ = &local;
-    return std::abs(local.centre_distance - this->probe_) <= radius;
+    return std::abs(local.centre_distance - this->surface_.probe) <= radius;
   }
 
   double value(const Vec& x, std::uint32_t& hint) override
   {
-    const ClosestPiece piece = this->distance_.closest(*this->local_, x);
+    const ClosestPiece piece = this->surface_.distance.closest(*this->local_, x);
     hint = encode(piece.kind, piece.index);
-    return piece.distance - this->probe_;
+    return piece.distance - this->surface_.probe;
   }
 
   ContourVertex vertex(const Sample& outside, const Sample& inside) override
   {
-    const double p = this->probe_;
+    const double p = this->surface_.probe;
     // The root along the grid edge itself: vertices kept on their edges cannot fold triangles
     // over one another, even at the surface's creases. First along the pieces nearest the
     // edge's ends (mostly one piece for both), then along the one nearest the linear guess
@@ -96,7 +145,7 @@ public:
       }
       tried[tried_count++] = hint;
       const auto along_piece = [&](const Vec& x) {
-        return this->distance_.piece_distance(x, kind, index) - p;
+        return this->surface_.distance.piece_distance(x, kind, index) - p;
       };
       const double at_outside = along_piece(outside.position);
       const double at_inside = along_piece(inside.position);
@@ -114,13 +163,14 @@ public:
       else
       {
         const bool face = kind == PieceKind::Face;
-        const Vec& centre = face ? this->centres_[index] : this->boundary_.vertices[index].position;
-        const double radius = face ? this->atom_radii_[index] : p;
+        const Vec& centre =
+          face ? this->surface_.centres[index] : this->surface_.boundary.vertices[index].position;
+        const double radius = face ? this->surface_.atom_radii[index] : p;
         position = on_segment(outside.position, inside.position,
                               sphere_crossing(outside.position, inside.position, centre, radius));
       }
       // Kept when no piece is nearer: the search need not look past the probe radius.
-      piece = this->distance_.closest(*this->local_, position, {}, p + 1e-6);
+      piece = this->surface_.distance.closest(*this->local_, position, {}, p + 1e-6);
       return std::abs(piece.distance - p) <= 1e-7;
     };
     bool placed = along(inside.hint) || along(outside.hint);
@@ -128,7 +178,7 @@ public:
     {
       const Vec guess = outside.position +
         outside.value / (outside.value - inside.value) * (inside.position - outside.position);
-      const ClosestPiece near_guess = this->distance_.closest(*this->local_, guess);
+      const ClosestPiece near_guess = this->surface_.distance.closest(*this->local_, guess);
       placed = near_guess.distance > 0 && along(encode(near_guess.kind, near_guess.index));
     }
     if (!placed)
@@ -136,54 +186,14 @@ public:
       std::uint32_t hint = 0;
       position = segment_root(outside.position, outside.value, inside.position, inside.value,
                               [&](const Vec& x) { return this->value(x, hint); });
-      piece = this->distance_.closest(*this->local_, position);
+      piece = this->surface_.distance.closest(*this->local_, position);
     }
-    ContourVertex vertex;
-    vertex.position = position;
-    const Vec towards_probe = piece.point - position;
-    vertex.normal = towards_probe.norm() > 0 ? Vec(towards_probe.normalized()) : Vec::UnitZ();
-    vertex.piece = piece.index;
-    // The atom: the face's own, else the one whose surface is nearest.
-    std::array<std::uint32_t, 3> candidates{};
-    int candidate_count = 0;
-    switch (piece.kind)
-    {
-      case PieceKind::Arc:
-        vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Toroidal);
-        candidates = { this->boundary_.arcs[piece.index].first,
-                       this->boundary_.arcs[piece.index].second, 0 };
-        candidate_count = 2;
-        break;
-      case PieceKind::Vertex:
-        vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Concave);
-        candidates = this->boundary_.vertices[piece.index].spheres;
-        candidate_count = 3;
-        break;
-      default:
-        vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Convex);
-        candidates = { piece.index, 0, 0 };
-        candidate_count = 1;
-    }
-    double nearest = 1e300;
-    for (int c = 0; c < candidate_count; ++c)
-    {
-      const double gap =
-        (position - this->centres_[candidates[c]]).norm() - this->atom_radii_[candidates[c]];
-      if (gap < nearest)
-      {
-        nearest = gap;
-        vertex.atom = static_cast<std::int32_t>(candidates[c]);
-      }
-    }
-    return vertex;
+    return excluded_vertex(position, piece, this->surface_.boundary, this->surface_.centres,
+                           this->surface_.atom_radii);
   }
 
 private:
-  const ProbeDistance& distance_;
-  const SasBoundary& boundary_;
-  const std::vector<Vec>& centres_;
-  const std::vector<double>& atom_radii_;
-  double probe_, limit_;
+  ExcludedSurface surface_;
   std::vector<LocalPieces> levels_;    ///< per octree level, the pieces of its last focus
   const LocalPieces* local_ = nullptr; ///< the last focus
 };
@@ -266,6 +276,132 @@ private:
   std::vector<std::vector<std::uint32_t>> levels_; ///< per octree level, its last focus's
   const std::vector<std::uint32_t>* spheres_ = nullptr;
 };
+
+/// Points onto the solvent-excluded surface: along the line from the nearest probe position,
+/// to the probe's sphere, kept when no other probe position is nearer there.
+class ExcludedSurfaceProjection final : public LocalSurfaceProjection
+{
+public:
+  explicit ExcludedSurfaceProjection(const ExcludedSurface& surface)
+    : surface_(surface)
+  {
+  }
+
+  void focus(const Vec& centre, double radius) override
+  {
+    this->surface_.distance.gather(centre, radius, this->surface_.limit, this->local_);
+  }
+
+  bool project(const Vec& x, ContourVertex& vertex) override
+  {
+    const double p = this->surface_.probe;
+    const ClosestPiece nearest = this->surface_.distance.closest(this->local_, x);
+    const Vec away = x - nearest.point;
+    const double gap = away.norm();
+    if (nearest.kind == PieceKind::None || !(gap > 0))
+    {
+      return false;
+    }
+    const Vec position = nearest.point + p / gap * away;
+    const ClosestPiece piece =
+      this->surface_.distance.closest(this->local_, position, {}, p + 1e-6);
+    if (!(std::abs(piece.distance - p) <= 1e-7))
+    {
+      return false;
+    }
+    vertex = excluded_vertex(position, piece, this->surface_.boundary, this->surface_.centres,
+                             this->surface_.atom_radii);
+    return true;
+  }
+
+  double piece_gap(const ContourVertex& a, const ContourVertex& b, const Vec& x) const override
+  {
+    if (a.patch != b.patch || a.piece != b.piece)
+    {
+      return std::numeric_limits<double>::quiet_NaN();
+    }
+    const PieceKind kind = a.patch == static_cast<std::uint8_t>(SurfacePatch::Toroidal)
+      ? PieceKind::Arc
+      : (a.patch == static_cast<std::uint8_t>(SurfacePatch::Concave) ? PieceKind::Vertex
+                                                                     : PieceKind::Face);
+    return std::abs(this->surface_.distance.piece_distance(x, kind, a.piece) -
+                    this->surface_.probe);
+  }
+
+private:
+  ExcludedSurface surface_;
+  LocalPieces local_; ///< the pieces of the last focus
+};
+
+/// Points onto the boundary of a union of spheres: radially onto the sphere the point lies
+/// deepest in (or nearest to), kept when no other sphere covers the foot.
+class UnionSurfaceProjection final : public LocalSurfaceProjection
+{
+public:
+  UnionSurfaceProjection(const ProbeDistance& distance, const std::vector<Vec>& centres,
+                         const std::vector<double>& radii, double reach)
+    : distance_(distance)
+    , centres_(centres)
+    , radii_(radii)
+    , reach_(reach)
+  {
+  }
+
+  void focus(const Vec& centre, double radius) override
+  {
+    this->spheres_.clear();
+    this->distance_.spheres_near(centre, radius + this->reach_, this->spheres_);
+  }
+
+  bool project(const Vec& x, ContourVertex& vertex) override
+  {
+    double deepest = -1e300;
+    std::uint32_t sphere = 0;
+    for (const std::uint32_t i : this->spheres_)
+    {
+      const double depth = this->radii_[i] - (x - this->centres_[i]).norm();
+      if (depth > deepest)
+      {
+        deepest = depth;
+        sphere = i;
+      }
+    }
+    const Vec away = x - this->centres_[sphere];
+    const double gap = away.norm();
+    if (this->spheres_.empty() || std::abs(deepest) > this->reach_ || !(gap > 0))
+    {
+      return false;
+    }
+    const Vec position = this->centres_[sphere] + this->radii_[sphere] / gap * away;
+    for (const std::uint32_t i : this->spheres_)
+    {
+      if (i != sphere && (position - this->centres_[i]).norm() < this->radii_[i] - 1e-9)
+      {
+        return false;
+      }
+    }
+    vertex.position = position;
+    vertex.normal = away / gap;
+    vertex.atom = static_cast<std::int32_t>(sphere);
+    vertex.piece = sphere;
+    vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Convex);
+    return true;
+  }
+
+  double piece_gap(const ContourVertex& a, const ContourVertex& b, const Vec& x) const override
+  {
+    return a.piece == b.piece
+      ? std::abs((x - this->centres_[a.piece]).norm() - this->radii_[a.piece])
+      : std::numeric_limits<double>::quiet_NaN();
+  }
+
+private:
+  const ProbeDistance& distance_;
+  const std::vector<Vec>& centres_;
+  const std::vector<double>& radii_;
+  double reach_;
+  std::vector<std::uint32_t> spheres_; ///< those near the last focus
+};
 } // namespace
 
 std::unique_ptr<LocalContourField> excluded_surface_field(const ProbeDistance& distance,
@@ -274,8 +410,8 @@ std::unique_ptr<LocalContourField> excluded_surface_field(const ProbeDistance& d
                                                           const std::vector<double>& atom_radii,
                                                           double probe, double limit)
 {
-  return std::make_unique<ExcludedSurfaceField>(distance, boundary, centres, atom_radii, probe,
-                                                limit);
+  return std::make_unique<ExcludedSurfaceField>(
+    ExcludedSurface{ distance, boundary, centres, atom_radii, probe, limit });
 }
 
 std::unique_ptr<LocalContourField> union_surface_field(const ProbeDistance& distance,
@@ -283,6 +419,22 @@ std::unique_ptr<LocalContourField> union_surface_field(const ProbeDistance& dist
                                                        const std::vector<double>& radii)
 {
   return std::make_unique<UnionSurfaceField>(distance, centres, radii);
+}
+
+std::unique_ptr<LocalSurfaceProjection> excluded_surface_projection(
+  const ProbeDistance& distance, const SasBoundary& boundary, const std::vector<Vec>& centres,
+  const std::vector<double>& atom_radii, double probe, double limit)
+{
+  return std::make_unique<ExcludedSurfaceProjection>(
+    ExcludedSurface{ distance, boundary, centres, atom_radii, probe, limit });
+}
+
+std::unique_ptr<LocalSurfaceProjection> union_surface_projection(const ProbeDistance& distance,
+                                                                 const std::vector<Vec>& centres,
+                                                                 const std::vector<double>& radii,
+                                                                 double reach)
+{
+  return std::make_unique<UnionSurfaceProjection>(distance, centres, radii, reach);
 }
 
 } // namespace mesolens

@@ -4,6 +4,7 @@
 // parent's), and every corner value and vertex inside looks at those alone.
 #pragma once
 
+#include "chord_refinement.h"
 #include "contour_tetrahedra.h"
 #include "probe_distance.h"
 #include "sas_boundary.h"
@@ -31,5 +32,20 @@ std::unique_ptr<LocalContourField> excluded_surface_field(
 std::unique_ptr<LocalContourField> union_surface_field(const ProbeDistance& distance,
                                                        const std::vector<Eigen::Vector3d>& centres,
                                                        const std::vector<double>& radii);
+
+/// Projections onto the same surfaces, for refining their meshes. Solvent-excluded: points
+/// within `limit` - `probe` inside it, or in the solvent nearer the surface than the probe radius,
+/// go to the nearest surface point (along the line from their nearest probe position); those
+/// where that point lies inside another probe's sphere are refused.
+std::unique_ptr<LocalSurfaceProjection> excluded_surface_projection(
+  const ProbeDistance& distance, const SasBoundary& boundary,
+  const std::vector<Eigen::Vector3d>& centres, const std::vector<double>& atom_radii, double probe,
+  double limit);
+
+/// Union of spheres: points within `reach` (Å) of the boundary go radially onto the sphere they
+/// lie deepest in; those whose foot another sphere covers are refused.
+std::unique_ptr<LocalSurfaceProjection> union_surface_projection(
+  const ProbeDistance& distance, const std::vector<Eigen::Vector3d>& centres,
+  const std::vector<double>& radii, double reach);
 
 } // namespace mesolens

@@ -298,7 +298,7 @@ TEST(MolecularSurface, TwoAtomsMatchTheSurfaceOfRevolution)
   {
     SCOPED_TRACE("distance " + std::to_string(pair.d));
     const Centres centres = { { 0, 0, 0 }, { pair.d, 0, 0 } };
-    const double tolerance = 0.05;
+    const double tolerance = 0.02;
     const MolecularSurface s = surface_of(centres, { pair.r1, pair.r2 }, tolerance);
     EXPECT_NEAR(s.area, pair.area(), 1e-6 * pair.area());
     EXPECT_NEAR(s.volume, pair.volume(), 1e-6 * pair.volume());
@@ -344,12 +344,12 @@ TEST(MolecularSurface, ThreeAndFourAtomsAgreeWithTheirRefinedMeshes)
   {
     const Centres some(centres.begin(), centres.begin() + long(count));
     const std::vector<double> some_radii(radii.begin(), radii.begin() + long(count));
-    const MolecularSurface coarse = surface_of(some, some_radii, 0.04);
-    const MolecularSurface fine = surface_of(some, some_radii, 0.02);
+    const MolecularSurface coarse = surface_of(some, some_radii, 0.02);
+    const MolecularSurface fine = surface_of(some, some_radii, 0.01);
     expect_closed_surface(fine);
     EXPECT_EQ(fine.patch_count[2], count == 3 ? 2u : 4u); // probes above and below
     EXPECT_DOUBLE_EQ(fine.area, coarse.area);
-    // The mesh's error falls as the grid spacing squared, as the tolerance: extrapolated.
+    // The mesh's error falls as the tolerance: extrapolated.
     const double area = 2 * mesh_figures(fine).area - mesh_figures(coarse).area;
     const double volume = 2 * mesh_figures(fine).volume - mesh_figures(coarse).volume;
     EXPECT_NEAR(area, fine.area, 2e-4 * fine.area);
@@ -390,8 +390,8 @@ TEST(MolecularSurface, CrambinAgainstItsRefinedMeshAndEdtSurf)
 {
   std::vector<double> radii;
   const Centres centres = crambin(radii);
-  const MolecularSurface coarse = surface_of(centres, radii, 0.04);
-  const MolecularSurface fine = surface_of(centres, radii, 0.02);
+  const MolecularSurface coarse = surface_of(centres, radii, 0.02);
+  const MolecularSurface fine = surface_of(centres, radii, 0.01);
   expect_closed_surface(fine);
   EXPECT_EQ(fine.component_count, 2u); // the outside and one cavity
   EXPECT_EQ(fine.cavity_count, 1u);

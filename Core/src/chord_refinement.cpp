@@ -1,0 +1,481 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <Eigen/Dense>
+
+#include "chord_refinement.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+namespace mesolens {
+
+namespace {
+using Vec = Eigen::Vector3d;
+/// Triangles per unit of parallel work: consecutive triangles of a contour lie close together,
+/// so one focus serves a chunk's projections.
+constexpr std::size_t chunk_triangles = 2048;
+constexpr std::int64_t unsplit = -1;
+/// Two corners' surface normals this far apart (cosine) mark a crease; a piece of a split
+/// triangle and a new corner's normal, a fold.
+constexpr double crease_cosine = 0.35;
+
+/// An edge that may need a split: the triangle corner it starts from, its midpoint, and the
+/// cube of focus it falls in.
+struct Candidate
+{
+  std::size_t corner;
+  Vec middle;
+  std::array<std::int64_t, 3> cube;
+};
+
+/// The new vertices of one chunk and the edges (lower end, upper end) they split.
+struct ChunkSplits
+{
+  std::vector<ContourVertex> vertices;
+  std::vector<std::pair<std::int64_t, std::int64_t>> edges;
+};
+
+/// An edge (lower end, upper end) and the vertex splitting it.
+using Split = std::array<std::int64_t, 3>;
+
+/// The split edges by their lower end (compressed rows): the vertex on each.
+class SplitEdges
+{
+public:
+  SplitEdges(const std::vector<Split>& splits, std::size_t vertex_count)
+    : start_(vertex_count + 1, 0)
+    , items_(splits.size())
+  {
+    for (const Split& split : splits)
+    {
+      ++this->start_[std::size_t(split[0]) + 1];
+    }
+    for (std::size_t v = 0; v < vertex_count; ++v)
+    {
+      this->start_[v + 1] += this->start_[v];
+    }
+    std::vector<std::size_t> cursor(this->start_.begin(), this->start_.end() - 1);
+    for (const Split& split : splits)
+    {
+      this->items_[cursor[std::size_t(split[0])]++] = { split[1], split[2] };
+    }
+  }
+
+  /// The vertex splitting edge (a, b), or `unsplit`.
+  std::int64_t find(std::int64_t a, std::int64_t b) const
+  {
+    const std::size_t lower = std::size_t(std::min(a, b));
+    const std::int64_t upper = std::max(a, b);
+    for (std::size_t k = this->start_[lower]; k < this->start_[lower + 1]; ++k)
+    {
+      if (this->items_[k].first == upper)
+      {
+        return this->items_[k].second;
+      }
+    }
+    return unsplit;
+  }
+
+private:
+  std::vector<std::size_t> start_;
+  std::vector<std::pair<std::int64_t, std::int64_t>> items_; ///< (upper end, vertex)
+};
+
+/// Triangle (t0, t1, t2) cut along its split edges (m[k] on edge t_k t_k+1, or `unsplit`),
+/// appended to `out` counter-clockwise as it was.
+void cut_triangle(const std::array<std::int64_t, 3>& t, const std::array<std::int64_t, 3>& m,
+                  const std::vector<ContourVertex>& vertices, std::vector<std::int64_t>& out)
+{
+  const auto emit = [&out](std::int64_t a, std::int64_t b, std::int64_t c) {
+    out.insert(out.end(), { a, b, c });
+  };
+  const int marked = (m[0] != unsplit) + (m[1] != unsplit) + (m[2] != unsplit);
+  if (marked == 0)
+  {
+    emit(t[0], t[1], t[2]);
+  }
+  else if (marked == 3)
+  {
+    emit(t[0], m[0], m[2]);
+    emit(t[1], m[1], m[0]);
+    emit(t[2], m[2], m[1]);
+    emit(m[0], m[1], m[2]);
+  }
+  else if (marked == 1)
+  {
+    const int s = m[0] != unsplit ? 0 : (m[1] != unsplit ? 1 : 2);
+    emit(t[s], m[s], t[(s + 2) % 3]);
+    emit(m[s], t[(s + 1) % 3], t[(s + 2) % 3]);
+  }
+  else
+  {
+    // Unsplit edge (v2, v0); the corner at v1 is cut off, the quad left by its shorter diagonal.
+    const int u = m[0] == unsplit ? 0 : (m[1] == unsplit ? 1 : 2);
+    const std::int64_t v2 = t[u], v0 = t[(u + 1) % 3], v1 = t[(u + 2) % 3];
+    const std::int64_t m01 = m[(u + 1) % 3], m12 = m[(u + 2) % 3];
+    emit(m01, v1, m12);
+    const auto at = [&](std::int64_t v) -> const Vec& { return vertices[std::size_t(v)].position; };
+    if ((at(v0) - at(m12)).squaredNorm() <= (at(v2) - at(m01)).squaredNorm())
+    {
+      emit(v0, m01, m12);
+      emit(v0, m12, v2);
+    }
+    else
+    {
+      emit(v0, m01, v2);
+      emit(m01, m12, v2);
+    }
+  }
+}
+/// Whether triangle (a, b, c) lies across the surface: a corner's surface normal more than
+/// about 70 degrees from the triangle's. Slivers (narrower than a tenth of their longest edge)
+/// only when they face away from a corner's normal: three nearly aligned points of a smooth
+/// surface span a plane of almost any tilt.
+bool lies_across(const ContourVertex& a, const ContourVertex& b, const ContourVertex& c)
+{
+  const Vec normal = (b.position - a.position).cross(c.position - a.position);
+  const double length = normal.norm();
+  const double longest =
+    std::max({ (b.position - a.position).squaredNorm(), (c.position - b.position).squaredNorm(),
+               (a.position - c.position).squaredNorm() });
+  const double least = length < 0.1 * longest ? 0.0 : crease_cosine * length;
+  return a.normal.dot(normal) < least || b.normal.dot(normal) < least ||
+    c.normal.dot(normal) < least;
+}
+
+/// Whether the pieces `children` (3 corners each) of triangle `t` face as it does, none lying
+/// across the surface: splits that fold the mesh over a crease fail.
+bool children_face_outwards(const std::array<std::int64_t, 3>& t,
+                            const std::vector<std::int64_t>& children,
+                            const std::vector<ContourVertex>& vertices)
+{
+  const auto at = [&](std::int64_t v) -> const ContourVertex& { return vertices[std::size_t(v)]; };
+  const Vec parent =
+    (at(t[1]).position - at(t[0]).position).cross(at(t[2]).position - at(t[0]).position);
+  for (std::size_t k = 0; k < children.size(); k += 3)
+  {
+    const ContourVertex &a = at(children[k]), &b = at(children[k + 1]), &c = at(children[k + 2]);
+    const Vec normal = (b.position - a.position).cross(c.position - a.position);
+    if (!(normal.norm() > 0) || normal.dot(parent) <= 0 || lies_across(a, b, c))
+    {
+      return false;
+    }
+  }
+  return true;
+}
+/// Per vertex, whether it belongs to a triangle that spans a crease (two corners' normals far
+/// apart) or lies across the surface: edges there stay, as a split may fold the mesh through
+/// the crease.
+std::vector<char> crease_vertices(const ContourMesh& mesh)
+{
+  std::vector<char> at_crease(mesh.vertices.size(), 0);
+  for (std::size_t t = 0; t < mesh.triangles.size() / 3; ++t)
+  {
+    const std::int64_t* corner = &mesh.triangles[3 * t];
+    const auto at = [&](int k) -> const ContourVertex& {
+      return mesh.vertices[std::size_t(corner[k])];
+    };
+    bool crease = lies_across(at(0), at(1), at(2));
+    for (int k = 0; k < 3 && !crease; ++k)
+    {
+      crease = at(k).normal.dot(at((k + 1) % 3).normal) < crease_cosine;
+    }
+    if (crease)
+    {
+      at_crease[std::size_t(corner[0])] = at_crease[std::size_t(corner[1])] =
+        at_crease[std::size_t(corner[2])] = 1;
+    }
+  }
+  return at_crease;
+}
+} // namespace
+
+void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, double tolerance,
+                   double focus_size, int max_rounds, const ParallelFor& parallel_for)
+{
+  std::size_t first_new = 0; // vertices from here on came from the last round
+  for (int round = 0; round < max_rounds; ++round)
+  {
+    const std::size_t vertex_count = mesh.vertices.size();
+    const std::size_t triangle_count = mesh.triangles.size() / 3;
+    const std::size_t chunks = (triangle_count + chunk_triangles - 1) / chunk_triangles;
+    const std::vector<char> at_crease = crease_vertices(mesh);
+    std::vector<ChunkSplits> splits(chunks);
+    run_parallel(parallel_for, chunks, [&](std::size_t begin, std::size_t end) {
+      std::unique_ptr<LocalSurfaceProjection> local;
+      std::vector<Candidate> candidates;
+      for (std::size_t chunk = begin; chunk < end; ++chunk)
+      {
+        candidates.clear();
+        const std::size_t last = 3 * std::min(triangle_count, (chunk + 1) * chunk_triangles);
+        for (std::size_t corner = 3 * chunk * chunk_triangles; corner < last; ++corner)
+        {
+          // Each edge once, from the side where it runs upwards; edges made before the last
+          // round (both ends older) were looked at then.
+          const std::int64_t a = mesh.triangles[corner];
+          const std::int64_t b = mesh.triangles[corner - corner % 3 + (corner + 1) % 3];
+          if (a > b || std::size_t(b) < first_new || at_crease[std::size_t(a)] ||
+              at_crease[std::size_t(b)])
+          {
+            continue;
+          }
+          const ContourVertex& from = mesh.vertices[std::size_t(a)];
+          const ContourVertex& to = mesh.vertices[std::size_t(b)];
+          const Vec middle = 0.5 * (from.position + to.position);
+          if (!local)
+          {
+            local = projection();
+          }
+          const double gap = local->piece_gap(from, to, middle);
+          if (std::isnan(gap))
+          {
+            const double length = (to.position - from.position).norm();
+            const double bend = std::acos(std::clamp(from.normal.dot(to.normal), -1.0, 1.0));
+            if (length * bend / 8.0 < 0.5 * tolerance)
+            {
+              continue;
+            }
+          }
+          else if (gap <= tolerance)
+          {
+            continue;
+          }
+          candidates.push_back({ corner, middle, {} });
+        }
+        if (candidates.empty())
+        {
+          continue;
+        }
+        // Grouped by cube of focus_size, each group projected under one focus: the ball of its
+        // midpoints, a little wider for the projections (points that leave it are answered
+        // from the whole surface, as exactly).
+        for (Candidate& candidate : candidates)
+        {
+          const Vec cube = (candidate.middle / focus_size).array().floor();
+          for (int a = 0; a < 3; ++a)
+          {
+            candidate.cube[a] = static_cast<std::int64_t>(cube[a]);
+          }
+        }
+        std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+          return std::tie(x.cube, x.corner) < std::tie(y.cube, y.corner);
+        });
+        ChunkSplits& out = splits[chunk];
+        for (std::size_t first = 0; first < candidates.size();)
+        {
+          std::size_t last = first;
+          Vec low = candidates[first].middle, high = low;
+          while (last < candidates.size() && candidates[last].cube == candidates[first].cube)
+          {
+            low = low.cwiseMin(candidates[last].middle);
+            high = high.cwiseMax(candidates[last].middle);
+            ++last;
+          }
+          local->focus(0.5 * (low + high), 0.5 * (high - low).norm() + 0.1 * focus_size);
+          for (std::size_t k = first; k < last; ++k)
+          {
+            const std::size_t corner = candidates[k].corner;
+            const Vec& middle = candidates[k].middle;
+            const std::int64_t a = mesh.triangles[corner];
+            const std::int64_t b = mesh.triangles[corner - corner % 3 + (corner + 1) % 3];
+            const ContourVertex& from = mesh.vertices[std::size_t(a)];
+            const ContourVertex& to = mesh.vertices[std::size_t(b)];
+            ContourVertex vertex;
+            if (!local->project(middle, vertex))
+            {
+              continue;
+            }
+            const double deviation = (vertex.position - middle).norm();
+            const double half = 0.5 * (to.position - from.position).norm();
+            if (deviation > tolerance && deviation < half && vertex.normal.dot(from.normal) > 0 &&
+                vertex.normal.dot(to.normal) > 0)
+            {
+              out.vertices.push_back(vertex);
+              out.edges.emplace_back(a, b);
+            }
+          }
+          first = last;
+        }
+      }
+    });
+    // The splits, their vertices appended for now; then those whose pieces would fold the
+    // mesh are dropped, with every split of their triangle, until none would.
+    std::vector<Split> proposed;
+    for (ChunkSplits& chunk : splits)
+    {
+      for (std::size_t k = 0; k < chunk.edges.size(); ++k)
+      {
+        proposed.push_back(
+          { chunk.edges[k].first, chunk.edges[k].second, std::int64_t(mesh.vertices.size()) });
+        mesh.vertices.push_back(chunk.vertices[k]);
+      }
+      chunk = {};
+    }
+    if (proposed.empty())
+    {
+      break;
+    }
+    // Split k's vertex is vertex_count + k; it stays while kept[k].
+    std::vector<char> kept(proposed.size(), 1);
+    const SplitEdges proposed_edges(proposed, vertex_count);
+    const auto middles_of = [&](const SplitEdges& split_edges, std::size_t t) {
+      std::array<std::int64_t, 3> middles{};
+      for (int k = 0; k < 3; ++k)
+      {
+        const std::int64_t m = split_edges.find(mesh.triangles[3 * t + std::size_t(k)],
+                                                mesh.triangles[3 * t + std::size_t(k + 1) % 3]);
+        middles[k] = m != unsplit && kept[std::size_t(m) - vertex_count] ? m : unsplit;
+      }
+      return middles;
+    };
+    // Whether triangle t, cut along its kept splits, folds, or touches a crease: then those
+    // splits go (into `out`).
+    const auto check = [&](std::size_t t, std::vector<std::int64_t>& children,
+                           std::vector<std::int64_t>& out) {
+      const auto middles = middles_of(proposed_edges, t);
+      const std::array<std::int64_t, 3> corners = { mesh.triangles[3 * t],
+                                                    mesh.triangles[3 * t + 1],
+                                                    mesh.triangles[3 * t + 2] };
+      children.clear();
+      cut_triangle(corners, middles, mesh.vertices, children);
+      if (at_crease[std::size_t(corners[0])] || at_crease[std::size_t(corners[1])] ||
+          at_crease[std::size_t(corners[2])] ||
+          !children_face_outwards(corners, children, mesh.vertices))
+      {
+        for (const std::int64_t m : middles)
+        {
+          if (m != unsplit)
+          {
+            out.push_back(m);
+          }
+        }
+      }
+    };
+    // Every triangle once (and, per split, the two triangles it cuts), then again those beside
+    // dropped splits until none drops.
+    std::vector<std::vector<std::int64_t>> dropped(chunks);
+    std::vector<std::vector<std::pair<std::int64_t, std::size_t>>> touching(chunks);
+    run_parallel(parallel_for, chunks, [&](std::size_t begin, std::size_t end) {
+      std::vector<std::int64_t> children;
+      for (std::size_t chunk = begin; chunk < end; ++chunk)
+      {
+        const std::size_t last = std::min(triangle_count, (chunk + 1) * chunk_triangles);
+        for (std::size_t t = chunk * chunk_triangles; t < last; ++t)
+        {
+          const auto middles = middles_of(proposed_edges, t);
+          if (middles[0] == unsplit && middles[1] == unsplit && middles[2] == unsplit)
+          {
+            continue;
+          }
+          for (const std::int64_t m : middles)
+          {
+            if (m != unsplit)
+            {
+              touching[chunk].emplace_back(m, t);
+            }
+          }
+          check(t, children, dropped[chunk]);
+        }
+      }
+    });
+    std::vector<std::array<std::size_t, 2>> cut_by(proposed.size(), { SIZE_MAX, SIZE_MAX });
+    for (const auto& chunk : touching)
+    {
+      for (const auto& [m, t] : chunk)
+      {
+        auto& pair = cut_by[std::size_t(m) - vertex_count];
+        pair[pair[0] == SIZE_MAX ? 0 : 1] = t;
+      }
+    }
+    std::vector<std::int64_t> newly, children;
+    for (const auto& chunk : dropped)
+    {
+      newly.insert(newly.end(), chunk.begin(), chunk.end());
+    }
+    while (!newly.empty())
+    {
+      std::vector<std::size_t> again;
+      for (const std::int64_t m : newly)
+      {
+        const std::size_t k = std::size_t(m) - vertex_count;
+        if (kept[k])
+        {
+          kept[k] = 0;
+          for (const std::size_t t : cut_by[k])
+          {
+            if (t != SIZE_MAX)
+            {
+              again.push_back(t);
+            }
+          }
+        }
+      }
+      std::sort(again.begin(), again.end());
+      again.erase(std::unique(again.begin(), again.end()), again.end());
+      newly.clear();
+      for (const std::size_t t : again)
+      {
+        check(t, children, newly);
+      }
+    }
+    // The kept vertices renumbered in order, the others removed.
+    std::vector<Split> final_splits;
+    std::size_t next = vertex_count;
+    for (std::size_t k = 0; k < proposed.size(); ++k)
+    {
+      if (kept[k])
+      {
+        mesh.vertices[next] = mesh.vertices[vertex_count + k];
+        final_splits.push_back({ proposed[k][0], proposed[k][1], std::int64_t(next++) });
+      }
+    }
+    mesh.vertices.resize(next);
+    if (final_splits.empty())
+    {
+      break;
+    }
+    const SplitEdges split_edges(final_splits, vertex_count);
+    // Triangles cut chunk by chunk, then joined in order.
+    std::vector<std::vector<std::int64_t>> cut(chunks);
+    run_parallel(parallel_for, chunks, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t chunk = begin; chunk < end; ++chunk)
+      {
+        const std::size_t last = std::min(triangle_count, (chunk + 1) * chunk_triangles);
+        for (std::size_t t = chunk * chunk_triangles; t < last; ++t)
+        {
+          const std::array<std::int64_t, 3> corners = { mesh.triangles[3 * t],
+                                                        mesh.triangles[3 * t + 1],
+                                                        mesh.triangles[3 * t + 2] };
+          std::array<std::int64_t, 3> middles{};
+          for (int k = 0; k < 3; ++k)
+          {
+            middles[k] = split_edges.find(corners[k], corners[(k + 1) % 3]);
+          }
+          cut_triangle(corners, middles, mesh.vertices, cut[chunk]);
+        }
+      }
+    });
+    std::vector<std::size_t> offset(chunks + 1, 0);
+    for (std::size_t chunk = 0; chunk < chunks; ++chunk)
+    {
+      offset[chunk + 1] = offset[chunk] + cut[chunk].size();
+    }
+    mesh.triangles.resize(offset[chunks]);
+    run_parallel(parallel_for, chunks, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t chunk = begin; chunk < end; ++chunk)
+      {
+        std::copy(cut[chunk].begin(), cut[chunk].end(),
+                  mesh.triangles.begin() + std::ptrdiff_t(offset[chunk]));
+        cut[chunk] = {};
+      }
+    });
+    first_new = vertex_count;
+  }
+}
+
+} // namespace mesolens

@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Refining a mesh whose vertices lie on a known surface until its edges follow the surface to a
+// chord error (private to MesoLensCore): the molecular surfaces' fine level, on top of the
+// coarse mesh that contouring gives.
+#pragma once
+
+#include "contour_tetrahedra.h"
+#include "mesolens/parallel_for.h"
+
+#include <Eigen/Core>
+
+#include <functional>
+#include <memory>
+
+namespace mesolens {
+
+/// Projects points near a surface onto it, one ball of space at a time, with buffers of its own
+/// (one per thread).
+class LocalSurfaceProjection
+{
+public:
+  virtual ~LocalSurfaceProjection() = default;
+  /// Prepares for points within `radius` (Å, > 0) of `centre` (others may be slower to
+  /// project).
+  virtual void focus(const Eigen::Vector3d& centre, double radius) = 0;
+  /// The surface point nearest `x` as a mesh vertex (normal, atom, patch kind, piece); false
+  /// when `x` is too far from the surface or its nearest point cannot be told exactly (then
+  /// `vertex` is left as it was).
+  virtual bool project(const Eigen::Vector3d& x, ContourVertex& vertex) = 0;
+  /// When vertices `a` and `b` lie on one smooth piece of the surface (a sphere, a torus), the
+  /// distance from `x` to that piece's whole surface, without a focus: the deviation of a
+  /// chord whose midpoint projects onto the same piece. NaN otherwise.
+  virtual double piece_gap(const ContourVertex& a, const ContourVertex& b,
+                           const Eigen::Vector3d& x) const = 0;
+};
+
+/// A new local projection (called once per chunk of work, from any thread).
+using SurfaceProjection = std::function<std::unique_ptr<LocalSurfaceProjection>()>;
+
+/// Splits every edge of `mesh` (closed, 2-manifold, counter-clockwise triangles, vertices on the
+/// surface with their unit normals) whose midpoint lies farther than `tolerance` (Å, > 0) from
+/// the surface, at the midpoint's projection, then the new edges likewise, for at most
+/// `max_rounds` rounds. Triangles are cut along their split edges (into 2, 3 or 4), so the mesh
+/// stays closed and 2-manifold. Splits that could fold the mesh are not made: a projection
+/// whose normal faces away from either end's, or lying farther from the midpoint than half the
+/// edge; any split of a triangle at a crease (two corners' normals more than about 70 degrees
+/// apart, or the triangle's own normal that far from a corner's) or of one whose pieces would
+/// face away from it or lie across the surface. There the mesh stays as it was. Edges are kept
+/// without a projection when both ends lie on one piece and the midpoint lies within the tolerance
+/// of that piece, or when their ends' normals show them bending by less than half the tolerance
+/// (the sagitta of a circular arc through both ends). Deterministic whatever `parallel_for`;
+/// triangles keep the order of the ones they come from. Midpoints are projected in groups, those in
+/// one cube of `focus_size` (Å, > 0; a few times the edges' length) under one focus.
+void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, double tolerance,
+                   double focus_size, int max_rounds, const ParallelFor& parallel_for);
+
+} // namespace mesolens

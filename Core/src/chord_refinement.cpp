@@ -148,8 +148,16 @@ bool lies_across(const ContourVertex& a, const ContourVertex& b, const ContourVe
     c.normal.dot(normal) < least;
 }
 
-/// Whether the pieces `children` (3 corners each) of triangle `t` face as it does, none lying
-/// across the surface: splits that fold the mesh over a crease fail.
+/// Whether triangle (a, b, c) spans a crease (two corners' normals far apart) or lies across
+/// the surface.
+bool at_a_crease(const ContourVertex& a, const ContourVertex& b, const ContourVertex& c)
+{
+  return lies_across(a, b, c) || a.normal.dot(b.normal) < crease_cosine ||
+    b.normal.dot(c.normal) < crease_cosine || c.normal.dot(a.normal) < crease_cosine;
+}
+
+/// Whether the pieces `children` (3 corners each) of triangle `t` face as it does, none at a
+/// crease: splits that fold the mesh over a crease fail.
 bool children_face_outwards(const std::array<std::int64_t, 3>& t,
                             const std::vector<std::int64_t>& children,
                             const std::vector<ContourVertex>& vertices)
@@ -161,16 +169,16 @@ bool children_face_outwards(const std::array<std::int64_t, 3>& t,
   {
     const ContourVertex &a = at(children[k]), &b = at(children[k + 1]), &c = at(children[k + 2]);
     const Vec normal = (b.position - a.position).cross(c.position - a.position);
-    if (!(normal.norm() > 0) || normal.dot(parent) <= 0 || lies_across(a, b, c))
+    if (!(normal.norm() > 0) || normal.dot(parent) <= 0 || at_a_crease(a, b, c))
     {
       return false;
     }
   }
   return true;
 }
-/// Per vertex, whether it belongs to a triangle that spans a crease (two corners' normals far
-/// apart) or lies across the surface: edges there stay, as a split may fold the mesh through
-/// the crease.
+
+/// Per vertex, whether it belongs to a triangle at a crease: edges there stay, as a split may
+/// fold the mesh through the crease.
 std::vector<char> crease_vertices(const ContourMesh& mesh)
 {
   std::vector<char> at_crease(mesh.vertices.size(), 0);
@@ -180,11 +188,7 @@ std::vector<char> crease_vertices(const ContourMesh& mesh)
     const auto at = [&](int k) -> const ContourVertex& {
       return mesh.vertices[std::size_t(corner[k])];
     };
-    bool crease = lies_across(at(0), at(1), at(2));
-    for (int k = 0; k < 3 && !crease; ++k)
-    {
-      crease = at(k).normal.dot(at((k + 1) % 3).normal) < crease_cosine;
-    }
+    const bool crease = at_a_crease(at(0), at(1), at(2));
     if (crease)
     {
       at_crease[std::size_t(corner[0])] = at_crease[std::size_t(corner[1])] =
@@ -199,12 +203,15 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
                    double focus_size, int max_rounds, const ParallelFor& parallel_for)
 {
   std::size_t first_new = 0; // vertices from here on came from the last round
+  // Crease vertices once: the pieces of cut triangles are checked not to span or lie across
+  // a crease themselves.
+  std::vector<char> at_crease = crease_vertices(mesh);
   for (int round = 0; round < max_rounds; ++round)
   {
     const std::size_t vertex_count = mesh.vertices.size();
     const std::size_t triangle_count = mesh.triangles.size() / 3;
     const std::size_t chunks = (triangle_count + chunk_triangles - 1) / chunk_triangles;
-    const std::vector<char> at_crease = crease_vertices(mesh);
+    at_crease.resize(vertex_count, 0);
     std::vector<ChunkSplits> splits(chunks);
     run_parallel(parallel_for, chunks, [&](std::size_t begin, std::size_t end) {
       std::unique_ptr<LocalSurfaceProjection> local;
@@ -440,38 +447,46 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
       break;
     }
     const SplitEdges split_edges(final_splits, vertex_count);
-    // Triangles cut chunk by chunk, then joined in order.
-    std::vector<std::vector<std::int64_t>> cut(chunks);
+    // Each cut triangle's first piece takes its place, the others follow the mesh's triangles
+    // chunk by chunk (so that consecutive triangles stay close together).
+    std::vector<std::vector<std::int64_t>> added(chunks);
     run_parallel(parallel_for, chunks, [&](std::size_t begin, std::size_t end) {
+      std::vector<std::int64_t> pieces;
       for (std::size_t chunk = begin; chunk < end; ++chunk)
       {
         const std::size_t last = std::min(triangle_count, (chunk + 1) * chunk_triangles);
         for (std::size_t t = chunk * chunk_triangles; t < last; ++t)
         {
-          const std::array<std::int64_t, 3> corners = { mesh.triangles[3 * t],
-                                                        mesh.triangles[3 * t + 1],
-                                                        mesh.triangles[3 * t + 2] };
+          std::int64_t* corner = &mesh.triangles[3 * t];
+          const std::array<std::int64_t, 3> corners = { corner[0], corner[1], corner[2] };
           std::array<std::int64_t, 3> middles{};
           for (int k = 0; k < 3; ++k)
           {
             middles[k] = split_edges.find(corners[k], corners[(k + 1) % 3]);
           }
-          cut_triangle(corners, middles, mesh.vertices, cut[chunk]);
+          if (middles[0] == unsplit && middles[1] == unsplit && middles[2] == unsplit)
+          {
+            continue;
+          }
+          pieces.clear();
+          cut_triangle(corners, middles, mesh.vertices, pieces);
+          std::copy(pieces.begin(), pieces.begin() + 3, corner);
+          added[chunk].insert(added[chunk].end(), pieces.begin() + 3, pieces.end());
         }
       }
     });
-    std::vector<std::size_t> offset(chunks + 1, 0);
+    std::vector<std::size_t> offset(chunks + 1, mesh.triangles.size());
     for (std::size_t chunk = 0; chunk < chunks; ++chunk)
     {
-      offset[chunk + 1] = offset[chunk] + cut[chunk].size();
+      offset[chunk + 1] = offset[chunk] + added[chunk].size();
     }
     mesh.triangles.resize(offset[chunks]);
     run_parallel(parallel_for, chunks, [&](std::size_t begin, std::size_t end) {
       for (std::size_t chunk = begin; chunk < end; ++chunk)
       {
-        std::copy(cut[chunk].begin(), cut[chunk].end(),
+        std::copy(added[chunk].begin(), added[chunk].end(),
                   mesh.triangles.begin() + std::ptrdiff_t(offset[chunk]));
-        cut[chunk] = {};
+        added[chunk] = {};
       }
     });
     first_new = vertex_count;

@@ -683,5 +683,13 @@ TEST(MolecularSurface, EveryProteinGivesAClosedSurfaceWithoutSelfIntersections)
     EXPECT_EQ(self_intersections(s), 0u);
     EXPECT_NEAR(mesh_figures(s).area, s.area, 0.02 * s.area);
     EXPECT_NEAR(mesh_figures(s).volume, s.volume, 0.01 * s.volume);
+    if (centres.size() < 3000)
+    {
+      // Refined far below the grid: splits must not fold the mesh into itself either.
+      const MolecularSurface fine = surface_of(centres, radii, 0.03);
+      expect_closed_surface(fine);
+      EXPECT_EQ(self_intersections(fine), 0u);
+      EXPECT_NEAR(mesh_figures(fine).area, fine.area, 0.005 * fine.area);
+    }
   }
 }

@@ -7,7 +7,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -132,6 +131,7 @@ void cut_triangle(const std::array<std::int64_t, 3>& t, const std::array<std::in
     }
   }
 }
+
 /// Whether triangle (a, b, c) lies across the surface: a corner's surface normal more than
 /// about 70 degrees from the triangle's. Slivers (narrower than a tenth of their longest edge)
 /// only when they face away from a corner's normal: three nearly aligned points of a smooth
@@ -330,12 +330,12 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
     // Split k's vertex is vertex_count + k; it stays while kept[k].
     std::vector<char> kept(proposed.size(), 1);
     const SplitEdges proposed_edges(proposed, vertex_count);
-    const auto middles_of = [&](const SplitEdges& split_edges, std::size_t t) {
+    const auto middles_of = [&](std::size_t t) {
       std::array<std::int64_t, 3> middles{};
       for (int k = 0; k < 3; ++k)
       {
-        const std::int64_t m = split_edges.find(mesh.triangles[3 * t + std::size_t(k)],
-                                                mesh.triangles[3 * t + std::size_t(k + 1) % 3]);
+        const std::int64_t m = proposed_edges.find(mesh.triangles[3 * t + std::size_t(k)],
+                                                   mesh.triangles[3 * t + std::size_t(k + 1) % 3]);
         middles[k] = m != unsplit && kept[std::size_t(m) - vertex_count] ? m : unsplit;
       }
       return middles;
@@ -344,7 +344,7 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
     // splits go (into `out`).
     const auto check = [&](std::size_t t, std::vector<std::int64_t>& children,
                            std::vector<std::int64_t>& out) {
-      const auto middles = middles_of(proposed_edges, t);
+      const auto middles = middles_of(t);
       const std::array<std::int64_t, 3> corners = { mesh.triangles[3 * t],
                                                     mesh.triangles[3 * t + 1],
                                                     mesh.triangles[3 * t + 2] };
@@ -374,7 +374,7 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
         const std::size_t last = std::min(triangle_count, (chunk + 1) * chunk_triangles);
         for (std::size_t t = chunk * chunk_triangles; t < last; ++t)
         {
-          const auto middles = middles_of(proposed_edges, t);
+          const auto middles = middles_of(t);
           if (middles[0] == unsplit && middles[1] == unsplit && middles[2] == unsplit)
           {
             continue;
@@ -431,22 +431,21 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
       }
     }
     // The kept vertices renumbered in order, the others removed.
-    std::vector<Split> final_splits;
+    std::vector<std::int64_t> renumbered(proposed.size(), unsplit);
     std::size_t next = vertex_count;
     for (std::size_t k = 0; k < proposed.size(); ++k)
     {
       if (kept[k])
       {
         mesh.vertices[next] = mesh.vertices[vertex_count + k];
-        final_splits.push_back({ proposed[k][0], proposed[k][1], std::int64_t(next++) });
+        renumbered[k] = std::int64_t(next++);
       }
     }
     mesh.vertices.resize(next);
-    if (final_splits.empty())
+    if (next == vertex_count)
     {
       break;
     }
-    const SplitEdges split_edges(final_splits, vertex_count);
     // Each cut triangle's first piece takes its place, the others follow the mesh's triangles
     // chunk by chunk (so that consecutive triangles stay close together).
     std::vector<std::vector<std::int64_t>> added(chunks);
@@ -457,17 +456,17 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
         const std::size_t last = std::min(triangle_count, (chunk + 1) * chunk_triangles);
         for (std::size_t t = chunk * chunk_triangles; t < last; ++t)
         {
-          std::int64_t* corner = &mesh.triangles[3 * t];
-          const std::array<std::int64_t, 3> corners = { corner[0], corner[1], corner[2] };
-          std::array<std::int64_t, 3> middles{};
-          for (int k = 0; k < 3; ++k)
-          {
-            middles[k] = split_edges.find(corners[k], corners[(k + 1) % 3]);
-          }
+          std::array<std::int64_t, 3> middles = middles_of(t);
           if (middles[0] == unsplit && middles[1] == unsplit && middles[2] == unsplit)
           {
             continue;
           }
+          for (std::int64_t& m : middles)
+          {
+            m = m == unsplit ? unsplit : renumbered[std::size_t(m) - vertex_count];
+          }
+          std::int64_t* corner = &mesh.triangles[3 * t];
+          const std::array<std::int64_t, 3> corners = { corner[0], corner[1], corner[2] };
           pieces.clear();
           cut_triangle(corners, middles, mesh.vertices, pieces);
           std::copy(pieces.begin(), pieces.begin() + 3, corner);

@@ -77,6 +77,15 @@ struct ExcludedSurface
   const std::vector<Vec>& centres;
   const std::vector<double>& atom_radii;
   double probe, limit;
+
+  /// Whether `position` (within the ball of `local`) lies on the surface, to 1e-7 Å: its
+  /// nearest probe position, in `piece`, is the probe radius away. The search need not look
+  /// farther than that.
+  bool holds(const LocalPieces& local, const Vec& position, ClosestPiece& piece) const
+  {
+    piece = this->distance.closest(local, position, {}, this->probe + 1e-6);
+    return std::abs(piece.distance - this->probe) <= 1e-7;
+  }
 };
 
 class ExcludedSurfaceField final : public LocalContourField
@@ -169,9 +178,8 @@ public:
         position = on_segment(outside.position, inside.position,
                               sphere_crossing(outside.position, inside.position, centre, radius));
       }
-      // Kept when no piece is nearer: the search need not look past the probe radius.
-      piece = this->surface_.distance.closest(*this->local_, position, {}, p + 1e-6);
-      return std::abs(piece.distance - p) <= 1e-7;
+      // Kept when no piece is nearer.
+      return this->surface_.holds(*this->local_, position, piece);
     };
     bool placed = along(inside.hint) || along(outside.hint);
     if (!placed)
@@ -197,6 +205,28 @@ private:
   std::vector<LocalPieces> levels_;    ///< per octree level, the pieces of its last focus
   const LocalPieces* local_ = nullptr; ///< the last focus
 };
+
+/// max over `spheres` of (R - |x - c|): the signed distance to their union's boundary outside
+/// it, a lower bound of it inside; `deepest` (may be null) gets the maximising sphere. -1e300
+/// for no sphere.
+double union_depth(const std::vector<std::uint32_t>& spheres, const std::vector<Vec>& centres,
+                   const std::vector<double>& radii, const Vec& x, std::uint32_t* deepest = nullptr)
+{
+  double best = -1e300;
+  for (const std::uint32_t i : spheres)
+  {
+    const double d = radii[i] - (x - centres[i]).norm();
+    if (d > best)
+    {
+      best = d;
+      if (deepest)
+      {
+        *deepest = i;
+      }
+    }
+  }
+  return best;
+}
 
 class UnionSurfaceField final : public LocalContourField
 {
@@ -254,20 +284,7 @@ public:
 private:
   double depth(const Vec& x, std::uint32_t* deepest = nullptr) const
   {
-    double best = -1e300;
-    for (const std::uint32_t i : *this->spheres_)
-    {
-      const double d = this->radii_[i] - (x - this->centres_[i]).norm();
-      if (d > best)
-      {
-        best = d;
-        if (deepest)
-        {
-          *deepest = i;
-        }
-      }
-    }
-    return best;
+    return union_depth(*this->spheres_, this->centres_, this->radii_, x, deepest);
   }
 
   const ProbeDistance& distance_;
@@ -303,9 +320,8 @@ public:
       return false;
     }
     const Vec position = nearest.point + p / gap * away;
-    const ClosestPiece piece =
-      this->surface_.distance.closest(this->local_, position, {}, p + 1e-6);
-    if (!(std::abs(piece.distance - p) <= 1e-7))
+    ClosestPiece piece;
+    if (!this->surface_.holds(this->local_, position, piece))
     {
       return false;
     }
@@ -355,30 +371,19 @@ public:
 
   bool project(const Vec& x, ContourVertex& vertex) override
   {
-    double deepest = -1e300;
     std::uint32_t sphere = 0;
-    for (const std::uint32_t i : this->spheres_)
-    {
-      const double depth = this->radii_[i] - (x - this->centres_[i]).norm();
-      if (depth > deepest)
-      {
-        deepest = depth;
-        sphere = i;
-      }
-    }
+    const double deepest = union_depth(this->spheres_, this->centres_, this->radii_, x, &sphere);
     const Vec away = x - this->centres_[sphere];
     const double gap = away.norm();
     if (this->spheres_.empty() || std::abs(deepest) > this->reach_ || !(gap > 0))
     {
       return false;
     }
+    // The foot, on that sphere, is on the boundary unless another sphere covers it.
     const Vec position = this->centres_[sphere] + this->radii_[sphere] / gap * away;
-    for (const std::uint32_t i : this->spheres_)
+    if (union_depth(this->spheres_, this->centres_, this->radii_, position) > 1e-9)
     {
-      if (i != sphere && (position - this->centres_[i]).norm() < this->radii_[i] - 1e-9)
-      {
-        return false;
-      }
+      return false;
     }
     vertex.position = position;
     vertex.normal = away / gap;

@@ -3,6 +3,8 @@
 // molecular surfaces' fine level): an icosahedron refined onto its sphere.
 #include "chord_refinement.h"
 
+#include "mesolens_test_threads.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -10,7 +12,6 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <thread>
 #include <utility>
 
 namespace {
@@ -96,24 +97,6 @@ ContourMesh icosahedron()
   return mesh;
 }
 
-mesolens::ParallelFor threads(int count)
-{
-  return [count](std::size_t n, const mesolens::RangeKernel& kernel) {
-    std::vector<std::thread> pool;
-    for (int k = 0; k < count; ++k)
-    {
-      pool.emplace_back([&, k] {
-        kernel(n * std::size_t(k) / std::size_t(count),
-               n * std::size_t(k + 1) / std::size_t(count));
-      });
-    }
-    for (auto& thread : pool)
-    {
-      thread.join();
-    }
-  };
-}
-
 ContourMesh refined(double tolerance, int rounds, int thread_count, bool refuse = false,
                     const Vec& axes = Vec::Constant(radius))
 {
@@ -124,7 +107,7 @@ ContourMesh refined(double tolerance, int rounds, int thread_count, bool refuse 
     // degrees that mark a crease.
     mesolens::refine_chords(
       mesh, [] { return std::make_unique<EllipsoidProjection>(Vec::Constant(radius), false); },
-      1e-3, 1.0, 1, threads(1));
+      1e-3, 1.0, 1, mesolens::ParallelFor());
     for (ContourVertex& vertex : mesh.vertices)
     {
       EllipsoidProjection(axes, false).project(vertex.position, vertex);
@@ -132,7 +115,7 @@ ContourMesh refined(double tolerance, int rounds, int thread_count, bool refuse 
   }
   mesolens::refine_chords(
     mesh, [refuse, axes] { return std::make_unique<EllipsoidProjection>(axes, refuse); }, tolerance,
-    1.0, rounds, threads(thread_count));
+    1.0, rounds, thread_count == 1 ? mesolens::ParallelFor() : mesolens_test::two_threads());
   return mesh;
 }
 

@@ -3,6 +3,7 @@
 #include "mesolens/errors.h"
 #include "mesolens/structure_file.h"
 #include "mesolens_test_data.h"
+#include "mesolens_test_threads.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +11,6 @@
 #include <fstream>
 #include <map>
 #include <sstream>
-#include <thread>
 
 using mesolens::SecondaryStructure;
 
@@ -139,11 +139,7 @@ TEST(Dssp, CrambinAgreesWithMkdssp)
   EXPECT_GE(agreement(ours, reference), 0.95);
   // The same from mmCIF, and on two threads.
   const auto cif = backbone_of(mesolens_test::data_file("proteins/1crn.cif"));
-  const auto two_threads = [](std::size_t count, const mesolens::RangeKernel& kernel) {
-    std::thread other([&] { kernel(0, count / 2); });
-    kernel(count / 2, count);
-    other.join();
-  };
+  const auto two_threads = mesolens_test::two_threads();
   EXPECT_EQ(mesolens::dssp_string(
               mesolens::assign_secondary_structure(cif.residues, {}, two_threads).structure),
             ours);

@@ -3,6 +3,7 @@
 #include "mesolens/sphere_union_area.h"
 #include "mesolens_test_data.h"
 #include "mesolens_test_meshes.h"
+#include "mesolens_test_threads.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +11,6 @@
 #include <fstream>
 #include <random>
 #include <sstream>
-#include <thread>
 
 namespace {
 constexpr double pi = 3.14159265358979323846;
@@ -135,11 +135,7 @@ TEST(SphereUnionArea, ThreeInARowAndAClusterAgreeWithSampling)
   EXPECT_NEAR(mesolens::sphere_union_area(cluster, cluster_radii).volume, sampled_volume,
               0.005 * sampled_volume);
   // The same on two threads.
-  const auto two_threads = [](std::size_t count, const mesolens::RangeKernel& kernel) {
-    std::thread other([&] { kernel(0, count / 2); });
-    kernel(count / 2, count);
-    other.join();
-  };
+  const auto two_threads = mesolens_test::two_threads();
   EXPECT_EQ(mesolens::sphere_union_area(centres, radii, two_threads).per_sphere, exact.per_sphere);
 }
 

@@ -2,11 +2,11 @@
 #include "mesolens/errors.h"
 #include "mesolens/structure_mesh.h"
 #include "mesolens_test_meshes.h"
+#include "mesolens_test_threads.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <thread>
 
 namespace {
 std::vector<double> sphere_points(int count, double radius)
@@ -77,11 +77,7 @@ TEST(StructureMesh, ABilayerVesicleGivesOneMeshThroughItsMiddle)
     EXPECT_NEAR(std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]), 72.0 - 3.0, 2.5);
   }
   // The same mesh every time, on one thread or two.
-  const auto two_threads = [](std::size_t count, const mesolens::RangeKernel& kernel) {
-    std::thread other([&] { kernel(0, count / 2); });
-    kernel(count / 2, count);
-    other.join();
-  };
+  const auto two_threads = mesolens_test::two_threads();
   for (int again = 0; again < 3; ++again)
   {
     const auto same = mesolens::structure_mesh(points, { 200, 0 }, nullptr, two_threads);

@@ -293,7 +293,7 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
             const ContourVertex& from = mesh.vertices[std::size_t(a)];
             const ContourVertex& to = mesh.vertices[std::size_t(b)];
             ContourVertex vertex;
-            if (!local->project(middle, vertex))
+            if (!local->project_between(middle, from, to, vertex))
             {
               continue;
             }

@@ -27,6 +27,17 @@ public:
   /// when `x` is too far from the surface or its nearest point cannot be told exactly (then
   /// `vertex` is left as it was).
   virtual bool project(const Eigen::Vector3d& x, ContourVertex& vertex) = 0;
+  /// A surface point for `x`, the middle of the edge from `from` to `to` (mesh vertices): by
+  /// default project(); a surface may instead give the nearest point of a patch near the ends
+  /// (the same where `x` lies inside the ball carrying that patch, else a surface point no
+  /// nearer to `x`, which at worst splits an edge that did not need it).
+  virtual bool project_between(const Eigen::Vector3d& x, const ContourVertex& from,
+                               const ContourVertex& to, ContourVertex& vertex)
+  {
+    static_cast<void>(from);
+    static_cast<void>(to);
+    return this->project(x, vertex);
+  }
   /// When vertices `a` and `b` lie on one smooth piece of the surface (a sphere, a torus), the
   /// distance from `x` to that piece's whole surface, without a focus: the deviation of a
   /// chord whose midpoint projects onto the same piece. NaN otherwise.
@@ -39,9 +50,9 @@ using SurfaceProjection = std::function<std::unique_ptr<LocalSurfaceProjection>(
 
 /// Splits every edge of `mesh` (closed, 2-manifold, counter-clockwise triangles, vertices on the
 /// surface with their unit normals) whose midpoint lies farther than `tolerance` (Å, > 0) from
-/// the surface, at the midpoint's projection, then the new edges likewise, for at most
-/// `max_rounds` rounds. Triangles are cut along their split edges (into 2, 3 or 4), so the mesh
-/// stays closed and 2-manifold. Splits that could fold the mesh are not made: a projection
+/// the surface, at the midpoint's projection (project_between()), then the new edges likewise, for
+/// at most `max_rounds` rounds. Triangles are cut along their split edges (into 2, 3 or 4), so the
+/// mesh stays closed and 2-manifold. Splits that could fold the mesh are not made: a projection
 /// whose normal faces away from either end's, or lying farther from the midpoint than half the
 /// edge; any split of a triangle at a crease (two corners' normals more than about 70 degrees
 /// apart, or the triangle's own normal that far from a corner's) or of one whose pieces would

@@ -10,6 +10,7 @@
 #include "probe_distance.h"
 #include "sas_boundary.h"
 #include "ses_patches.h"
+#include "ses_piece_projection.h"
 #include "surface_contour_fields.h"
 
 #include <algorithm>
@@ -287,6 +288,7 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
   {
     const double reach = p * (excluded ? 1.0 : 0.0) + 4.0 * spacing;
     const ProbeDistance distance(centres, radii, boundary, reach);
+    const SesPieceProjection pieces(centres, atom_radii, p, boundary, distance, parallel_for);
     const Occupancy occupancy(centres, radii, 2.0);
     ContourField field;
     // Blocks far from every sphere, or deeper in the union than the surface lies, hold
@@ -300,7 +302,8 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
       // Values matter near the surface only: searches stop two spacings beyond it.
       const double value_limit = p + 2.0 * spacing;
       field.local = [&, value_limit] {
-        return excluded_surface_field(distance, boundary, centres, atom_radii, p, value_limit);
+        return excluded_surface_field(distance, pieces, boundary, centres, atom_radii, p,
+                                      value_limit);
       };
     }
     else
@@ -331,7 +334,7 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
     {
       const double projection_limit = p + 2.0 * spacing;
       projection = [&, projection_limit] {
-        return excluded_surface_projection(distance, boundary, centres, atom_radii, p,
+        return excluded_surface_projection(distance, pieces, boundary, centres, atom_radii, p,
                                            projection_limit);
       };
     }

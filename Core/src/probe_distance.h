@@ -150,6 +150,9 @@ public:
   /// the piece's exposed part): cheap, for root finding once the piece is known.
   double piece_distance(const Eigen::Vector3d& x, PieceKind kind, std::uint32_t index) const;
 
+  /// The distance from `x` to exposed arc `k` (its ends included).
+  double arc_distance(std::uint32_t k, const Eigen::Vector3d& x) const;
+
   /// Appends to `arcs` (sorted, each once) every arc with an exposed point within `radius` of
   /// `x`, and perhaps a few a little farther.
   void arcs_within(const Eigen::Vector3d& x, double radius, std::vector<std::uint32_t>& arcs) const;
@@ -189,8 +192,6 @@ private:
   /// Whether the point of arc `k`'s circle at in-plane coordinates (a1, a2) (along e1, e2 from
   /// its centre) lies on the exposed arc.
   bool within_span(std::uint32_t k, double a1, double a2) const;
-  /// The distance from `x` to exposed arc `k` (its ends included).
-  double arc_distance(std::uint32_t k, const Eigen::Vector3d& x) const;
   /// Vertex `k` as the nearest piece when the filter admits it and it is nearer than
   /// `best.distance`: updates `best`.
   void try_vertex(std::uint32_t k, const Eigen::Vector3d& x, const Filter& filter,

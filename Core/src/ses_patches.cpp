@@ -58,6 +58,12 @@ struct Torus
       this->probe * (t.cos * this->arc->axis + t.sin * d);
   }
 
+  /// The point in the middle of the piece over [phi0, phi1] x [t0, t1].
+  Vec middle(const Angle& phi0, const Angle& phi1, const Angle& t0, const Angle& t1) const
+  {
+    return this->point(Angle(0.5 * (phi0.value + phi1.value)), Angle(0.5 * (t0.value + t1.value)));
+  }
+
   /// How far the piece over [phi0, phi1] x [t0, t1] reaches from `middle`, exactly. For each t
   /// the squared distance grows with |phi - phi_m| (its coefficient in -cos(phi - phi_m) is
   /// 2 (rho + p sin t)(rho + p sin t_m), distances to the axis, >= 0), so the farthest point
@@ -131,6 +137,107 @@ Integral concave_piece(const Vec& centre, double p, const Vec& a, const Vec& b, 
   result.flux = -(centre.dot(p * p * mean_direction) + p * result.area);
   return result;
 }
+
+/// The torus that probe `p` sweeps rolling along `arc` (of the atoms `centres`).
+Torus torus_of(const SasArc& arc, const std::vector<Vec>& centres, double p)
+{
+  Torus torus;
+  torus.arc = &arc;
+  torus.probe = p;
+  torus.first = std::atan2(-arc.radius, (centres[arc.first] - arc.centre).dot(arc.axis));
+  torus.second = std::atan2(-arc.radius, (centres[arc.second] - arc.centre).dot(arc.axis));
+  return torus;
+}
+
+/// Calls `visit(phi0, phi1, t0, t1)` with the pieces of the torus's patch: at most 60 degrees
+/// of azimuth each, over the arc angles where it belongs to the surface. Where rho < p the
+/// probe passes between the atoms: the part beyond the axis lies within p of the probe's
+/// neighbouring positions on the same arc, and is cut away.
+template<typename Visit>
+void for_torus_pieces(const Torus& torus, Visit&& visit)
+{
+  const SasArc& arc = *torus.arc;
+  const double rho = arc.radius, p = torus.probe;
+  std::array<std::pair<double, double>, 2> ranges{};
+  int range_count = 0;
+  if (rho >= p)
+  {
+    ranges[range_count++] = { torus.first, torus.second };
+  }
+  else
+  {
+    const double beta = std::asin(rho / p);
+    if (torus.first < -pi + beta)
+    {
+      ranges[range_count++] = { torus.first, std::min(torus.second, -pi + beta) };
+    }
+    if (torus.second > -beta)
+    {
+      ranges[range_count++] = { std::max(torus.first, -beta), torus.second };
+    }
+  }
+  const int parts = std::max(1, static_cast<int>(std::ceil(arc.span / (pi / 3))));
+  for (int part = 0; part < parts; ++part)
+  {
+    const Angle phi0(arc.start + arc.span * part / parts);
+    const Angle phi1(arc.start + arc.span * (part + 1) / parts);
+    for (int r = 0; r < range_count; ++r)
+    {
+      visit(phi0, phi1, Angle(ranges[std::size_t(r)].first), Angle(ranges[std::size_t(r)].second));
+    }
+  }
+}
+
+/// What may cut a torus: probe positions (arcs, vertices) touching neither of its atoms. Those
+/// that touch one are its neighbours on the surface and meet it only at its edges; positions on
+/// a single atom (faces) never reach a patch between two others.
+ProbeDistance::Filter torus_cutters(const SasArc& arc)
+{
+  ProbeDistance::Filter foreign;
+  foreign.mode = ProbeDistance::Filter::Mode::TorusCutters;
+  foreign.atoms = { arc.first, arc.second, arc.second };
+  return foreign;
+}
+
+/// What may cut a concave patch, besides other probes overlapping it: the arcs touching none of
+/// its atoms, and those between two of them where the probe passes between that pair. The other
+/// pieces are its neighbours on the surface and meet it only at its edges.
+ProbeDistance::Filter concave_cutters(const SasVertex& vertex, double p)
+{
+  ProbeDistance::Filter foreign;
+  foreign.mode = ProbeDistance::Filter::Mode::ConcaveCutters;
+  foreign.atoms = vertex.spheres;
+  foreign.probe = p;
+  return foreign;
+}
+
+/// A concave patch: its corners' directions from the probe's centre (counter-clockwise seen
+/// from outside the probe), and a ball holding it. The patch lies within the corners' cap about
+/// its middle direction (under 90 degrees, so convex), whose chord is at most p times the
+/// farthest corner's distance.
+struct ConcavePatch
+{
+  Vec u[3];
+  Vec middle;   ///< the ball's centre, on the patch
+  double reach; ///< the ball's radius, with a margin
+
+  ConcavePatch(const SasVertex& vertex, const std::vector<Vec>& centres, double p)
+  {
+    for (int s = 0; s < 3; ++s)
+    {
+      this->u[s] = (centres[vertex.spheres[std::size_t(s)]] - vertex.position).normalized();
+    }
+    if (this->u[0].dot(this->u[1].cross(this->u[2])) < 0)
+    {
+      std::swap(this->u[1], this->u[2]);
+    }
+    const Vec direction = (this->u[0] + this->u[1] + this->u[2]).normalized();
+    this->middle = vertex.position + p * direction;
+    this->reach = ball_slack * p *
+      std::max({ (direction - this->u[0]).norm(), (direction - this->u[1]).norm(),
+                 (direction - this->u[2]).norm() });
+  }
+};
 
 /// Splits a patch until each piece is certainly kept: when every position foreign to the patch
 /// is farther than p plus its size. At the deepest split, a piece counts by the fraction of it
@@ -421,53 +528,16 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
     for (std::size_t k = begin; k < end; ++k)
     {
       const SasArc& arc = arcs[k];
-      Torus torus;
-      torus.arc = &arc;
-      torus.probe = p;
-      const double rho = arc.radius;
-      torus.first = std::atan2(-rho, (centres[arc.first] - arc.centre).dot(arc.axis));
-      torus.second = std::atan2(-rho, (centres[arc.second] - arc.centre).dot(arc.axis));
-      // Where rho < p the probe passes between the atoms: the part beyond the axis lies within
-      // p of the probe's neighbouring positions on the same arc, and is cut away.
-      std::vector<std::pair<double, double>> ranges;
-      if (rho >= p)
-      {
-        ranges.emplace_back(torus.first, torus.second);
-      }
-      else
-      {
-        const double beta = std::asin(rho / p);
-        if (torus.first < -pi + beta)
-        {
-          ranges.emplace_back(torus.first, std::min(torus.second, -pi + beta));
-        }
-        if (torus.second > -beta)
-        {
-          ranges.emplace_back(std::max(torus.first, -beta), torus.second);
-        }
-      }
-      // What may cut the torus: probe positions (arcs, vertices) touching neither of its atoms.
-      // Those that touch one are its neighbours on the surface and meet it only at its edges;
-      // positions on a single atom (faces) never reach a patch between two others.
-      ProbeDistance::Filter foreign;
-      foreign.mode = ProbeDistance::Filter::Mode::TorusCutters;
-      foreign.atoms = { arc.first, arc.second, arc.second };
+      const Torus torus = torus_of(arc, centres, p);
+      const ProbeDistance::Filter foreign = torus_cutters(arc);
       Splitter splitter{ &distance, &foreign, p, &search.cutters };
-      // Pieces of at most 60 degrees of azimuth, each whole unless something cuts it.
-      const int parts = std::max(1, static_cast<int>(std::ceil(arc.span / (pi / 3))));
       Integral total;
-      for (int part = 0; part < parts; ++part)
-      {
-        const Angle phi0(arc.start + arc.span * part / parts);
-        const Angle phi1(arc.start + arc.span * (part + 1) / parts);
-        for (const auto& range : ranges)
-        {
-          const Angle t0(range.first), t1(range.second);
+      for_torus_pieces(
+        torus, [&](const Angle& phi0, const Angle& phi1, const Angle& t0, const Angle& t1) {
           const Integral whole = torus.piece(phi0, phi1, t0, t1);
           // Whole when no foreign piece comes within p of the ball around the piece (one index
           // query), else when each that does is certified clear of the piece itself.
-          const Vec middle =
-            torus.point(Angle(0.5 * (phi0.value + phi1.value)), Angle(0.5 * (t0.value + t1.value)));
+          const Vec middle = torus.middle(phi0, phi1, t0, t1);
           const double reach = torus.reach(middle, phi0, phi1, t0, t1);
           const TorusPatchPiece piece{ &arc, p, phi0.value, phi1.value, t0.value, t1.value };
           const bool may_be_cut = !clear_of_all(distance, foreign, p, middle, reach) &&
@@ -485,8 +555,7 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
             arc_singular[k] = 1;
           }
           total += kept;
-        }
-      }
+        });
       out.arc_area[k] = total.area;
       out.arc_volume[k] = total.flux / 3.0;
     }
@@ -503,19 +572,10 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
     {
       const SasVertex& vertex = vertices[k];
       const Vec& v = vertex.position;
-      Vec u[3];
-      for (int s = 0; s < 3; ++s)
-      {
-        u[s] = (centres[vertex.spheres[s]] - v).normalized();
-      }
-      if (u[0].dot(u[1].cross(u[2])) < 0)
-      {
-        std::swap(u[1], u[2]);
-      }
+      const ConcavePatch concave(vertex, centres, p);
+      const Vec(&u)[3] = concave.u;
       // What may cut the concave patch: other probes overlapping this one (at vertices within
-      // 2 p), exactly as caps on its sphere; and, by distance, the arcs touching none of its
-      // atoms, and those between two of them where the probe passes between that pair. The
-      // other pieces are its neighbours on the surface and meet it only at its edges.
+      // 2 p), exactly as caps on its sphere; and, by distance, the arcs (see concave_cutters()).
       std::vector<UnitCap> caps;
       distance.vertices_within(v, 2.0 * p, [&](std::uint32_t other) {
         const Vec offset = vertices[other].position - v;
@@ -525,20 +585,11 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
           caps.push_back({ offset / gap, gap / (2.0 * p) });
         }
       });
-      ProbeDistance::Filter foreign;
-      foreign.mode = ProbeDistance::Filter::Mode::ConcaveCutters;
-      foreign.atoms = vertex.spheres;
-      foreign.probe = p;
-      // The patch lies within the corners' cap about its middle direction (under 90 degrees,
-      // so convex), whose chord is at most p times the farthest corner's distance.
-      const Vec middle = (u[0] + u[1] + u[2]).normalized();
-      const double reach =
-        p * std::max({ (middle - u[0]).norm(), (middle - u[1]).norm(), (middle - u[2]).norm() });
+      const ProbeDistance::Filter foreign = concave_cutters(vertex, p);
       const SphericalTriangle triangle(u[0], u[1], u[2]);
-      const bool may_be_cut =
-        !clear_of_all(distance, foreign, p, v + p * middle, ball_slack * reach) &&
+      const bool may_be_cut = !clear_of_all(distance, foreign, p, concave.middle, concave.reach) &&
         gather_cutters(
-          distance, boundary, foreign, p, v + p * middle, ball_slack * reach,
+          distance, boundary, foreign, p, concave.middle, concave.reach,
           [&](const SasArc& other) { return concave_clear_of_arc(v, p, triangle, other); },
           [](const SasVertex&) { return false; }, search);
       const Splitter splitter{ &distance, &foreign, p, may_be_cut ? &search.cutters : nullptr };
@@ -560,6 +611,69 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
     static_cast<std::size_t>(std::count(arc_singular.begin(), arc_singular.end(), 1) +
                              std::count(vertex_singular.begin(), vertex_singular.end(), 1));
   return out;
+}
+
+namespace {
+/// Sorts `items` from `first` on and drops repeats.
+void sort_unique(std::vector<std::uint32_t>& items, std::size_t first)
+{
+  std::sort(items.begin() + std::ptrdiff_t(first), items.end());
+  items.erase(std::unique(items.begin() + std::ptrdiff_t(first), items.end()), items.end());
+}
+} // namespace
+
+void toroidal_patch_cutters(const std::vector<Vec>& centres, double probe,
+                            const SasBoundary& boundary, const ProbeDistance& distance,
+                            std::uint32_t k, std::vector<std::uint32_t>& arcs,
+                            std::vector<std::uint32_t>& vertices)
+{
+  const SasArc& arc = boundary.arcs[k];
+  const ProbeDistance::Filter foreign = torus_cutters(arc);
+  const std::size_t first_arc = arcs.size(), first_vertex = vertices.size();
+  for_torus_pieces(torus_of(arc, centres, probe),
+                   [&](const Angle& phi0, const Angle& phi1, const Angle& t0, const Angle& t1) {
+                     const Torus torus = torus_of(arc, centres, probe);
+                     const Vec middle = torus.middle(phi0, phi1, t0, t1);
+                     const double reach = torus.reach(middle, phi0, phi1, t0, t1) + probe;
+                     const std::size_t listed = arcs.size();
+                     distance.arcs_within(middle, reach, arcs);
+                     arcs.erase(std::remove_if(arcs.begin() + std::ptrdiff_t(listed), arcs.end(),
+                                               [&](std::uint32_t other) {
+                                                 return !foreign.admits(boundary.arcs[other]);
+                                               }),
+                                arcs.end());
+                     distance.vertices_within(middle, reach, [&](std::uint32_t other) {
+                       if (foreign.admits(boundary.vertices[other]))
+                       {
+                         vertices.push_back(other);
+                       }
+                     });
+                   });
+  sort_unique(arcs, first_arc);
+  sort_unique(vertices, first_vertex);
+}
+
+void concave_patch_cutters(const std::vector<Vec>& centres, double probe,
+                           const SasBoundary& boundary, const ProbeDistance& distance,
+                           std::uint32_t k, std::vector<std::uint32_t>& arcs,
+                           std::vector<std::uint32_t>& vertices)
+{
+  const SasVertex& vertex = boundary.vertices[k];
+  const ConcavePatch concave(vertex, centres, probe);
+  const ProbeDistance::Filter foreign = concave_cutters(vertex, probe);
+  const std::size_t first_arc = arcs.size(), first_vertex = vertices.size();
+  distance.arcs_within(concave.middle, concave.reach + probe, arcs);
+  arcs.erase(
+    std::remove_if(arcs.begin() + std::ptrdiff_t(first_arc), arcs.end(),
+                   [&](std::uint32_t other) { return !foreign.admits(boundary.arcs[other]); }),
+    arcs.end());
+  distance.vertices_within(vertex.position, 2.0 * probe, [&](std::uint32_t other) {
+    if (other != k)
+    {
+      vertices.push_back(other);
+    }
+  });
+  sort_unique(vertices, first_vertex);
 }
 
 } // namespace mesolens

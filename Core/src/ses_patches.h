@@ -41,4 +41,21 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Eigen::Vector3d>& centre
                                       const SasBoundary& boundary, const ProbeDistance& distance,
                                       const ParallelFor& parallel_for);
 
+/// The probe positions that may come within `probe` (Å) of the toroidal patch of
+/// `boundary.arcs[k]` (on the side of the axis of the arc's own positions, where a probe passing
+/// between the atoms leaves it), appended to `arcs` and `vertices` (sorted, each once): the arcs
+/// and vertices touching neither of its atoms near it. No other probe position comes nearer
+/// than `probe` to the patch (see ses_patch_integrals()).
+void toroidal_patch_cutters(const std::vector<Eigen::Vector3d>& centres, double probe,
+                            const SasBoundary& boundary, const ProbeDistance& distance,
+                            std::uint32_t k, std::vector<std::uint32_t>& arcs,
+                            std::vector<std::uint32_t>& vertices);
+
+/// The same for the concave patch of `boundary.vertices[k]`: the arcs that may cut it and the
+/// other vertices within 2 `probe` (overlapping probes).
+void concave_patch_cutters(const std::vector<Eigen::Vector3d>& centres, double probe,
+                           const SasBoundary& boundary, const ProbeDistance& distance,
+                           std::uint32_t k, std::vector<std::uint32_t>& arcs,
+                           std::vector<std::uint32_t>& vertices);
+
 } // namespace mesolens

@@ -4,6 +4,7 @@
 #include "surface_contour_fields.h"
 
 #include "segment_roots.h"
+#include "ses_piece_projection.h"
 
 #include "mesolens/molecular_surface.h"
 
@@ -73,6 +74,7 @@ ContourVertex excluded_vertex(const Vec& position, const ClosestPiece& piece,
 struct ExcludedSurface
 {
   const ProbeDistance& distance;
+  const SesPieceProjection& pieces;
   const SasBoundary& boundary;
   const std::vector<Vec>& centres;
   const std::vector<double>& atom_radii;
@@ -87,6 +89,20 @@ struct ExcludedSurface
     return std::abs(piece.distance - this->probe) <= 1e-7;
   }
 };
+
+/// The boundary piece whose patch a vertex of `patch` kind lies on.
+PieceKind piece_kind(std::uint8_t patch)
+{
+  switch (static_cast<SurfacePatch>(patch))
+  {
+    case SurfacePatch::Toroidal:
+      return PieceKind::Arc;
+    case SurfacePatch::Concave:
+      return PieceKind::Vertex;
+    default:
+      return PieceKind::Face;
+  }
+}
 
 class ExcludedSurfaceField final : public LocalContourField
 {
@@ -178,8 +194,9 @@ public:
         position = on_segment(outside.position, inside.position,
                               sphere_crossing(outside.position, inside.position, centre, radius));
       }
-      // Kept when no piece is nearer.
-      return this->surface_.holds(*this->local_, position, piece);
+      // Kept when no piece is nearer: certified on the piece's patch, else by a search.
+      return this->surface_.pieces.certify(position, kind, index, piece) ||
+        this->surface_.holds(*this->local_, position, piece);
     };
     bool placed = along(inside.hint) || along(outside.hint);
     if (!placed)
@@ -306,12 +323,21 @@ public:
 
   void focus(const Vec& centre, double radius) override
   {
-    this->surface_.distance.gather(centre, radius, this->surface_.limit, this->local_);
+    // Gathered when a point first needs the search: most are answered on their edge's patches.
+    this->focus_centre_ = centre;
+    this->focus_radius_ = radius;
+    this->gathered_ = false;
   }
 
   bool project(const Vec& x, ContourVertex& vertex) override
   {
     const double p = this->surface_.probe;
+    if (!this->gathered_)
+    {
+      this->surface_.distance.gather(this->focus_centre_, this->focus_radius_, this->surface_.limit,
+                                     this->local_);
+      this->gathered_ = true;
+    }
     const ClosestPiece nearest = this->surface_.distance.closest(this->local_, x);
     const Vec away = x - nearest.point;
     const double gap = away.norm();
@@ -330,23 +356,39 @@ public:
     return true;
   }
 
+  bool project_between(const Vec& x, const ContourVertex& from, const ContourVertex& to,
+                       ContourVertex& vertex) override
+  {
+    // Onto a patch near the ends when certified there (see SesPieceProjection): the nearest
+    // surface point inside the ball carrying the patch, else a surface point close to it.
+    Vec position;
+    ClosestPiece piece;
+    if (this->surface_.pieces.nearest_near(x, { piece_kind(from.patch), from.piece },
+                                           { piece_kind(to.patch), to.piece }, position, piece))
+    {
+      vertex = excluded_vertex(position, piece, this->surface_.boundary, this->surface_.centres,
+                               this->surface_.atom_radii);
+      return true;
+    }
+    return this->project(x, vertex);
+  }
+
   double piece_gap(const ContourVertex& a, const ContourVertex& b, const Vec& x) const override
   {
     if (a.patch != b.patch || a.piece != b.piece)
     {
       return std::numeric_limits<double>::quiet_NaN();
     }
-    const PieceKind kind = a.patch == static_cast<std::uint8_t>(SurfacePatch::Toroidal)
-      ? PieceKind::Arc
-      : (a.patch == static_cast<std::uint8_t>(SurfacePatch::Concave) ? PieceKind::Vertex
-                                                                     : PieceKind::Face);
-    return std::abs(this->surface_.distance.piece_distance(x, kind, a.piece) -
+    return std::abs(this->surface_.distance.piece_distance(x, piece_kind(a.patch), a.piece) -
                     this->surface_.probe);
   }
 
 private:
   ExcludedSurface surface_;
-  LocalPieces local_; ///< the pieces of the last focus
+  LocalPieces local_; ///< the pieces of the last focus, once gathered
+  Vec focus_centre_ = Vec::Zero();
+  double focus_radius_ = 0;
+  bool gathered_ = false;
 };
 
 /// Points onto the boundary of a union of spheres: radially onto the sphere the point lies
@@ -410,13 +452,14 @@ private:
 } // namespace
 
 std::unique_ptr<LocalContourField> excluded_surface_field(const ProbeDistance& distance,
+                                                          const SesPieceProjection& pieces,
                                                           const SasBoundary& boundary,
                                                           const std::vector<Vec>& centres,
                                                           const std::vector<double>& atom_radii,
                                                           double probe, double limit)
 {
   return std::make_unique<ExcludedSurfaceField>(
-    ExcludedSurface{ distance, boundary, centres, atom_radii, probe, limit });
+    ExcludedSurface{ distance, pieces, boundary, centres, atom_radii, probe, limit });
 }
 
 std::unique_ptr<LocalContourField> union_surface_field(const ProbeDistance& distance,
@@ -427,11 +470,12 @@ std::unique_ptr<LocalContourField> union_surface_field(const ProbeDistance& dist
 }
 
 std::unique_ptr<LocalSurfaceProjection> excluded_surface_projection(
-  const ProbeDistance& distance, const SasBoundary& boundary, const std::vector<Vec>& centres,
-  const std::vector<double>& atom_radii, double probe, double limit)
+  const ProbeDistance& distance, const SesPieceProjection& pieces, const SasBoundary& boundary,
+  const std::vector<Vec>& centres, const std::vector<double>& atom_radii, double probe,
+  double limit)
 {
   return std::make_unique<ExcludedSurfaceProjection>(
-    ExcludedSurface{ distance, boundary, centres, atom_radii, probe, limit });
+    ExcludedSurface{ distance, pieces, boundary, centres, atom_radii, probe, limit });
 }
 
 std::unique_ptr<LocalSurfaceProjection> union_surface_projection(const ProbeDistance& distance,

@@ -8,6 +8,7 @@
 #include "contour_tetrahedra.h"
 #include "probe_distance.h"
 #include "sas_boundary.h"
+#include "ses_piece_projection.h"
 
 #include <Eigen/Core>
 
@@ -20,9 +21,10 @@ namespace mesolens {
 /// boundary, `distance`) less the probe radius `probe`, exact up to `limit` (> probe) inside the
 /// union. Vertices lie on the exact surface to 1e-5 Å, each on its own grid edge; they carry the
 /// outward normal (towards the probe), the patch kind, the boundary piece and the nearest atom
-/// of that piece (`centres`, `atom_radii`: the uninflated atoms).
+/// of that piece (`centres`, `atom_radii`: the uninflated atoms). `pieces` certifies vertices
+/// on their patches before any search.
 std::unique_ptr<LocalContourField> excluded_surface_field(
-  const ProbeDistance& distance, const SasBoundary& boundary,
+  const ProbeDistance& distance, const SesPieceProjection& pieces, const SasBoundary& boundary,
   const std::vector<Eigen::Vector3d>& centres, const std::vector<double>& atom_radii, double probe,
   double limit);
 
@@ -36,9 +38,10 @@ std::unique_ptr<LocalContourField> union_surface_field(const ProbeDistance& dist
 /// Projections onto the same surfaces, for refining their meshes. Solvent-excluded: points
 /// within `limit` - `probe` inside it, or in the solvent nearer the surface than the probe radius,
 /// go to the nearest surface point (along the line from their nearest probe position); those
-/// where that point lies inside another probe's sphere are refused.
+/// where that point lies inside another probe's sphere are refused. Edge middles go first onto
+/// the patches near their ends, where `pieces` certifies them (project_between()).
 std::unique_ptr<LocalSurfaceProjection> excluded_surface_projection(
-  const ProbeDistance& distance, const SasBoundary& boundary,
+  const ProbeDistance& distance, const SesPieceProjection& pieces, const SasBoundary& boundary,
   const std::vector<Eigen::Vector3d>& centres, const std::vector<double>& atom_radii, double probe,
   double limit);
 

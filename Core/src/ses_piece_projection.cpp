@@ -1,0 +1,426 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <Eigen/Dense>
+
+#include "ses_piece_projection.h"
+
+#include "ses_patches.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mesolens {
+
+namespace {
+using Vec = Eigen::Vector3d;
+constexpr double two_pi = 6.28318530717958647692;
+/// How far (Å) a point may lie off the sphere or torus it is said to be on.
+constexpr double on_carrier = 1e-9;
+/// How deep (Å) a neighbour may cover a convex point's probe position: as far as the general
+/// search lets a point count as on the surface.
+constexpr double covered = 1e-7;
+/// Directions this close to a cone's side count as inside (the side is shared with the
+/// neighbouring patch, which holds the point as well).
+constexpr double side_slack = 1e-12;
+} // namespace
+
+namespace {
+/// The point of `arc`'s whole circle nearest `x` (false on the axis).
+bool nearest_on_circle(const SasArc& arc, const Vec& x, Vec& point)
+{
+  const Vec offset = x - arc.centre;
+  const Vec radial = offset - offset.dot(arc.axis) * arc.axis;
+  const double from_axis = radial.norm();
+  if (!(from_axis > 0))
+  {
+    return false;
+  }
+  point = arc.centre + (arc.radius / from_axis) * radial;
+  return true;
+}
+
+/// Compressed rows of `count` lists made by `list(k, items)` (appending list k's items), in
+/// parallel and in order.
+template<typename List>
+void compressed_rows(std::size_t count, const ParallelFor& parallel_for, List&& list,
+                     std::vector<std::uint32_t>& start, std::vector<std::uint32_t>& items)
+{
+  constexpr std::size_t chunk = 512;
+  const std::size_t chunks = (count + chunk - 1) / chunk;
+  std::vector<std::vector<std::uint32_t>> chunk_items(chunks), chunk_ends(chunks);
+  run_parallel(parallel_for, chunks, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c)
+    {
+      for (std::size_t k = c * chunk; k < std::min(count, (c + 1) * chunk); ++k)
+      {
+        list(k, chunk_items[c]);
+        chunk_ends[c].push_back(static_cast<std::uint32_t>(chunk_items[c].size()));
+      }
+    }
+  });
+  start.assign(1, 0);
+  start.reserve(count + 1);
+  items.clear();
+  for (std::size_t c = 0; c < chunks; ++c)
+  {
+    const auto offset = static_cast<std::uint32_t>(items.size());
+    for (const std::uint32_t end : chunk_ends[c])
+    {
+      start.push_back(offset + end);
+    }
+    items.insert(items.end(), chunk_items[c].begin(), chunk_items[c].end());
+  }
+}
+} // namespace
+
+SesPieceProjection::SesPieceProjection(const std::vector<Vec>& centres,
+                                       const std::vector<double>& atom_radii, double probe,
+                                       const SasBoundary& boundary, const ProbeDistance& distance,
+                                       const ParallelFor& parallel_for)
+  : centres_(centres)
+  , atom_radii_(atom_radii)
+  , probe_(probe)
+  , boundary_(boundary)
+  , distance_(distance)
+{
+  // Each atom's arcs and vertices.
+  const auto by_atom = [&](std::size_t item_count, const auto& atoms_of,
+                           std::vector<std::uint32_t>& start, std::vector<std::uint32_t>& items) {
+    start.assign(centres.size() + 1, 0);
+    for (std::size_t k = 0; k < item_count; ++k)
+    {
+      atoms_of(k, [&](std::uint32_t atom) { ++start[atom + 1]; });
+    }
+    for (std::size_t i = 0; i < centres.size(); ++i)
+    {
+      start[i + 1] += start[i];
+    }
+    items.resize(start.back());
+    std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+    for (std::size_t k = 0; k < item_count; ++k)
+    {
+      atoms_of(k, [&](std::uint32_t atom) { items[next[atom]++] = static_cast<std::uint32_t>(k); });
+    }
+  };
+  by_atom(
+    boundary.arcs.size(),
+    [&](std::size_t k, const auto& add) {
+      add(boundary.arcs[k].first);
+      add(boundary.arcs[k].second);
+    },
+    this->atom_arc_start_, this->atom_arc_items_);
+  by_atom(
+    boundary.vertices.size(),
+    [&](std::size_t k, const auto& add) {
+      for (const std::uint32_t atom : boundary.vertices[k].spheres)
+      {
+        add(atom);
+      }
+    },
+    this->atom_vertex_start_, this->atom_vertex_items_);
+  // Each patch's possible cutters, arcs (index << 1) then vertices (index << 1 | 1).
+  const auto cutters = [&](bool torus) {
+    return [&, torus](std::size_t k, std::vector<std::uint32_t>& items) {
+      thread_local std::vector<std::uint32_t> arcs, vertices;
+      arcs.clear();
+      vertices.clear();
+      if (torus)
+      {
+        toroidal_patch_cutters(centres, probe, boundary, distance, std::uint32_t(k), arcs,
+                               vertices);
+      }
+      else
+      {
+        concave_patch_cutters(centres, probe, boundary, distance, std::uint32_t(k), arcs, vertices);
+      }
+      for (const std::uint32_t a : arcs)
+      {
+        items.push_back(a << 1);
+      }
+      for (const std::uint32_t v : vertices)
+      {
+        items.push_back(v << 1 | 1u);
+      }
+    };
+  };
+  compressed_rows(boundary.arcs.size(), parallel_for, cutters(true), this->arc_cutter_start_,
+                  this->arc_cutter_items_);
+  compressed_rows(boundary.vertices.size(), parallel_for, cutters(false),
+                  this->vertex_cutter_start_, this->vertex_cutter_items_);
+}
+
+bool SesPieceProjection::nearest(const Vec& x, PieceKind kind, std::uint32_t index, Vec& point,
+                                 ClosestPiece& nearest) const
+{
+  const double p = this->probe_;
+  switch (kind)
+  {
+    case PieceKind::Face: {
+      const Vec offset = x - this->centres_[index];
+      const double gap = offset.norm();
+      if (!(gap > 0))
+      {
+        return false;
+      }
+      point = this->centres_[index] + (this->atom_radii_[index] / gap) * offset;
+      return this->certify_face(point, index, nearest);
+    }
+    case PieceKind::Vertex: {
+      const Vec& centre = this->boundary_.vertices[index].position;
+      const Vec offset = x - centre;
+      const double gap = offset.norm();
+      if (!(gap > 0))
+      {
+        return false;
+      }
+      point = centre + (p / gap) * offset;
+      return this->certify_vertex(point, index, nearest);
+    }
+    case PieceKind::Arc: {
+      // The probe's nearest position on the arc's circle, then radially from it.
+      Vec position;
+      if (!nearest_on_circle(this->boundary_.arcs[index], x, position))
+      {
+        return false;
+      }
+      const Vec away = x - position;
+      const double gap = away.norm();
+      if (!(gap > 0))
+      {
+        return false;
+      }
+      point = position + (p / gap) * away;
+      return this->certify_arc(point, index, nearest);
+    }
+    case PieceKind::None:
+      break;
+  }
+  return false;
+}
+
+bool SesPieceProjection::nearest_near(const Vec& x, const std::pair<PieceKind, std::uint32_t>& a,
+                                      const std::pair<PieceKind, std::uint32_t>& b, Vec& point,
+                                      ClosestPiece& nearest) const
+{
+  if (this->nearest(x, a.first, a.second, point, nearest) ||
+      (b != a && this->nearest(x, b.first, b.second, point, nearest)))
+  {
+    return true;
+  }
+  // The atoms of both pieces (at most six), then their other pieces.
+  std::uint32_t atoms[6];
+  int atom_count = 0;
+  const auto add_atoms = [&](const std::pair<PieceKind, std::uint32_t>& piece) {
+    const auto add = [&](std::uint32_t atom) {
+      if (std::find(atoms, atoms + atom_count, atom) == atoms + atom_count)
+      {
+        atoms[atom_count++] = atom;
+      }
+    };
+    switch (piece.first)
+    {
+      case PieceKind::Face:
+        add(piece.second);
+        break;
+      case PieceKind::Arc:
+        add(this->boundary_.arcs[piece.second].first);
+        add(this->boundary_.arcs[piece.second].second);
+        break;
+      case PieceKind::Vertex:
+        for (const std::uint32_t atom : this->boundary_.vertices[piece.second].spheres)
+        {
+          add(atom);
+        }
+        break;
+      case PieceKind::None:
+        break;
+    }
+  };
+  add_atoms(a);
+  add_atoms(b);
+  const auto among = [&](std::uint32_t atom) {
+    return std::find(atoms, atoms + atom_count, atom) != atoms + atom_count;
+  };
+  const auto tried = [&](PieceKind kind, std::uint32_t index) {
+    return (a.first == kind && a.second == index) || (b.first == kind && b.second == index);
+  };
+  for (int n = 0; n < atom_count; ++n)
+  {
+    // Each arc from its first atom among them, each vertex from its first.
+    for (std::uint32_t e = this->atom_arc_start_[atoms[n]]; e < this->atom_arc_start_[atoms[n] + 1];
+         ++e)
+    {
+      const std::uint32_t k = this->atom_arc_items_[e];
+      const SasArc& arc = this->boundary_.arcs[k];
+      const std::uint32_t other = arc.first == atoms[n] ? arc.second : arc.first;
+      if (among(other) &&
+          (arc.first == atoms[n] || !among(arc.first) ||
+           std::find(atoms, atoms + n, arc.first) == atoms + n) &&
+          !tried(PieceKind::Arc, k))
+      {
+        if (this->nearest(x, PieceKind::Arc, k, point, nearest))
+        {
+          return true;
+        }
+      }
+    }
+  }
+  for (int n = 0; n < atom_count; ++n)
+  {
+    for (std::uint32_t e = this->atom_vertex_start_[atoms[n]];
+         e < this->atom_vertex_start_[atoms[n] + 1]; ++e)
+    {
+      const std::uint32_t k = this->atom_vertex_items_[e];
+      const auto& spheres = this->boundary_.vertices[k].spheres;
+      if (spheres[0] == atoms[n] && among(spheres[1]) && among(spheres[2]) &&
+          !tried(PieceKind::Vertex, k) && this->nearest(x, PieceKind::Vertex, k, point, nearest))
+      {
+        return true;
+      }
+    }
+  }
+  for (int n = 0; n < atom_count; ++n)
+  {
+    if (!tried(PieceKind::Face, atoms[n]) &&
+        this->nearest(x, PieceKind::Face, atoms[n], point, nearest))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool SesPieceProjection::certify(const Vec& y, PieceKind kind, std::uint32_t index,
+                                 ClosestPiece& nearest) const
+{
+  switch (kind)
+  {
+    case PieceKind::Face:
+      return this->certify_face(y, index, nearest);
+    case PieceKind::Arc:
+      return this->certify_arc(y, index, nearest);
+    case PieceKind::Vertex:
+      return this->certify_vertex(y, index, nearest);
+    case PieceKind::None:
+      break;
+  }
+  return false;
+}
+
+bool SesPieceProjection::certify_face(const Vec& y, std::uint32_t i, ClosestPiece& nearest) const
+{
+  const double p = this->probe_, r = this->atom_radii_[i];
+  const Vec offset = y - this->centres_[i];
+  const double gap = offset.norm();
+  if (!(std::abs(gap - r) <= on_carrier))
+  {
+    return false;
+  }
+  // The probe touching the atom at y must fit: outside every neighbour's inflated sphere.
+  const Vec probe_position = this->centres_[i] + ((r + p) / gap) * offset;
+  for (const std::uint32_t j : this->boundary_.neighbours[i])
+  {
+    const double least = this->atom_radii_[j] + p - covered;
+    if ((probe_position - this->centres_[j]).squaredNorm() < least * least)
+    {
+      return false;
+    }
+  }
+  nearest = { p, probe_position, PieceKind::Face, i };
+  return true;
+}
+
+bool SesPieceProjection::certify_arc(const Vec& y, std::uint32_t k, ClosestPiece& nearest) const
+{
+  const double p = this->probe_;
+  const SasArc& arc = this->boundary_.arcs[k];
+  // The probe's position is on y's side of the axis: no other position on its circle comes
+  // nearer to y, even where the probe passes between the atoms.
+  Vec position;
+  if (!nearest_on_circle(arc, y, position))
+  {
+    return false;
+  }
+  const Vec direction = (position - arc.centre) / arc.radius;
+  const Vec towards_y = y - position;
+  if (!(std::abs(towards_y.norm() - p) <= on_carrier))
+  {
+    return false;
+  }
+  if (arc.span < two_pi)
+  {
+    double azimuth = std::atan2(direction.dot(arc.e2), direction.dot(arc.e1)) - arc.start;
+    azimuth -= two_pi * std::floor(azimuth / two_pi);
+    if (!(azimuth <= arc.span + side_slack || azimuth >= two_pi - side_slack))
+    {
+      return false;
+    }
+  }
+  // Between the directions to the two atoms (all three lie in the plane of the axis and y).
+  const Vec to_first = (this->centres_[arc.first] - position).normalized();
+  const Vec to_second = (this->centres_[arc.second] - position).normalized();
+  const Vec normal = to_first.cross(to_second);
+  if (!(normal.squaredNorm() > 0) || to_first.cross(towards_y).dot(normal) < -side_slack ||
+      towards_y.cross(to_second).dot(normal) < -side_slack ||
+      !this->clear_of_cutters(y, k, this->arc_cutter_start_, this->arc_cutter_items_))
+  {
+    return false;
+  }
+  nearest = { p, position, PieceKind::Arc, k };
+  return true;
+}
+
+bool SesPieceProjection::certify_vertex(const Vec& y, std::uint32_t k, ClosestPiece& nearest) const
+{
+  const double p = this->probe_;
+  const SasVertex& vertex = this->boundary_.vertices[k];
+  const Vec towards_y = y - vertex.position;
+  if (!(std::abs(towards_y.norm() - p) <= on_carrier))
+  {
+    return false;
+  }
+  // Within the cone of the directions to the three atoms.
+  Vec u[3];
+  for (int s = 0; s < 3; ++s)
+  {
+    u[s] = (this->centres_[vertex.spheres[std::size_t(s)]] - vertex.position).normalized();
+  }
+  const double orientation = u[0].dot(u[1].cross(u[2]));
+  if (!(std::abs(orientation) > 0))
+  {
+    return false;
+  }
+  for (int s = 0; s < 3; ++s)
+  {
+    const double side = towards_y.dot(u[(s + 1) % 3].cross(u[(s + 2) % 3]));
+    if (side * orientation < -side_slack)
+    {
+      return false;
+    }
+  }
+  if (!this->clear_of_cutters(y, k, this->vertex_cutter_start_, this->vertex_cutter_items_))
+  {
+    return false;
+  }
+  nearest = { p, vertex.position, PieceKind::Vertex, k };
+  return true;
+}
+
+bool SesPieceProjection::clear_of_cutters(const Vec& y, std::uint32_t k,
+                                          const std::vector<std::uint32_t>& start,
+                                          const std::vector<std::uint32_t>& items) const
+{
+  const double least = this->probe_ - covered;
+  for (std::uint32_t n = start[k]; n < start[k + 1]; ++n)
+  {
+    const std::uint32_t item = items[n];
+    const double gap = (item & 1u) ? (y - this->boundary_.vertices[item >> 1].position).norm()
+                                   : this->distance_.arc_distance(item >> 1, y);
+    if (gap < least)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+} // namespace mesolens

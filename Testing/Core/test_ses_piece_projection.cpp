@@ -1,0 +1,258 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Projections onto single solvent-excluded patches with their cheap certificates (a private part
+// of MesoLensCore), against the general search: every certified point must lie on the surface,
+// points inside a patch's ball must get their nearest surface point, and most points near the
+// surface must be certified (else the speed-up is gone).
+#include "probe_distance.h"
+#include "sas_boundary.h"
+#include "ses_piece_projection.h"
+
+#include "mesolens/elements.h"
+#include "mesolens/structure_file.h"
+#include "mesolens_test_data.h"
+#include "mesolens_test_threads.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+
+#include <array>
+#include <cmath>
+#include <random>
+#include <vector>
+
+namespace {
+using Vec = Eigen::Vector3d;
+using mesolens::ClosestPiece;
+using mesolens::PieceKind;
+constexpr double probe = 1.4;
+
+/// Atoms, their boundary with the probe, a general search and the projections under test.
+struct Surface
+{
+  std::vector<std::array<double, 3>> centre_list;
+  std::vector<Vec> centres;
+  std::vector<double> atom_radii, inflated;
+  mesolens::SasBoundary boundary;
+  std::unique_ptr<mesolens::ProbeDistance> distance;
+  std::unique_ptr<mesolens::SesPieceProjection> pieces;
+
+  Surface(const std::vector<Vec>& atoms, const std::vector<double>& radii,
+          const mesolens::ParallelFor& parallel_for)
+    : centres(atoms)
+    , atom_radii(radii)
+  {
+    for (std::size_t i = 0; i < atoms.size(); ++i)
+    {
+      this->centre_list.push_back({ atoms[i][0], atoms[i][1], atoms[i][2] });
+      this->inflated.push_back(radii[i] + probe);
+    }
+    this->boundary = mesolens::sas_boundary(this->centre_list, this->inflated, true, parallel_for);
+    this->distance = std::make_unique<mesolens::ProbeDistance>(this->centres, this->inflated,
+                                                               this->boundary, 3.0 * probe);
+    this->pieces = std::make_unique<mesolens::SesPieceProjection>(
+      this->centres, this->atom_radii, probe, this->boundary, *this->distance, parallel_for);
+  }
+
+  /// Whether `y` lies on the surface by the general search (its nearest probe position the
+  /// probe radius away, to 1e-7 Å).
+  bool on_surface(const Vec& y) const
+  {
+    return std::abs(this->distance->closest(y).distance - probe) <= 1e-7;
+  }
+};
+
+std::vector<Vec> protein_atoms(const std::string& file, std::vector<double>& radii)
+{
+  const auto table = mesolens::read_structure(mesolens_test::data_file(file)).models.at(0);
+  std::vector<Vec> atoms;
+  for (std::size_t i = 0; i < table.atomic_numbers.size(); ++i)
+  {
+    const int z = table.atomic_numbers[i];
+    if (z == 1)
+    {
+      continue;
+    }
+    atoms.emplace_back(table.positions[3 * i], table.positions[3 * i + 1],
+                       table.positions[3 * i + 2]);
+    radii.push_back(z > 0 ? mesolens::van_der_waals_radius(z) : 2.0);
+  }
+  return atoms;
+}
+
+/// Points near the surface: around each atom, from inside its sphere to a probe diameter out.
+std::vector<Vec> points_near(const Surface& surface, int per_atom, unsigned seed)
+{
+  std::mt19937 random(seed);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> depth(-0.5, 2.0 * probe);
+  std::vector<Vec> points;
+  for (std::size_t i = 0; i < surface.centres.size(); ++i)
+  {
+    for (int k = 0; k < per_atom; ++k)
+    {
+      const Vec u = Vec(normal(random), normal(random), normal(random)).normalized();
+      points.push_back(surface.centres[i] + (surface.atom_radii[i] + depth(random)) * u);
+    }
+  }
+  return points;
+}
+
+/// The general answer: the nearest surface point of `x` from its nearest probe position,
+/// when `x` lies within the probe radius of one (between the surface and the solvent).
+bool general_nearest(const Surface& surface, const Vec& x, Vec& y, ClosestPiece& piece)
+{
+  piece = surface.distance->closest(x);
+  const Vec away = x - piece.point;
+  if (piece.kind == PieceKind::None || !(piece.distance > 0) || !(away.norm() > 0))
+  {
+    return false;
+  }
+  y = piece.point + probe / away.norm() * away;
+  return surface.on_surface(y);
+}
+
+/// Checks the projections of points near `surface` against the general search; returns the
+/// fraction of the points inside their nearest probe's ball that were certified.
+double check_against_search(const Surface& surface, const std::vector<Vec>& points)
+{
+  std::size_t inside = 0, certified = 0, checked = 0;
+  for (const Vec& x : points)
+  {
+    Vec exact;
+    ClosestPiece piece;
+    if (!general_nearest(surface, x, exact, piece))
+    {
+      continue;
+    }
+    // Inside the probe's ball (or the atom's, for a convex point): the certified projection
+    // onto that piece's patch is the nearest surface point.
+    Vec y;
+    ClosestPiece nearest;
+    const bool inside_ball = piece.kind == PieceKind::Face
+      ? (x - surface.centres[piece.index]).norm() < surface.atom_radii[piece.index]
+      : (x - piece.point).norm() < probe;
+    if (inside_ball)
+    {
+      ++inside;
+      if (surface.pieces->nearest(x, piece.kind, piece.index, y, nearest))
+      {
+        ++certified;
+        EXPECT_LT((y - exact).norm(), 1e-9) << "x " << x.transpose();
+        EXPECT_NEAR((nearest.point - y).norm(), probe, 1e-9);
+      }
+    }
+    // Whatever the piece tried, a certified point lies on the surface.
+    for (const PieceKind kind : { PieceKind::Face, PieceKind::Arc, PieceKind::Vertex })
+    {
+      const std::size_t count = kind == PieceKind::Face
+        ? surface.centres.size()
+        : (kind == PieceKind::Arc ? surface.boundary.arcs.size()
+                                  : surface.boundary.vertices.size());
+      if (count == 0)
+      {
+        continue;
+      }
+      const auto index = static_cast<std::uint32_t>((checked * 7919) % count);
+      if (surface.pieces->nearest(x, kind, index, y, nearest))
+      {
+        EXPECT_TRUE(surface.on_surface(y)) << "piece " << int(kind) << " " << index;
+      }
+    }
+    if (surface.pieces->nearest_near(x, { piece.kind, piece.index }, { piece.kind, piece.index }, y,
+                                     nearest))
+    {
+      EXPECT_TRUE(surface.on_surface(y));
+    }
+    ++checked;
+  }
+  EXPECT_GT(inside, points.size() / 10);
+  return inside > 0 ? double(certified) / double(inside) : 0.0;
+}
+
+TEST(SesPieceProjection, CertifiedPointsOfCrambinLieOnItsSurface)
+{
+  std::vector<double> radii;
+  const std::vector<Vec> atoms = protein_atoms("proteins/1crn.pdb", radii);
+  const Surface surface(atoms, radii, mesolens_test::two_threads());
+  ASSERT_GT(surface.boundary.vertices.size(), 100u);
+  const double certified = check_against_search(surface, points_near(surface, 12, 7));
+  // Most points are certified: the cheap path does the work.
+  EXPECT_GT(certified, 0.8);
+}
+
+TEST(SesPieceProjection, PinchedToriAndOverlappingProbesAreCut)
+{
+  // Atoms close enough for the probe to pass between pairs (self-intersecting tori) and
+  // packed so that probes between triples overlap: the singular cases.
+  std::vector<Vec> atoms;
+  std::vector<double> radii;
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> coordinate(-4.0, 4.0), radius(1.2, 1.9);
+  while (atoms.size() < 40)
+  {
+    const Vec c(coordinate(random), coordinate(random), coordinate(random));
+    bool apart = true;
+    for (const Vec& other : atoms)
+    {
+      apart = apart && (other - c).norm() > 2.0;
+    }
+    if (apart)
+    {
+      atoms.push_back(c);
+      radii.push_back(radius(random));
+    }
+  }
+  const Surface surface(atoms, radii, {});
+  std::size_t pinched = 0;
+  for (const auto& arc : surface.boundary.arcs)
+  {
+    pinched += arc.radius < probe ? 1 : 0;
+  }
+  EXPECT_GT(pinched, 0u);
+  const double certified = check_against_search(surface, points_near(surface, 60, 3));
+  EXPECT_GT(certified, 0.5);
+}
+
+TEST(SesPieceProjection, ThreadsGiveTheSameAnswers)
+{
+  std::vector<double> radii;
+  const std::vector<Vec> atoms = protein_atoms("proteins/1crn.pdb", radii);
+  const Surface serial(atoms, radii, {}), threaded(atoms, radii, mesolens_test::two_threads());
+  for (const Vec& x : points_near(serial, 3, 5))
+  {
+    for (std::uint32_t k = 0; k < serial.boundary.arcs.size(); k += 37)
+    {
+      Vec a, b;
+      ClosestPiece pa, pb;
+      const bool one = serial.pieces->nearest(x, PieceKind::Arc, k, a, pa);
+      ASSERT_EQ(one, threaded.pieces->nearest(x, PieceKind::Arc, k, b, pb));
+      if (one)
+      {
+        EXPECT_EQ(a, b);
+      }
+    }
+  }
+}
+
+TEST(SesPieceProjection, DegeneratePointsAreRefused)
+{
+  std::vector<double> radii;
+  const std::vector<Vec> atoms = protein_atoms("proteins/1crn.pdb", radii);
+  const Surface surface(atoms, radii, {});
+  Vec y;
+  ClosestPiece nearest;
+  // At a sphere's centre, on a circle's axis, at a probe's centre: no direction to project in.
+  EXPECT_FALSE(surface.pieces->nearest(surface.centres[0], PieceKind::Face, 0, y, nearest));
+  const auto& arc = surface.boundary.arcs.at(0);
+  EXPECT_FALSE(surface.pieces->nearest(arc.centre, PieceKind::Arc, 0, y, nearest));
+  EXPECT_FALSE(surface.pieces->nearest(arc.point(arc.start), PieceKind::Arc, 0, y, nearest));
+  const Vec& vertex = surface.boundary.vertices.at(0).position;
+  EXPECT_FALSE(surface.pieces->nearest(vertex, PieceKind::Vertex, 0, y, nearest));
+  EXPECT_FALSE(surface.pieces->nearest(vertex, PieceKind::None, 0, y, nearest));
+  // A point off the sphere it is said to be on.
+  EXPECT_FALSE(surface.pieces->certify(surface.centres[0] + Vec(0, 0, radii[0] + 0.01),
+                                       PieceKind::Face, 0, nearest));
+}
+
+} // namespace

@@ -210,12 +210,15 @@ void ProbeDistance::vertices_within(const Vec& x, double radius,
   });
 }
 
-void ProbeDistance::arcs_within(const Vec& x, double radius, std::vector<std::uint32_t>& arcs) const
+void ProbeDistance::arcs_within(const Vec& x, double radius, std::vector<std::uint32_t>& arcs,
+                                const Filter& filter) const
 {
   const std::size_t first = arcs.size();
   const double reach = radius + this->arc_extent_;
+  const bool filtered = filter.mode != Filter::Mode::All;
   this->for_cells(x, reach, this->arc_start_, this->arc_entries_, [&](std::uint32_t entry) {
-    if ((x - this->arc_piece_middle_[entry]).squaredNorm() < reach * reach)
+    if ((x - this->arc_piece_middle_[entry]).squaredNorm() < reach * reach &&
+        (!filtered || filter.admits(this->boundary_.arcs[this->arc_items_[entry]])))
     {
       arcs.push_back(this->arc_items_[entry]);
     }

@@ -153,9 +153,10 @@ public:
   /// The distance from `x` to exposed arc `k` (its ends included).
   double arc_distance(std::uint32_t k, const Eigen::Vector3d& x) const;
 
-  /// Appends to `arcs` (sorted, each once) every arc with an exposed point within `radius` of
-  /// `x`, and perhaps a few a little farther.
-  void arcs_within(const Eigen::Vector3d& x, double radius, std::vector<std::uint32_t>& arcs) const;
+  /// Appends to `arcs` (sorted, each once) every arc `filter` admits with an exposed point within
+  /// `radius` of `x`, and perhaps a few a little farther.
+  void arcs_within(const Eigen::Vector3d& x, double radius, std::vector<std::uint32_t>& arcs,
+                   const Filter& filter = {}) const;
 
   /// Calls `visit` with each vertex within `radius` of `x`, in index order of
   /// their cells.

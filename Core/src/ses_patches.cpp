@@ -628,27 +628,27 @@ void toroidal_patch_cutters(const std::vector<Vec>& centres, double probe,
                             std::vector<std::uint32_t>& vertices)
 {
   const SasArc& arc = boundary.arcs[k];
+  const Torus torus = torus_of(arc, centres, probe);
   const ProbeDistance::Filter foreign = torus_cutters(arc);
   const std::size_t first_arc = arcs.size(), first_vertex = vertices.size();
-  for_torus_pieces(torus_of(arc, centres, probe),
-                   [&](const Angle& phi0, const Angle& phi1, const Angle& t0, const Angle& t1) {
-                     const Torus torus = torus_of(arc, centres, probe);
-                     const Vec middle = torus.middle(phi0, phi1, t0, t1);
-                     const double reach = torus.reach(middle, phi0, phi1, t0, t1) + probe;
-                     const std::size_t listed = arcs.size();
-                     distance.arcs_within(middle, reach, arcs);
-                     arcs.erase(std::remove_if(arcs.begin() + std::ptrdiff_t(listed), arcs.end(),
-                                               [&](std::uint32_t other) {
-                                                 return !foreign.admits(boundary.arcs[other]);
-                                               }),
-                                arcs.end());
-                     distance.vertices_within(middle, reach, [&](std::uint32_t other) {
-                       if (foreign.admits(boundary.vertices[other]))
-                       {
-                         vertices.push_back(other);
-                       }
-                     });
-                   });
+  const auto visit = [&](const Angle& phi0, const Angle& phi1, const Angle& t0, const Angle& t1) {
+    // A cutter comes within the probe radius of a point of the piece's ball.
+    const Vec middle = torus.middle(phi0, phi1, t0, t1);
+    const double reach = torus.reach(middle, phi0, phi1, t0, t1) + probe;
+    const std::size_t listed = arcs.size();
+    distance.arcs_within(middle, reach, arcs, foreign);
+    const auto far = [&](std::uint32_t other) {
+      return distance.arc_distance(other, middle) >= reach;
+    };
+    arcs.erase(std::remove_if(arcs.begin() + std::ptrdiff_t(listed), arcs.end(), far), arcs.end());
+    distance.vertices_within(middle, reach, [&](std::uint32_t other) {
+      if (foreign.admits(boundary.vertices[other]))
+      {
+        vertices.push_back(other);
+      }
+    });
+  };
+  for_torus_pieces(torus, visit);
   sort_unique(arcs, first_arc);
   sort_unique(vertices, first_vertex);
 }
@@ -662,13 +662,15 @@ void concave_patch_cutters(const std::vector<Vec>& centres, double probe,
   const ConcavePatch concave(vertex, centres, probe);
   const ProbeDistance::Filter foreign = concave_cutters(vertex, probe);
   const std::size_t first_arc = arcs.size(), first_vertex = vertices.size();
-  distance.arcs_within(concave.middle, concave.reach + probe, arcs);
-  arcs.erase(
-    std::remove_if(arcs.begin() + std::ptrdiff_t(first_arc), arcs.end(),
-                   [&](std::uint32_t other) { return !foreign.admits(boundary.arcs[other]); }),
-    arcs.end());
+  // A cutter comes within the probe radius of a point of the patch's ball.
+  const double reach = concave.reach + probe;
+  distance.arcs_within(concave.middle, reach, arcs, foreign);
+  const auto far = [&](std::uint32_t other) {
+    return distance.arc_distance(other, concave.middle) >= reach;
+  };
+  arcs.erase(std::remove_if(arcs.begin() + std::ptrdiff_t(first_arc), arcs.end(), far), arcs.end());
   distance.vertices_within(vertex.position, 2.0 * probe, [&](std::uint32_t other) {
-    if (other != k)
+    if (other != k && (boundary.vertices[other].position - concave.middle).norm() < reach)
     {
       vertices.push_back(other);
     }

@@ -148,19 +148,23 @@ bool lies_across(const ContourVertex& a, const ContourVertex& b, const ContourVe
     c.normal.dot(normal) < least;
 }
 
-/// Whether triangle (a, b, c) spans a crease (two corners' normals far apart) or lies across
-/// the surface.
-bool at_a_crease(const ContourVertex& a, const ContourVertex& b, const ContourVertex& c)
+/// Whether triangle (a, b, c) spans a crease (two corners' normals far apart, their pieces not
+/// smoothly joined) or lies across the surface.
+bool at_a_crease(const ContourVertex& a, const ContourVertex& b, const ContourVertex& c,
+                 const LocalSurfaceProjection& surface)
 {
-  return lies_across(a, b, c) || a.normal.dot(b.normal) < crease_cosine ||
-    b.normal.dot(c.normal) < crease_cosine || c.normal.dot(a.normal) < crease_cosine;
+  const auto apart = [&](const ContourVertex& u, const ContourVertex& v) {
+    return u.normal.dot(v.normal) < crease_cosine && !surface.smoothly_joined(u, v);
+  };
+  return lies_across(a, b, c) || apart(a, b) || apart(b, c) || apart(c, a);
 }
 
 /// Whether the pieces `children` (3 corners each) of triangle `t` face as it does, none at a
 /// crease: splits that fold the mesh over a crease fail.
 bool children_face_outwards(const std::array<std::int64_t, 3>& t,
                             const std::vector<std::int64_t>& children,
-                            const std::vector<ContourVertex>& vertices)
+                            const std::vector<ContourVertex>& vertices,
+                            const LocalSurfaceProjection& surface)
 {
   const auto at = [&](std::int64_t v) -> const ContourVertex& { return vertices[std::size_t(v)]; };
   const Vec parent =
@@ -169,7 +173,7 @@ bool children_face_outwards(const std::array<std::int64_t, 3>& t,
   {
     const ContourVertex &a = at(children[k]), &b = at(children[k + 1]), &c = at(children[k + 2]);
     const Vec normal = (b.position - a.position).cross(c.position - a.position);
-    if (!(normal.norm() > 0) || normal.dot(parent) <= 0 || at_a_crease(a, b, c))
+    if (!(normal.norm() > 0) || normal.dot(parent) <= 0 || at_a_crease(a, b, c, surface))
     {
       return false;
     }
@@ -179,7 +183,7 @@ bool children_face_outwards(const std::array<std::int64_t, 3>& t,
 
 /// Per vertex, whether it belongs to a triangle at a crease: edges there stay, as a split may
 /// fold the mesh through the crease.
-std::vector<char> crease_vertices(const ContourMesh& mesh)
+std::vector<char> crease_vertices(const ContourMesh& mesh, const LocalSurfaceProjection& surface)
 {
   std::vector<char> at_crease(mesh.vertices.size(), 0);
   for (std::size_t t = 0; t < mesh.triangles.size() / 3; ++t)
@@ -188,7 +192,7 @@ std::vector<char> crease_vertices(const ContourMesh& mesh)
     const auto at = [&](int k) -> const ContourVertex& {
       return mesh.vertices[std::size_t(corner[k])];
     };
-    const bool crease = at_a_crease(at(0), at(1), at(2));
+    const bool crease = at_a_crease(at(0), at(1), at(2), surface);
     if (crease)
     {
       at_crease[std::size_t(corner[0])] = at_crease[std::size_t(corner[1])] =
@@ -205,7 +209,8 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
   std::size_t first_new = 0; // vertices from here on came from the last round
   // Crease vertices once: the pieces of cut triangles are checked not to span or lie across
   // a crease themselves.
-  std::vector<char> at_crease = crease_vertices(mesh);
+  const std::unique_ptr<LocalSurfaceProjection> surface = projection();
+  std::vector<char> at_crease = crease_vertices(mesh, *surface);
   for (int round = 0; round < max_rounds; ++round)
   {
     const std::size_t vertex_count = mesh.vertices.size();
@@ -352,7 +357,7 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
       cut_triangle(corners, middles, mesh.vertices, children);
       if (at_crease[std::size_t(corners[0])] || at_crease[std::size_t(corners[1])] ||
           at_crease[std::size_t(corners[2])] ||
-          !children_face_outwards(corners, children, mesh.vertices))
+          !children_face_outwards(corners, children, mesh.vertices, *surface))
       {
         for (const std::int64_t m : middles)
         {

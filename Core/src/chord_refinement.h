@@ -38,6 +38,12 @@ public:
     static_cast<void>(to);
     return this->project(x, vertex);
   }
+  /// Whether the surface runs smoothly (without a crease) from vertex `a`'s piece to `b`'s: the
+  /// same piece, or pieces known to meet tangentially. By default only the same piece.
+  virtual bool smoothly_joined(const ContourVertex& a, const ContourVertex& b) const
+  {
+    return a.patch == b.patch && a.piece == b.piece;
+  }
   /// When vertices `a` and `b` lie on one smooth piece of the surface (a sphere, a torus), the
   /// distance from `x` to that piece's whole surface, without a focus: the deviation of a
   /// chord whose midpoint projects onto the same piece. NaN otherwise.
@@ -55,7 +61,8 @@ using SurfaceProjection = std::function<std::unique_ptr<LocalSurfaceProjection>(
 /// mesh stays closed and 2-manifold. Splits that could fold the mesh are not made: a projection
 /// whose normal faces away from either end's, or lying farther from the midpoint than half the
 /// edge; any split of a triangle at a crease (two corners' normals more than about 70 degrees
-/// apart, or the triangle's own normal that far from a corner's) or of one whose pieces would
+/// apart, unless their pieces are smoothly joined; or the triangle's own normal that far from a
+/// corner's) or of one whose pieces would
 /// face away from it or lie across the surface. There the mesh stays as it was. Edges are kept
 /// without a projection when both ends lie on one piece and the midpoint lies within the tolerance
 /// of that piece, or when their ends' normals show them bending by less than half the tolerance

@@ -30,8 +30,8 @@ constexpr double largest_triangle_count = 2e7; // about 2 GB: a finer tolerance 
 /// more than the splits that refine a coarse mesh as far; coarser ones would miss narrow necks
 /// and small cavities of the probe's size; and creases, which splits leave as the grid made
 /// them, must shrink with the tolerance for the mesh's area to converge to the exact one.
-constexpr double coarse_grid_tolerance = 0.3;
-constexpr double grid_tolerance_ratio = 4.0;
+constexpr double coarse_grid_tolerance = 0.45;
+constexpr double grid_tolerance_ratio = 6.0;
 
 /// Which grid cells of width `width` some sphere's bounding box touches, with 3D prefix sums so
 /// that any box is tested in eight lookups: the coarse test of where a surface can be.

@@ -373,6 +373,37 @@ public:
     return this->project(x, vertex);
   }
 
+  /// Patches meet tangentially where one's atoms are among the other's: a convex patch and a
+  /// torus or concave patch of its atom, a torus and a concave patch of both its atoms.
+  bool smoothly_joined(const ContourVertex& a, const ContourVertex& b) const override
+  {
+    if (a.patch == b.patch && a.piece == b.piece)
+    {
+      return true;
+    }
+    const auto atoms_of = [&](const ContourVertex& v) {
+      switch (piece_kind(v.patch))
+      {
+        case PieceKind::Arc: {
+          const SasArc& arc = this->surface_.boundary.arcs[v.piece];
+          return std::array<std::uint32_t, 3>{ arc.first, arc.second, arc.second };
+        }
+        case PieceKind::Vertex:
+          return this->surface_.boundary.vertices[v.piece].spheres;
+        default:
+          return std::array<std::uint32_t, 3>{ v.piece, v.piece, v.piece };
+      }
+    };
+    const auto among = [](const std::array<std::uint32_t, 3>& some,
+                          const std::array<std::uint32_t, 3>& all) {
+      return std::all_of(some.begin(), some.end(), [&](std::uint32_t atom) {
+        return std::find(all.begin(), all.end(), atom) != all.end();
+      });
+    };
+    const auto first = atoms_of(a), second = atoms_of(b);
+    return among(first, second) || among(second, first);
+  }
+
   double piece_gap(const ContourVertex& a, const ContourVertex& b, const Vec& x) const override
   {
     if (a.patch != b.patch || a.piece != b.piece)

@@ -44,10 +44,10 @@ struct MolecularSurfaceOptions
   /// Largest distance between a triangle and the exact surface it stands for (chord error) on
   /// smooth patches, Å, [0.005, 1]: edges are split until their middles lie within three
   /// quarters of it (the triangles' centres within it). Near creases (the SAS and vdW seams,
-  /// the SES's cusps) the mesh stays as the grid made it, within the grid spacing, which is
-  /// four times the tolerance's (at most 0.3 Å's; see grid_spacing). On proteins the mesh
-  /// area lies below the exact one by about a tenth of the tolerance over the probe radius:
-  /// 0.08 gives about 0.5 % and suits interaction, 0.01-0.02 figures.
+  /// the SES's cusps) the mesh stays as the grid made it, within the grid spacing, whose chord
+  /// error is six times the tolerance (at most 0.45 Å; see grid_spacing). On proteins the mesh
+  /// area lies below the exact one by about a twentieth of the tolerance over the probe
+  /// radius: 0.08 gives about 0.4 % and suits interaction, 0.01-0.02 figures.
   double tolerance = 0.1;
   /// Keep the surfaces of cavities inside the molecule (closed components whose normals face
   /// inwards). Default true.

@@ -21,9 +21,7 @@ constexpr double covered = 1e-7;
 /// Directions this close to a cone's side count as inside (the side is shared with the
 /// neighbouring patch, which holds the point as well).
 constexpr double side_slack = 1e-12;
-} // namespace
 
-namespace {
 /// The point of `arc`'s whole circle nearest `x` (false on the axis).
 bool nearest_on_circle(const SasArc& arc, const Vec& x, Vec& point)
 {
@@ -245,17 +243,15 @@ bool SesPieceProjection::nearest_near(const Vec& x, const std::pair<PieceKind, s
   };
   for (int n = 0; n < atom_count; ++n)
   {
-    // Each arc from its first atom among them, each vertex from its first.
+    // Each arc once, from whichever of its atoms comes first among them.
     for (std::uint32_t e = this->atom_arc_start_[atoms[n]]; e < this->atom_arc_start_[atoms[n] + 1];
          ++e)
     {
       const std::uint32_t k = this->atom_arc_items_[e];
       const SasArc& arc = this->boundary_.arcs[k];
       const std::uint32_t other = arc.first == atoms[n] ? arc.second : arc.first;
-      if (among(other) &&
-          (arc.first == atoms[n] || !among(arc.first) ||
-           std::find(atoms, atoms + n, arc.first) == atoms + n) &&
-          !tried(PieceKind::Arc, k))
+      const auto other_at = std::find(atoms, atoms + atom_count, other) - atoms;
+      if (other_at < atom_count && other_at > n && !tried(PieceKind::Arc, k))
       {
         if (this->nearest(x, PieceKind::Arc, k, point, nearest))
         {
@@ -266,6 +262,7 @@ bool SesPieceProjection::nearest_near(const Vec& x, const std::pair<PieceKind, s
   }
   for (int n = 0; n < atom_count; ++n)
   {
+    // Each vertex from its lowest atom.
     for (std::uint32_t e = this->atom_vertex_start_[atoms[n]];
          e < this->atom_vertex_start_[atoms[n] + 1]; ++e)
     {

@@ -36,49 +36,18 @@ bool nearest_on_circle(const SasArc& arc, const Vec& x, Vec& point)
   return true;
 }
 
-/// Compressed rows of `count` lists made by `list(k, items)` (appending list k's items), in
-/// parallel and in order.
-template<typename List>
-void compressed_rows(std::size_t count, const ParallelFor& parallel_for, List&& list,
-                     std::vector<std::uint32_t>& start, std::vector<std::uint32_t>& items)
-{
-  constexpr std::size_t chunk = 512;
-  const std::size_t chunks = (count + chunk - 1) / chunk;
-  std::vector<std::vector<std::uint32_t>> chunk_items(chunks), chunk_ends(chunks);
-  run_parallel(parallel_for, chunks, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t c = begin; c < end; ++c)
-    {
-      for (std::size_t k = c * chunk; k < std::min(count, (c + 1) * chunk); ++k)
-      {
-        list(k, chunk_items[c]);
-        chunk_ends[c].push_back(static_cast<std::uint32_t>(chunk_items[c].size()));
-      }
-    }
-  });
-  start.assign(1, 0);
-  start.reserve(count + 1);
-  items.clear();
-  for (std::size_t c = 0; c < chunks; ++c)
-  {
-    const auto offset = static_cast<std::uint32_t>(items.size());
-    for (const std::uint32_t end : chunk_ends[c])
-    {
-      start.push_back(offset + end);
-    }
-    items.insert(items.end(), chunk_items[c].begin(), chunk_items[c].end());
-  }
-}
 } // namespace
 
 SesPieceProjection::SesPieceProjection(const std::vector<Vec>& centres,
                                        const std::vector<double>& atom_radii, double probe,
-                                       const SasBoundary& boundary, const ProbeDistance& distance,
-                                       const ParallelFor& parallel_for)
+                                       const SasBoundary& boundary, const ProbeDistance& distance)
   : centres_(centres)
   , atom_radii_(atom_radii)
   , probe_(probe)
   , boundary_(boundary)
   , distance_(distance)
+  , arc_cutters_(boundary.arcs.size())
+  , vertex_cutters_(boundary.vertices.size())
 {
   // Each atom's arcs and vertices.
   const auto by_atom = [&](std::size_t item_count, const auto& atoms_of,
@@ -115,35 +84,33 @@ SesPieceProjection::SesPieceProjection(const std::vector<Vec>& centres,
       }
     },
     this->atom_vertex_start_, this->atom_vertex_items_);
-  // Each patch's possible cutters, arcs (index << 1) then vertices (index << 1 | 1).
-  const auto cutters = [&](bool torus) {
-    return [&, torus](std::size_t k, std::vector<std::uint32_t>& items) {
-      thread_local std::vector<std::uint32_t> arcs, vertices;
-      arcs.clear();
-      vertices.clear();
-      if (torus)
-      {
-        toroidal_patch_cutters(centres, probe, boundary, distance, std::uint32_t(k), arcs,
-                               vertices);
-      }
-      else
-      {
-        concave_patch_cutters(centres, probe, boundary, distance, std::uint32_t(k), arcs, vertices);
-      }
-      for (const std::uint32_t a : arcs)
-      {
-        items.push_back(a << 1);
-      }
-      for (const std::uint32_t v : vertices)
-      {
-        items.push_back(v << 1 | 1u);
-      }
-    };
-  };
-  compressed_rows(boundary.arcs.size(), parallel_for, cutters(true), this->arc_cutter_start_,
-                  this->arc_cutter_items_);
-  compressed_rows(boundary.vertices.size(), parallel_for, cutters(false),
-                  this->vertex_cutter_start_, this->vertex_cutter_items_);
+}
+
+void SesPieceProjection::list_cutters(bool torus, std::uint32_t k,
+                                      std::vector<std::uint32_t>& items) const
+{
+  thread_local std::vector<std::uint32_t> arcs, vertices;
+  arcs.clear();
+  vertices.clear();
+  if (torus)
+  {
+    toroidal_patch_cutters(this->centres_, this->probe_, this->boundary_, this->distance_, k, arcs,
+                           vertices);
+  }
+  else
+  {
+    concave_patch_cutters(this->centres_, this->probe_, this->boundary_, this->distance_, k, arcs,
+                          vertices);
+  }
+  items.clear();
+  for (const std::uint32_t a : arcs)
+  {
+    items.push_back(a << 1);
+  }
+  for (const std::uint32_t v : vertices)
+  {
+    items.push_back(v << 1 | 1u);
+  }
 }
 
 bool SesPieceProjection::nearest(const Vec& x, PieceKind kind, std::uint32_t index, Vec& point,
@@ -357,8 +324,7 @@ bool SesPieceProjection::certify_arc(const Vec& y, std::uint32_t k, ClosestPiece
   const Vec to_second = (this->centres_[arc.second] - position).normalized();
   const Vec normal = to_first.cross(to_second);
   if (!(normal.squaredNorm() > 0) || to_first.cross(towards_y).dot(normal) < -side_slack ||
-      towards_y.cross(to_second).dot(normal) < -side_slack ||
-      !this->clear_of_cutters(y, k, this->arc_cutter_start_, this->arc_cutter_items_))
+      towards_y.cross(to_second).dot(normal) < -side_slack || !this->clear_of_cutters(y, true, k))
   {
     return false;
   }
@@ -394,7 +360,7 @@ bool SesPieceProjection::certify_vertex(const Vec& y, std::uint32_t k, ClosestPi
       return false;
     }
   }
-  if (!this->clear_of_cutters(y, k, this->vertex_cutter_start_, this->vertex_cutter_items_))
+  if (!this->clear_of_cutters(y, false, k))
   {
     return false;
   }
@@ -402,14 +368,30 @@ bool SesPieceProjection::certify_vertex(const Vec& y, std::uint32_t k, ClosestPi
   return true;
 }
 
-bool SesPieceProjection::clear_of_cutters(const Vec& y, std::uint32_t k,
-                                          const std::vector<std::uint32_t>& start,
-                                          const std::vector<std::uint32_t>& items) const
+bool SesPieceProjection::clear_of_cutters(const Vec& y, bool torus, std::uint32_t k) const
 {
-  const double least = this->probe_ - covered;
-  for (std::uint32_t n = start[k]; n < start[k + 1]; ++n)
+  // Listed once, by whichever thread comes first; one that finds the list being made lists its
+  // own copy (the same) rather than wait.
+  Cutters& cutters = (torus ? this->arc_cutters_ : this->vertex_cutters_)[k];
+  const std::vector<std::uint32_t>* items = &cutters.items;
+  thread_local std::vector<std::uint32_t> own;
+  std::uint8_t state = cutters.state.load(std::memory_order_acquire);
+  if (state != 2)
   {
-    const std::uint32_t item = items[n];
+    if (state == 0 && cutters.state.compare_exchange_strong(state, 1, std::memory_order_acq_rel))
+    {
+      this->list_cutters(torus, k, cutters.items);
+      cutters.state.store(2, std::memory_order_release);
+    }
+    else if (state != 2)
+    {
+      this->list_cutters(torus, k, own);
+      items = &own;
+    }
+  }
+  const double least = this->probe_ - covered;
+  for (const std::uint32_t item : *items)
+  {
     const double gap = (item & 1u) ? (y - this->boundary_.vertices[item >> 1].position).norm()
                                    : this->distance_.arc_distance(item >> 1, y);
     if (gap < least)

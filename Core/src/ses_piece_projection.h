@@ -7,10 +7,9 @@
 #include "probe_distance.h"
 #include "sas_boundary.h"
 
-#include "mesolens/parallel_for.h"
-
 #include <Eigen/Core>
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <utility>
@@ -35,12 +34,11 @@ namespace mesolens {
 class SesPieceProjection
 {
 public:
-  /// `distance` indexes the inflated spheres. The arguments must outlive this object; the
-  /// patches' lists are made with `parallel_for` (may be empty: serial).
+  /// `distance` indexes the inflated spheres. The arguments must outlive this object, which
+  /// may be used from several threads at once.
   SesPieceProjection(const std::vector<Eigen::Vector3d>& centres,
                      const std::vector<double>& atom_radii, double probe,
-                     const SasBoundary& boundary, const ProbeDistance& distance,
-                     const ParallelFor& parallel_for);
+                     const SasBoundary& boundary, const ProbeDistance& distance);
 
   /// A surface point near `x` from the patch of `piece` (kind and index, as ClosestPiece reports
   /// the nearest probe position of surface points): the nearest point of that patch's sphere or
@@ -67,11 +65,19 @@ private:
   bool certify_face(const Eigen::Vector3d& y, std::uint32_t i, ClosestPiece& nearest) const;
   bool certify_arc(const Eigen::Vector3d& y, std::uint32_t k, ClosestPiece& nearest) const;
   bool certify_vertex(const Eigen::Vector3d& y, std::uint32_t k, ClosestPiece& nearest) const;
-  /// Whether no listed cutter of the patch (rows `start`, `arc_items`/`vertex_items`) comes
-  /// nearer than the probe radius to `y`.
-  bool clear_of_cutters(const Eigen::Vector3d& y, std::uint32_t k,
-                        const std::vector<std::uint32_t>& start,
-                        const std::vector<std::uint32_t>& items) const;
+  /// Whether no probe position that may cut the torus of arc `k` (`torus`) or the concave
+  /// patch of vertex `k` comes nearer than the probe radius to `y`.
+  bool clear_of_cutters(const Eigen::Vector3d& y, bool torus, std::uint32_t k) const;
+
+  /// The probe positions that may cut a patch, arcs (index << 1) then vertices (index << 1 | 1),
+  /// listed by the first thread that needs them (state 0: not yet, 1: being listed, 2: listed).
+  struct Cutters
+  {
+    std::atomic<std::uint8_t> state{ 0 };
+    std::vector<std::uint32_t> items;
+  };
+  /// Lists the cutters of the torus of arc `k` (`torus`) or of the concave patch of vertex `k`.
+  void list_cutters(bool torus, std::uint32_t k, std::vector<std::uint32_t>& items) const;
 
   const std::vector<Eigen::Vector3d>& centres_;
   const std::vector<double>& atom_radii_;
@@ -81,10 +87,7 @@ private:
   /// Per atom (compressed rows): its arcs and its vertices.
   std::vector<std::uint32_t> atom_arc_start_, atom_arc_items_, atom_vertex_start_,
     atom_vertex_items_;
-  /// Per arc and per vertex (compressed rows): the probe positions that may cut its patch,
-  /// arcs then vertices, each entry (index << 1 | 1 for a vertex).
-  std::vector<std::uint32_t> arc_cutter_start_, arc_cutter_items_, vertex_cutter_start_,
-    vertex_cutter_items_;
+  mutable std::vector<Cutters> arc_cutters_, vertex_cutters_; ///< per arc, per vertex
 };
 
 } // namespace mesolens

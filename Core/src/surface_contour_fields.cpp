@@ -194,8 +194,11 @@ public:
         position = on_segment(outside.position, inside.position,
                               sphere_crossing(outside.position, inside.position, centre, radius));
       }
-      // Kept when no piece is nearer: certified on the piece's patch, else by a search.
-      return this->surface_.pieces.certify(position, kind, index, piece) ||
+      // Kept when no piece is nearer: certified on a convex patch (which needs no list of
+      // cutters: the contour touches most patches, and listing a torus's or concave patch's
+      // costs more than the searches it would save here), else by a search.
+      return (kind == PieceKind::Face &&
+              this->surface_.pieces.certify(position, kind, index, piece)) ||
         this->surface_.holds(*this->local_, position, piece);
     };
     bool placed = along(inside.hint) || along(outside.hint);

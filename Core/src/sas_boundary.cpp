@@ -132,9 +132,10 @@ bool circle_crossings(const Cap& a, const Cap& b, Vec (&points)[2], double* clos
   {
     return false;
   }
+  // Unit vectors already (w and m are orthogonal, |w|^2 + gamma^2 |m|^2 = 1), to rounding.
   const double gamma = std::sqrt(rest / m.squaredNorm());
-  points[0] = (w - gamma * m).normalized();
-  points[1] = (w + gamma * m).normalized();
+  points[0] = w - gamma * m;
+  points[1] = w + gamma * m;
   return true;
 }
 

@@ -299,8 +299,9 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
     };
     if (excluded)
     {
-      // Values matter near the surface only: searches stop two spacings beyond it.
-      const double value_limit = p + 2.0 * spacing;
+      // Values matter near the surface only: searches stop a spacing beyond it (deeper grid
+      // points get that depth, which keeps their sign and the field 1-Lipschitz).
+      const double value_limit = p + spacing;
       field.local = [&, value_limit] {
         return excluded_surface_field(distance, pieces, boundary, centres, atom_radii, p,
                                       value_limit);

@@ -333,7 +333,7 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
     SurfaceProjection projection;
     if (excluded)
     {
-      const double projection_limit = p + 2.0 * spacing;
+      const double projection_limit = p + spacing; // midpoints stray less than a spacing
       projection = [&, projection_limit] {
         return excluded_surface_projection(distance, pieces, boundary, centres, atom_radii, p,
                                            projection_limit);

@@ -22,6 +22,7 @@ constexpr std::int64_t unsplit = -1;
 /// Two corners' surface normals this far apart (cosine) mark a crease; a piece of a split
 /// triangle and a new corner's normal, a fold.
 constexpr double crease_cosine = 0.35;
+constexpr double half_pi = 1.57079632679489661923;
 
 /// An edge that may need a split: the triangle corner it starts from, its midpoint, and the
 /// cube of focus it falls in.
@@ -183,20 +184,31 @@ bool children_face_outwards(const std::array<std::int64_t, 3>& t,
 
 /// Per vertex, whether it belongs to a triangle at a crease: edges there stay, as a split may
 /// fold the mesh through the crease.
-std::vector<char> crease_vertices(const ContourMesh& mesh, const LocalSurfaceProjection& surface)
+std::vector<char> crease_vertices(const ContourMesh& mesh, const LocalSurfaceProjection& surface,
+                                  const ParallelFor& parallel_for)
 {
-  std::vector<char> at_crease(mesh.vertices.size(), 0);
-  for (std::size_t t = 0; t < mesh.triangles.size() / 3; ++t)
-  {
-    const std::int64_t* corner = &mesh.triangles[3 * t];
-    const auto at = [&](int k) -> const ContourVertex& {
-      return mesh.vertices[std::size_t(corner[k])];
-    };
-    const bool crease = at_a_crease(at(0), at(1), at(2), surface);
-    if (crease)
+  // Triangles tested in parallel, their corners marked after.
+  const std::size_t triangle_count = mesh.triangles.size() / 3;
+  std::vector<char> crease(triangle_count, 0);
+  run_parallel(parallel_for, triangle_count, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t)
     {
-      at_crease[std::size_t(corner[0])] = at_crease[std::size_t(corner[1])] =
-        at_crease[std::size_t(corner[2])] = 1;
+      const std::int64_t* corner = &mesh.triangles[3 * t];
+      const auto at = [&](int k) -> const ContourVertex& {
+        return mesh.vertices[std::size_t(corner[k])];
+      };
+      crease[t] = at_a_crease(at(0), at(1), at(2), surface) ? 1 : 0;
+    }
+  });
+  std::vector<char> at_crease(mesh.vertices.size(), 0);
+  for (std::size_t t = 0; t < triangle_count; ++t)
+  {
+    if (crease[t])
+    {
+      for (int k = 0; k < 3; ++k)
+      {
+        at_crease[std::size_t(mesh.triangles[3 * t + std::size_t(k)])] = 1;
+      }
     }
   }
   return at_crease;
@@ -210,7 +222,7 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
   // Crease vertices once: the pieces of cut triangles are checked not to span or lie across
   // a crease themselves.
   const std::unique_ptr<LocalSurfaceProjection> surface = projection();
-  std::vector<char> at_crease = crease_vertices(mesh, *surface);
+  std::vector<char> at_crease = crease_vertices(mesh, *surface, parallel_for);
   for (int round = 0; round < max_rounds; ++round)
   {
     const std::size_t vertex_count = mesh.vertices.size();
@@ -246,9 +258,15 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
           const double gap = local->piece_gap(from, to, middle);
           if (std::isnan(gap))
           {
+            // Kept when length * bend / 8 < tolerance / 2. The bend (angle between the normals)
+            // lies between their chord and pi / 2 times it: most edges are settled without the
+            // arc cosine.
             const double length = (to.position - from.position).norm();
-            const double bend = std::acos(std::clamp(from.normal.dot(to.normal), -1.0, 1.0));
-            if (length * bend / 8.0 < 0.5 * tolerance)
+            const double largest_bend = 4.0 * tolerance / length;
+            const double chord = (from.normal - to.normal).norm();
+            if (chord < largest_bend &&
+                (half_pi * chord < largest_bend ||
+                 std::acos(std::clamp(from.normal.dot(to.normal), -1.0, 1.0)) < largest_bend))
             {
               continue;
             }

@@ -27,6 +27,29 @@ enum class PieceKind : std::uint8_t
   None,   ///< nothing within reach
 };
 
+/// The spheres that carry piece `index` of `kind`: a face's own, an arc's two, a vertex's three,
+/// into `spheres`; returns their count (0 for PieceKind::None).
+inline int piece_spheres(const SasBoundary& boundary, PieceKind kind, std::uint32_t index,
+                         std::array<std::uint32_t, 3>& spheres)
+{
+  switch (kind)
+  {
+    case PieceKind::Face:
+      spheres = { index, index, index };
+      return 1;
+    case PieceKind::Arc:
+      spheres = { boundary.arcs[index].first, boundary.arcs[index].second,
+                  boundary.arcs[index].second };
+      return 2;
+    case PieceKind::Vertex:
+      spheres = boundary.vertices[index].spheres;
+      return 3;
+    case PieceKind::None:
+      break;
+  }
+  return 0;
+}
+
 struct ClosestPiece
 {
   /// Signed distance to the boundary: positive inside the union, capped at the reach.
@@ -153,6 +176,10 @@ public:
   /// The distance from `x` to exposed arc `k` (its ends included).
   double arc_distance(std::uint32_t k, const Eigen::Vector3d& x) const;
 
+  /// Whether the point of arc `k`'s circle at in-plane coordinates (a1, a2) (along e1, e2 from
+  /// its centre) lies on the exposed arc.
+  bool within_span(std::uint32_t k, double a1, double a2) const;
+
   /// Appends to `arcs` (sorted, each once) every arc `filter` admits with an exposed point within
   /// `radius` of `x`, and perhaps a few a little farther.
   void arcs_within(const Eigen::Vector3d& x, double radius, std::vector<std::uint32_t>& arcs,
@@ -190,9 +217,6 @@ private:
     double along, a1, a2, radial, squared;
   };
   ArcFrame arc_frame(std::uint32_t k, const Eigen::Vector3d& x) const;
-  /// Whether the point of arc `k`'s circle at in-plane coordinates (a1, a2) (along e1, e2 from
-  /// its centre) lies on the exposed arc.
-  bool within_span(std::uint32_t k, double a1, double a2) const;
   /// Vertex `k` as the nearest piece when the filter admits it and it is nearer than
   /// `best.distance`: updates `best`.
   void try_vertex(std::uint32_t k, const Eigen::Vector3d& x, const Filter& filter,

@@ -6,13 +6,13 @@
 #include "ses_patches.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace mesolens {
 
 namespace {
 using Vec = Eigen::Vector3d;
-constexpr double two_pi = 6.28318530717958647692;
 /// How far (Å) a point may lie off the sphere or torus it is said to be on.
 constexpr double on_carrier = 1e-9;
 /// How deep (Å) a neighbour may cover a convex point's probe position: as far as the general
@@ -21,6 +21,19 @@ constexpr double covered = 1e-7;
 /// Directions this close to a cone's side count as inside (the side is shared with the
 /// neighbouring patch, which holds the point as well).
 constexpr double side_slack = 1e-12;
+
+/// The point of the sphere about `centre` of `radius` nearest `x` (false at the centre).
+bool onto_sphere(const Vec& x, const Vec& centre, double radius, Vec& point)
+{
+  const Vec offset = x - centre;
+  const double gap = offset.norm();
+  if (!(gap > 0))
+  {
+    return false;
+  }
+  point = centre + (radius / gap) * offset;
+  return true;
+}
 
 /// The point of `arc`'s whole circle nearest `x` (false on the axis).
 bool nearest_on_circle(const SasArc& arc, const Vec& x, Vec& point)
@@ -86,75 +99,38 @@ SesPieceProjection::SesPieceProjection(const std::vector<Vec>& centres,
     this->atom_vertex_start_, this->atom_vertex_items_);
 }
 
-void SesPieceProjection::list_cutters(bool torus, std::uint32_t k,
-                                      std::vector<std::uint32_t>& items) const
+void SesPieceProjection::list_cutters(bool torus, std::uint32_t k, Cutters& cutters) const
 {
-  thread_local std::vector<std::uint32_t> arcs, vertices;
-  arcs.clear();
-  vertices.clear();
+  cutters.arcs.clear();
+  cutters.vertices.clear();
   if (torus)
   {
-    toroidal_patch_cutters(this->centres_, this->probe_, this->boundary_, this->distance_, k, arcs,
-                           vertices);
+    toroidal_patch_cutters(this->centres_, this->probe_, this->boundary_, this->distance_, k,
+                           cutters.arcs, cutters.vertices);
   }
   else
   {
-    concave_patch_cutters(this->centres_, this->probe_, this->boundary_, this->distance_, k, arcs,
-                          vertices);
-  }
-  items.clear();
-  for (const std::uint32_t a : arcs)
-  {
-    items.push_back(a << 1);
-  }
-  for (const std::uint32_t v : vertices)
-  {
-    items.push_back(v << 1 | 1u);
+    concave_patch_cutters(this->centres_, this->probe_, this->boundary_, this->distance_, k,
+                          cutters.arcs, cutters.vertices);
   }
 }
 
 bool SesPieceProjection::nearest(const Vec& x, PieceKind kind, std::uint32_t index, Vec& point,
                                  ClosestPiece& nearest) const
 {
-  const double p = this->probe_;
   switch (kind)
   {
-    case PieceKind::Face: {
-      const Vec offset = x - this->centres_[index];
-      const double gap = offset.norm();
-      if (!(gap > 0))
-      {
-        return false;
-      }
-      point = this->centres_[index] + (this->atom_radii_[index] / gap) * offset;
-      return this->certify_face(point, index, nearest);
-    }
-    case PieceKind::Vertex: {
-      const Vec& centre = this->boundary_.vertices[index].position;
-      const Vec offset = x - centre;
-      const double gap = offset.norm();
-      if (!(gap > 0))
-      {
-        return false;
-      }
-      point = centre + (p / gap) * offset;
-      return this->certify_vertex(point, index, nearest);
-    }
+    case PieceKind::Face:
+      return onto_sphere(x, this->centres_[index], this->atom_radii_[index], point) &&
+        this->certify_face(point, index, nearest);
+    case PieceKind::Vertex:
+      return onto_sphere(x, this->boundary_.vertices[index].position, this->probe_, point) &&
+        this->certify_vertex(point, index, nearest);
     case PieceKind::Arc: {
       // The probe's nearest position on the arc's circle, then radially from it.
       Vec position;
-      if (!nearest_on_circle(this->boundary_.arcs[index], x, position))
-      {
-        return false;
-      }
-      const Vec away = x - position;
-      const double gap = away.norm();
-      if (!(gap > 0))
-      {
-        return false;
-      }
-      point = position + (p / gap) * away;
-      return this->certify_arc(point, index, nearest);
+      return nearest_on_circle(this->boundary_.arcs[index], x, position) &&
+        onto_sphere(x, position, this->probe_, point) && this->certify_arc(point, index, nearest);
     }
     case PieceKind::None:
       break;
@@ -175,29 +151,14 @@ bool SesPieceProjection::nearest_near(const Vec& x, const std::pair<PieceKind, s
   std::uint32_t atoms[6];
   int atom_count = 0;
   const auto add_atoms = [&](const std::pair<PieceKind, std::uint32_t>& piece) {
-    const auto add = [&](std::uint32_t atom) {
-      if (std::find(atoms, atoms + atom_count, atom) == atoms + atom_count)
-      {
-        atoms[atom_count++] = atom;
-      }
-    };
-    switch (piece.first)
+    std::array<std::uint32_t, 3> spheres{};
+    const int count = piece_spheres(this->boundary_, piece.first, piece.second, spheres);
+    for (int c = 0; c < count; ++c)
     {
-      case PieceKind::Face:
-        add(piece.second);
-        break;
-      case PieceKind::Arc:
-        add(this->boundary_.arcs[piece.second].first);
-        add(this->boundary_.arcs[piece.second].second);
-        break;
-      case PieceKind::Vertex:
-        for (const std::uint32_t atom : this->boundary_.vertices[piece.second].spheres)
-        {
-          add(atom);
-        }
-        break;
-      case PieceKind::None:
-        break;
+      if (std::find(atoms, atoms + atom_count, spheres[std::size_t(c)]) == atoms + atom_count)
+      {
+        atoms[atom_count++] = spheres[std::size_t(c)];
+      }
     }
   };
   add_atoms(a);
@@ -304,20 +265,12 @@ bool SesPieceProjection::certify_arc(const Vec& y, std::uint32_t k, ClosestPiece
   {
     return false;
   }
-  const Vec direction = (position - arc.centre) / arc.radius;
   const Vec towards_y = y - position;
-  if (!(std::abs(towards_y.norm() - p) <= on_carrier))
+  const Vec radial = position - arc.centre;
+  if (!(std::abs(towards_y.norm() - p) <= on_carrier) ||
+      !this->distance_.within_span(k, radial.dot(arc.e1), radial.dot(arc.e2)))
   {
     return false;
-  }
-  if (arc.span < two_pi)
-  {
-    double azimuth = std::atan2(direction.dot(arc.e2), direction.dot(arc.e1)) - arc.start;
-    azimuth -= two_pi * std::floor(azimuth / two_pi);
-    if (!(azimuth <= arc.span + side_slack || azimuth >= two_pi - side_slack))
-    {
-      return false;
-    }
   }
   // Between the directions to the two atoms (all three lie in the plane of the axis and y).
   const Vec to_first = (this->centres_[arc.first] - position).normalized();
@@ -372,29 +325,34 @@ bool SesPieceProjection::clear_of_cutters(const Vec& y, bool torus, std::uint32_
 {
   // Listed once, by whichever thread comes first; one that finds the list being made lists its
   // own copy (the same) rather than wait.
-  Cutters& cutters = (torus ? this->arc_cutters_ : this->vertex_cutters_)[k];
-  const std::vector<std::uint32_t>* items = &cutters.items;
-  thread_local std::vector<std::uint32_t> own;
-  std::uint8_t state = cutters.state.load(std::memory_order_acquire);
+  Cutters& shared = (torus ? this->arc_cutters_ : this->vertex_cutters_)[k];
+  const Cutters* cutters = &shared;
+  thread_local Cutters own;
+  std::uint8_t state = shared.state.load(std::memory_order_acquire);
   if (state != 2)
   {
-    if (state == 0 && cutters.state.compare_exchange_strong(state, 1, std::memory_order_acq_rel))
+    if (state == 0 && shared.state.compare_exchange_strong(state, 1, std::memory_order_acq_rel))
     {
-      this->list_cutters(torus, k, cutters.items);
-      cutters.state.store(2, std::memory_order_release);
+      this->list_cutters(torus, k, shared);
+      shared.state.store(2, std::memory_order_release);
     }
     else if (state != 2)
     {
       this->list_cutters(torus, k, own);
-      items = &own;
+      cutters = &own;
     }
   }
   const double least = this->probe_ - covered;
-  for (const std::uint32_t item : *items)
+  for (const std::uint32_t arc : cutters->arcs)
   {
-    const double gap = (item & 1u) ? (y - this->boundary_.vertices[item >> 1].position).norm()
-                                   : this->distance_.arc_distance(item >> 1, y);
-    if (gap < least)
+    if (this->distance_.arc_distance(arc, y) < least)
+    {
+      return false;
+    }
+  }
+  for (const std::uint32_t vertex : cutters->vertices)
+  {
+    if ((y - this->boundary_.vertices[vertex].position).norm() < least)
     {
       return false;
     }

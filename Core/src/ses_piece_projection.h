@@ -68,15 +68,15 @@ private:
   /// patch of vertex `k` comes nearer than the probe radius to `y`.
   bool clear_of_cutters(const Eigen::Vector3d& y, bool torus, std::uint32_t k) const;
 
-  /// The probe positions that may cut a patch, arcs (index << 1) then vertices (index << 1 | 1),
-  /// listed by the first thread that needs them (state 0: not yet, 1: being listed, 2: listed).
+  /// The probe positions that may cut a patch (arcs, vertices), listed by the first thread that
+  /// needs them (state 0: not yet, 1: being listed, 2: listed).
   struct Cutters
   {
     std::atomic<std::uint8_t> state{ 0 };
-    std::vector<std::uint32_t> items;
+    std::vector<std::uint32_t> arcs, vertices;
   };
   /// Lists the cutters of the torus of arc `k` (`torus`) or of the concave patch of vertex `k`.
-  void list_cutters(bool torus, std::uint32_t k, std::vector<std::uint32_t>& items) const;
+  void list_cutters(bool torus, std::uint32_t k, Cutters& cutters) const;
 
   const std::vector<Eigen::Vector3d>& centres_;
   const std::vector<double>& atom_radii_;

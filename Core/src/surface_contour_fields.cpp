@@ -37,25 +37,15 @@ ContourVertex excluded_vertex(const Vec& position, const ClosestPiece& piece,
   const Vec towards_probe = piece.point - position;
   vertex.normal = towards_probe.norm() > 0 ? Vec(towards_probe.normalized()) : Vec::UnitZ();
   vertex.piece = piece.index;
+  // Anything but an arc or a vertex counts as a face (as when no piece was within reach).
+  const PieceKind kind =
+    piece.kind == PieceKind::Arc || piece.kind == PieceKind::Vertex ? piece.kind : PieceKind::Face;
+  vertex.patch = static_cast<std::uint8_t>(
+    kind == PieceKind::Arc
+      ? SurfacePatch::Toroidal
+      : (kind == PieceKind::Vertex ? SurfacePatch::Concave : SurfacePatch::Convex));
   std::array<std::uint32_t, 3> candidates{};
-  int candidate_count = 0;
-  switch (piece.kind)
-  {
-    case PieceKind::Arc:
-      vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Toroidal);
-      candidates = { boundary.arcs[piece.index].first, boundary.arcs[piece.index].second, 0 };
-      candidate_count = 2;
-      break;
-    case PieceKind::Vertex:
-      vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Concave);
-      candidates = boundary.vertices[piece.index].spheres;
-      candidate_count = 3;
-      break;
-    default:
-      vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Convex);
-      candidates = { piece.index, 0, 0 };
-      candidate_count = 1;
-  }
+  const int candidate_count = piece_spheres(boundary, kind, piece.index, candidates);
   double nearest = 1e300;
   for (int c = 0; c < candidate_count; ++c)
   {
@@ -385,17 +375,9 @@ public:
       return true;
     }
     const auto atoms_of = [&](const ContourVertex& v) {
-      switch (piece_kind(v.patch))
-      {
-        case PieceKind::Arc: {
-          const SasArc& arc = this->surface_.boundary.arcs[v.piece];
-          return std::array<std::uint32_t, 3>{ arc.first, arc.second, arc.second };
-        }
-        case PieceKind::Vertex:
-          return this->surface_.boundary.vertices[v.piece].spheres;
-        default:
-          return std::array<std::uint32_t, 3>{ v.piece, v.piece, v.piece };
-      }
+      std::array<std::uint32_t, 3> atoms{};
+      piece_spheres(this->surface_.boundary, piece_kind(v.patch), v.piece, atoms);
+      return atoms;
     };
     const auto among = [](const std::array<std::uint32_t, 3>& some,
                           const std::array<std::uint32_t, 3>& all) {

@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -223,11 +224,18 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
   // a crease themselves.
   const std::unique_ptr<LocalSurfaceProjection> surface = projection();
   std::vector<char> at_crease = crease_vertices(mesh, *surface, parallel_for);
-  for (int round = 0; round < max_rounds; ++round)
+  // The triangles to look at, in increasing order: every one at first, then those the last
+  // round cut, which hold every edge with a new end (the only edges left to look at).
+  std::vector<std::size_t> active(mesh.triangles.size() / 3);
+  std::iota(active.begin(), active.end(), std::size_t(0));
+  for (int round = 0; round < max_rounds && !active.empty(); ++round)
   {
     const std::size_t vertex_count = mesh.vertices.size();
     const std::size_t triangle_count = mesh.triangles.size() / 3;
-    const std::size_t chunks = (triangle_count + chunk_triangles - 1) / chunk_triangles;
+    const std::size_t chunks = (active.size() + chunk_triangles - 1) / chunk_triangles;
+    const auto chunk_end = [&](std::size_t chunk) {
+      return std::min(active.size(), (chunk + 1) * chunk_triangles);
+    };
     at_crease.resize(vertex_count, 0);
     std::vector<ChunkSplits> splits(chunks);
     run_parallel(parallel_for, chunks, [&](std::size_t begin, std::size_t end) {
@@ -236,46 +244,48 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
       for (std::size_t chunk = begin; chunk < end; ++chunk)
       {
         candidates.clear();
-        const std::size_t last = 3 * std::min(triangle_count, (chunk + 1) * chunk_triangles);
-        for (std::size_t corner = 3 * chunk * chunk_triangles; corner < last; ++corner)
+        for (std::size_t k = chunk * chunk_triangles; k < chunk_end(chunk); ++k)
         {
-          // Each edge once, from the side where it runs upwards; edges made before the last
-          // round (both ends older) were looked at then.
-          const std::int64_t a = mesh.triangles[corner];
-          const std::int64_t b = mesh.triangles[corner - corner % 3 + (corner + 1) % 3];
-          if (a > b || std::size_t(b) < first_new || at_crease[std::size_t(a)] ||
-              at_crease[std::size_t(b)])
+          for (std::size_t corner = 3 * active[k]; corner < 3 * active[k] + 3; ++corner)
           {
-            continue;
-          }
-          const ContourVertex& from = mesh.vertices[std::size_t(a)];
-          const ContourVertex& to = mesh.vertices[std::size_t(b)];
-          const Vec middle = 0.5 * (from.position + to.position);
-          if (!local)
-          {
-            local = projection();
-          }
-          const double gap = local->piece_gap(from, to, middle);
-          if (std::isnan(gap))
-          {
-            // Kept when length * bend / 8 < tolerance / 2. The bend (angle between the normals)
-            // lies between their chord and pi / 2 times it: most edges are settled without the
-            // arc cosine.
-            const double length = (to.position - from.position).norm();
-            const double largest_bend = 4.0 * tolerance / length;
-            const double chord = (from.normal - to.normal).norm();
-            if (chord < largest_bend &&
-                (half_pi * chord < largest_bend ||
-                 std::acos(std::clamp(from.normal.dot(to.normal), -1.0, 1.0)) < largest_bend))
+            // Each edge once, from the side where it runs upwards; edges made before the last
+            // round (both ends older) were looked at then.
+            const std::int64_t a = mesh.triangles[corner];
+            const std::int64_t b = mesh.triangles[corner - corner % 3 + (corner + 1) % 3];
+            if (a > b || std::size_t(b) < first_new || at_crease[std::size_t(a)] ||
+                at_crease[std::size_t(b)])
             {
               continue;
             }
+            const ContourVertex& from = mesh.vertices[std::size_t(a)];
+            const ContourVertex& to = mesh.vertices[std::size_t(b)];
+            const Vec middle = 0.5 * (from.position + to.position);
+            if (!local)
+            {
+              local = projection();
+            }
+            const double gap = local->piece_gap(from, to, middle);
+            if (std::isnan(gap))
+            {
+              // Kept when length * bend / 8 < tolerance / 2. The bend (angle between the
+              // normals) lies between their chord and pi / 2 times it: most edges are settled
+              // without the arc cosine.
+              const double length = (to.position - from.position).norm();
+              const double largest_bend = 4.0 * tolerance / length;
+              const double chord = (from.normal - to.normal).norm();
+              if (chord < largest_bend &&
+                  (half_pi * chord < largest_bend ||
+                   std::acos(std::clamp(from.normal.dot(to.normal), -1.0, 1.0)) < largest_bend))
+              {
+                continue;
+              }
+            }
+            else if (gap <= tolerance)
+            {
+              continue;
+            }
+            candidates.push_back({ corner, middle, {} });
           }
-          else if (gap <= tolerance)
-          {
-            continue;
-          }
-          candidates.push_back({ corner, middle, {} });
         }
         if (candidates.empty())
         {
@@ -333,23 +343,33 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
         }
       }
     });
-    // The splits, their vertices appended for now; then those whose pieces would fold the
-    // mesh are dropped, with every split of their triangle, until none would.
-    std::vector<Split> proposed;
-    for (ChunkSplits& chunk : splits)
+    // The splits, their vertices appended for now (chunk by chunk); then those whose pieces
+    // would fold the mesh are dropped, with every split of their triangle, until none would.
+    std::vector<std::size_t> first_split(chunks + 1, 0);
+    for (std::size_t chunk = 0; chunk < chunks; ++chunk)
     {
-      for (std::size_t k = 0; k < chunk.edges.size(); ++k)
-      {
-        proposed.push_back(
-          { chunk.edges[k].first, chunk.edges[k].second, std::int64_t(mesh.vertices.size()) });
-        mesh.vertices.push_back(chunk.vertices[k]);
-      }
-      chunk = {};
+      first_split[chunk + 1] = first_split[chunk] + splits[chunk].edges.size();
     }
-    if (proposed.empty())
+    if (first_split[chunks] == 0)
     {
       break;
     }
+    std::vector<Split> proposed(first_split[chunks]);
+    mesh.vertices.resize(vertex_count + proposed.size());
+    run_parallel(parallel_for, chunks, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t chunk = begin; chunk < end; ++chunk)
+      {
+        ChunkSplits& own = splits[chunk];
+        for (std::size_t k = 0; k < own.edges.size(); ++k)
+        {
+          const std::size_t at = first_split[chunk] + k;
+          proposed[at] = { own.edges[k].first, own.edges[k].second,
+                           std::int64_t(vertex_count + at) };
+          mesh.vertices[vertex_count + at] = own.vertices[k];
+        }
+        own = {};
+      }
+    });
     // Split k's vertex is vertex_count + k; it stays while kept[k].
     std::vector<char> kept(proposed.size(), 1);
     const SplitEdges proposed_edges(proposed, vertex_count);
@@ -394,9 +414,9 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
       std::vector<std::int64_t> children;
       for (std::size_t chunk = begin; chunk < end; ++chunk)
       {
-        const std::size_t last = std::min(triangle_count, (chunk + 1) * chunk_triangles);
-        for (std::size_t t = chunk * chunk_triangles; t < last; ++t)
+        for (std::size_t k = chunk * chunk_triangles; k < chunk_end(chunk); ++k)
         {
+          const std::size_t t = active[k];
           const auto middles = middles_of(t);
           if (middles[0] == unsplit && middles[1] == unsplit && middles[2] == unsplit)
           {
@@ -470,15 +490,17 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
       break;
     }
     // Each cut triangle's first piece takes its place, the others follow the mesh's triangles
-    // chunk by chunk (so that consecutive triangles stay close together).
+    // chunk by chunk (so that consecutive triangles stay close together); all of them are
+    // the next round's.
     std::vector<std::vector<std::int64_t>> added(chunks);
+    std::vector<std::vector<std::size_t>> cut(chunks);
     run_parallel(parallel_for, chunks, [&](std::size_t begin, std::size_t end) {
       std::vector<std::int64_t> pieces;
       for (std::size_t chunk = begin; chunk < end; ++chunk)
       {
-        const std::size_t last = std::min(triangle_count, (chunk + 1) * chunk_triangles);
-        for (std::size_t t = chunk * chunk_triangles; t < last; ++t)
+        for (std::size_t k = chunk * chunk_triangles; k < chunk_end(chunk); ++k)
         {
+          const std::size_t t = active[k];
           std::array<std::int64_t, 3> middles = middles_of(t);
           if (middles[0] == unsplit && middles[1] == unsplit && middles[2] == unsplit)
           {
@@ -494,21 +516,34 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
           cut_triangle(corners, middles, mesh.vertices, pieces);
           std::copy(pieces.begin(), pieces.begin() + 3, corner);
           added[chunk].insert(added[chunk].end(), pieces.begin() + 3, pieces.end());
+          cut[chunk].push_back(t);
         }
       }
     });
-    std::vector<std::size_t> offset(chunks + 1, mesh.triangles.size());
+    std::vector<std::size_t> offset(chunks + 1, mesh.triangles.size()), first_cut(chunks + 1, 0);
     for (std::size_t chunk = 0; chunk < chunks; ++chunk)
     {
       offset[chunk + 1] = offset[chunk] + added[chunk].size();
+      first_cut[chunk + 1] = first_cut[chunk] + cut[chunk].size();
     }
     mesh.triangles.resize(offset[chunks]);
+    // Cut triangles keep their indices, below every added one: in increasing order again.
+    active.resize(first_cut[chunks] + (offset[chunks] - 3 * triangle_count) / 3);
     run_parallel(parallel_for, chunks, [&](std::size_t begin, std::size_t end) {
       for (std::size_t chunk = begin; chunk < end; ++chunk)
       {
         std::copy(added[chunk].begin(), added[chunk].end(),
                   mesh.triangles.begin() + std::ptrdiff_t(offset[chunk]));
+        std::copy(cut[chunk].begin(), cut[chunk].end(),
+                  active.begin() + std::ptrdiff_t(first_cut[chunk]));
+        const std::size_t first_added =
+          first_cut[chunks] + (offset[chunk] - 3 * triangle_count) / 3;
+        for (std::size_t k = 0; k < added[chunk].size() / 3; ++k)
+        {
+          active[first_added + k] = offset[chunk] / 3 + k;
+        }
         added[chunk] = {};
+        cut[chunk] = {};
       }
     });
     first_new = vertex_count;

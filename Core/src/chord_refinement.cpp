@@ -3,6 +3,8 @@
 
 #include "chord_refinement.h"
 
+#include "balanced_loop.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -238,109 +240,112 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
     };
     at_crease.resize(vertex_count, 0);
     std::vector<ChunkSplits> splits(chunks);
-    run_parallel(parallel_for, chunks, [&](std::size_t begin, std::size_t end) {
+    // Chunks differ widely in cost (most edges need no projection): taken one at a time.
+    struct ChunkState
+    {
       std::unique_ptr<LocalSurfaceProjection> local;
       std::vector<Candidate> candidates;
-      for (std::size_t chunk = begin; chunk < end; ++chunk)
+    };
+    run_balanced<ChunkState>(parallel_for, chunks, [&](std::size_t chunk, ChunkState& state) {
+      std::unique_ptr<LocalSurfaceProjection>& local = state.local;
+      std::vector<Candidate>& candidates = state.candidates;
+      candidates.clear();
+      for (std::size_t k = chunk * chunk_triangles; k < chunk_end(chunk); ++k)
       {
-        candidates.clear();
-        for (std::size_t k = chunk * chunk_triangles; k < chunk_end(chunk); ++k)
+        for (std::size_t corner = 3 * active[k]; corner < 3 * active[k] + 3; ++corner)
         {
-          for (std::size_t corner = 3 * active[k]; corner < 3 * active[k] + 3; ++corner)
+          // Each edge once, from the side where it runs upwards; edges made before the last
+          // round (both ends older) were looked at then.
+          const std::int64_t a = mesh.triangles[corner];
+          const std::int64_t b = mesh.triangles[corner - corner % 3 + (corner + 1) % 3];
+          if (a > b || std::size_t(b) < first_new || at_crease[std::size_t(a)] ||
+              at_crease[std::size_t(b)])
           {
-            // Each edge once, from the side where it runs upwards; edges made before the last
-            // round (both ends older) were looked at then.
-            const std::int64_t a = mesh.triangles[corner];
-            const std::int64_t b = mesh.triangles[corner - corner % 3 + (corner + 1) % 3];
-            if (a > b || std::size_t(b) < first_new || at_crease[std::size_t(a)] ||
-                at_crease[std::size_t(b)])
+            continue;
+          }
+          const ContourVertex& from = mesh.vertices[std::size_t(a)];
+          const ContourVertex& to = mesh.vertices[std::size_t(b)];
+          const Vec middle = 0.5 * (from.position + to.position);
+          if (!local)
+          {
+            local = projection();
+          }
+          const double gap = local->piece_gap(from, to, middle);
+          if (std::isnan(gap))
+          {
+            // Kept when length * bend / 8 < tolerance / 2. The bend (angle between the
+            // normals) lies between their chord and pi / 2 times it: most edges are settled
+            // without the arc cosine.
+            const double length = (to.position - from.position).norm();
+            const double largest_bend = 4.0 * tolerance / length;
+            const double chord = (from.normal - to.normal).norm();
+            if (chord < largest_bend &&
+                (half_pi * chord < largest_bend ||
+                 std::acos(std::clamp(from.normal.dot(to.normal), -1.0, 1.0)) < largest_bend))
             {
               continue;
             }
-            const ContourVertex& from = mesh.vertices[std::size_t(a)];
-            const ContourVertex& to = mesh.vertices[std::size_t(b)];
-            const Vec middle = 0.5 * (from.position + to.position);
-            if (!local)
-            {
-              local = projection();
-            }
-            const double gap = local->piece_gap(from, to, middle);
-            if (std::isnan(gap))
-            {
-              // Kept when length * bend / 8 < tolerance / 2. The bend (angle between the
-              // normals) lies between their chord and pi / 2 times it: most edges are settled
-              // without the arc cosine.
-              const double length = (to.position - from.position).norm();
-              const double largest_bend = 4.0 * tolerance / length;
-              const double chord = (from.normal - to.normal).norm();
-              if (chord < largest_bend &&
-                  (half_pi * chord < largest_bend ||
-                   std::acos(std::clamp(from.normal.dot(to.normal), -1.0, 1.0)) < largest_bend))
-              {
-                continue;
-              }
-            }
-            else if (gap <= tolerance)
-            {
-              continue;
-            }
-            candidates.push_back({ corner, middle, {} });
           }
-        }
-        if (candidates.empty())
-        {
-          continue;
-        }
-        // Grouped by cube of focus_size, each group projected under one focus: the ball of its
-        // midpoints, a little wider for the projections (points that leave it are answered
-        // from the whole surface, as exactly).
-        for (Candidate& candidate : candidates)
-        {
-          const Vec cube = (candidate.middle / focus_size).array().floor();
-          for (int a = 0; a < 3; ++a)
+          else if (gap <= tolerance)
           {
-            candidate.cube[a] = static_cast<std::int64_t>(cube[a]);
+            continue;
           }
+          candidates.push_back({ corner, middle, {} });
         }
-        std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
-          return std::tie(x.cube, x.corner) < std::tie(y.cube, y.corner);
-        });
-        ChunkSplits& out = splits[chunk];
-        for (std::size_t first = 0; first < candidates.size();)
+      }
+      if (candidates.empty())
+      {
+        return;
+      }
+      // Grouped by cube of focus_size, each group projected under one focus: the ball of its
+      // midpoints, a little wider for the projections (points that leave it are answered
+      // from the whole surface, as exactly).
+      for (Candidate& candidate : candidates)
+      {
+        const Vec cube = (candidate.middle / focus_size).array().floor();
+        for (int a = 0; a < 3; ++a)
         {
-          std::size_t last = first;
-          Vec low = candidates[first].middle, high = low;
-          while (last < candidates.size() && candidates[last].cube == candidates[first].cube)
-          {
-            low = low.cwiseMin(candidates[last].middle);
-            high = high.cwiseMax(candidates[last].middle);
-            ++last;
-          }
-          local->focus(0.5 * (low + high), 0.5 * (high - low).norm() + 0.1 * focus_size);
-          for (std::size_t k = first; k < last; ++k)
-          {
-            const std::size_t corner = candidates[k].corner;
-            const Vec& middle = candidates[k].middle;
-            const std::int64_t a = mesh.triangles[corner];
-            const std::int64_t b = mesh.triangles[corner - corner % 3 + (corner + 1) % 3];
-            const ContourVertex& from = mesh.vertices[std::size_t(a)];
-            const ContourVertex& to = mesh.vertices[std::size_t(b)];
-            ContourVertex vertex;
-            if (!local->project_between(middle, from, to, vertex))
-            {
-              continue;
-            }
-            const double deviation = (vertex.position - middle).norm();
-            const double half = 0.5 * (to.position - from.position).norm();
-            if (deviation > tolerance && deviation < half && vertex.normal.dot(from.normal) > 0 &&
-                vertex.normal.dot(to.normal) > 0)
-            {
-              out.vertices.push_back(vertex);
-              out.edges.emplace_back(a, b);
-            }
-          }
-          first = last;
+          candidate.cube[a] = static_cast<std::int64_t>(cube[a]);
         }
+      }
+      std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
+        return std::tie(x.cube, x.corner) < std::tie(y.cube, y.corner);
+      });
+      ChunkSplits& out = splits[chunk];
+      for (std::size_t first = 0; first < candidates.size();)
+      {
+        std::size_t last = first;
+        Vec low = candidates[first].middle, high = low;
+        while (last < candidates.size() && candidates[last].cube == candidates[first].cube)
+        {
+          low = low.cwiseMin(candidates[last].middle);
+          high = high.cwiseMax(candidates[last].middle);
+          ++last;
+        }
+        local->focus(0.5 * (low + high), 0.5 * (high - low).norm() + 0.1 * focus_size);
+        for (std::size_t k = first; k < last; ++k)
+        {
+          const std::size_t corner = candidates[k].corner;
+          const Vec& middle = candidates[k].middle;
+          const std::int64_t a = mesh.triangles[corner];
+          const std::int64_t b = mesh.triangles[corner - corner % 3 + (corner + 1) % 3];
+          const ContourVertex& from = mesh.vertices[std::size_t(a)];
+          const ContourVertex& to = mesh.vertices[std::size_t(b)];
+          ContourVertex vertex;
+          if (!local->project_between(middle, from, to, vertex))
+          {
+            continue;
+          }
+          const double deviation = (vertex.position - middle).norm();
+          const double half = 0.5 * (to.position - from.position).norm();
+          if (deviation > tolerance && deviation < half && vertex.normal.dot(from.normal) > 0 &&
+              vertex.normal.dot(to.normal) > 0)
+          {
+            out.vertices.push_back(vertex);
+            out.edges.emplace_back(a, b);
+          }
+        }
+        first = last;
       }
     });
     // The splits, their vertices appended for now (chunk by chunk); then those whose pieces

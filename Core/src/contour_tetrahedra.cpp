@@ -3,6 +3,8 @@
 
 #include "contour_tetrahedra.h"
 
+#include "balanced_loop.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -289,12 +291,9 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
   for (std::size_t first = 0; first < block_count; first += round)
   {
     const std::size_t count = std::min(round, block_count - first);
-    run_parallel(parallel_for, count, [&](std::size_t begin, std::size_t end) {
-      BlockBuffers buffers;
-      for (std::size_t k = begin; k < end; ++k)
-      {
-        run_block(first + k, buffers);
-      }
+    // Blocks the surface crosses cost far more than the others: taken one at a time.
+    run_balanced<BlockBuffers>(parallel_for, count, [&](std::size_t k, BlockBuffers& buffers) {
+      run_block(first + k, buffers);
     });
     if (progress)
     {

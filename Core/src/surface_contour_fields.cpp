@@ -110,13 +110,11 @@ public:
     }
     if (single_cell && level > 0)
     {
-      // A cell asks few queries: its parent's pieces serve them, unrefined.
-      const LocalPieces& parent = this->levels_[static_cast<std::size_t>(level) - 1];
-      this->local_ = &parent;
-      // Whether the distance lies within the radius of the probe's: no need to look farther.
-      const double beyond = this->surface_.probe + radius * (1.0 + 1e-9);
-      return std::abs(this->surface_.distance.closest(parent, centre, {}, beyond).distance -
-                      this->surface_.probe) <= radius;
+      // A cell asks few queries: its parent's pieces serve them, unrefined. Its corners are
+      // shared with the cells beside it, so testing whether the surface passes costs more than
+      // the corners it would save.
+      this->local_ = &this->levels_[static_cast<std::size_t>(level) - 1];
+      return true;
     }
     LocalPieces& local = this->levels_[static_cast<std::size_t>(level)];
     if (level == 0)

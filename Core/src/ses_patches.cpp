@@ -523,6 +523,7 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
   out.arc_area.assign(arcs.size(), 0.0);
   out.arc_volume.assign(arcs.size(), 0.0);
   std::vector<char> arc_singular(arcs.size(), 0);
+  out.arc_uncut.assign(arcs.size(), 1);
   run_parallel(parallel_for, arcs.size(), [&](std::size_t begin, std::size_t end) {
     CutterSearch search; // reused by the patches of this range
     for (std::size_t k = begin; k < end; ++k)
@@ -548,6 +549,10 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
                 return torus_clear_of_position(piece, other.position);
               },
               search);
+          if (may_be_cut)
+          {
+            out.arc_uncut[k] = 0;
+          }
           const Integral kept =
             may_be_cut ? split_torus(splitter, torus, phi0, phi1, t0, t1, 0) : whole;
           if (std::abs(kept.area - whole.area) > 1e-12 * std::max(1.0, whole.area))
@@ -564,6 +569,7 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
   out.vertex_area.assign(vertices.size(), 0.0);
   out.vertex_volume.assign(vertices.size(), 0.0);
   std::vector<char> vertex_singular(vertices.size(), 0);
+  out.vertex_uncut.assign(vertices.size(), 0);
   run_parallel(parallel_for, vertices.size(), [&](std::size_t begin, std::size_t end) {
     CutterSearch search; // reused by the patches of this range
     CapsByDepth caps_by_depth;
@@ -593,6 +599,9 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
           [&](const SasArc& other) { return concave_clear_of_arc(v, p, triangle, other); },
           [](const SasVertex&) { return false; }, search);
       const Splitter splitter{ &distance, &foreign, p, may_be_cut ? &search.cutters : nullptr };
+      // Uncut: no foreign arc may reach it and no other probe's cap meets it.
+      out.vertex_uncut[k] =
+        !may_be_cut && caps_meeting(triangle, caps, unit_caps) && unit_caps.empty() ? 1 : 0;
       Integral patch;
       if (may_be_cut || !uncovered_concave(v, p, u, triangle, caps, unit_caps, patch))
       {

@@ -21,6 +21,10 @@ struct SesPatchIntegrals
   std::vector<double> face_area, arc_area, vertex_area;
   std::vector<double> face_volume, arc_volume, vertex_volume;
   std::size_t singular_count = 0; ///< patches integrated numerically because something cuts them
+  /// Per arc (toroidal patch) and per vertex (concave patch): 1 when no probe position but the
+  /// patch's own comes within the probe radius of it (certified): the patch is whole, and each
+  /// of its points lies on the surface.
+  std::vector<char> arc_uncut, vertex_uncut;
 };
 
 /// The patches of probe `probe` (> 0) rolling over atoms `centres` with radii `atom_radii`;

@@ -99,6 +99,40 @@ SesPieceProjection::SesPieceProjection(const std::vector<Vec>& centres,
     this->atom_vertex_start_, this->atom_vertex_items_);
 }
 
+void SesPieceProjection::take_uncut_patches(const std::vector<char>& arc_uncut,
+                                            const std::vector<char>& vertex_uncut)
+{
+  const auto take = [](const std::vector<char>& uncut, std::vector<Cutters>& lists) {
+    for (std::size_t k = 0; k < std::min(uncut.size(), lists.size()); ++k)
+    {
+      if (uncut[k])
+      {
+        lists[k].arcs.clear();
+        lists[k].vertices.clear();
+        lists[k].state.store(2, std::memory_order_release);
+      }
+    }
+  };
+  take(arc_uncut, this->arc_cutters_);
+  take(vertex_uncut, this->vertex_cutters_);
+}
+
+bool SesPieceProjection::certifies_at_once(PieceKind kind, std::uint32_t index) const
+{
+  switch (kind)
+  {
+    case PieceKind::Face:
+      return true;
+    case PieceKind::Arc:
+      return this->arc_cutters_[index].state.load(std::memory_order_acquire) == 2;
+    case PieceKind::Vertex:
+      return this->vertex_cutters_[index].state.load(std::memory_order_acquire) == 2;
+    case PieceKind::None:
+      break;
+  }
+  return false;
+}
+
 void SesPieceProjection::list_cutters(bool torus, std::uint32_t k, Cutters& cutters) const
 {
   cutters.arcs.clear();

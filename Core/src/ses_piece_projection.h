@@ -60,6 +60,16 @@ public:
   bool certify(const Eigen::Vector3d& y, PieceKind kind, std::uint32_t index,
                ClosestPiece& nearest) const;
 
+  /// Whether certify() can answer for the piece without listing what may cut its patch: a face,
+  /// or a patch whose list is made or known empty.
+  bool certifies_at_once(PieceKind kind, std::uint32_t index) const;
+
+  /// Takes, per arc and per vertex, whether nothing cuts the patch (as ses_patch_integrals()
+  /// certifies it: SesPatchIntegrals::arc_uncut, vertex_uncut): those need no list. Call before
+  /// any other use.
+  void take_uncut_patches(const std::vector<char>& arc_uncut,
+                          const std::vector<char>& vertex_uncut);
+
 private:
   bool certify_face(const Eigen::Vector3d& y, std::uint32_t i, ClosestPiece& nearest) const;
   bool certify_arc(const Eigen::Vector3d& y, std::uint32_t k, ClosestPiece& nearest) const;

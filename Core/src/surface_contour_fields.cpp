@@ -182,10 +182,11 @@ public:
         position = on_segment(outside.position, inside.position,
                               sphere_crossing(outside.position, inside.position, centre, radius));
       }
-      // Kept when no piece is nearer: certified on a convex patch (which needs no list of
-      // cutters: the contour touches most patches, and listing a torus's or concave patch's
-      // costs more than the searches it would save here), else by a search.
-      return (kind == PieceKind::Face &&
+      // Kept when no piece is nearer: certified on its patch when that needs no new list of
+      // cutters (a convex patch, or one known uncut: the contour touches most patches, and
+      // listing a torus's or concave patch's costs more than the searches it would save here),
+      // else by a search.
+      return (this->surface_.pieces.certifies_at_once(kind, index) &&
               this->surface_.pieces.certify(position, kind, index, piece)) ||
         this->surface_.holds(*this->local_, position, piece);
     };

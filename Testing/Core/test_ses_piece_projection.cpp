@@ -5,6 +5,7 @@
 // surface must be certified (else the speed-up is gone).
 #include "probe_distance.h"
 #include "sas_boundary.h"
+#include "ses_patches.h"
 #include "ses_piece_projection.h"
 
 #include "mesolens/elements.h"
@@ -53,6 +54,22 @@ struct Surface
                                                                this->boundary, 3.0 * probe);
     this->pieces = std::make_unique<mesolens::SesPieceProjection>(
       this->centres, this->atom_radii, probe, this->boundary, *this->distance);
+  }
+
+  /// The patch integrals' word on which patches nothing cuts, handed to the projections.
+  mesolens::SesPatchIntegrals take_uncut_patches()
+  {
+    double largest = 0;
+    for (const double r : this->inflated)
+    {
+      largest = std::max(largest, r);
+    }
+    const mesolens::ProbeDistance patch_distance(this->centres, this->inflated, this->boundary,
+                                                 2.0 * probe + largest);
+    mesolens::SesPatchIntegrals patches = mesolens::ses_patch_integrals(
+      this->centres, this->atom_radii, probe, this->boundary, patch_distance, {});
+    this->pieces->take_uncut_patches(patches.arc_uncut, patches.vertex_uncut);
+    return patches;
   }
 
   /// Whether `y` lies on the surface by the general search (its nearest probe position the
@@ -171,23 +188,11 @@ double check_against_search(const Surface& surface, const std::vector<Vec>& poin
   return inside > 0 ? double(certified) / double(inside) : 0.0;
 }
 
-TEST(SesPieceProjection, CertifiedPointsOfCrambinLieOnItsSurface)
+/// Atoms packed so that the probe passes between pairs (self-intersecting tori) and probes
+/// between triples overlap: the singular cases.
+std::vector<Vec> packed_atoms(std::vector<double>& radii)
 {
-  std::vector<double> radii;
-  const std::vector<Vec> atoms = protein_atoms("proteins/1crn.pdb", radii);
-  const Surface surface(atoms, radii, mesolens_test::two_threads());
-  ASSERT_GT(surface.boundary.vertices.size(), 100u);
-  const double certified = check_against_search(surface, points_near(surface, 12, 7));
-  // Most points are certified: the cheap path does the work.
-  EXPECT_GT(certified, 0.8);
-}
-
-TEST(SesPieceProjection, PinchedToriAndOverlappingProbesAreCut)
-{
-  // Atoms close enough for the probe to pass between pairs (self-intersecting tori) and
-  // packed so that probes between triples overlap: the singular cases.
   std::vector<Vec> atoms;
-  std::vector<double> radii;
   std::mt19937 random(11);
   std::uniform_real_distribution<double> coordinate(-4.0, 4.0), radius(1.2, 1.9);
   while (atoms.size() < 40)
@@ -204,6 +209,24 @@ TEST(SesPieceProjection, PinchedToriAndOverlappingProbesAreCut)
       radii.push_back(radius(random));
     }
   }
+  return atoms;
+}
+
+TEST(SesPieceProjection, CertifiedPointsOfCrambinLieOnItsSurface)
+{
+  std::vector<double> radii;
+  const std::vector<Vec> atoms = protein_atoms("proteins/1crn.pdb", radii);
+  const Surface surface(atoms, radii, mesolens_test::two_threads());
+  ASSERT_GT(surface.boundary.vertices.size(), 100u);
+  const double certified = check_against_search(surface, points_near(surface, 12, 7));
+  // Most points are certified: the cheap path does the work.
+  EXPECT_GT(certified, 0.8);
+}
+
+TEST(SesPieceProjection, PinchedToriAndOverlappingProbesAreCut)
+{
+  std::vector<double> radii;
+  const std::vector<Vec> atoms = packed_atoms(radii);
   const Surface surface(atoms, radii, {});
   std::size_t pinched = 0;
   for (const auto& arc : surface.boundary.arcs)
@@ -213,6 +236,108 @@ TEST(SesPieceProjection, PinchedToriAndOverlappingProbesAreCut)
   EXPECT_GT(pinched, 0u);
   const double certified = check_against_search(surface, points_near(surface, 60, 3));
   EXPECT_GT(certified, 0.5);
+}
+
+/// How many pieces' answers differ between projections given the integrals' uncut patches
+/// (`flagged`) and projections that list every patch's cutters (`listed`), over `points` and the
+/// arcs or vertices (`kind`) within reach of each; certified answers are checked on the surface
+/// and counted into `certified`.
+std::size_t differences(const Surface& flagged, const Surface& listed,
+                        const std::vector<Vec>& points, PieceKind kind, std::size_t& certified)
+{
+  std::size_t differ = 0;
+  const std::size_t pieces =
+    kind == PieceKind::Arc ? flagged.boundary.arcs.size() : flagged.boundary.vertices.size();
+  for (const Vec& x : points)
+  {
+    for (std::uint32_t k = 0; k < pieces; ++k)
+    {
+      const Vec& at = kind == PieceKind::Arc ? flagged.boundary.arcs[k].centre
+                                             : flagged.boundary.vertices[k].position;
+      if ((x - at).norm() > 3.0 * probe + 2.0)
+      {
+        continue; // far from this patch: not a test of it
+      }
+      Vec a, b;
+      ClosestPiece near_a, near_b;
+      const bool by_flags = flagged.pieces->nearest(x, kind, k, a, near_a);
+      const bool by_lists = listed.pieces->nearest(x, kind, k, b, near_b);
+      differ += by_flags != by_lists || (by_flags && (a - b).norm() > 0) ? 1 : 0;
+      if (by_flags)
+      {
+        ++certified;
+        EXPECT_TRUE(flagged.on_surface(a)) << "piece " << int(kind) << " " << k;
+      }
+    }
+  }
+  return differ;
+}
+
+std::size_t count_set(const std::vector<char>& flags)
+{
+  return std::size_t(std::count(flags.begin(), flags.end(), 1));
+}
+
+TEST(SesPieceProjection, PatchesTheIntegralsFindUncutNeedNoList)
+{
+  // With the integrals' uncut patches taken (no list of cutters made for them), every answer is
+  // the one the lists give, on crambin and on the packed singular set, where concave patches
+  // come cut and uncut (tori are almost never cut by a foreign probe: see the next test).
+  for (const bool packed : { false, true })
+  {
+    std::vector<double> radii;
+    const std::vector<Vec> atoms =
+      packed ? packed_atoms(radii) : protein_atoms("proteins/1crn.pdb", radii);
+    Surface listed(atoms, radii, {}), flagged(atoms, radii, {});
+    const mesolens::SesPatchIntegrals patches = flagged.take_uncut_patches();
+    ASSERT_EQ(patches.arc_uncut.size(), flagged.boundary.arcs.size());
+    ASSERT_EQ(patches.vertex_uncut.size(), flagged.boundary.vertices.size());
+    EXPECT_GT(count_set(patches.arc_uncut), 0u);
+    EXPECT_GT(count_set(patches.vertex_uncut), 0u);
+    EXPECT_LT(count_set(patches.vertex_uncut), patches.vertex_uncut.size());
+    std::size_t certified = 0;
+    const std::vector<Vec> points = points_near(flagged, packed ? 60 : 6, 9);
+    EXPECT_EQ(differences(flagged, listed, points, PieceKind::Arc, certified), 0u);
+    EXPECT_EQ(differences(flagged, listed, points, PieceKind::Vertex, certified), 0u);
+    EXPECT_GT(certified, 100u);
+    EXPECT_GT(check_against_search(flagged, points_near(flagged, packed ? 30 : 6, 4)), 0.5);
+  }
+}
+
+TEST(SesPieceProjection, ATorusAForeignProbeMayCutStaysListed)
+{
+  // 1tii has a torus that a probe touching neither of its atoms may cut (the integrals cannot
+  // certify it clear): not flagged uncut, and points all around it get the answers its list
+  // gives. (Concave patches are cut far more often: the test above catches any flagged wrongly,
+  // as flagging them all showed.)
+  std::vector<double> radii;
+  const std::vector<Vec> atoms = protein_atoms("proteins/1tii.pdb", radii);
+  Surface listed(atoms, radii, {}), flagged(atoms, radii, {});
+  const mesolens::SesPatchIntegrals patches = flagged.take_uncut_patches();
+  std::vector<Vec> points;
+  std::mt19937 random(5);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (std::size_t k = 0; k < patches.arc_uncut.size(); ++k)
+  {
+    if (patches.arc_uncut[k])
+    {
+      continue;
+    }
+    // Around the probe's path: its positions on the arc, then a probe radius out or less.
+    const mesolens::SasArc& arc = flagged.boundary.arcs[k];
+    for (int n = 0; n < 400; ++n)
+    {
+      const Vec u = Vec(normal(random), normal(random), normal(random)).normalized();
+      points.push_back(arc.point(arc.start + arc.span * unit(random)) +
+                       probe * (0.7 + 0.4 * unit(random)) * u);
+    }
+  }
+  ASSERT_GT(points.size(), 0u) << "no torus cut by a foreign probe in 1tii";
+  EXPECT_GT(count_set(patches.arc_uncut), patches.arc_uncut.size() / 2);
+  std::size_t certified = 0;
+  EXPECT_EQ(differences(flagged, listed, points, PieceKind::Arc, certified), 0u);
+  EXPECT_GT(certified, 0u);
 }
 
 TEST(SesPieceProjection, ThreadsGiveTheSameAnswers)

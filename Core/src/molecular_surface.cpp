@@ -289,7 +289,9 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
     const double reach = p * (excluded ? 1.0 : 0.0) + 4.0 * spacing;
     const ProbeDistance distance(centres, radii, boundary, reach);
     SesPieceProjection pieces(centres, atom_radii, p, boundary, distance);
-    pieces.take_uncut_patches(patches.arc_uncut, patches.vertex_uncut); // empty: no figures
+    // Patches the exact figures certified uncut need no further certificate (none without
+    // the figures).
+    pieces.take_uncut_patches(patches.arc_uncut, patches.vertex_uncut);
     const Occupancy occupancy(centres, radii, 2.0);
     ContourField field;
     // Blocks far from every sphere, or deeper in the union than the surface lies, hold

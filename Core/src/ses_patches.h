@@ -22,8 +22,9 @@ struct SesPatchIntegrals
   std::vector<double> face_volume, arc_volume, vertex_volume;
   std::size_t singular_count = 0; ///< patches integrated numerically because something cuts them
   /// Per arc (toroidal patch) and per vertex (concave patch): 1 when no probe position but the
-  /// patch's own comes within the probe radius of it (certified): the patch is whole, and each
-  /// of its points lies on the surface.
+  /// patch's own comes within the probe radius of it (certified): nothing else trims the patch
+  /// (a torus the probe passes through is still cut at its axis), and each of its points lies
+  /// on the surface.
   std::vector<char> arc_uncut, vertex_uncut;
 };
 

@@ -599,15 +599,17 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
           [&](const SasArc& other) { return concave_clear_of_arc(v, p, triangle, other); },
           [](const SasVertex&) { return false; }, search);
       const Splitter splitter{ &distance, &foreign, p, may_be_cut ? &search.cutters : nullptr };
-      // Uncut: no foreign arc may reach it and no other probe's cap meets it.
-      out.vertex_uncut[k] =
-        !may_be_cut && caps_meeting(triangle, caps, unit_caps) && unit_caps.empty() ? 1 : 0;
-      Integral patch;
-      if (may_be_cut || !uncovered_concave(v, p, u, triangle, caps, unit_caps, patch))
+      // Uncut (whole): no foreign arc may reach it and no other probe's cap meets it. Else the
+      // caps alone exactly, or the split.
+      const bool uncut =
+        !may_be_cut && caps_meeting(triangle, caps, unit_caps) && unit_caps.empty();
+      out.vertex_uncut[k] = uncut ? 1 : 0;
+      const Integral whole = concave_piece(v, p, u[0], u[1], u[2]);
+      Integral patch = whole;
+      if (!uncut && (may_be_cut || !uncovered_concave(v, p, u, triangle, caps, unit_caps, patch)))
       {
         patch = split_concave(splitter, caps, caps_by_depth, v, u[0], u[1], u[2], 0);
       }
-      const Integral whole = concave_piece(v, p, u[0], u[1], u[2]);
       if (std::abs(patch.area - whole.area) > 1e-12 * std::max(1.0, whole.area))
       {
         vertex_singular[k] = 1;

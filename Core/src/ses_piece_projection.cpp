@@ -109,7 +109,7 @@ void SesPieceProjection::take_uncut_patches(const std::vector<char>& arc_uncut,
       {
         lists[k].arcs.clear();
         lists[k].vertices.clear();
-        lists[k].state.store(2, std::memory_order_release);
+        lists[k].state.store(Cutters::listed, std::memory_order_release);
       }
     }
   };
@@ -124,9 +124,9 @@ bool SesPieceProjection::certifies_at_once(PieceKind kind, std::uint32_t index) 
     case PieceKind::Face:
       return true;
     case PieceKind::Arc:
-      return this->arc_cutters_[index].state.load(std::memory_order_acquire) == 2;
+      return this->arc_cutters_[index].state.load(std::memory_order_acquire) == Cutters::listed;
     case PieceKind::Vertex:
-      return this->vertex_cutters_[index].state.load(std::memory_order_acquire) == 2;
+      return this->vertex_cutters_[index].state.load(std::memory_order_acquire) == Cutters::listed;
     case PieceKind::None:
       break;
   }
@@ -363,14 +363,15 @@ bool SesPieceProjection::clear_of_cutters(const Vec& y, bool torus, std::uint32_
   const Cutters* cutters = &shared;
   thread_local Cutters own;
   std::uint8_t state = shared.state.load(std::memory_order_acquire);
-  if (state != 2)
+  if (state != Cutters::listed)
   {
-    if (state == 0 && shared.state.compare_exchange_strong(state, 1, std::memory_order_acq_rel))
+    if (state == Cutters::unlisted &&
+        shared.state.compare_exchange_strong(state, Cutters::listing, std::memory_order_acq_rel))
     {
       this->list_cutters(torus, k, shared);
-      shared.state.store(2, std::memory_order_release);
+      shared.state.store(Cutters::listed, std::memory_order_release);
     }
-    else if (state != 2)
+    else if (state != Cutters::listed)
     {
       this->list_cutters(torus, k, own);
       cutters = &own;

@@ -79,10 +79,11 @@ private:
   bool clear_of_cutters(const Eigen::Vector3d& y, bool torus, std::uint32_t k) const;
 
   /// The probe positions that may cut a patch (arcs, vertices), listed by the first thread that
-  /// needs them (state 0: not yet, 1: being listed, 2: listed).
+  /// needs them.
   struct Cutters
   {
-    std::atomic<std::uint8_t> state{ 0 };
+    static constexpr std::uint8_t unlisted = 0, listing = 1, listed = 2;
+    std::atomic<std::uint8_t> state{ unlisted };
     std::vector<std::uint32_t> arcs, vertices;
   };
   /// Lists the cutters of the torus of arc `k` (`torus`) or of the concave patch of vertex `k`.

@@ -25,6 +25,34 @@ std::uint32_t encode(PieceKind kind, std::uint32_t index)
   return (static_cast<std::uint32_t>(kind) << 30) | (index & index_mask);
 }
 
+/// The kind of patch on the piece of `kind` (convex on faces, and when there is no piece).
+SurfacePatch surface_patch(PieceKind kind)
+{
+  switch (kind)
+  {
+    case PieceKind::Arc:
+      return SurfacePatch::Toroidal;
+    case PieceKind::Vertex:
+      return SurfacePatch::Concave;
+    default:
+      return SurfacePatch::Convex;
+  }
+}
+
+/// The boundary piece whose patch a vertex of `patch` kind lies on.
+PieceKind piece_kind(std::uint8_t patch)
+{
+  switch (static_cast<SurfacePatch>(patch))
+  {
+    case SurfacePatch::Toroidal:
+      return PieceKind::Arc;
+    case SurfacePatch::Concave:
+      return PieceKind::Vertex;
+    default:
+      return PieceKind::Face;
+  }
+}
+
 /// The vertex at `position` on the solvent-excluded surface, whose nearest boundary piece (a
 /// probe position) is `piece`: its normal towards the probe, patch kind, piece and atom (the
 /// face's own, else the one of the piece's atoms whose surface is nearest).
@@ -37,13 +65,8 @@ ContourVertex excluded_vertex(const Vec& position, const ClosestPiece& piece,
   const Vec towards_probe = piece.point - position;
   vertex.normal = towards_probe.norm() > 0 ? Vec(towards_probe.normalized()) : Vec::UnitZ();
   vertex.piece = piece.index;
-  // Anything but an arc or a vertex counts as a face (as when no piece was within reach).
-  const PieceKind kind =
-    piece.kind == PieceKind::Arc || piece.kind == PieceKind::Vertex ? piece.kind : PieceKind::Face;
-  vertex.patch = static_cast<std::uint8_t>(
-    kind == PieceKind::Arc
-      ? SurfacePatch::Toroidal
-      : (kind == PieceKind::Vertex ? SurfacePatch::Concave : SurfacePatch::Convex));
+  vertex.patch = static_cast<std::uint8_t>(surface_patch(piece.kind));
+  const PieceKind kind = piece_kind(vertex.patch); // a face also when no piece was within reach
   std::array<std::uint32_t, 3> candidates{};
   const int candidate_count = piece_spheres(boundary, kind, piece.index, candidates);
   double nearest = 1e300;
@@ -79,20 +102,6 @@ struct ExcludedSurface
     return std::abs(piece.distance - this->probe) <= 1e-7;
   }
 };
-
-/// The boundary piece whose patch a vertex of `patch` kind lies on.
-PieceKind piece_kind(std::uint8_t patch)
-{
-  switch (static_cast<SurfacePatch>(patch))
-  {
-    case SurfacePatch::Toroidal:
-      return PieceKind::Arc;
-    case SurfacePatch::Concave:
-      return PieceKind::Vertex;
-    default:
-      return PieceKind::Face;
-  }
-}
 
 class ExcludedSurfaceField final : public LocalContourField
 {

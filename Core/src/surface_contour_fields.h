@@ -22,7 +22,7 @@ namespace mesolens {
 /// union. Vertices lie on the exact surface to 1e-5 Å, each on its own grid edge; they carry the
 /// outward normal (towards the probe), the patch kind, the boundary piece and the nearest atom
 /// of that piece (`centres`, `atom_radii`: the uninflated atoms). `pieces` certifies vertices on
-/// convex patches before any search.
+/// convex patches, and on those it knows uncut, before any search.
 std::unique_ptr<LocalContourField> excluded_surface_field(
   const ProbeDistance& distance, const SesPieceProjection& pieces, const SasBoundary& boundary,
   const std::vector<Eigen::Vector3d>& centres, const std::vector<double>& atom_radii, double probe,

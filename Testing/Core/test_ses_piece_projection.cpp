@@ -307,9 +307,11 @@ TEST(SesPieceProjection, PatchesTheIntegralsFindUncutNeedNoList)
 TEST(SesPieceProjection, ATorusAForeignProbeMayCutStaysListed)
 {
   // 1tii has a torus that a probe touching neither of its atoms may cut (the integrals cannot
-  // certify it clear): not flagged uncut, and points all around it get the answers its list
-  // gives. (Concave patches are cut far more often: the test above catches any flagged wrongly,
-  // as flagging them all showed.)
+  // certify it clear): it must stay listed (flagging every torus uncut leaves none, and the
+  // assertion below fails), and the points certified around it must lie on the surface. This
+  // torus is not actually cut, so wrongly flagging it alone would go unseen here; concave
+  // patches, cut far more often, are what the test above checks the flags on (flagging them
+  // all makes it fail).
   std::vector<double> radii;
   const std::vector<Vec> atoms = protein_atoms("proteins/1tii.pdb", radii);
   Surface listed(atoms, radii, {}), flagged(atoms, radii, {});

@@ -15,7 +15,9 @@ namespace mesolens {
 
 namespace {
 using Vec = Eigen::Vector3d;
-constexpr int block_cells = 8; // cells per block edge: the unit of parallel work
+/// Cells per block edge: the unit of parallel work and the root of its octree. Larger blocks
+/// gather their boundary pieces less often; much larger ones leave threads idle at the end.
+constexpr int block_cells = 16;
 
 /// Kuhn's six tetrahedra of the unit cube, corners as bit masks (x 1, y 2, z 4), each ordered
 /// so that its orientation is positive.

@@ -4,6 +4,7 @@
 #include "chord_refinement.h"
 
 #include "balanced_loop.h"
+#include "frozen_creases.h"
 
 #include <algorithm>
 #include <array>
@@ -185,12 +186,11 @@ bool children_face_outwards(const std::array<std::int64_t, 3>& t,
   return true;
 }
 
-/// Per vertex, whether it belongs to a triangle at a crease: edges there stay, as a split may
-/// fold the mesh through the crease.
-std::vector<char> crease_vertices(const ContourMesh& mesh, const LocalSurfaceProjection& surface,
-                                  const ParallelFor& parallel_for)
+/// Per triangle, whether it spans or lies across a crease: it stays as it is, as a split may fold
+/// the mesh through the crease.
+std::vector<char> crease_triangles(const ContourMesh& mesh, const LocalSurfaceProjection& surface,
+                                   const ParallelFor& parallel_for)
 {
-  // Triangles tested in parallel, their corners marked after.
   const std::size_t triangle_count = mesh.triangles.size() / 3;
   std::vector<char> crease(triangle_count, 0);
   run_parallel(parallel_for, triangle_count, [&](std::size_t begin, std::size_t end) {
@@ -203,18 +203,7 @@ std::vector<char> crease_vertices(const ContourMesh& mesh, const LocalSurfacePro
       crease[t] = at_a_crease(at(0), at(1), at(2), surface) ? 1 : 0;
     }
   });
-  std::vector<char> at_crease(mesh.vertices.size(), 0);
-  for (std::size_t t = 0; t < triangle_count; ++t)
-  {
-    if (crease[t])
-    {
-      for (int k = 0; k < 3; ++k)
-      {
-        at_crease[std::size_t(mesh.triangles[3 * t + std::size_t(k)])] = 1;
-      }
-    }
-  }
-  return at_crease;
+  return crease;
 }
 } // namespace
 
@@ -222,10 +211,10 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
                    double focus_size, int max_rounds, const ParallelFor& parallel_for)
 {
   std::size_t first_new = 0; // vertices from here on came from the last round
-  // Crease vertices once: the pieces of cut triangles are checked not to span or lie across
-  // a crease themselves.
+  // Crease triangles once: they stay, and the pieces of triangles cut beside them must not pass
+  // through them (nor span or lie across a crease themselves).
   const std::unique_ptr<LocalSurfaceProjection> surface = projection();
-  std::vector<char> at_crease = crease_vertices(mesh, *surface, parallel_for);
+  const FrozenCreases frozen(mesh, crease_triangles(mesh, *surface, parallel_for), focus_size);
   // The triangles to look at, in increasing order: every one at first, then those the last
   // round cut, which hold every edge with a new end (the only edges left to look at).
   std::vector<std::size_t> active(mesh.triangles.size() / 3);
@@ -238,7 +227,6 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
     const auto chunk_end = [&](std::size_t chunk) {
       return std::min(active.size(), (chunk + 1) * chunk_triangles);
     };
-    at_crease.resize(vertex_count, 0);
     std::vector<ChunkSplits> splits(chunks);
     // Chunks differ widely in cost (most edges need no projection): taken one at a time.
     struct ChunkState
@@ -255,11 +243,10 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
         for (std::size_t corner = 3 * active[k]; corner < 3 * active[k] + 3; ++corner)
         {
           // Each edge once, from the side where it runs upwards; edges made before the last
-          // round (both ends older) were looked at then.
+          // round (both ends older) were looked at then; those of triangles at a crease stay.
           const std::int64_t a = mesh.triangles[corner];
           const std::int64_t b = mesh.triangles[corner - corner % 3 + (corner + 1) % 3];
-          if (a > b || std::size_t(b) < first_new || at_crease[std::size_t(a)] ||
-              at_crease[std::size_t(b)])
+          if (a > b || std::size_t(b) < first_new || frozen.frozen_edge(a, b))
           {
             continue;
           }
@@ -388,8 +375,8 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
       }
       return middles;
     };
-    // Whether triangle t, cut along its kept splits, folds, or touches a crease: then those
-    // splits go (into `out`).
+    // Whether triangle t stays at a crease, or, cut along its kept splits, folds or passes through
+    // a triangle that stays: then those splits go (into `out`).
     const auto check = [&](std::size_t t, std::vector<std::int64_t>& children,
                            std::vector<std::int64_t>& out) {
       const auto middles = middles_of(t);
@@ -398,9 +385,8 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
                                                     mesh.triangles[3 * t + 2] };
       children.clear();
       cut_triangle(corners, middles, mesh.vertices, children);
-      if (at_crease[std::size_t(corners[0])] || at_crease[std::size_t(corners[1])] ||
-          at_crease[std::size_t(corners[2])] ||
-          !children_face_outwards(corners, children, mesh.vertices, *surface))
+      if (frozen.frozen(t) || !children_face_outwards(corners, children, mesh.vertices, *surface) ||
+          frozen.meets(children, mesh.vertices))
       {
         for (const std::int64_t m : middles)
         {

@@ -62,14 +62,14 @@ using SurfaceProjection = std::function<std::unique_ptr<LocalSurfaceProjection>(
 /// whose normal faces away from either end's, or lying farther from the midpoint than half the
 /// edge; any split of a triangle at a crease (two corners' normals more than about 70 degrees
 /// apart, unless their pieces are smoothly joined; or the triangle's own normal that far from a
-/// corner's) or with a corner on such a triangle, or of one whose pieces would face away from it or
-/// lie across the surface. There the mesh stays as it was. Edges are kept without a projection when
-/// both ends lie on one piece and the midpoint lies within the tolerance of that piece, or when
-/// their ends' normals show them bending by less than half the tolerance (the sagitta of a circular
-/// arc through both ends). Rounds after the first look at the triangles the last one cut alone.
-/// Deterministic whatever `parallel_for`; triangles keep the order of the ones they come from.
-/// Midpoints are projected in groups, those in one cube of `focus_size` (Å, > 0; a few times the
-/// edges' length) under one focus.
+/// corner's), which stays as it was; and the splits of a triangle whose pieces would face away from
+/// it, lie across the surface or pass through a triangle at a crease. Edges are kept without a
+/// projection when both ends lie on one piece and the midpoint lies within the tolerance of that
+/// piece, or when their ends' normals show them bending by less than half the tolerance (the
+/// sagitta of a circular arc through both ends). Rounds after the first look at the triangles the
+/// last one cut alone. Deterministic whatever `parallel_for`; triangles keep the order of the ones
+/// they come from. Midpoints are projected in groups, those in one cube of `focus_size` (Å, > 0; a
+/// few times the edges' length) under one focus.
 void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, double tolerance,
                    double focus_size, int max_rounds, const ParallelFor& parallel_for);
 

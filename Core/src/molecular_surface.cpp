@@ -26,12 +26,18 @@ using Vec = Eigen::Vector3d;
 constexpr double largest_radius = 20.0;        // Å: no atom, bead or probe is larger
 constexpr double largest_triangle_count = 2e7; // about 2 GB: a finer tolerance is refused
 /// The grid's chord error: the tolerance's times grid_tolerance_ratio, at most
-/// coarse_grid_tolerance (Å), and the splits bring the mesh to the tolerance. Finer grids cost
-/// more than the splits that refine a coarse mesh as far; coarser ones would miss narrow necks
-/// and small cavities of the probe's size; and creases, which splits leave as the grid made
-/// them, must shrink with the tolerance for the mesh's area to converge to the exact one.
+/// coarse_grid_tolerance (Å; coarse_excluded_grid_tolerance for the solvent-excluded surface),
+/// and the splits bring the mesh to the tolerance. Finer grids cost more than the splits that
+/// refine a coarse mesh as far; coarser ones would miss narrow necks and small cavities; and
+/// triangles at creases, which splits leave as the grid made them, must shrink with the
+/// tolerance for the mesh's area to converge to the exact one.
 constexpr double coarse_grid_tolerance = 0.45;
+constexpr double coarse_excluded_grid_tolerance = 0.6;
 constexpr double grid_tolerance_ratio = 6.0;
+/// The solvent-excluded surface's grid spacing is at most this times the probe radius: every
+/// point then lies within 0.9 probe radii of a grid point (half a cell's diagonal), so each
+/// cavity and neck, which holds a probe's ball, holds a grid point outside the surface.
+constexpr double cavity_spacing_ratio = 0.9 * 2.0 / 1.7320508075688772;
 
 /// Which grid cells of width `width` some sphere's bounding box touches, with 3D prefix sums so
 /// that any box is tested in eight lookups: the coarse test of where a surface can be.
@@ -236,9 +242,14 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
   const auto spacing_for = [curvature_radius](double tolerance) {
     return std::sqrt(8.0 * tolerance * curvature_radius) / std::sqrt(3.0);
   };
-  const double grid_tolerance = std::max(
-    options.tolerance, std::min(coarse_grid_tolerance, grid_tolerance_ratio * options.tolerance));
-  const double spacing = spacing_for(grid_tolerance);
+  const double coarsest = excluded ? coarse_excluded_grid_tolerance : coarse_grid_tolerance;
+  double spacing = spacing_for(
+    std::max(options.tolerance, std::min(coarsest, grid_tolerance_ratio * options.tolerance)));
+  if (excluded)
+  {
+    spacing = std::min(spacing, cavity_spacing_ratio * p);
+  }
+  const double grid_tolerance = 3.0 * spacing * spacing / (8.0 * curvature_radius);
   surface.grid_spacing = spacing;
   if (options.tessellate)
   {

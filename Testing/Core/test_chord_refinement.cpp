@@ -2,6 +2,7 @@
 // Refining a mesh on a known surface to a chord error (a private part of MesoLensCore, the
 // molecular surfaces' fine level): an icosahedron refined onto its sphere.
 #include "chord_refinement.h"
+#include "frozen_creases.h"
 
 #include "mesolens_test_threads.h"
 
@@ -253,4 +254,49 @@ TEST(ChordRefinement, EdgesWithinTheToleranceOrWithoutAProjectionStay)
   const ContourMesh refused = refined(0.01, 10, 2, true);
   EXPECT_EQ(refused.triangles, coarse.triangles);
   EXPECT_EQ(refused.vertices.size(), coarse.vertices.size());
+}
+
+TEST(ChordRefinement, TrianglesAtACreaseStayAndTheOnesBesideThemAreRefined)
+{
+  // Corner 0's normal turned inwards: its five triangles lie across the surface as it says,
+  // like those spanning a crease. They stay whole; the triangles around them are refined
+  // (all but the edges they share with them), and no piece passes through them.
+  ContourMesh coarse = icosahedron();
+  coarse.vertices[0].normal = -coarse.vertices[0].normal;
+  std::vector<std::array<std::int64_t, 3>> at_corner;
+  for (std::size_t t = 0; t < coarse.triangles.size(); t += 3)
+  {
+    if (coarse.triangles[t] == 0 || coarse.triangles[t + 1] == 0 || coarse.triangles[t + 2] == 0)
+    {
+      at_corner.push_back(
+        { coarse.triangles[t], coarse.triangles[t + 1], coarse.triangles[t + 2] });
+    }
+  }
+  ASSERT_EQ(at_corner.size(), 5u);
+  ContourMesh mesh = coarse;
+  mesolens::refine_chords(
+    mesh, [] { return std::make_unique<EllipsoidProjection>(Vec::Constant(radius), false); }, 0.01,
+    1.0, 10, mesolens_test::two_threads());
+  EXPECT_EQ(euler_characteristic(mesh), 2);
+  // Which coarse triangles are still whole: the five alone (the triangles around them have
+  // edges of their own to split).
+  std::size_t whole = 0, whole_at_corner = 0;
+  for (std::size_t t = 0; t < mesh.triangles.size(); t += 3)
+  {
+    const std::array<std::int64_t, 3> triangle = { mesh.triangles[t], mesh.triangles[t + 1],
+                                                   mesh.triangles[t + 2] };
+    if (*std::max_element(triangle.begin(), triangle.end()) < 12)
+    {
+      ++whole;
+      whole_at_corner += std::find(at_corner.begin(), at_corner.end(), triangle) != at_corner.end();
+    }
+    for (const auto& frozen : at_corner)
+    {
+      ASSERT_FALSE(mesolens::triangles_meet(triangle, frozen, mesh.vertices))
+        << "triangle " << t / 3 << " passes through a triangle at the crease";
+    }
+  }
+  EXPECT_EQ(whole_at_corner, 5u);
+  EXPECT_EQ(whole, 5u);
+  EXPECT_GT(mesh.triangles.size(), 3u * 200u);
 }

@@ -43,11 +43,13 @@ struct MolecularSurfaceOptions
   double probe_radius = 1.4;
   /// Largest distance between a triangle and the exact surface it stands for (chord error) on
   /// smooth patches, Å, [0.005, 1]: edges are split until their middles lie within three
-  /// quarters of it (the triangles' centres within it). Near creases (the SAS and vdW seams,
-  /// the SES's cusps) the mesh stays as the grid made it, within the grid spacing, whose chord
-  /// error is six times the tolerance (at most 0.45 Å; see grid_spacing). On proteins the mesh
-  /// area lies below the exact one by 0.5-0.7 % at 0.1 (0.3-0.5 % at 0.08), which suits
-  /// interaction; 0.01-0.02 suits figures (about 0.1 %).
+  /// quarters of it (the triangles' centres within it). Triangles spanning creases (the SAS and
+  /// vdW seams, the SES's cusps and rims where probes meet) stay as the grid made them, within
+  /// its chord error: six times the tolerance, at most 0.45 Å (0.6 Å for the SES, whose grid
+  /// spacing is also at most 1.04 probe radii so that every cavity holds a grid point; see
+  /// grid_spacing). On proteins the mesh area lies below the exact one by 0.1-0.3 % at 0.1
+  /// (0.7-0.9 % at 0.15, 1.4-2.2 % at 0.3), which suits interaction; 0.01-0.02 suits figures
+  /// (0.05-0.2 %).
   double tolerance = 0.1;
   /// Keep the surfaces of cavities inside the molecule (closed components whose normals face
   /// inwards). Default true.
@@ -108,11 +110,11 @@ using SurfaceProgress = std::function<void(double)>;
 /// every vertex found on its own grid edge (watertight, 2-manifold and free of
 /// self-intersections by construction), then refined: edges whose middles stray from the
 /// surface are split at the middles' projections onto it, which keeps the mesh closed and
-/// 2-manifold; splits that would fold a triangle, or change one at a crease, are not made
-/// (the meshes of the test data's 15 PDB proteins were checked free of self-intersections at
-/// 0.02, 0.05, 0.1 and 0.3 Å, 3l5q's at 0.3 Å). Exactly degenerate inputs (four atoms touching
-/// one probe position, as in a perfect lattice) may give wrong exact figures; the mesh stays
-/// right.
+/// 2-manifold; splits that would fold a triangle, change one at a crease or pass through one,
+/// are not made (the meshes of the test data's 15 PDB proteins were checked free of
+/// self-intersections at 0.02, 0.05, 0.1 and 0.3 Å, 3l5q's at 0.3 Å). Exactly degenerate inputs
+/// (four atoms touching one probe position, as in a perfect lattice) may give wrong exact figures;
+/// the mesh stays right.
 ///
 /// Throws InvalidInput for lists of different lengths, a non-finite centre or radius, a radius
 /// <= 0 or > 20 Å, an option out of range, or a tolerance that would need more than 2e7

@@ -1,0 +1,214 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <Eigen/Dense>
+
+#include "frozen_creases.h"
+
+#include "grid_cells.h"
+
+#include <algorithm>
+
+namespace mesolens {
+
+namespace {
+using Vec = Eigen::Vector3d;
+
+/// Six times the signed volume of tetrahedron (a, b, c, d).
+double orientation(const Vec& a, const Vec& b, const Vec& c, const Vec& d)
+{
+  return (b - a).cross(c - a).dot(d - a);
+}
+
+const Vec& at(const std::vector<ContourVertex>& vertices, std::int64_t v)
+{
+  return vertices[std::size_t(v)].position;
+}
+} // namespace
+
+bool segment_meets_triangle(const Vec& p, const Vec& q, const Vec& a, const Vec& b, const Vec& c)
+{
+  const double from = orientation(a, b, c, p), to = orientation(a, b, c, q);
+  if ((from > 0 && to > 0) || (from < 0 && to < 0) || (from == 0 && to == 0))
+  {
+    return false;
+  }
+  const double ab = orientation(p, q, a, b), bc = orientation(p, q, b, c),
+               ca = orientation(p, q, c, a);
+  return (ab >= 0 && bc >= 0 && ca >= 0) || (ab <= 0 && bc <= 0 && ca <= 0);
+}
+
+bool triangles_meet(const std::array<std::int64_t, 3>& first,
+                    const std::array<std::int64_t, 3>& second,
+                    const std::vector<ContourVertex>& vertices)
+{
+  int shared = 0, first_shared = -1, second_shared = -1;
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      if (first[std::size_t(i)] == second[std::size_t(j)])
+      {
+        ++shared;
+        first_shared = i;
+        second_shared = j;
+      }
+    }
+  }
+  if (shared >= 2)
+  {
+    return false;
+  }
+  const auto edge_meets = [&](const std::array<std::int64_t, 3>& edges, int k,
+                              const std::array<std::int64_t, 3>& other) {
+    return segment_meets_triangle(
+      at(vertices, edges[std::size_t(k)]), at(vertices, edges[std::size_t((k + 1) % 3)]),
+      at(vertices, other[0]), at(vertices, other[1]), at(vertices, other[2]));
+  };
+  if (shared == 1)
+  {
+    // The edge opposite corner k starts at corner k + 1.
+    return edge_meets(first, (first_shared + 1) % 3, second) ||
+      edge_meets(second, (second_shared + 1) % 3, first);
+  }
+  for (int k = 0; k < 3; ++k)
+  {
+    if (edge_meets(first, k, second) || edge_meets(second, k, first))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+FrozenCreases::FrozenCreases(const ContourMesh& mesh, const std::vector<char>& frozen,
+                             double cell_width)
+  : frozen_(frozen)
+  , cell_width_(cell_width)
+{
+  const std::size_t vertex_count = mesh.vertices.size();
+  this->around_start_.assign(vertex_count + 1, 0);
+  for (std::size_t t = 0; t < frozen.size(); ++t)
+  {
+    if (!frozen[t])
+    {
+      continue;
+    }
+    const std::array<std::int64_t, 3> corners = { mesh.triangles[3 * t], mesh.triangles[3 * t + 1],
+                                                  mesh.triangles[3 * t + 2] };
+    const std::uint32_t index = static_cast<std::uint32_t>(this->corners_.size());
+    this->corners_.push_back(corners);
+    Vec low = at(mesh.vertices, corners[0]), high = low;
+    for (const std::int64_t v : corners)
+    {
+      low = low.cwiseMin(at(mesh.vertices, v));
+      high = high.cwiseMax(at(mesh.vertices, v));
+      ++this->around_start_[std::size_t(v) + 1];
+    }
+    this->boxes_.push_back({ low, high });
+    const GridCell from = grid_cell({ low[0], low[1], low[2] }, cell_width);
+    const GridCell to = grid_cell({ high[0], high[1], high[2] }, cell_width);
+    for (std::int64_t z = from[2]; z <= to[2]; ++z)
+      for (std::int64_t y = from[1]; y <= to[1]; ++y)
+        for (std::int64_t x = from[0]; x <= to[0]; ++x)
+        {
+          this->cells_.emplace_back(grid_cell_key({ x, y, z }), index);
+        }
+  }
+  std::sort(this->cells_.begin(), this->cells_.end());
+  for (std::size_t v = 0; v < vertex_count; ++v)
+  {
+    this->around_start_[v + 1] += this->around_start_[v];
+  }
+  this->around_.resize(this->around_start_[vertex_count]);
+  std::vector<std::uint32_t> cursor(this->around_start_.begin(), this->around_start_.end() - 1);
+  for (std::size_t k = 0; k < this->corners_.size(); ++k)
+  {
+    for (const std::int64_t v : this->corners_[k])
+    {
+      this->around_[cursor[std::size_t(v)]++] = static_cast<std::uint32_t>(k);
+    }
+  }
+}
+
+bool FrozenCreases::frozen_edge(std::int64_t a, std::int64_t b) const
+{
+  if (std::size_t(a) + 1 >= this->around_start_.size())
+  {
+    return false;
+  }
+  for (std::uint32_t k = this->around_start_[std::size_t(a)];
+       k < this->around_start_[std::size_t(a) + 1]; ++k)
+  {
+    const auto& corners = this->corners_[this->around_[k]];
+    if (std::find(corners.begin(), corners.end(), b) != corners.end())
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool FrozenCreases::meets(const std::vector<std::int64_t>& triangles,
+                          const std::vector<ContourVertex>& vertices) const
+{
+  if (this->cells_.empty() || triangles.empty())
+  {
+    return false;
+  }
+  // Boxes first: most frozen triangles in the cells lie clear of the pieces.
+  const std::size_t count = triangles.size() / 3;
+  std::array<Vec, 2> boxes[4];
+  Vec low = at(vertices, triangles[0]), high = low;
+  for (std::size_t k = 0; k < count && k < 4; ++k)
+  {
+    boxes[k] = { at(vertices, triangles[3 * k]), at(vertices, triangles[3 * k]) };
+    for (int c = 1; c < 3; ++c)
+    {
+      boxes[k][0] = boxes[k][0].cwiseMin(at(vertices, triangles[3 * k + std::size_t(c)]));
+      boxes[k][1] = boxes[k][1].cwiseMax(at(vertices, triangles[3 * k + std::size_t(c)]));
+    }
+    low = low.cwiseMin(boxes[k][0]);
+    high = high.cwiseMax(boxes[k][1]);
+  }
+  for (std::size_t k = 4; k < count; ++k)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      low = low.cwiseMin(at(vertices, triangles[3 * k + std::size_t(c)]));
+      high = high.cwiseMax(at(vertices, triangles[3 * k + std::size_t(c)]));
+    }
+  }
+  const auto overlap = [](const Vec& low_a, const Vec& high_a, const std::array<Vec, 2>& b) {
+    return (low_a.array() <= b[1].array()).all() && (b[0].array() <= high_a.array()).all();
+  };
+  const GridCell from = grid_cell({ low[0], low[1], low[2] }, this->cell_width_);
+  const GridCell to = grid_cell({ high[0], high[1], high[2] }, this->cell_width_);
+  for (std::int64_t z = from[2]; z <= to[2]; ++z)
+    for (std::int64_t y = from[1]; y <= to[1]; ++y)
+      for (std::int64_t x = from[0]; x <= to[0]; ++x)
+      {
+        const std::uint64_t key = grid_cell_key({ x, y, z });
+        auto entry = std::lower_bound(this->cells_.begin(), this->cells_.end(),
+                                      std::pair<std::uint64_t, std::uint32_t>(key, 0));
+        for (; entry != this->cells_.end() && entry->first == key; ++entry)
+        {
+          const std::array<Vec, 2>& box = this->boxes_[entry->second];
+          if (!overlap(low, high, box))
+          {
+            continue;
+          }
+          const auto& frozen = this->corners_[entry->second];
+          for (std::size_t k = 0; k < count; ++k)
+          {
+            if ((k >= 4 || overlap(boxes[k][0], boxes[k][1], box)) &&
+                triangles_meet({ triangles[3 * k], triangles[3 * k + 1], triangles[3 * k + 2] },
+                               frozen, vertices))
+            {
+              return true;
+            }
+          }
+        }
+      }
+  return false;
+}
+
+} // namespace mesolens

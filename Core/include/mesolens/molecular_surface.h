@@ -45,11 +45,10 @@ struct MolecularSurfaceOptions
   /// smooth patches, Å, [0.005, 1]: edges are split until their middles lie within three
   /// quarters of it (the triangles' centres within it). Triangles spanning creases (the SAS and
   /// vdW seams, the SES's cusps and rims where probes meet) stay as the grid made them, within
-  /// its chord error: six times the tolerance, at most 0.45 Å (0.6 Å for the SES, whose grid
-  /// spacing is also at most 1.04 probe radii so that every cavity holds a grid point; see
-  /// grid_spacing). On proteins the mesh area lies below the exact one by 0.1-0.3 % at 0.1
-  /// (0.7-0.9 % at 0.15, 1.4-2.2 % at 0.3), which suits interaction; 0.01-0.02 suits figures
-  /// (0.05-0.2 %).
+  /// its chord error: six times the tolerance, at most 0.45 Å, the SES's grid points at most
+  /// 1.04 probe radii apart so that every cavity holds one (see grid_spacing). On proteins the
+  /// mesh area lies below the exact one by 0.4-0.5 % at 0.1 (0.8-1.0 % at 0.15, 1.3-1.9 % at
+  /// 0.3), which suits interaction; 0.01-0.02 suits figures (0.05-0.16 %).
   double tolerance = 0.1;
   /// Keep the surfaces of cavities inside the molecule (closed components whose normals face
   /// inwards). Default true.

@@ -375,8 +375,9 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
       }
       return middles;
     };
-    // Whether triangle t stays at a crease, or, cut along its kept splits, folds or passes through
-    // a triangle that stays: then those splits go (into `out`).
+    // Whether triangle t, cut along its kept splits, folds or passes through a triangle that
+    // stays at a crease: then those splits go (into `out`). (Those never have a split: their
+    // edges are not looked at.)
     const auto check = [&](std::size_t t, std::vector<std::int64_t>& children,
                            std::vector<std::int64_t>& out) {
       const auto middles = middles_of(t);
@@ -385,7 +386,7 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
                                                     mesh.triangles[3 * t + 2] };
       children.clear();
       cut_triangle(corners, middles, mesh.vertices, children);
-      if (frozen.frozen(t) || !children_face_outwards(corners, children, mesh.vertices, *surface) ||
+      if (!children_face_outwards(corners, children, mesh.vertices, *surface) ||
           frozen.meets(children, mesh.vertices))
       {
         for (const std::int64_t m : middles)

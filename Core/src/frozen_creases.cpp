@@ -22,6 +22,29 @@ const Vec& at(const std::vector<ContourVertex>& vertices, std::int64_t v)
 {
   return vertices[std::size_t(v)].position;
 }
+
+/// The box of the triangle whose corners start at `corners`.
+std::array<Vec, 2> box_of(const std::int64_t* corners, const std::vector<ContourVertex>& vertices)
+{
+  std::array<Vec, 2> box = { at(vertices, corners[0]), at(vertices, corners[0]) };
+  for (int k = 1; k < 3; ++k)
+  {
+    box[0] = box[0].cwiseMin(at(vertices, corners[k]));
+    box[1] = box[1].cwiseMax(at(vertices, corners[k]));
+  }
+  return box;
+}
+
+bool overlap(const std::array<Vec, 2>& a, const std::array<Vec, 2>& b)
+{
+  return (a[0].array() <= b[1].array()).all() && (b[0].array() <= a[1].array()).all();
+}
+
+/// The cell of width `width` holding `x`.
+GridCell cell_of(const Vec& x, double width)
+{
+  return grid_cell({ x[0], x[1], x[2] }, width);
+}
 } // namespace
 
 bool segment_meets_triangle(const Vec& p, const Vec& q, const Vec& a, const Vec& b, const Vec& c)
@@ -81,8 +104,7 @@ bool triangles_meet(const std::array<std::int64_t, 3>& first,
 
 FrozenCreases::FrozenCreases(const ContourMesh& mesh, const std::vector<char>& frozen,
                              double cell_width)
-  : frozen_(frozen)
-  , cell_width_(cell_width)
+  : cell_width_(cell_width)
 {
   const std::size_t vertex_count = mesh.vertices.size();
   this->around_start_.assign(vertex_count + 1, 0);
@@ -92,20 +114,16 @@ FrozenCreases::FrozenCreases(const ContourMesh& mesh, const std::vector<char>& f
     {
       continue;
     }
-    const std::array<std::int64_t, 3> corners = { mesh.triangles[3 * t], mesh.triangles[3 * t + 1],
-                                                  mesh.triangles[3 * t + 2] };
+    const std::int64_t* corners = &mesh.triangles[3 * t];
     const std::uint32_t index = static_cast<std::uint32_t>(this->corners_.size());
-    this->corners_.push_back(corners);
-    Vec low = at(mesh.vertices, corners[0]), high = low;
-    for (const std::int64_t v : corners)
+    this->corners_.push_back({ corners[0], corners[1], corners[2] });
+    for (int k = 0; k < 3; ++k)
     {
-      low = low.cwiseMin(at(mesh.vertices, v));
-      high = high.cwiseMax(at(mesh.vertices, v));
-      ++this->around_start_[std::size_t(v) + 1];
+      ++this->around_start_[std::size_t(corners[k]) + 1];
     }
-    this->boxes_.push_back({ low, high });
-    const GridCell from = grid_cell({ low[0], low[1], low[2] }, cell_width);
-    const GridCell to = grid_cell({ high[0], high[1], high[2] }, cell_width);
+    const Box box = box_of(corners, mesh.vertices);
+    this->boxes_.push_back(box);
+    const GridCell from = cell_of(box[0], cell_width), to = cell_of(box[1], cell_width);
     for (std::int64_t z = from[2]; z <= to[2]; ++z)
       for (std::int64_t y = from[1]; y <= to[1]; ++y)
         for (std::int64_t x = from[0]; x <= to[0]; ++x)
@@ -155,33 +173,13 @@ bool FrozenCreases::meets(const std::vector<std::int64_t>& triangles,
     return false;
   }
   // Boxes first: most frozen triangles in the cells lie clear of the pieces.
-  const std::size_t count = triangles.size() / 3;
-  std::array<Vec, 2> boxes[4];
-  Vec low = at(vertices, triangles[0]), high = low;
-  for (std::size_t k = 0; k < count && k < 4; ++k)
+  Box all = box_of(&triangles[0], vertices);
+  for (std::size_t k = 3; k < triangles.size(); k += 3)
   {
-    boxes[k] = { at(vertices, triangles[3 * k]), at(vertices, triangles[3 * k]) };
-    for (int c = 1; c < 3; ++c)
-    {
-      boxes[k][0] = boxes[k][0].cwiseMin(at(vertices, triangles[3 * k + std::size_t(c)]));
-      boxes[k][1] = boxes[k][1].cwiseMax(at(vertices, triangles[3 * k + std::size_t(c)]));
-    }
-    low = low.cwiseMin(boxes[k][0]);
-    high = high.cwiseMax(boxes[k][1]);
+    const Box box = box_of(&triangles[k], vertices);
+    all = { all[0].cwiseMin(box[0]), all[1].cwiseMax(box[1]) };
   }
-  for (std::size_t k = 4; k < count; ++k)
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      low = low.cwiseMin(at(vertices, triangles[3 * k + std::size_t(c)]));
-      high = high.cwiseMax(at(vertices, triangles[3 * k + std::size_t(c)]));
-    }
-  }
-  const auto overlap = [](const Vec& low_a, const Vec& high_a, const std::array<Vec, 2>& b) {
-    return (low_a.array() <= b[1].array()).all() && (b[0].array() <= high_a.array()).all();
-  };
-  const GridCell from = grid_cell({ low[0], low[1], low[2] }, this->cell_width_);
-  const GridCell to = grid_cell({ high[0], high[1], high[2] }, this->cell_width_);
+  const GridCell from = cell_of(all[0], this->cell_width_), to = cell_of(all[1], this->cell_width_);
   for (std::int64_t z = from[2]; z <= to[2]; ++z)
     for (std::int64_t y = from[1]; y <= to[1]; ++y)
       for (std::int64_t x = from[0]; x <= to[0]; ++x)
@@ -191,17 +189,21 @@ bool FrozenCreases::meets(const std::vector<std::int64_t>& triangles,
                                       std::pair<std::uint64_t, std::uint32_t>(key, 0));
         for (; entry != this->cells_.end() && entry->first == key; ++entry)
         {
-          const std::array<Vec, 2>& box = this->boxes_[entry->second];
-          if (!overlap(low, high, box))
+          const Box& box = this->boxes_[entry->second];
+          // A frozen triangle lies in every cell its box meets: tested in the first cell that
+          // both boxes meet alone.
+          const GridCell first = cell_of(box[0], this->cell_width_);
+          if (!overlap(all, box) || std::max(first[0], from[0]) != x ||
+              std::max(first[1], from[1]) != y || std::max(first[2], from[2]) != z)
           {
             continue;
           }
           const auto& frozen = this->corners_[entry->second];
-          for (std::size_t k = 0; k < count; ++k)
+          for (std::size_t k = 0; k < triangles.size(); k += 3)
           {
-            if ((k >= 4 || overlap(boxes[k][0], boxes[k][1], box)) &&
-                triangles_meet({ triangles[3 * k], triangles[3 * k + 1], triangles[3 * k + 2] },
-                               frozen, vertices))
+            if (overlap(box_of(&triangles[k], vertices), box) &&
+                triangles_meet({ triangles[k], triangles[k + 1], triangles[k + 2] }, frozen,
+                               vertices))
             {
               return true;
             }

@@ -30,20 +30,16 @@ bool triangles_meet(const std::array<std::int64_t, 3>& first,
                     const std::array<std::int64_t, 3>& second,
                     const std::vector<ContourVertex>& vertices);
 
-/// A mesh's frozen triangles (never cut, so their indices and corners stay) found in space: those
-/// meeting a box, by cells of a fixed width; and per vertex, the frozen triangles around it.
+/// A mesh's frozen triangles (never cut, so their corners stay) found in space: those meeting a
+/// box, by cells of a fixed width; and per vertex, the frozen triangles around it. A triangle
+/// none of whose edges is split is never cut, so the refinement asks frozen_edge() alone to keep
+/// them.
 class FrozenCreases
 {
 public:
   /// `frozen`: per triangle of `mesh`, whether it stays. `cell_width` (Å, > 0): a few times the
   /// triangles' size.
   FrozenCreases(const ContourMesh& mesh, const std::vector<char>& frozen, double cell_width);
-
-  /// Whether triangle `t` is frozen (triangles made after construction are not).
-  bool frozen(std::size_t t) const
-  {
-    return t < this->frozen_.size() && this->frozen_[t] != 0;
-  }
 
   /// Whether edge (a, b) belongs to a frozen triangle.
   bool frozen_edge(std::int64_t a, std::int64_t b) const;
@@ -59,9 +55,11 @@ public:
   }
 
 private:
-  std::vector<char> frozen_;
-  std::vector<std::array<std::int64_t, 3>> corners_;  ///< per frozen triangle, in order
-  std::vector<std::array<Eigen::Vector3d, 2>> boxes_; ///< per frozen triangle, low and high
+  /// A box, low and high corners.
+  using Box = std::array<Eigen::Vector3d, 2>;
+
+  std::vector<std::array<std::int64_t, 3>> corners_; ///< per frozen triangle, in order
+  std::vector<Box> boxes_;                           ///< per frozen triangle
   /// (cell key, frozen triangle) sorted by key: every cell a triangle's box meets.
   std::vector<std::pair<std::uint64_t, std::uint32_t>> cells_;
   /// Per vertex of the mesh at construction, its frozen triangles (compressed rows).

@@ -72,20 +72,24 @@ TEST(FrozenCreases, FrozenTrianglesAreFoundByTheirEdgesAndInSpace)
 {
   // Two triangles sharing edge 1-2; the first is frozen.
   const ContourMesh mesh = mesh_of({ a, b, c, Vec(1, 1, 0.2), Vec(0.2, 0.2, -1), Vec(0.3, 0.2, 1),
-                                     Vec(0.2, 0.3, 1), Vec(5, 5, 5), Vec(6, 5, 5), Vec(5, 6, 5) },
+                                     Vec(0.2, 0.3, 1), Vec(5, 5, 5), Vec(6, 5, 5), Vec(5, 6, 5),
+                                     Vec(0.7, 0.1, -1), Vec(0.8, 0.1, 1), Vec(0.7, 0.15, 1) },
                                    { 0, 1, 2, 1, 3, 2 });
   const mesolens::FrozenCreases frozen(mesh, { 1, 0 }, 0.5);
   EXPECT_FALSE(frozen.empty());
-  EXPECT_TRUE(frozen.frozen(0));
-  EXPECT_FALSE(frozen.frozen(1));
-  EXPECT_FALSE(frozen.frozen(7)); // made after: never frozen
+  // The first triangle's three edges, either way round; not the second's own.
   EXPECT_TRUE(frozen.frozen_edge(0, 1));
   EXPECT_TRUE(frozen.frozen_edge(2, 1));
+  EXPECT_TRUE(frozen.frozen_edge(0, 2));
   EXPECT_FALSE(frozen.frozen_edge(1, 3));
-  EXPECT_FALSE(frozen.frozen_edge(9, 0)); // a vertex made after
+  EXPECT_FALSE(frozen.frozen_edge(3, 2));
+  EXPECT_FALSE(frozen.frozen_edge(13, 0)); // a vertex made after
   // A piece standing through the frozen triangle, among others, meets it; pieces far away or
   // sharing its edge do not.
   EXPECT_TRUE(frozen.meets({ 7, 8, 9, 4, 5, 6 }, mesh.vertices));
+  // The frozen triangle spans several cells of 0.5 Å; a piece standing through it in another
+  // cell than its first meets it too.
+  EXPECT_TRUE(frozen.meets({ 10, 11, 12 }, mesh.vertices));
   EXPECT_FALSE(frozen.meets({ 7, 8, 9 }, mesh.vertices));
   EXPECT_FALSE(frozen.meets({ 1, 3, 2 }, mesh.vertices));
   EXPECT_FALSE(frozen.meets({}, mesh.vertices));

@@ -15,7 +15,7 @@ namespace mesolens {
 namespace {
 using Vec = Eigen::Vector3d;
 constexpr double pi = 3.14159265358979323846;
-constexpr int deepest_split = 5;   // singular patches: at most 4^5 pieces, near the cuts only
+constexpr int deepest_split = 6;   // singular patches: at most 4^6 pieces, near the cuts only
 constexpr double ball_slack = 1.1; // concave pieces lie within their corner distance: a margin
 
 /// Area and x . n integral of a patch piece.
@@ -423,9 +423,13 @@ bool uncovered_concave(const Vec& centre, double p, const Vec (&u)[3],
 /// Caps meeting the pieces of a concave patch, per depth of the split (reused).
 using CapsByDepth = std::array<std::vector<UnitCap>, deepest_split + 1>;
 
+/// split_concave() on a concave patch that foreign positions may cut, where neighbouring probes
+/// overlapping it give `caps`. A piece that no foreign position reaches is integrated exactly
+/// (uncovered_concave()), however the caps cut it: only the neighbourhood of the foreign cuts
+/// is split to the deepest level. `unit_caps` is a buffer.
 Integral split_concave(const Splitter& splitter, const std::vector<UnitCap>& caps,
-                       CapsByDepth& caps_by_depth, const Vec& centre, const Vec& a, const Vec& b,
-                       const Vec& c, int depth)
+                       CapsByDepth& caps_by_depth, std::vector<UnitCap>& unit_caps,
+                       const Vec& centre, const Vec& a, const Vec& b, const Vec& c, int depth)
 {
   const double p = splitter.probe;
   const Vec middle = (a + b + c).normalized();
@@ -439,9 +443,19 @@ Integral split_concave(const Splitter& splitter, const std::vector<UnitCap>& cap
   const bool cut_by_cap = !meeting.empty();
   const double size =
     ball_slack * p * std::max({ (middle - a).norm(), (middle - b).norm(), (middle - c).norm() });
-  if (!cut_by_cap && splitter.kept(centre + p * middle, size))
+  if (splitter.kept(centre + p * middle, size))
   {
-    return concave_piece(centre, p, a, b, c);
+    if (!cut_by_cap)
+    {
+      return concave_piece(centre, p, a, b, c);
+    }
+    Integral exact;
+    const Vec corners[3] = { a, b, c };
+    if (uncovered_concave(centre, p, corners, SphericalTriangle(a, b, c), meeting, unit_caps,
+                          exact))
+    {
+      return exact;
+    }
   }
   if (depth == deepest_split)
   {
@@ -461,10 +475,10 @@ Integral split_concave(const Splitter& splitter, const std::vector<UnitCap>& cap
   }
   const Vec ab = (a + b).normalized(), bc = (b + c).normalized(), ca = (c + a).normalized();
   Integral sum;
-  sum += split_concave(splitter, meeting, caps_by_depth, centre, a, ab, ca, depth + 1);
-  sum += split_concave(splitter, meeting, caps_by_depth, centre, ab, b, bc, depth + 1);
-  sum += split_concave(splitter, meeting, caps_by_depth, centre, ca, bc, c, depth + 1);
-  sum += split_concave(splitter, meeting, caps_by_depth, centre, ab, bc, ca, depth + 1);
+  sum += split_concave(splitter, meeting, caps_by_depth, unit_caps, centre, a, ab, ca, depth + 1);
+  sum += split_concave(splitter, meeting, caps_by_depth, unit_caps, centre, ab, b, bc, depth + 1);
+  sum += split_concave(splitter, meeting, caps_by_depth, unit_caps, centre, ca, bc, c, depth + 1);
+  sum += split_concave(splitter, meeting, caps_by_depth, unit_caps, centre, ab, bc, ca, depth + 1);
   return sum;
 }
 
@@ -608,7 +622,7 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
       Integral patch = whole;
       if (!uncut && (may_be_cut || !uncovered_concave(v, p, u, triangle, caps, unit_caps, patch)))
       {
-        patch = split_concave(splitter, caps, caps_by_depth, v, u[0], u[1], u[2], 0);
+        patch = split_concave(splitter, caps, caps_by_depth, unit_caps, v, u[0], u[1], u[2], 0);
       }
       if (std::abs(patch.area - whole.area) > 1e-12 * std::max(1.0, whole.area))
       {

@@ -87,6 +87,12 @@ struct PieceFilter
       this->mode == Mode::ConcaveCutters && first && second && arc.radius < this->probe;
     return !(first || second) || pinched_pair;
   }
+  /// Whether any vertex passes (concave patches' cutters are arcs alone: other probes'
+  /// positions are caps on the patch's sphere).
+  bool admits_vertices() const
+  {
+    return this->mode != Mode::ConcaveCutters;
+  }
   bool admits(const SasVertex& vertex) const
   {
     const auto& spheres = vertex.spheres;

@@ -278,15 +278,6 @@ struct Splitter
   }
 };
 
-/// Whether no piece `foreign` admits comes within p of the ball of `radius` about `centre`: a
-/// single index query, which settles most patches.
-bool clear_of_all(const ProbeDistance& distance, const ProbeDistance::Filter& foreign, double p,
-                  const Vec& centre, double radius)
-{
-  const double limit = p + radius;
-  return distance.closest(centre, foreign, limit).distance >= limit;
-}
-
 /// Buffers of gather_cutters(), reused from patch to patch.
 struct CutterSearch
 {
@@ -295,9 +286,9 @@ struct CutterSearch
 };
 
 /// The pieces `foreign` admits that may come within p of a patch lying within `radius` of
-/// `centre`: those within p of that ball that `clear_of_arc` or `clear_of_vertex` do not
-/// certify (see patch_clearance.h). False when there are none; else `search.cutters` holds them
-/// with the spheres reaching the ball.
+/// `centre`: those within p of that ball (most patches have none: two index queries settle
+/// them) that `clear_of_arc` or `clear_of_vertex` do not certify (see patch_clearance.h). False
+/// when there are none; else `search.cutters` holds them with the spheres reaching the ball.
 template<typename ClearOfArc, typename ClearOfVertex>
 bool gather_cutters(const ProbeDistance& distance, const SasBoundary& boundary,
                     const ProbeDistance::Filter& foreign, double p, const Vec& centre,
@@ -305,19 +296,23 @@ bool gather_cutters(const ProbeDistance& distance, const SasBoundary& boundary,
                     CutterSearch& search)
 {
   search.arcs.clear();
-  distance.arcs_within(centre, radius + p, search.arcs);
+  const double reach = radius + p;
+  distance.arcs_within(centre, reach, search.arcs, foreign);
   const auto arcs_end =
     std::remove_if(search.arcs.begin(), search.arcs.end(), [&](std::uint32_t k) {
-      return !foreign.admits(boundary.arcs[k]) || clear_of_arc(boundary.arcs[k]);
+      return distance.arc_distance(k, centre) >= reach || clear_of_arc(boundary.arcs[k]);
     });
   search.arcs.erase(arcs_end, search.arcs.end());
   search.vertices.clear();
-  distance.vertices_within(centre, radius + p, [&](std::uint32_t k) {
-    if (foreign.admits(boundary.vertices[k]) && !clear_of_vertex(boundary.vertices[k]))
-    {
-      search.vertices.push_back(k);
-    }
-  });
+  if (foreign.admits_vertices())
+  {
+    distance.vertices_within(centre, reach, [&](std::uint32_t k) {
+      if (foreign.admits(boundary.vertices[k]) && !clear_of_vertex(boundary.vertices[k]))
+      {
+        search.vertices.push_back(k);
+      }
+    });
+  }
   if (search.arcs.empty() && search.vertices.empty())
   {
     return false;
@@ -550,19 +545,16 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
       for_torus_pieces(
         torus, [&](const Angle& phi0, const Angle& phi1, const Angle& t0, const Angle& t1) {
           const Integral whole = torus.piece(phi0, phi1, t0, t1);
-          // Whole when no foreign piece comes within p of the ball around the piece (one index
-          // query), else when each that does is certified clear of the piece itself.
+          // Whole when no foreign piece comes within p of the ball around the piece, else when
+          // each that does is certified clear of the piece itself.
           const Vec middle = torus.middle(phi0, phi1, t0, t1);
           const double reach = torus.reach(middle, phi0, phi1, t0, t1);
           const TorusPatchPiece piece{ &arc, p, phi0.value, phi1.value, t0.value, t1.value };
-          const bool may_be_cut = !clear_of_all(distance, foreign, p, middle, reach) &&
-            gather_cutters(
-              distance, boundary, foreign, p, middle, reach,
-              [&](const SasArc& other) { return torus_clear_of_arc(piece, other); },
-              [&](const SasVertex& other) {
-                return torus_clear_of_position(piece, other.position);
-              },
-              search);
+          const bool may_be_cut = gather_cutters(
+            distance, boundary, foreign, p, middle, reach,
+            [&](const SasArc& other) { return torus_clear_of_arc(piece, other); },
+            [&](const SasVertex& other) { return torus_clear_of_position(piece, other.position); },
+            search);
           if (may_be_cut)
           {
             out.arc_uncut[k] = 0;
@@ -607,11 +599,10 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
       });
       const ProbeDistance::Filter foreign = concave_cutters(vertex, p);
       const SphericalTriangle triangle(u[0], u[1], u[2]);
-      const bool may_be_cut = !clear_of_all(distance, foreign, p, concave.middle, concave.reach) &&
-        gather_cutters(
-          distance, boundary, foreign, p, concave.middle, concave.reach,
-          [&](const SasArc& other) { return concave_clear_of_arc(v, p, triangle, other); },
-          [](const SasVertex&) { return false; }, search);
+      const bool may_be_cut = gather_cutters(
+        distance, boundary, foreign, p, concave.middle, concave.reach,
+        [&](const SasArc& other) { return concave_clear_of_arc(v, p, triangle, other); },
+        [](const SasVertex&) { return false; }, search);
       const Splitter splitter{ &distance, &foreign, p, may_be_cut ? &search.cutters : nullptr };
       // Uncut (whole): no foreign arc may reach it and no other probe's cap meets it. Else the
       // caps alone exactly, or the split.

@@ -37,6 +37,31 @@ inline double least_sinusoid(double a, double b, double cos0, double sin0, doubl
   return std::min(a * cos0 + b * sin0, a * cos1 + b * sin1);
 }
 
+// Patches no probe position can cut, whatever lies around them. A toroidal or concave patch
+// lies on the sphere of radius p about a probe position v, in the cone of the directions u_a
+// from v to the atoms it touches (centres c_a = v + R_a u_a, R_a the inflated radii). An
+// accessible position w (|w - c_a| >= R_a for each a) has, with y = w - v,
+// y . u_a <= |y|^2 / (2 R_a). A patch point v + p u with u = sum l_a u_a / N (l_a >= 0,
+// N = |sum l_a u_a| >= sum l_a d, d the distance from the origin to the flat polygon of the u_a)
+// then has p u . y <= |y|^2 p / (2 R d), R the least R_a; and it lies inside w's ball only when
+// 2 p u . y > |y|^2. So where R d >= p no position cuts the patch.
+
+/// Whether no accessible probe position comes nearer than `probe` (Å, > 0) to a toroidal patch
+/// (or a piece of one) between the contact circles of atoms with inflated radii `first_radius`
+/// and `second_radius` (Å), whose generating arc spans `span` (radians, < pi) at the probe's
+/// centre: d = cos(span / 2) above. (For equal radii this says that the probe does not pass
+/// between the atoms: R cos(span / 2) is the distance from the probe's centre to the axis.)
+inline bool torus_clear_of_every_position(double probe, double first_radius, double second_radius,
+                                          double span)
+{
+  return std::cos(0.5 * span) * std::min(first_radius, second_radius) >= probe * (1.0 + 1e-9);
+}
+
+/// The same for a concave patch: the spherical triangle of unit `directions` from the probe's
+/// centre to its three atoms, of inflated radii `radii` (Å).
+bool concave_clear_of_every_position(double probe, const Eigen::Vector3d (&directions)[3],
+                                     const double (&radii)[3]);
+
 // Each test answers true only when certain that every point of the patch lies at least the
 // probe radius from every position of the foreign piece (bounds on the squared distance less
 // p^2, bisected where the bound is loose, within a fixed budget). False means the piece cuts

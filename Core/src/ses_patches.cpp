@@ -50,6 +50,17 @@ struct Torus
   const SasArc* arc = nullptr;
   double probe = 0;
   double first = 0, second = 0;
+  double first_radius = 0, second_radius = 0; ///< the atoms' inflated radii, |C - c|
+
+  /// Whether no accessible position but the torus's own can cut it (see
+  /// torus_clear_of_every_position()): the probe does not pass between the atoms and the
+  /// generating arc is narrow enough.
+  bool sheltered() const
+  {
+    return this->arc->radius >= this->probe &&
+      torus_clear_of_every_position(this->probe, this->first_radius, this->second_radius,
+                                    std::abs(this->second - this->first));
+  }
 
   Vec point(const Angle& phi, const Angle& t) const
   {
@@ -144,8 +155,12 @@ Torus torus_of(const SasArc& arc, const std::vector<Vec>& centres, double p)
   Torus torus;
   torus.arc = &arc;
   torus.probe = p;
-  torus.first = std::atan2(-arc.radius, (centres[arc.first] - arc.centre).dot(arc.axis));
-  torus.second = std::atan2(-arc.radius, (centres[arc.second] - arc.centre).dot(arc.axis));
+  const double first_height = (centres[arc.first] - arc.centre).dot(arc.axis);
+  const double second_height = (centres[arc.second] - arc.centre).dot(arc.axis);
+  torus.first = std::atan2(-arc.radius, first_height);
+  torus.second = std::atan2(-arc.radius, second_height);
+  torus.first_radius = std::hypot(arc.radius, first_height);
+  torus.second_radius = std::hypot(arc.radius, second_height);
   return torus;
 }
 
@@ -218,14 +233,18 @@ ProbeDistance::Filter concave_cutters(const SasVertex& vertex, double p)
 struct ConcavePatch
 {
   Vec u[3];
-  Vec middle;   ///< the ball's centre, on the patch
-  double reach; ///< the ball's radius, with a margin
+  Vec middle;     ///< the ball's centre, on the patch
+  double reach;   ///< the ball's radius, with a margin
+  bool sheltered; ///< no accessible position but its own can cut it
 
   ConcavePatch(const SasVertex& vertex, const std::vector<Vec>& centres, double p)
   {
+    double radii[3];
     for (int s = 0; s < 3; ++s)
     {
-      this->u[s] = (centres[vertex.spheres[std::size_t(s)]] - vertex.position).normalized();
+      const Vec offset = centres[vertex.spheres[std::size_t(s)]] - vertex.position;
+      radii[s] = offset.norm();
+      this->u[s] = offset / radii[s];
     }
     if (this->u[0].dot(this->u[1].cross(this->u[2])) < 0)
     {
@@ -236,6 +255,7 @@ struct ConcavePatch
     this->reach = ball_slack * p *
       std::max({ (direction - this->u[0]).norm(), (direction - this->u[1]).norm(),
                  (direction - this->u[2]).norm() });
+    this->sheltered = concave_clear_of_every_position(p, this->u, radii);
   }
 };
 
@@ -540,21 +560,25 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
       const SasArc& arc = arcs[k];
       const Torus torus = torus_of(arc, centres, p);
       const ProbeDistance::Filter foreign = torus_cutters(arc);
+      const bool sheltered = torus.sheltered();
       Splitter splitter{ &distance, &foreign, p, &search.cutters };
       Integral total;
       for_torus_pieces(
         torus, [&](const Angle& phi0, const Angle& phi1, const Angle& t0, const Angle& t1) {
           const Integral whole = torus.piece(phi0, phi1, t0, t1);
-          // Whole when no foreign piece comes within p of the ball around the piece, else when
-          // each that does is certified clear of the piece itself.
+          // Whole when sheltered, or when no foreign piece comes within p of the ball around the
+          // piece, else when each that does is certified clear of the piece itself.
           const Vec middle = torus.middle(phi0, phi1, t0, t1);
           const double reach = torus.reach(middle, phi0, phi1, t0, t1);
           const TorusPatchPiece piece{ &arc, p, phi0.value, phi1.value, t0.value, t1.value };
-          const bool may_be_cut = gather_cutters(
-            distance, boundary, foreign, p, middle, reach,
-            [&](const SasArc& other) { return torus_clear_of_arc(piece, other); },
-            [&](const SasVertex& other) { return torus_clear_of_position(piece, other.position); },
-            search);
+          const bool may_be_cut = !sheltered &&
+            gather_cutters(
+              distance, boundary, foreign, p, middle, reach,
+              [&](const SasArc& other) { return torus_clear_of_arc(piece, other); },
+              [&](const SasVertex& other) {
+                return torus_clear_of_position(piece, other.position);
+              },
+              search);
           if (may_be_cut)
           {
             out.arc_uncut[k] = 0;
@@ -586,6 +610,14 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
       const Vec& v = vertex.position;
       const ConcavePatch concave(vertex, centres, p);
       const Vec(&u)[3] = concave.u;
+      const Integral whole = concave_piece(v, p, u[0], u[1], u[2]);
+      if (concave.sheltered)
+      {
+        out.vertex_uncut[k] = 1;
+        out.vertex_area[k] = whole.area;
+        out.vertex_volume[k] = whole.flux / 3.0;
+        continue;
+      }
       // What may cut the concave patch: other probes overlapping this one (at vertices within
       // 2 p), exactly as caps on its sphere; and, by distance, the arcs (see concave_cutters()).
       std::vector<UnitCap> caps;
@@ -609,7 +641,6 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
       const bool uncut =
         !may_be_cut && caps_meeting(triangle, caps, unit_caps) && unit_caps.empty();
       out.vertex_uncut[k] = uncut ? 1 : 0;
-      const Integral whole = concave_piece(v, p, u[0], u[1], u[2]);
       Integral patch = whole;
       if (!uncut && (may_be_cut || !uncovered_concave(v, p, u, triangle, caps, unit_caps, patch)))
       {
@@ -645,6 +676,10 @@ void toroidal_patch_cutters(const std::vector<Vec>& centres, double probe,
 {
   const SasArc& arc = boundary.arcs[k];
   const Torus torus = torus_of(arc, centres, probe);
+  if (torus.sheltered())
+  {
+    return;
+  }
   const ProbeDistance::Filter foreign = torus_cutters(arc);
   const std::size_t first_arc = arcs.size(), first_vertex = vertices.size();
   const auto visit = [&](const Angle& phi0, const Angle& phi1, const Angle& t0, const Angle& t1) {
@@ -676,6 +711,10 @@ void concave_patch_cutters(const std::vector<Vec>& centres, double probe,
 {
   const SasVertex& vertex = boundary.vertices[k];
   const ConcavePatch concave(vertex, centres, probe);
+  if (concave.sheltered)
+  {
+    return;
+  }
   const ProbeDistance::Filter foreign = concave_cutters(vertex, probe);
   const std::size_t first_arc = arcs.size(), first_vertex = vertices.size();
   // A cutter comes within the probe radius of a point of the patch's ball.

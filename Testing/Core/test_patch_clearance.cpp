@@ -205,3 +205,121 @@ TEST(PatchClearance, ArcsEndingOnThePatchAreNotCertified)
   EXPECT_FALSE(mesolens::torus_clear_of_arc(torus.piece, ending));
   EXPECT_FALSE(mesolens::torus_clear_of_position(torus.piece, inside));
 }
+
+namespace {
+/// Atoms of inflated radii `radii` (Å) touching the probe position at the origin from unit
+/// directions `directions`, and the accessible positions among random points within two probe
+/// radii of it.
+struct Touching
+{
+  std::vector<Vec> centres;
+  std::vector<double> radii;
+
+  Touching(const std::vector<Vec>& directions, const std::vector<double>& inflated)
+    : radii(inflated)
+  {
+    for (std::size_t a = 0; a < directions.size(); ++a)
+    {
+      this->centres.push_back(inflated[a] * directions[a].normalized());
+    }
+  }
+
+  std::vector<Vec> accessible_points(unsigned seed, int count) const
+  {
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> coordinate(-2.0 * probe, 2.0 * probe);
+    std::vector<Vec> points;
+    while (int(points.size()) < count)
+    {
+      const Vec w(coordinate(random), coordinate(random), coordinate(random));
+      bool kept = w.norm() < 2.0 * probe; // nearer can reach the probe's sphere
+      for (std::size_t a = 0; a < this->centres.size() && kept; ++a)
+      {
+        kept = (w - this->centres[a]).norm() >= this->radii[a];
+      }
+      if (kept)
+      {
+        points.push_back(w);
+      }
+    }
+    return points;
+  }
+};
+
+/// Points v + p u of the probe's sphere at the origin for u in the cone of `directions` (two:
+/// the arc between them; three: the spherical triangle), n steps a side.
+std::vector<Vec> cone_samples(const std::vector<Vec>& directions, int n)
+{
+  std::vector<Vec> points;
+  for (int i = 0; i <= n; ++i)
+  {
+    for (int j = 0; i + j <= n; ++j)
+    {
+      if (directions.size() == 2 && i + j != n)
+      {
+        continue;
+      }
+      Vec u = double(i) * directions[0] + double(j) * directions[1];
+      if (directions.size() == 3)
+      {
+        u += double(n - i - j) * directions[2];
+      }
+      points.push_back(probe * u.normalized());
+    }
+  }
+  return points;
+}
+} // namespace
+
+TEST(PatchClearance, NarrowPatchesAreClearOfEveryAccessiblePosition)
+{
+  // A torus between atoms of inflated radii 3.1 and 3.0 Å, 3 Å apart: its generating arc
+  // spans about 59 degrees, and no position outside both atoms reaches it (some come within
+  // the sampling of the probe radius: the probe's own path).
+  const Vec first = Vec(-1.6, -2.65, 0).normalized(), second = Vec(1.4, -2.65, 0).normalized();
+  const double span = std::acos(first.dot(second));
+  EXPECT_TRUE(mesolens::torus_clear_of_every_position(probe, 3.1, 3.0, span));
+  const Touching pair({ first, second }, { 3.1, 3.0 });
+  const double torus_gap =
+    nearest(cone_samples({ first, second }, 400), pair.accessible_points(11, 3000));
+  EXPECT_GT(torus_gap, probe - 0.01);
+  // A concave patch on three atoms 30 to 40 degrees apart.
+  const std::vector<Vec> close = { Vec(0.3, 0, -1).normalized(), Vec(-0.2, 0.3, -1).normalized(),
+                                   Vec(-0.2, -0.35, -1).normalized() };
+  const double radii[3] = { 3.0, 3.2, 2.9 };
+  const Vec corners[3] = { close[0], close[1], close[2] };
+  EXPECT_TRUE(mesolens::concave_clear_of_every_position(probe, corners, radii));
+  const Touching triple(close, { 3.0, 3.2, 2.9 });
+  EXPECT_GT(nearest(cone_samples(close, 60), triple.accessible_points(13, 3000)), probe - 0.01);
+}
+
+TEST(PatchClearance, WidePatchesAreLeftToTheirCertificates)
+{
+  // A probe passing between atoms of inflated radius 2.9 Å, 5.3 Å apart: its own positions
+  // across the axis cut the torus, and the condition fails.
+  const Vec first = Vec(-2.65, -1.18, 0).normalized(), second = Vec(2.65, -1.18, 0).normalized();
+  const double span = std::acos(first.dot(second));
+  EXPECT_FALSE(mesolens::torus_clear_of_every_position(probe, 2.9, 2.9, span));
+  const Touching pair({ first, second }, { 2.9, 2.9 });
+  EXPECT_LT(nearest(cone_samples({ first, second }, 400), pair.accessible_points(17, 3000)),
+            probe - 0.1);
+  // Three atoms 70 degrees from the middle: a position below the probe, between them, is
+  // accessible and cuts the concave patch.
+  std::vector<Vec> wide;
+  for (int a = 0; a < 3; ++a)
+  {
+    const double turn = 2.0 * pi * a / 3.0, tilt = 70.0 * pi / 180.0;
+    wide.emplace_back(std::sin(tilt) * std::cos(turn), std::sin(tilt) * std::sin(turn),
+                      -std::cos(tilt));
+  }
+  const double radii[3] = { 3.0, 3.0, 3.0 };
+  const Vec corners[3] = { wide[0], wide[1], wide[2] };
+  EXPECT_FALSE(mesolens::concave_clear_of_every_position(probe, corners, radii));
+  const Touching triple(wide, { 3.0, 3.0, 3.0 });
+  const Vec below(0, 0, -1.8 * probe);
+  for (const Vec& c : triple.centres)
+  {
+    ASSERT_GE((below - c).norm(), 3.0);
+  }
+  EXPECT_LT(nearest(cone_samples(wide, 60), { below }), probe - 0.1);
+}

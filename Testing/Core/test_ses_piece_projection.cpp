@@ -306,14 +306,14 @@ TEST(SesPieceProjection, PatchesTheIntegralsFindUncutNeedNoList)
 
 TEST(SesPieceProjection, ATorusAForeignProbeMayCutStaysListed)
 {
-  // 1tii has a torus that a probe touching neither of its atoms may cut (the integrals cannot
-  // certify it clear): it must stay listed (flagging every torus uncut leaves none, and the
-  // assertion below fails), and the points certified around it must lie on the surface. This
-  // torus is not actually cut, so wrongly flagging it alone would go unseen here; concave
-  // patches, cut far more often, are what the test above checks the flags on (flagging them
-  // all makes it fail).
+  // 1ubq has a torus that a probe touching neither of its atoms may cut (the probe passes
+  // between its atoms, so no general argument clears it, and the integrals cannot certify it
+  // clear): it must stay listed (flagging every torus uncut leaves none, and the assertion
+  // below fails), and the points certified around it must lie on the surface. This torus is not
+  // actually cut, so wrongly flagging it alone would go unseen here; concave patches, cut far
+  // more often, are what the test above checks the flags on (flagging them all makes it fail).
   std::vector<double> radii;
-  const std::vector<Vec> atoms = protein_atoms("proteins/1tii.pdb", radii);
+  const std::vector<Vec> atoms = protein_atoms("proteins/1ubq.pdb", radii);
   Surface listed(atoms, radii, {}), flagged(atoms, radii, {});
   const mesolens::SesPatchIntegrals patches = flagged.take_uncut_patches();
   std::vector<Vec> points;
@@ -335,7 +335,7 @@ TEST(SesPieceProjection, ATorusAForeignProbeMayCutStaysListed)
                        probe * (0.7 + 0.4 * unit(random)) * u);
     }
   }
-  ASSERT_GT(points.size(), 0u) << "no torus cut by a foreign probe in 1tii";
+  ASSERT_GT(points.size(), 0u) << "no torus cut by a foreign probe in 1ubq";
   EXPECT_GT(count_set(patches.arc_uncut), patches.arc_uncut.size() / 2);
   std::size_t certified = 0;
   EXPECT_EQ(differences(flagged, listed, points, PieceKind::Arc, certified), 0u);

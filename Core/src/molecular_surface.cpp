@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <numeric>
 #include <string>
 
@@ -270,13 +271,23 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
     }
   }
 
-  // Exact figures from the patches.
+  // One index of the boundary's pieces serves the figures and the tessellation, with the
+  // larger reach either asks for (a larger one only coarsens its cells).
   const bool figures = !excluded || options.exact_figures;
+  const double patch_reach = excluded && figures ? 2.0 * p + 0.6 * largest : 0.0;
+  const double mesh_reach = options.tessellate ? p * (excluded ? 1.0 : 0.0) + 4.0 * spacing : 0.0;
+  std::unique_ptr<const ProbeDistance> distance_index;
+  if (patch_reach > 0 || mesh_reach > 0)
+  {
+    distance_index = std::make_unique<const ProbeDistance>(centres, radii, boundary,
+                                                           std::max(patch_reach, mesh_reach));
+  }
+
+  // Exact figures from the patches.
   SesPatchIntegrals patches;
   if (excluded && figures)
   {
-    const ProbeDistance patch_distance(centres, radii, boundary, 2.0 * p + 0.6 * largest);
-    patches = ses_patch_integrals(centres, atom_radii, p, boundary, patch_distance, parallel_for);
+    patches = ses_patch_integrals(centres, atom_radii, p, boundary, *distance_index, parallel_for);
     surface.singular_patch_count = patches.singular_count;
   }
   else if (figures)
@@ -295,8 +306,7 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
   std::vector<std::int64_t> triangles;
   if (options.tessellate)
   {
-    const double reach = p * (excluded ? 1.0 : 0.0) + 4.0 * spacing;
-    const ProbeDistance distance(centres, radii, boundary, reach);
+    const ProbeDistance& distance = *distance_index;
     SesPieceProjection pieces(centres, atom_radii, p, boundary, distance);
     // Patches the exact figures certified uncut need no further certificate (none without
     // the figures).

@@ -264,7 +264,7 @@ int main(int argc, char* argv[])
     reader->Update();
     vtkNew<vtkMesoMolecularSurface> surface;
     surface->SetInputData(reader->GetOutput());
-    for (const double tolerance : { 0.3, 0.1 })
+    for (const double tolerance : { 1.0, 0.3, 0.1 })
     {
       surface->SetTolerance(tolerance);
       reset_peak();

@@ -154,6 +154,7 @@ struct ExposedArc
 struct UnitWorkspace
 {
   std::vector<Cap> kept;
+  std::vector<std::pair<double, std::uint32_t>> order;
   std::vector<std::vector<std::uint32_t>> overlapping;
   std::vector<Vec> vertices;
   std::vector<std::vector<std::pair<double, std::size_t>>> on_circle;
@@ -185,12 +186,19 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
   // Caps inside another cap bound nothing: dropped (cap b lies in cap a when the angle between
   // their axes plus b's radius is at most a's radius; compared as cosines, without acos).
   {
-    std::sort(caps.begin(), caps.end(),
-              [](const Cap& x, const Cap& y) { return x.height < y.height; }); // largest first
+    // Largest first (by index: the caps are large to move).
+    std::vector<std::pair<double, std::uint32_t>>& order = work.order;
+    order.clear();
+    for (std::size_t k = 0; k < caps.size(); ++k)
+    {
+      order.emplace_back(caps[k].height, static_cast<std::uint32_t>(k));
+    }
+    std::sort(order.begin(), order.end());
     std::vector<Cap>& kept = work.kept;
     kept.clear();
-    for (const Cap& cap : caps)
+    for (const auto& [height, index] : order)
     {
+      const Cap& cap = caps[index];
       bool inside = false;
       for (const Cap& larger : kept)
       {

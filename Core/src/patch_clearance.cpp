@@ -242,6 +242,7 @@ bool concave_arc_range(const Vec& v, double p, const SphericalTriangle& triangle
   return concave_arc_range(v, p, triangle, other, low, middle, budget) &&
     concave_arc_range(v, p, triangle, other, middle, high, budget);
 }
+
 /// The distance from the origin to segment [a, b].
 double distance_to_segment(const Vec& a, const Vec& b)
 {

@@ -566,19 +566,21 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
       for_torus_pieces(
         torus, [&](const Angle& phi0, const Angle& phi1, const Angle& t0, const Angle& t1) {
           const Integral whole = torus.piece(phi0, phi1, t0, t1);
-          // Whole when sheltered, or when no foreign piece comes within p of the ball around the
-          // piece, else when each that does is certified clear of the piece itself.
+          if (sheltered)
+          {
+            total += whole;
+            return;
+          }
+          // Whole when no foreign piece comes within p of the ball around the piece, else when
+          // each that does is certified clear of the piece itself.
           const Vec middle = torus.middle(phi0, phi1, t0, t1);
           const double reach = torus.reach(middle, phi0, phi1, t0, t1);
           const TorusPatchPiece piece{ &arc, p, phi0.value, phi1.value, t0.value, t1.value };
-          const bool may_be_cut = !sheltered &&
-            gather_cutters(
-              distance, boundary, foreign, p, middle, reach,
-              [&](const SasArc& other) { return torus_clear_of_arc(piece, other); },
-              [&](const SasVertex& other) {
-                return torus_clear_of_position(piece, other.position);
-              },
-              search);
+          const bool may_be_cut = gather_cutters(
+            distance, boundary, foreign, p, middle, reach,
+            [&](const SasArc& other) { return torus_clear_of_arc(piece, other); },
+            [&](const SasVertex& other) { return torus_clear_of_position(piece, other.position); },
+            search);
           if (may_be_cut)
           {
             out.arc_uncut[k] = 0;

@@ -37,10 +37,13 @@ struct SesPatchIntegrals
 /// patches run between the two contact circles and are cut at the axis when the probe passes
 /// between the atoms (there the torus intersects itself). Concave patches are spherical
 /// triangles on the probe. Each comes in closed form unless a probe position that does not
-/// belong to the patch may come within the probe radius of it: first one index query about a
-/// ball around the patch, then, for the foreign pieces near it, certificates against the patch
-/// itself (patch_clearance.h). Only patches something may cut are split recursively, looking at
-/// those pieces alone, and keeping the parts no other probe position reaches.
+/// belong to the patch may come within the probe radius of it: most patches are too narrow for
+/// any to (torus_clear_of_every_position(), concave_clear_of_every_position()); for the others,
+/// the foreign pieces within the probe radius of a ball around the patch, each certified
+/// against the patch itself (patch_clearance.h), and other probes overlapping a concave patch,
+/// which cut it exactly (caps on its sphere). Only patches something may cut are split
+/// recursively, looking at those pieces alone, keeping the parts no other probe position
+/// reaches, and taking the pieces no foreign piece reaches exactly.
 SesPatchIntegrals ses_patch_integrals(const std::vector<Eigen::Vector3d>& centres,
                                       const std::vector<double>& atom_radii, double probe,
                                       const SasBoundary& boundary, const ProbeDistance& distance,

@@ -28,6 +28,12 @@ struct Integral
     this->flux += other.flux;
     return *this;
   }
+  Integral& operator-=(const Integral& other)
+  {
+    this->area -= other.area;
+    this->flux -= other.flux;
+    return *this;
+  }
 };
 
 /// An angle with its cosine and sine, computed once.
@@ -497,6 +503,55 @@ Integral split_concave(const Splitter& splitter, const std::vector<UnitCap>& cap
   return sum;
 }
 
+/// What foreign positions take from the part of a concave patch that the caps leave, for a patch
+/// whose caps' part is known exactly (uncovered_concave()): nothing from a piece no foreign
+/// position reaches; at the deepest split, the piece times the fraction the caps leave less
+/// the fraction both leave, each interpolated linearly between its corners (second-order
+/// accurate, as split_concave()). One arrangement of the caps for the whole patch, instead of
+/// one per piece.
+Integral foreign_cut_concave(const Splitter& splitter, const std::vector<UnitCap>& caps,
+                             CapsByDepth& caps_by_depth, const Vec& centre, const Vec& a,
+                             const Vec& b, const Vec& c, int depth)
+{
+  const double p = splitter.probe;
+  const Vec middle = (a + b + c).normalized();
+  std::vector<UnitCap>& meeting = caps_by_depth[std::size_t(depth)];
+  const double size =
+    ball_slack * p * std::max({ (middle - a).norm(), (middle - b).norm(), (middle - c).norm() });
+  if (!caps_meeting(SphericalTriangle(a, b, c), caps, meeting) ||
+      splitter.kept(centre + p * middle, size))
+  {
+    return {}; // wholly inside a neighbour, or out of every foreign position's reach
+  }
+  if (depth == deepest_split)
+  {
+    const auto cap_gap = [&](const Vec& u) {
+      double g = p;
+      for (const UnitCap& cap : meeting)
+      {
+        g = std::min(g, p * (cap.height - u.dot(cap.axis)));
+      }
+      return g;
+    };
+    const auto both = [&](const Vec& u) {
+      return std::min(cap_gap(u), splitter.clearance(centre + p * u));
+    };
+    Integral piece = concave_piece(centre, p, a, b, c);
+    const double taken = positive_fraction(cap_gap(a), cap_gap(b), cap_gap(c)) -
+      positive_fraction(both(a), both(b), both(c));
+    piece.area *= taken;
+    piece.flux *= taken;
+    return piece;
+  }
+  const Vec ab = (a + b).normalized(), bc = (b + c).normalized(), ca = (c + a).normalized();
+  Integral sum;
+  sum += foreign_cut_concave(splitter, meeting, caps_by_depth, centre, a, ab, ca, depth + 1);
+  sum += foreign_cut_concave(splitter, meeting, caps_by_depth, centre, ab, b, bc, depth + 1);
+  sum += foreign_cut_concave(splitter, meeting, caps_by_depth, centre, ca, bc, c, depth + 1);
+  sum += foreign_cut_concave(splitter, meeting, caps_by_depth, centre, ab, bc, ca, depth + 1);
+  return sum;
+}
+
 Integral split_torus(const Splitter& splitter, const Torus& torus, const Angle& phi0,
                      const Angle& phi1, const Angle& t0, const Angle& t1, int depth)
 {
@@ -638,15 +693,23 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
         [&](const SasArc& other) { return concave_clear_of_arc(v, p, triangle, other); },
         [](const SasVertex&) { return false; }, search);
       const Splitter splitter{ &distance, &foreign, p, may_be_cut ? &search.cutters : nullptr };
-      // Uncut (whole): no foreign arc may reach it and no other probe's cap meets it. Else the
-      // caps alone exactly, or the split.
+      // Uncut (whole): no foreign arc may reach it and no other probe's cap meets it.
       const bool uncut =
         !may_be_cut && caps_meeting(triangle, caps, unit_caps) && unit_caps.empty();
       out.vertex_uncut[k] = uncut ? 1 : 0;
+      // Else the caps' part exactly, less what foreign positions take from it; the split where
+      // the caps' arrangement is degenerate.
       Integral patch = whole;
-      if (!uncut && (may_be_cut || !uncovered_concave(v, p, u, triangle, caps, unit_caps, patch)))
+      if (!uncut)
       {
-        patch = split_concave(splitter, caps, caps_by_depth, unit_caps, v, u[0], u[1], u[2], 0);
+        if (!uncovered_concave(v, p, u, triangle, caps, unit_caps, patch))
+        {
+          patch = split_concave(splitter, caps, caps_by_depth, unit_caps, v, u[0], u[1], u[2], 0);
+        }
+        else if (may_be_cut)
+        {
+          patch -= foreign_cut_concave(splitter, caps, caps_by_depth, v, u[0], u[1], u[2], 0);
+        }
       }
       if (std::abs(patch.area - whole.area) > 1e-12 * std::max(1.0, whole.area))
       {

@@ -444,70 +444,11 @@ bool uncovered_concave(const Vec& centre, double p, const Vec (&u)[3],
 /// Caps meeting the pieces of a concave patch, per depth of the split (reused).
 using CapsByDepth = std::array<std::vector<UnitCap>, deepest_split + 1>;
 
-/// split_concave() on a concave patch that foreign positions may cut, where neighbouring probes
-/// overlapping it give `caps`. A piece that no foreign position reaches is integrated exactly
-/// (uncovered_concave()), however the caps cut it: only the neighbourhood of the foreign cuts
-/// is split to the deepest level. `unit_caps` is a buffer.
-Integral split_concave(const Splitter& splitter, const std::vector<UnitCap>& caps,
-                       CapsByDepth& caps_by_depth, std::vector<UnitCap>& unit_caps,
-                       const Vec& centre, const Vec& a, const Vec& b, const Vec& c, int depth)
-{
-  const double p = splitter.probe;
-  const Vec middle = (a + b + c).normalized();
-  // Neighbouring probes cut exactly: caps on this probe's sphere. Only those meeting this
-  // piece can meet its parts, so they alone go down.
-  std::vector<UnitCap>& meeting = caps_by_depth[std::size_t(depth)];
-  if (!caps_meeting(SphericalTriangle(a, b, c), caps, meeting))
-  {
-    return {}; // wholly inside a neighbour
-  }
-  const bool cut_by_cap = !meeting.empty();
-  const double size =
-    ball_slack * p * std::max({ (middle - a).norm(), (middle - b).norm(), (middle - c).norm() });
-  if (splitter.kept(centre + p * middle, size))
-  {
-    if (!cut_by_cap)
-    {
-      return concave_piece(centre, p, a, b, c);
-    }
-    Integral exact;
-    const Vec corners[3] = { a, b, c };
-    if (uncovered_concave(centre, p, corners, SphericalTriangle(a, b, c), meeting, unit_caps,
-                          exact))
-    {
-      return exact;
-    }
-  }
-  if (depth == deepest_split)
-  {
-    const auto clearance = [&](const Vec& u) {
-      double g = splitter.clearance(centre + p * u);
-      for (const UnitCap& cap : meeting)
-      {
-        g = std::min(g, p * (cap.height - u.dot(cap.axis)));
-      }
-      return g;
-    };
-    Integral piece = concave_piece(centre, p, a, b, c);
-    const double kept = positive_fraction(clearance(a), clearance(b), clearance(c));
-    piece.area *= kept;
-    piece.flux *= kept;
-    return piece;
-  }
-  const Vec ab = (a + b).normalized(), bc = (b + c).normalized(), ca = (c + a).normalized();
-  Integral sum;
-  sum += split_concave(splitter, meeting, caps_by_depth, unit_caps, centre, a, ab, ca, depth + 1);
-  sum += split_concave(splitter, meeting, caps_by_depth, unit_caps, centre, ab, b, bc, depth + 1);
-  sum += split_concave(splitter, meeting, caps_by_depth, unit_caps, centre, ca, bc, c, depth + 1);
-  sum += split_concave(splitter, meeting, caps_by_depth, unit_caps, centre, ab, bc, ca, depth + 1);
-  return sum;
-}
-
 /// What foreign positions take from the part of a concave patch that the caps leave, for a patch
 /// whose caps' part is known exactly (uncovered_concave()): nothing from a piece no foreign
 /// position reaches; at the deepest split, the piece times the fraction the caps leave less
 /// the fraction both leave, each interpolated linearly between its corners (second-order
-/// accurate, as split_concave()). One arrangement of the caps for the whole patch, instead of
+/// accurate, as cut_concave()). One arrangement of the caps for the whole patch, instead of
 /// one per piece.
 Integral foreign_cut_concave(const Splitter& splitter, const std::vector<UnitCap>& caps,
                              CapsByDepth& caps_by_depth, const Vec& centre, const Vec& a,
@@ -549,6 +490,57 @@ Integral foreign_cut_concave(const Splitter& splitter, const std::vector<UnitCap
   sum += foreign_cut_concave(splitter, meeting, caps_by_depth, centre, ab, b, bc, depth + 1);
   sum += foreign_cut_concave(splitter, meeting, caps_by_depth, centre, ca, bc, c, depth + 1);
   sum += foreign_cut_concave(splitter, meeting, caps_by_depth, centre, ab, bc, ca, depth + 1);
+  return sum;
+}
+
+/// A concave patch (or a piece of one) that other probes may cut, with `caps` those
+/// overlapping it: where the caps' arrangement on it is not degenerate, the part they leave
+/// exactly, less what foreign positions take from it (foreign_cut_concave()); else (three
+/// circles crossing at one point, as at the cusp of a torus the probe passes through) split,
+/// down to the deepest level, where a piece counts by the fraction of it where the clearance
+/// from caps and foreign positions, interpolated linearly between its corners, is positive.
+/// `unit_caps` is a buffer.
+Integral cut_concave(const Splitter& splitter, const std::vector<UnitCap>& caps,
+                     CapsByDepth& caps_by_depth, std::vector<UnitCap>& unit_caps, const Vec& centre,
+                     const Vec& a, const Vec& b, const Vec& c, int depth)
+{
+  const double p = splitter.probe;
+  std::vector<UnitCap>& meeting = caps_by_depth[std::size_t(depth)];
+  const SphericalTriangle triangle(a, b, c);
+  if (!caps_meeting(triangle, caps, meeting))
+  {
+    return {}; // wholly inside a neighbour
+  }
+  const Vec corners[3] = { a, b, c };
+  Integral part;
+  if (uncovered_concave(centre, p, corners, triangle, meeting, unit_caps, part))
+  {
+    // (Its own list of the caps from `caps`: `meeting` is this depth's buffer.)
+    part -= foreign_cut_concave(splitter, caps, caps_by_depth, centre, a, b, c, depth);
+    return part;
+  }
+  if (depth == deepest_split)
+  {
+    const auto clearance = [&](const Vec& u) {
+      double g = splitter.clearance(centre + p * u);
+      for (const UnitCap& cap : meeting)
+      {
+        g = std::min(g, p * (cap.height - u.dot(cap.axis)));
+      }
+      return g;
+    };
+    Integral piece = concave_piece(centre, p, a, b, c);
+    const double kept = positive_fraction(clearance(a), clearance(b), clearance(c));
+    piece.area *= kept;
+    piece.flux *= kept;
+    return piece;
+  }
+  const Vec ab = (a + b).normalized(), bc = (b + c).normalized(), ca = (c + a).normalized();
+  Integral sum;
+  sum += cut_concave(splitter, meeting, caps_by_depth, unit_caps, centre, a, ab, ca, depth + 1);
+  sum += cut_concave(splitter, meeting, caps_by_depth, unit_caps, centre, ab, b, bc, depth + 1);
+  sum += cut_concave(splitter, meeting, caps_by_depth, unit_caps, centre, ca, bc, c, depth + 1);
+  sum += cut_concave(splitter, meeting, caps_by_depth, unit_caps, centre, ab, bc, ca, depth + 1);
   return sum;
 }
 
@@ -697,20 +689,9 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
       const bool uncut =
         !may_be_cut && caps_meeting(triangle, caps, unit_caps) && unit_caps.empty();
       out.vertex_uncut[k] = uncut ? 1 : 0;
-      // Else the caps' part exactly, less what foreign positions take from it; the split where
-      // the caps' arrangement is degenerate.
-      Integral patch = whole;
-      if (!uncut)
-      {
-        if (!uncovered_concave(v, p, u, triangle, caps, unit_caps, patch))
-        {
-          patch = split_concave(splitter, caps, caps_by_depth, unit_caps, v, u[0], u[1], u[2], 0);
-        }
-        else if (may_be_cut)
-        {
-          patch -= foreign_cut_concave(splitter, caps, caps_by_depth, v, u[0], u[1], u[2], 0);
-        }
-      }
+      const Integral patch = uncut
+        ? whole
+        : cut_concave(splitter, caps, caps_by_depth, unit_caps, v, u[0], u[1], u[2], 0);
       if (std::abs(patch.area - whole.area) > 1e-12 * std::max(1.0, whole.area))
       {
         vertex_singular[k] = 1;

@@ -3,6 +3,9 @@
 
 #include "patch_clearance.h"
 
+#include <CGAL/Distance_3/Point_3_Triangle_3.h>
+#include <CGAL/Simple_cartesian.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -243,43 +246,18 @@ bool concave_arc_range(const Vec& v, double p, const SphericalTriangle& triangle
     concave_arc_range(v, p, triangle, other, middle, high, budget);
 }
 
-/// The distance from the origin to segment [a, b].
-double distance_to_segment(const Vec& a, const Vec& b)
-{
-  const Vec edge = b - a;
-  const double along = std::clamp(-a.dot(edge) / std::max(edge.squaredNorm(), 1e-300), 0.0, 1.0);
-  return (a + along * edge).norm();
-}
-
-/// The distance from the origin to the flat triangle (a, b, c): to its plane where the foot of
-/// the perpendicular lies inside it, else to the nearest edge.
-double distance_to_triangle(const Vec& a, const Vec& b, const Vec& c)
-{
-  const Vec normal = (b - a).cross(c - a);
-  const double twice_area = normal.norm();
-  if (twice_area > 1e-12)
-  {
-    const Vec unit = normal / twice_area;
-    const Vec foot = a.dot(unit) * unit;
-    // Inside when the foot lies on the inner side of each edge.
-    const bool inside = (b - a).cross(foot - a).dot(unit) >= 0 &&
-      (c - b).cross(foot - b).dot(unit) >= 0 && (a - c).cross(foot - c).dot(unit) >= 0;
-    if (inside)
-    {
-      return foot.norm();
-    }
-  }
-  return std::min(
-    { distance_to_segment(a, b), distance_to_segment(b, c), distance_to_segment(c, a) });
-}
 } // namespace
 
 bool concave_clear_of_every_position(double probe, const Vec (&directions)[3],
                                      const double (&radii)[3])
 {
-  const double least = std::min({ radii[0], radii[1], radii[2] });
-  return least * distance_to_triangle(directions[0], directions[1], directions[2]) >=
-    probe * (1.0 + 1e-9);
+  // d: the distance from the origin to the flat triangle of the directions.
+  using Kernel = CGAL::Simple_cartesian<double>;
+  const auto point = [](const Vec& x) { return Kernel::Point_3(x[0], x[1], x[2]); };
+  const double d = std::sqrt(CGAL::squared_distance(
+    Kernel::Point_3(0, 0, 0),
+    Kernel::Triangle_3(point(directions[0]), point(directions[1]), point(directions[2]))));
+  return std::min({ radii[0], radii[1], radii[2] }) * d >= probe * (1.0 + 1e-9);
 }
 
 bool torus_clear_of_position(const TorusPatchPiece& torus, const Vec& position)

@@ -304,6 +304,19 @@ struct Splitter
   }
 };
 
+/// Appends to `arcs` those `foreign` admits with an exposed point nearer than `reach` to `x`
+/// (from the index, then by their exact distance): the arcs that may cut a patch lying within
+/// `reach` less the probe radius of `x`.
+void foreign_arcs_near(const ProbeDistance& distance, const ProbeDistance::Filter& foreign,
+                       const Vec& x, double reach, std::vector<std::uint32_t>& arcs)
+{
+  const std::size_t first = arcs.size();
+  distance.arcs_within(x, reach, arcs, foreign);
+  arcs.erase(std::remove_if(arcs.begin() + std::ptrdiff_t(first), arcs.end(),
+                            [&](std::uint32_t k) { return distance.arc_distance(k, x) >= reach; }),
+             arcs.end());
+}
+
 /// Buffers of gather_cutters(), reused from patch to patch.
 struct CutterSearch
 {
@@ -323,12 +336,10 @@ bool gather_cutters(const ProbeDistance& distance, const SasBoundary& boundary,
 {
   search.arcs.clear();
   const double reach = radius + p;
-  distance.arcs_within(centre, reach, search.arcs, foreign);
-  const auto arcs_end =
-    std::remove_if(search.arcs.begin(), search.arcs.end(), [&](std::uint32_t k) {
-      return distance.arc_distance(k, centre) >= reach || clear_of_arc(boundary.arcs[k]);
-    });
-  search.arcs.erase(arcs_end, search.arcs.end());
+  foreign_arcs_near(distance, foreign, centre, reach, search.arcs);
+  search.arcs.erase(std::remove_if(search.arcs.begin(), search.arcs.end(),
+                                   [&](std::uint32_t k) { return clear_of_arc(boundary.arcs[k]); }),
+                    search.arcs.end());
   search.vertices.clear();
   if (foreign.admits_vertices())
   {
@@ -444,25 +455,23 @@ bool uncovered_concave(const Vec& centre, double p, const Vec (&u)[3],
 /// Caps meeting the pieces of a concave patch, per depth of the split (reused).
 using CapsByDepth = std::array<std::vector<UnitCap>, deepest_split + 1>;
 
-/// What foreign positions take from the part of a concave patch that the caps leave, for a patch
-/// whose caps' part is known exactly (uncovered_concave()): nothing from a piece no foreign
-/// position reaches; at the deepest split, the piece times the fraction the caps leave less
-/// the fraction both leave, each interpolated linearly between its corners (second-order
-/// accurate, as cut_concave()). One arrangement of the caps for the whole patch, instead of
-/// one per piece.
-Integral foreign_cut_concave(const Splitter& splitter, const std::vector<UnitCap>& caps,
+/// What foreign positions take from the part of a concave patch (or piece) that the caps
+/// `meeting` it leave, for a piece whose caps' part is known exactly (uncovered_concave()):
+/// nothing from a piece no foreign position reaches; at the deepest split, the piece times the
+/// fraction the caps leave less the fraction both leave, each interpolated linearly between its
+/// corners (second-order accurate, as cut_concave()). One arrangement of the caps for the whole
+/// patch, instead of one per piece.
+Integral foreign_cut_concave(const Splitter& splitter, const std::vector<UnitCap>& meeting,
                              CapsByDepth& caps_by_depth, const Vec& centre, const Vec& a,
                              const Vec& b, const Vec& c, int depth)
 {
   const double p = splitter.probe;
   const Vec middle = (a + b + c).normalized();
-  std::vector<UnitCap>& meeting = caps_by_depth[std::size_t(depth)];
   const double size =
     ball_slack * p * std::max({ (middle - a).norm(), (middle - b).norm(), (middle - c).norm() });
-  if (!caps_meeting(SphericalTriangle(a, b, c), caps, meeting) ||
-      splitter.kept(centre + p * middle, size))
+  if (splitter.kept(centre + p * middle, size))
   {
-    return {}; // wholly inside a neighbour, or out of every foreign position's reach
+    return {}; // out of every foreign position's reach
   }
   if (depth == deepest_split)
   {
@@ -485,11 +494,18 @@ Integral foreign_cut_concave(const Splitter& splitter, const std::vector<UnitCap
     return piece;
   }
   const Vec ab = (a + b).normalized(), bc = (b + c).normalized(), ca = (c + a).normalized();
+  const Vec children[4][3] = { { a, ab, ca }, { ab, b, bc }, { ca, bc, c }, { ab, bc, ca } };
+  std::vector<UnitCap>& child_meeting = caps_by_depth[std::size_t(depth) + 1];
   Integral sum;
-  sum += foreign_cut_concave(splitter, meeting, caps_by_depth, centre, a, ab, ca, depth + 1);
-  sum += foreign_cut_concave(splitter, meeting, caps_by_depth, centre, ab, b, bc, depth + 1);
-  sum += foreign_cut_concave(splitter, meeting, caps_by_depth, centre, ca, bc, c, depth + 1);
-  sum += foreign_cut_concave(splitter, meeting, caps_by_depth, centre, ab, bc, ca, depth + 1);
+  for (const auto& child : children)
+  {
+    // A child wholly inside a neighbour has nothing left to take.
+    if (caps_meeting(SphericalTriangle(child[0], child[1], child[2]), meeting, child_meeting))
+    {
+      sum += foreign_cut_concave(splitter, child_meeting, caps_by_depth, centre, child[0], child[1],
+                                 child[2], depth + 1);
+    }
+  }
   return sum;
 }
 
@@ -515,8 +531,7 @@ Integral cut_concave(const Splitter& splitter, const std::vector<UnitCap>& caps,
   Integral part;
   if (uncovered_concave(centre, p, corners, triangle, meeting, unit_caps, part))
   {
-    // (Its own list of the caps from `caps`: `meeting` is this depth's buffer.)
-    part -= foreign_cut_concave(splitter, caps, caps_by_depth, centre, a, b, c, depth);
+    part -= foreign_cut_concave(splitter, meeting, caps_by_depth, centre, a, b, c, depth);
     return part;
   }
   if (depth == deepest_split)
@@ -732,12 +747,7 @@ void toroidal_patch_cutters(const std::vector<Vec>& centres, double probe,
     // A cutter comes within the probe radius of a point of the piece's ball.
     const Vec middle = torus.middle(phi0, phi1, t0, t1);
     const double reach = torus.reach(middle, phi0, phi1, t0, t1) + probe;
-    const std::size_t listed = arcs.size();
-    distance.arcs_within(middle, reach, arcs, foreign);
-    const auto far = [&](std::uint32_t other) {
-      return distance.arc_distance(other, middle) >= reach;
-    };
-    arcs.erase(std::remove_if(arcs.begin() + std::ptrdiff_t(listed), arcs.end(), far), arcs.end());
+    foreign_arcs_near(distance, foreign, middle, reach, arcs);
     distance.vertices_within(middle, reach, [&](std::uint32_t other) {
       if (foreign.admits(boundary.vertices[other]))
       {
@@ -762,14 +772,10 @@ void concave_patch_cutters(const std::vector<Vec>& centres, double probe,
     return;
   }
   const ProbeDistance::Filter foreign = concave_cutters(vertex, probe);
-  const std::size_t first_arc = arcs.size(), first_vertex = vertices.size();
+  const std::size_t first_vertex = vertices.size();
   // A cutter comes within the probe radius of a point of the patch's ball.
   const double reach = concave.reach + probe;
-  distance.arcs_within(concave.middle, reach, arcs, foreign);
-  const auto far = [&](std::uint32_t other) {
-    return distance.arc_distance(other, concave.middle) >= reach;
-  };
-  arcs.erase(std::remove_if(arcs.begin() + std::ptrdiff_t(first_arc), arcs.end(), far), arcs.end());
+  foreign_arcs_near(distance, foreign, concave.middle, reach, arcs);
   distance.vertices_within(vertex.position, 2.0 * probe, [&](std::uint32_t other) {
     if (other != k && (boundary.vertices[other].position - concave.middle).norm() < reach)
     {

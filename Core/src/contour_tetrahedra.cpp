@@ -76,29 +76,77 @@ struct BlockOutput
 };
 } // namespace
 
-ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const Vec& high,
-                               double spacing, const ParallelFor& parallel_for,
+ContourGrid::ContourGrid(const Vec& low_corner, const Vec& high, double grid_spacing)
+  : low(low_corner)
+  , spacing(grid_spacing)
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    this->cells[a] = std::max<std::int64_t>(
+      1, static_cast<std::int64_t>(std::ceil((high[a] - low_corner[a]) / grid_spacing)));
+    this->blocks[a] = (this->cells[a] + block_cells - 1) / block_cells;
+  }
+}
+
+std::array<std::int64_t, 3> ContourGrid::block_first(std::size_t block) const
+{
+  const std::int64_t b = static_cast<std::int64_t>(block);
+  return { block_cells * (b % this->blocks[0]),
+           block_cells * ((b / this->blocks[0]) % this->blocks[1]),
+           block_cells * (b / (this->blocks[0] * this->blocks[1])) };
+}
+
+bool ContourGrid::blocks_meeting(const Vec& from, const Vec& to, std::array<std::int64_t, 3>& first,
+                                 std::array<std::int64_t, 3>& last) const
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    // Block b holds the points block_cells b .. block_cells (b + 1).
+    const double lower = (from[a] - this->low[a]) / (this->spacing * block_cells);
+    const double upper = (to[a] - this->low[a]) / (this->spacing * block_cells);
+    first[a] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::ceil(lower - 1.0)));
+    last[a] =
+      std::min<std::int64_t>(this->blocks[a] - 1, static_cast<std::int64_t>(std::floor(upper)));
+    if (first[a] > last[a])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+bool ContourGrid::points_within(std::size_t block, const Vec& from, const Vec& to,
+                                std::array<int, 3>& first, std::array<int, 3>& last) const
+{
+  const auto origin = this->block_first(block);
+  for (int a = 0; a < 3; ++a)
+  {
+    const double base = this->low[a] + this->spacing * double(origin[a]);
+    first[a] = static_cast<int>(std::max(0.0, std::ceil((from[a] - base) / this->spacing)));
+    last[a] =
+      static_cast<int>(std::min(double(block_cells), std::floor((to[a] - base) / this->spacing)));
+    if (first[a] > last[a])
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& high, double spacing,
+                               const ParallelFor& parallel_for,
                                const std::function<void(double)>& progress)
 {
   ContourMesh mesh;
-  std::array<std::int64_t, 3> cells{};
-  for (int a = 0; a < 3; ++a)
-  {
-    cells[a] =
-      std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil((high[a] - low[a]) / spacing)));
-  }
+  const ContourGrid grid(low, high, spacing);
+  const auto& cells = grid.cells;
+  const auto& blocks = grid.blocks;
+  constexpr int block_cells = ContourGrid::block_cells;
   const std::array<std::int64_t, 3> points = { cells[0] + 1, cells[1] + 1, cells[2] + 1 };
-  const std::array<std::int64_t, 3> blocks = { (cells[0] + block_cells - 1) / block_cells,
-                                               (cells[1] + block_cells - 1) / block_cells,
-                                               (cells[2] + block_cells - 1) / block_cells };
-  const std::size_t block_count = static_cast<std::size_t>(blocks[0] * blocks[1] * blocks[2]);
+  const std::size_t block_count = grid.block_count();
   const auto tets = kuhn_tetrahedra();
   const auto point_key = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
     return static_cast<std::uint64_t>(x + points[0] * (y + points[1] * z));
-  };
-  const auto position = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
-    return Vec(low[0] + spacing * double(x), low[1] + spacing * double(y),
-               low[2] + spacing * double(z));
   };
   // The block owning a grid point (points on the far faces belong to the last blocks).
   const auto owner_of = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
@@ -116,6 +164,7 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
     };
   };
 
+  field.prepare(grid, parallel_for);
   std::vector<BlockOutput> outputs(block_count);
   // What a thread reuses from block to block: the field's local view and the block's tables.
   struct BlockBuffers
@@ -125,43 +174,26 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
     std::vector<std::uint32_t> hints;
     std::vector<std::int64_t> made;
   };
+  constexpr int side = ContourGrid::block_points;
   const auto run_block = [&](std::size_t block, BlockBuffers& buffers) {
-    const std::int64_t bx = static_cast<std::int64_t>(block % std::size_t(blocks[0]));
-    const std::int64_t by =
-      static_cast<std::int64_t>((block / std::size_t(blocks[0])) % std::size_t(blocks[1]));
-    const std::int64_t bz = static_cast<std::int64_t>(block / std::size_t(blocks[0] * blocks[1]));
-    const std::int64_t x0 = bx * block_cells, y0 = by * block_cells, z0 = bz * block_cells;
-    const Vec block_centre =
-      position(x0, y0, z0) + Vec::Constant(0.5 * spacing * double(block_cells));
-    if (field.empty(block_centre, 0.5 * std::sqrt(3.0) * spacing * double(block_cells)))
-    {
-      return;
-    }
     if (!buffers.local)
     {
       buffers.local = field.local();
+      buffers.values.resize(side * side * side);
+      buffers.hints.resize(side * side * side);
     }
     LocalContourField* const local = buffers.local.get();
-    // Corner values on the block's points (block_cells + 1 per axis), computed once.
-    constexpr int side = block_cells + 1;
-    std::vector<double>& values = buffers.values;
-    std::vector<std::uint32_t>& hints = buffers.hints;
-    bool sampled = false;
+    if (!local->sample_block(grid, block, buffers.values.data(), buffers.hints.data()))
+    {
+      return;
+    }
+    const auto first = grid.block_first(block);
+    const std::int64_t x0 = first[0], y0 = first[1], z0 = first[2];
+    const double* const values = buffers.values.data();
+    const std::uint32_t* const hints = buffers.hints.data();
     const auto sample_at = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
-      if (!sampled)
-      {
-        values.assign(side * side * side, std::numeric_limits<double>::quiet_NaN());
-        hints.assign(side * side * side, 0);
-        sampled = true;
-      }
       const std::size_t at = std::size_t((x - x0) + side * ((y - y0) + side * (z - z0)));
-      LocalContourField::Sample sample{ position(x, y, z), values[at], hints[at] };
-      if (std::isnan(sample.value))
-      {
-        sample.value = values[at] = local->value(sample.position, sample.hint);
-        hints[at] = sample.hint;
-      }
-      return sample;
+      return LocalContourField::Sample{ grid.point(x, y, z), values[at], hints[at] };
     };
     BlockOutput& out = outputs[block];
     // Per block point and Kuhn direction (1 to 7), the index of the vertex on that edge.
@@ -190,7 +222,7 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
             const int outside = corner[a].value > 0 ? b : a;
             const int inside = corner[a].value > 0 ? a : b;
             index = static_cast<std::int64_t>(out.vertices.size());
-            out.vertices.push_back(local->vertex(corner[outside], corner[inside]));
+            out.vertices.push_back(local->vertex(corner[outside], corner[inside], corner.data()));
             out.keys.push_back(key);
           }
           else
@@ -257,35 +289,26 @@ ContourMesh contour_tetrahedra(const ContourField& field, const Vec& low, const 
         out.triangles.push_back({ ac, bd, bc });
       }
     };
-    // Octree descent: each node focuses the field on its ball, from its parent's focus, and
-    // nodes the surface misses are dropped with all they hold.
-    const auto visit = [&](const auto& self, std::int64_t x, std::int64_t y, std::int64_t z,
-                           std::int64_t size, int level) -> void {
-      const Vec centre = position(x, y, z) + Vec::Constant(0.5 * spacing * double(size));
-      // A little more than half the diagonal, against rounding at the corners.
-      const double radius = 0.5 * std::sqrt(3.0) * spacing * double(size) * (1.0 + 1e-9);
-      if (!local->focus(level, centre, radius, size == 1))
-      {
-        return;
-      }
-      if (size == 1)
-      {
-        contour_cell({ x, y, z });
-        return;
-      }
-      const std::int64_t half = size / 2;
-      for (int child = 0; child < 8; ++child)
-      {
-        const std::int64_t cx = x + (child & 1 ? half : 0);
-        const std::int64_t cy = y + (child & 2 ? half : 0);
-        const std::int64_t cz = z + (child & 4 ? half : 0);
-        if (cx < cells[0] && cy < cells[1] && cz < cells[2])
+    // The cells whose corners change sign.
+    const std::int64_t x1 = std::min(x0 + block_cells, cells[0]);
+    const std::int64_t y1 = std::min(y0 + block_cells, cells[1]);
+    const std::int64_t z1 = std::min(z0 + block_cells, cells[2]);
+    for (std::int64_t z = z0; z < z1; ++z)
+      for (std::int64_t y = y0; y < y1; ++y)
+        for (std::int64_t x = x0; x < x1; ++x)
         {
-          self(self, cx, cy, cz, half, level + 1);
+          const double* corner = values + ((x - x0) + side * ((y - y0) + side * (z - z0)));
+          int inside = 0;
+          for (const std::ptrdiff_t offset : { 0, 1, side, side + 1, side * side, side * side + 1,
+                                               side * side + side, side * side + side + 1 })
+          {
+            inside += corner[offset] > 0 ? 1 : 0;
+          }
+          if (inside != 0 && inside != 8)
+          {
+            contour_cell({ x, y, z });
+          }
         }
-      }
-    };
-    visit(visit, x0, y0, z0, block_cells, 0);
   };
 
   // Blocks in rounds, so progress is reported from this thread.

@@ -1,12 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The zero set of a 1-Lipschitz field as a closed triangle mesh, by marching tetrahedra on a
-// sparse grid (private to MesoLensCore): the molecular surfaces' tessellation.
+// The zero set of a field as a closed triangle mesh, by marching tetrahedra on a grid sampled a
+// block at a time (private to MesoLensCore): the molecular surfaces' tessellation.
 #pragma once
 
 #include "mesolens/parallel_for.h"
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -24,44 +25,79 @@ struct ContourVertex
   std::uint32_t piece = 0; ///< the field's own label (which boundary piece)
 };
 
-/// The field near one octree node at a time, with buffers of its own: each block of the grid
-/// asks one of these, so that it may prepare once per node what the queries inside need, from
-/// what it prepared for the node's parent.
+/// How contour_tetrahedra() lays out its grid: the points low + spacing (x, y, z) for integers
+/// 0 <= x <= cells[0] (and so on), in cubic blocks of block_cells cells a side, the unit of
+/// work. A block holds block_points points a side (those on its upper faces are the next
+/// block's lower ones), some beyond the grid in the last blocks of an axis.
+struct ContourGrid
+{
+  static constexpr int block_cells = 16;
+  static constexpr int block_points = block_cells + 1;
+
+  Eigen::Vector3d low = Eigen::Vector3d::Zero();
+  double spacing = 1; ///< Å, > 0
+  std::array<std::int64_t, 3> cells{};
+  std::array<std::int64_t, 3> blocks{};
+
+  /// The grid over the box [low, high] (Å) at `spacing` (> 0): at least one cell per axis.
+  ContourGrid(const Eigen::Vector3d& low, const Eigen::Vector3d& high, double spacing);
+
+  std::size_t block_count() const
+  {
+    return static_cast<std::size_t>(this->blocks[0] * this->blocks[1] * this->blocks[2]);
+  }
+  /// The grid indices of block `block`'s lowest point.
+  std::array<std::int64_t, 3> block_first(std::size_t block) const;
+  Eigen::Vector3d point(std::int64_t x, std::int64_t y, std::int64_t z) const
+  {
+    return this->low + this->spacing * Eigen::Vector3d(double(x), double(y), double(z));
+  }
+  /// The blocks whose points' box meets the box [from, to] (Å), as inclusive ranges of block
+  /// indices per axis; false when none does.
+  bool blocks_meeting(const Eigen::Vector3d& from, const Eigen::Vector3d& to,
+                      std::array<std::int64_t, 3>& first, std::array<std::int64_t, 3>& last) const;
+  /// Within block `block`, the inclusive ranges of its own point indices (0 to block_cells)
+  /// inside the box [from, to] (Å); false when empty.
+  bool points_within(std::size_t block, const Eigen::Vector3d& from, const Eigen::Vector3d& to,
+                     std::array<int, 3>& first, std::array<int, 3>& last) const;
+};
+
+/// The field on one block at a time, with buffers of its own (one per thread).
 class LocalContourField
 {
 public:
   virtual ~LocalContourField() = default;
-  /// Prepares for queries within `radius` of `centre`; false when no zero lies within. Level 0
-  /// is a block; a ball of level k > 0 lies inside the last ball focused at level k - 1.
-  /// `single_cell`: the ball is a grid cell's, whose corners and edges come next.
-  virtual bool focus(int level, const Eigen::Vector3d& centre, double radius, bool single_cell) = 0;
-  /// The value at a point within the last focus, and in `hint` what the field may want to
-  /// know about the point when it places a vertex near it (its own label).
-  virtual double value(const Eigen::Vector3d& x, std::uint32_t& hint) = 0;
-  /// A grid point's value and hint, as value() gave them.
+  /// The values and hints at the points of `block` (ContourGrid::block_points cubed of each,
+  /// x fastest): the value is positive inside, negative outside; the hint, what the field may
+  /// want to know about the point when it places a vertex near it (its own label). False when
+  /// no zero lies in the block (the arrays may then be left as they were).
+  virtual bool sample_block(const ContourGrid& grid, std::size_t block, double* values,
+                            std::uint32_t* hints) = 0;
+  /// A grid point's value and hint, as sample_block() gave them.
   struct Sample
   {
     Eigen::Vector3d position;
     double value;
     std::uint32_t hint;
   };
-  /// The surface vertex on the segment (within the focus) from `outside` (value <= 0) to
-  /// `inside` (value > 0).
-  virtual ContourVertex vertex(const Sample& outside, const Sample& inside) = 0;
+  /// The surface vertex on the segment (a grid edge of the last block sampled) from `outside`
+  /// (value <= 0) to `inside` (value > 0), an edge of the cell whose eight corners are `cell`
+  /// (their hints tell which pieces lie near).
+  virtual ContourVertex vertex(const Sample& outside, const Sample& inside, const Sample* cell) = 0;
 };
 
-/// The field to contour: positive inside, negative outside, changing by at most the distance
-/// between two points (1-Lipschitz), so a ball where |value| exceeds the radius holds none of
-/// the surface. Values must not depend on which focus they were asked under (their signs at
-/// least), as neighbouring blocks share grid points; contour_tetrahedra() throws
+/// The field to contour. Values at a grid point must not depend on the block asking (their
+/// signs at least), as neighbouring blocks share points; contour_tetrahedra() throws
 /// std::logic_error when they do.
-struct ContourField
+class ContourField
 {
-  /// True when no zero lies within `radius` of the point (may be conservative: false): a cheap
-  /// test of whole blocks before any focus.
-  std::function<bool(const Eigen::Vector3d&, double radius)> empty;
-  /// A new local view of the field (called once per block, from any thread).
-  std::function<std::unique_ptr<LocalContourField>()> local;
+public:
+  virtual ~ContourField() = default;
+  /// Called once, before any local(), with the grid about to be sampled (to gather what each
+  /// block needs).
+  virtual void prepare(const ContourGrid& grid, const ParallelFor& parallel_for) = 0;
+  /// A new local view of the field (called once per thread, from that thread).
+  virtual std::unique_ptr<LocalContourField> local() const = 0;
 };
 
 struct ContourMesh
@@ -70,13 +106,13 @@ struct ContourMesh
   std::vector<std::int64_t> triangles; ///< 3 per triangle, counter-clockwise seen from outside
 };
 
-/// Contours `field` over the box [low, high] on a grid of `spacing` (> 0). The grid's points
-/// are those of the box's low corner plus integer multiples of the spacing; the field must be
-/// negative on the box's faces for the mesh to be closed. Cells are found by octree culling with
-/// `LocalContourField::focus`, each cell is cut into six tetrahedra of one diagonal (Kuhn's), so
-/// the mesh is watertight and 2-manifold without ambiguous cases. `progress` (may be empty) gets
-/// the fraction done from the calling thread. Deterministic whatever `parallel_for`.
-ContourMesh contour_tetrahedra(const ContourField& field, const Eigen::Vector3d& low,
+/// Contours `field` over the box [low, high] on a grid of `spacing` (> 0), laid out as
+/// ContourGrid does; the field must be negative on the box's faces for the mesh to be closed.
+/// Each block is sampled once, each cell whose corners change sign is cut into six tetrahedra
+/// of one diagonal (Kuhn's), so the mesh is watertight and 2-manifold without ambiguous cases.
+/// `progress` (may be empty) gets the fraction done from the calling thread. Deterministic
+/// whatever `parallel_for`.
+ContourMesh contour_tetrahedra(ContourField& field, const Eigen::Vector3d& low,
                                const Eigen::Vector3d& high, double spacing,
                                const ParallelFor& parallel_for,
                                const std::function<void(double)>& progress);

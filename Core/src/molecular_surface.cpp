@@ -12,6 +12,7 @@
 #include "ses_patches.h"
 #include "ses_piece_projection.h"
 #include "surface_contour_fields.h"
+#include "surface_projections.h"
 
 #include <algorithm>
 #include <cmath>
@@ -38,88 +39,6 @@ constexpr double grid_tolerance_ratio = 6.0;
 /// point then lies within 0.9 probe radii of a grid point (half a cell's diagonal), so each
 /// cavity and neck, which holds a probe's ball, holds a grid point outside the surface.
 constexpr double cavity_spacing_ratio = 0.9 * 2.0 / 1.7320508075688772;
-
-/// Which grid cells of width `width` some sphere's bounding box touches, with 3D prefix sums so
-/// that any box is tested in eight lookups: the coarse test of where a surface can be.
-class Occupancy
-{
-public:
-  Occupancy(const std::vector<Vec>& centres, const std::vector<double>& radii, double width)
-    : width_(width)
-  {
-    Vec low = Vec::Constant(1e300), high = -low;
-    for (std::size_t i = 0; i < centres.size(); ++i)
-    {
-      low = low.cwiseMin(centres[i] - Vec::Constant(radii[i]));
-      high = high.cwiseMax(centres[i] + Vec::Constant(radii[i]));
-    }
-    this->origin_ = low - Vec::Constant(width);
-    for (int a = 0; a < 3; ++a)
-    {
-      this->dims_[a] =
-        static_cast<std::int64_t>(std::ceil((high[a] - this->origin_[a]) / width)) + 2;
-    }
-    const std::int64_t nx = this->dims_[0] + 1, ny = this->dims_[1] + 1, nz = this->dims_[2] + 1;
-    this->sums_.assign(static_cast<std::size_t>(nx * ny * nz), 0);
-    for (std::size_t i = 0; i < centres.size(); ++i)
-    {
-      const auto from = this->cell(centres[i] - Vec::Constant(radii[i]));
-      const auto to = this->cell(centres[i] + Vec::Constant(radii[i]));
-      for (std::int64_t z = from[2]; z <= to[2]; ++z)
-        for (std::int64_t y = from[1]; y <= to[1]; ++y)
-          for (std::int64_t x = from[0]; x <= to[0]; ++x)
-          {
-            this->sums_[this->at(x + 1, y + 1, z + 1)] = 1; // marks, summed in place below
-          }
-    }
-    for (std::int64_t z = 1; z < nz; ++z)
-      for (std::int64_t y = 1; y < ny; ++y)
-        for (std::int64_t x = 1; x < nx; ++x)
-        {
-          this->sums_[this->at(x, y, z)] += this->sums_[this->at(x - 1, y, z)] +
-            this->sums_[this->at(x, y - 1, z)] + this->sums_[this->at(x, y, z - 1)] -
-            this->sums_[this->at(x - 1, y - 1, z)] - this->sums_[this->at(x - 1, y, z - 1)] -
-            this->sums_[this->at(x, y - 1, z - 1)] + this->sums_[this->at(x - 1, y - 1, z - 1)];
-        }
-  }
-
-  /// True when some sphere's box meets the box [x - r, x + r].
-  bool any(const Vec& x, double r) const
-  {
-    const auto from = this->cell(x - Vec::Constant(r));
-    const auto to = this->cell(x + Vec::Constant(r));
-    const auto s = [&](std::int64_t a, std::int64_t b, std::int64_t c) {
-      return this->sums_[this->at(a, b, c)];
-    };
-    const std::int64_t x0 = from[0], y0 = from[1], z0 = from[2];
-    const std::int64_t x1 = to[0] + 1, y1 = to[1] + 1, z1 = to[2] + 1;
-    const std::int32_t count = s(x1, y1, z1) - s(x0, y1, z1) - s(x1, y0, z1) - s(x1, y1, z0) +
-      s(x0, y0, z1) + s(x0, y1, z0) + s(x1, y0, z0) - s(x0, y0, z0);
-    return count > 0;
-  }
-
-private:
-  std::array<std::int64_t, 3> cell(const Vec& x) const
-  {
-    std::array<std::int64_t, 3> c{};
-    for (int a = 0; a < 3; ++a)
-    {
-      c[a] =
-        std::clamp(static_cast<std::int64_t>(std::floor((x[a] - this->origin_[a]) / this->width_)),
-                   std::int64_t(0), this->dims_[a] - 1);
-    }
-    return c;
-  }
-  std::size_t at(std::int64_t x, std::int64_t y, std::int64_t z) const
-  {
-    return static_cast<std::size_t>(x + (this->dims_[0] + 1) * (y + (this->dims_[1] + 1) * z));
-  }
-
-  double width_;
-  Vec origin_ = Vec::Zero();
-  std::array<std::int64_t, 3> dims_{};
-  std::vector<std::int32_t> sums_;
-};
 
 void check_input(const std::vector<std::array<double, 3>>& centres,
                  const std::vector<double>& radii, const MolecularSurfaceOptions& options)
@@ -311,28 +230,10 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
     // Patches the exact figures certified uncut need no further certificate (none without
     // the figures).
     pieces.take_uncut_patches(patches.arc_uncut, patches.vertex_uncut);
-    const Occupancy occupancy(centres, radii, 2.0);
-    ContourField field;
-    // Blocks far from every sphere, or deeper in the union than the surface lies, hold
-    // nothing; the focus on a block's pieces decides the rest.
-    const double surface_depth = excluded ? p : 0.0;
-    field.empty = [&, surface_depth](const Vec& x, double r) {
-      return !occupancy.any(x, r) || distance.union_depth(x) - surface_depth > r;
-    };
-    if (excluded)
-    {
-      // Values matter near the surface only: searches stop a spacing beyond it (deeper grid
-      // points get that depth, which keeps their sign and the field 1-Lipschitz).
-      const double value_limit = p + spacing;
-      field.local = [&, value_limit] {
-        return excluded_surface_field(distance, pieces, boundary, centres, atom_radii, p,
-                                      value_limit);
-      };
-    }
-    else
-    {
-      field.local = [&] { return union_surface_field(distance, centres, radii); };
-    }
+    const std::unique_ptr<ContourField> field = excluded
+      ? excluded_surface_field(distance, pieces, boundary, centres, radii, atom_radii, p,
+                               p + spacing)
+      : union_surface_field(centres, radii);
     // The grid: the spheres' box with two cells to spare, shifted off any symmetry of the input.
     Vec low = Vec::Constant(1e300), high = -low;
     for (std::size_t i = 0; i < n; ++i)
@@ -342,7 +243,7 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
     }
     low -= Vec(2.0 + 0.318309886, 2.0 + 0.271828183, 2.0 + 0.141421356) * spacing;
     high += Vec::Constant(3.0 * spacing);
-    ContourMesh mesh = contour_tetrahedra(field, low, high, spacing, parallel_for,
+    ContourMesh mesh = contour_tetrahedra(*field, low, high, spacing, parallel_for,
                                           [&](double f) { report(0.2 + 0.7 * f); });
     // Each round of splits divides an edge's deviation by about four: enough rounds to go from
     // the grid's chord error to the tolerance, and two for edges the grid left longer.

@@ -31,6 +31,26 @@ inline double sphere_crossing(const Eigen::Vector3d& a, const Eigen::Vector3d& b
   return std::clamp(miss(first) <= miss(second) ? first : second, 0.0, 1.0);
 }
 
+/// The parameters along the line a + t (b - a) where it enters (`entry`) and leaves (`exit`) the
+/// sphere (`centre`, `radius`), from the quadratic formula in its cancellation-free form; false
+/// when the line misses it. Precondition: a != b.
+inline bool line_sphere(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
+                        const Eigen::Vector3d& centre, double radius, double& entry, double& exit)
+{
+  const Eigen::Vector3d d = b - a, e = a - centre;
+  const double dd = d.squaredNorm(), ed = e.dot(d), c = e.squaredNorm() - radius * radius;
+  const double discriminant = ed * ed - dd * c;
+  if (!(discriminant >= 0) || !(dd > 0))
+  {
+    return false;
+  }
+  const double q = -(ed + std::copysign(std::sqrt(discriminant), ed));
+  const double first = q / dd, second = q != 0 ? c / q : first;
+  entry = std::min(first, second);
+  exit = std::max(first, second);
+  return true;
+}
+
 /// The root of `value` on the segment from a (value <= 0) to b (value > 0), by the Illinois
 /// variant of regula falsi, to 1e-9 Å, kept 1e-5 of the segment from either end (so no triangle
 /// degenerates where the surface passes through a grid point).

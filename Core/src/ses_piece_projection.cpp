@@ -181,6 +181,23 @@ bool SesPieceProjection::nearest_near(const Vec& x, const std::pair<PieceKind, s
   {
     return true;
   }
+  thread_local std::vector<std::pair<PieceKind, std::uint32_t>> others;
+  others.clear();
+  this->pieces_near(a, b, others);
+  for (const auto& piece : others)
+  {
+    if (this->nearest(x, piece.first, piece.second, point, nearest))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+void SesPieceProjection::pieces_near(const std::pair<PieceKind, std::uint32_t>& a,
+                                     const std::pair<PieceKind, std::uint32_t>& b,
+                                     std::vector<std::pair<PieceKind, std::uint32_t>>& pieces) const
+{
   // The atoms of both pieces (at most six), then their other pieces.
   std::uint32_t atoms[6];
   int atom_count = 0;
@@ -200,8 +217,8 @@ bool SesPieceProjection::nearest_near(const Vec& x, const std::pair<PieceKind, s
   const auto among = [&](std::uint32_t atom) {
     return std::find(atoms, atoms + atom_count, atom) != atoms + atom_count;
   };
-  const auto tried = [&](PieceKind kind, std::uint32_t index) {
-    return (a.first == kind && a.second == index) || (b.first == kind && b.second == index);
+  const auto other_than_ends = [&](PieceKind kind, std::uint32_t index) {
+    return !(a.first == kind && a.second == index) && !(b.first == kind && b.second == index);
   };
   for (int n = 0; n < atom_count; ++n)
   {
@@ -213,12 +230,9 @@ bool SesPieceProjection::nearest_near(const Vec& x, const std::pair<PieceKind, s
       const SasArc& arc = this->boundary_.arcs[k];
       const std::uint32_t other = arc.first == atoms[n] ? arc.second : arc.first;
       const auto other_at = std::find(atoms, atoms + atom_count, other) - atoms;
-      if (other_at < atom_count && other_at > n && !tried(PieceKind::Arc, k))
+      if (other_at < atom_count && other_at > n && other_than_ends(PieceKind::Arc, k))
       {
-        if (this->nearest(x, PieceKind::Arc, k, point, nearest))
-        {
-          return true;
-        }
+        pieces.emplace_back(PieceKind::Arc, k);
       }
     }
   }
@@ -231,21 +245,19 @@ bool SesPieceProjection::nearest_near(const Vec& x, const std::pair<PieceKind, s
       const std::uint32_t k = this->atom_vertex_items_[e];
       const auto& spheres = this->boundary_.vertices[k].spheres;
       if (spheres[0] == atoms[n] && among(spheres[1]) && among(spheres[2]) &&
-          !tried(PieceKind::Vertex, k) && this->nearest(x, PieceKind::Vertex, k, point, nearest))
+          other_than_ends(PieceKind::Vertex, k))
       {
-        return true;
+        pieces.emplace_back(PieceKind::Vertex, k);
       }
     }
   }
   for (int n = 0; n < atom_count; ++n)
   {
-    if (!tried(PieceKind::Face, atoms[n]) &&
-        this->nearest(x, PieceKind::Face, atoms[n], point, nearest))
+    if (other_than_ends(PieceKind::Face, atoms[n]))
     {
-      return true;
+      pieces.emplace_back(PieceKind::Face, atoms[n]);
     }
   }
-  return false;
 }
 
 bool SesPieceProjection::certify(const Vec& y, PieceKind kind, std::uint32_t index,

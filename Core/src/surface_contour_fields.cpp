@@ -3,8 +3,9 @@
 
 #include "surface_contour_fields.h"
 
+#include "block_bins.h"
+#include "excluded_surface.h"
 #include "segment_roots.h"
-#include "ses_piece_projection.h"
 
 #include "mesolens/molecular_surface.h"
 
@@ -12,287 +13,505 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace mesolens {
 
 namespace {
 using Vec = Eigen::Vector3d;
+constexpr int side = ContourGrid::block_points;
+constexpr std::size_t block_size = std::size_t(side) * side * side;
+constexpr double two_pi = 6.28318530717958647692;
+/// Boxes grow by this much (Å) before they are binned and their points found, so that a point
+/// near a box's face counts in every block that holds it, whatever the rounding.
+constexpr double box_slack = 1e-6;
 
-/// A piece as a field's hint: its kind in the top two bits, its index below.
-constexpr std::uint32_t index_mask = (1u << 30) - 1;
-std::uint32_t encode(PieceKind kind, std::uint32_t index)
+/// Calls `visit(at, x)` for every point of `block` in the box [from, to] (Å): its index in the
+/// block and its position (the same, bit for bit, from every block holding it).
+template<typename Visit>
+void for_points(const ContourGrid& grid, std::size_t block, const Vec& from, const Vec& to,
+                Visit&& visit)
 {
-  return (static_cast<std::uint32_t>(kind) << 30) | (index & index_mask);
-}
-
-/// The kind of patch on the piece of `kind` (convex on faces, and when there is no piece).
-SurfacePatch surface_patch(PieceKind kind)
-{
-  switch (kind)
+  std::array<int, 3> first{}, last{};
+  if (!grid.points_within(block, from, to, first, last))
   {
-    case PieceKind::Arc:
-      return SurfacePatch::Toroidal;
-    case PieceKind::Vertex:
-      return SurfacePatch::Concave;
-    default:
-      return SurfacePatch::Convex;
+    return;
   }
+  const auto origin = grid.block_first(block);
+  for (int z = first[2]; z <= last[2]; ++z)
+    for (int y = first[1]; y <= last[1]; ++y)
+      for (int x = first[0]; x <= last[0]; ++x)
+      {
+        visit(std::size_t(x + side * (y + side * z)),
+              grid.point(origin[0] + x, origin[1] + y, origin[2] + z));
+      }
 }
 
-/// The boundary piece whose patch a vertex of `patch` kind lies on.
-PieceKind piece_kind(std::uint8_t patch)
+/// The box of an arc's points (its ends included): per axis the ends, and the circle's extremes
+/// where they fall within the span.
+void arc_box(const SasArc& arc, Vec& from, Vec& to)
 {
-  switch (static_cast<SurfacePatch>(patch))
+  from = to = arc.point(arc.start);
+  const Vec last = arc.point(arc.start + arc.span);
+  from = from.cwiseMin(last);
+  to = to.cwiseMax(last);
+  for (int a = 0; a < 3; ++a)
   {
-    case SurfacePatch::Toroidal:
-      return PieceKind::Arc;
-    case SurfacePatch::Concave:
-      return PieceKind::Vertex;
-    default:
-      return PieceKind::Face;
-  }
-}
-
-/// The vertex at `position` on the solvent-excluded surface, whose nearest boundary piece (a
-/// probe position) is `piece`: its normal towards the probe, patch kind, piece and atom (the
-/// face's own, else the one of the piece's atoms whose surface is nearest).
-ContourVertex excluded_vertex(const Vec& position, const ClosestPiece& piece,
-                              const SasBoundary& boundary, const std::vector<Vec>& centres,
-                              const std::vector<double>& atom_radii)
-{
-  ContourVertex vertex;
-  vertex.position = position;
-  const Vec towards_probe = piece.point - position;
-  vertex.normal = towards_probe.norm() > 0 ? Vec(towards_probe.normalized()) : Vec::UnitZ();
-  vertex.piece = piece.index;
-  vertex.patch = static_cast<std::uint8_t>(surface_patch(piece.kind));
-  const PieceKind kind = piece_kind(vertex.patch); // a face also when no piece was within reach
-  std::array<std::uint32_t, 3> candidates{};
-  const int candidate_count = piece_spheres(boundary, kind, piece.index, candidates);
-  double nearest = 1e300;
-  for (int c = 0; c < candidate_count; ++c)
-  {
-    const double gap = (position - centres[candidates[c]]).norm() - atom_radii[candidates[c]];
-    if (gap < nearest)
+    // coordinate = centre + radius * amplitude * cos(azimuth - peak)
+    const double amplitude = std::hypot(arc.e1[a], arc.e2[a]);
+    const double peak = std::atan2(arc.e2[a], arc.e1[a]);
+    for (const double extreme : { peak, peak + 0.5 * two_pi })
     {
-      nearest = gap;
-      vertex.atom = static_cast<std::int32_t>(candidates[c]);
+      const double past_start = std::fmod(std::fmod(extreme - arc.start, two_pi) + two_pi, two_pi);
+      if (past_start <= arc.span)
+      {
+        const double value = arc.centre[a] + arc.radius * amplitude * std::cos(extreme - peak);
+        from[a] = std::min(from[a], value);
+        to[a] = std::max(to[a], value);
+      }
     }
   }
-  return vertex;
 }
 
-/// What the solvent-excluded surface's field and projection look at (see
-/// excluded_surface_field()).
-struct ExcludedSurface
-{
-  const ProbeDistance& distance;
-  const SesPieceProjection& pieces;
-  const SasBoundary& boundary;
-  const std::vector<Vec>& centres;
-  const std::vector<double>& atom_radii;
-  double probe, limit;
-
-  /// Whether `position` (within the ball of `local`) lies on the surface, to 1e-7 Å: its
-  /// nearest probe position, in `piece`, is the probe radius away. The search need not look
-  /// farther than that.
-  bool holds(const LocalPieces& local, const Vec& position, ClosestPiece& piece) const
-  {
-    piece = this->distance.closest(local, position, {}, this->probe + 1e-6);
-    return std::abs(piece.distance - this->probe) <= 1e-7;
-  }
-};
-
-class ExcludedSurfaceField final : public LocalContourField
+/// The solvent-excluded surface's field over a grid: the boundary's pieces binned to the blocks
+/// they may reach.
+class ExcludedSurfaceContour final : public ContourField
 {
 public:
-  explicit ExcludedSurfaceField(const ExcludedSurface& surface)
+  ExcludedSurfaceContour(const ExcludedSurface& surface, const std::vector<double>& radii)
     : surface_(surface)
-  {
-  }
-
-  bool focus(int level, const Vec& centre, double radius, bool single_cell) override
-  {
-    if (static_cast<std::size_t>(level) >= this->levels_.size())
-    {
-      this->levels_.resize(static_cast<std::size_t>(level) + 1);
-    }
-    if (single_cell && level > 0)
-    {
-      // A cell asks few queries: its parent's pieces serve them, unrefined. Its corners are
-      // shared with the cells beside it, so testing whether the surface passes costs more than
-      // the corners it would save.
-      this->local_ = &this->levels_[static_cast<std::size_t>(level) - 1];
-      return true;
-    }
-    LocalPieces& local = this->levels_[static_cast<std::size_t>(level)];
-    if (level == 0)
-    {
-      this->surface_.distance.gather(centre, radius, this->surface_.limit, local);
-    }
-    else
-    {
-      this->surface_.distance.refine(this->levels_[static_cast<std::size_t>(level) - 1], centre,
-                                     radius, local);
-    }
-    this->local_ = &local;
-    return std::abs(local.centre_distance - this->surface_.probe) <= radius;
-  }
-
-  double value(const Vec& x, std::uint32_t& hint) override
-  {
-    const ClosestPiece piece = this->surface_.distance.closest(*this->local_, x);
-    hint = encode(piece.kind, piece.index);
-    return piece.distance - this->surface_.probe;
-  }
-
-  ContourVertex vertex(const Sample& outside, const Sample& inside) override
-  {
-    const double p = this->surface_.probe;
-    // The root along the grid edge itself: vertices kept on their edges cannot fold triangles
-    // over one another, even at the surface's creases. First along the pieces nearest the
-    // edge's ends (mostly one piece for both), then along the one nearest the linear guess
-    // (cheap roots on one piece, each kept when the full field agrees there), else on the field.
-    Vec position;
-    ClosestPiece piece;
-    std::uint32_t tried[3];
-    int tried_count = 0;
-    const auto along = [&](std::uint32_t hint) {
-      const PieceKind kind = static_cast<PieceKind>(hint >> 30);
-      const std::uint32_t index = hint & index_mask;
-      if (kind == PieceKind::None ||
-          std::find(tried, tried + tried_count, hint) != tried + tried_count)
-      {
-        return false;
-      }
-      tried[tried_count++] = hint;
-      const auto along_piece = [&](const Vec& x) {
-        return this->surface_.distance.piece_distance(x, kind, index) - p;
-      };
-      const double at_outside = along_piece(outside.position);
-      const double at_inside = along_piece(inside.position);
-      if (!(at_outside <= 0 && at_inside > 0))
-      {
-        return false;
-      }
-      // Spheres in closed form: the atom's own for a face (the inflated sphere less the
-      // probe), the probe's at a vertex; circles by regula falsi.
-      if (kind == PieceKind::Arc)
-      {
-        position =
-          segment_root(outside.position, at_outside, inside.position, at_inside, along_piece);
-      }
-      else
-      {
-        const bool face = kind == PieceKind::Face;
-        const Vec& centre =
-          face ? this->surface_.centres[index] : this->surface_.boundary.vertices[index].position;
-        const double radius = face ? this->surface_.atom_radii[index] : p;
-        position = on_segment(outside.position, inside.position,
-                              sphere_crossing(outside.position, inside.position, centre, radius));
-      }
-      // Kept when no piece is nearer: certified on its patch when that needs no new list of
-      // cutters (a convex patch, or one known uncut: the contour touches most patches, and
-      // listing a torus's or concave patch's costs more than the searches it would save here),
-      // else by a search.
-      return (this->surface_.pieces.certifies_at_once(kind, index) &&
-              this->surface_.pieces.certify(position, kind, index, piece)) ||
-        this->surface_.holds(*this->local_, position, piece);
-    };
-    bool placed = along(inside.hint) || along(outside.hint);
-    if (!placed)
-    {
-      const Vec guess = outside.position +
-        outside.value / (outside.value - inside.value) * (inside.position - outside.position);
-      const ClosestPiece near_guess = this->surface_.distance.closest(*this->local_, guess);
-      placed = near_guess.distance > 0 && along(encode(near_guess.kind, near_guess.index));
-    }
-    if (!placed)
-    {
-      std::uint32_t hint = 0;
-      position = segment_root(outside.position, outside.value, inside.position, inside.value,
-                              [&](const Vec& x) { return this->value(x, hint); });
-      piece = this->surface_.distance.closest(*this->local_, position);
-    }
-    return excluded_vertex(position, piece, this->surface_.boundary, this->surface_.centres,
-                           this->surface_.atom_radii);
-  }
-
-private:
-  ExcludedSurface surface_;
-  std::vector<LocalPieces> levels_;    ///< per octree level, the pieces of its last focus
-  const LocalPieces* local_ = nullptr; ///< the last focus
-};
-
-/// max over `spheres` of (R - |x - c|): the signed distance to their union's boundary outside
-/// it, a lower bound of it inside; `deepest` (may be null) gets the maximising sphere. -1e300
-/// for no sphere.
-double union_depth(const std::vector<std::uint32_t>& spheres, const std::vector<Vec>& centres,
-                   const std::vector<double>& radii, const Vec& x, std::uint32_t* deepest = nullptr)
-{
-  double best = -1e300;
-  for (const std::uint32_t i : spheres)
-  {
-    const double d = radii[i] - (x - centres[i]).norm();
-    if (d > best)
-    {
-      best = d;
-      if (deepest)
-      {
-        *deepest = i;
-      }
-    }
-  }
-  return best;
-}
-
-class UnionSurfaceField final : public LocalContourField
-{
-public:
-  UnionSurfaceField(const ProbeDistance& distance, const std::vector<Vec>& centres,
-                    const std::vector<double>& radii)
-    : distance_(distance)
-    , centres_(centres)
     , radii_(radii)
   {
   }
 
-  bool focus(int level, const Vec& centre, double radius, bool /*single_cell*/) override
+  void prepare(const ContourGrid& grid, const ParallelFor& /*parallel_for*/) override
   {
-    if (static_cast<std::size_t>(level) >= this->levels_.size())
+    this->grid_.emplace(grid);
+    this->reach_ = this->surface_.limit;
+    const double limit = this->reach_;
+    const SasBoundary& boundary = this->surface_.boundary;
+    // An edge the surface crosses has its outside end within sqrt(3) spacings of the surface,
+    // which lies a probe radius inside the union: the nearest sphere of such ends is found.
+    this->outside_reach_ =
+      std::max(0.0, std::sqrt(3.0) * grid.spacing - this->surface_.probe) + 0.1 * grid.spacing;
+    const Vec slack = Vec::Constant(box_slack);
+    this->spheres_ = BlockBins(grid, this->radii_.size(), [&](std::size_t i, Vec& from, Vec& to) {
+      const Vec reach = Vec::Constant(this->radii_[i] + this->outside_reach(i)) + slack;
+      from = this->surface_.centres[i] - reach;
+      to = this->surface_.centres[i] + reach;
+      return true;
+    });
+    this->arcs_ = BlockBins(grid, boundary.arcs.size(), [&](std::size_t k, Vec& from, Vec& to) {
+      arc_box(boundary.arcs[k], from, to);
+      from -= Vec::Constant(limit) + slack;
+      to += Vec::Constant(limit) + slack;
+      return true;
+    });
+    this->vertices_ =
+      BlockBins(grid, boundary.vertices.size(), [&](std::size_t k, Vec& from, Vec& to) {
+        from = boundary.vertices[k].position - Vec::Constant(limit) - slack;
+        to = boundary.vertices[k].position + Vec::Constant(limit) + slack;
+        return true;
+      });
+  }
+
+  std::unique_ptr<LocalContourField> local() const override;
+
+  /// How far outside sphere `i` its points are visited: the exposed ones carry the union's
+  /// boundary, which the nearest sphere of a point outside the union is on.
+  double outside_reach(std::size_t i) const
+  {
+    return this->surface_.boundary.area[i] > 0 ? this->outside_reach_ : 0.0;
+  }
+
+  ExcludedSurface surface_;
+  const std::vector<double>& radii_; ///< the inflated spheres'
+  std::optional<ContourGrid> grid_;
+  double outside_reach_ = 0;
+  double reach_ = 0;
+  BlockBins spheres_, arcs_, vertices_;
+};
+
+/// One block of the solvent-excluded surface's field at a time.
+class ExcludedSurfaceBlock final : public LocalContourField
+{
+public:
+  explicit ExcludedSurfaceBlock(const ExcludedSurfaceContour& field)
+    : field_(field)
+    , surface_(field.surface_)
+    , nearest_(block_size)
+    , nearest_hint_(block_size)
+    , inside_(block_size)
+    , outside_(block_size)
+    , outside_hint_(block_size)
+  {
+  }
+
+  bool sample_block(const ContourGrid& grid, std::size_t block, double* values,
+                    std::uint32_t* hints) override
+  {
+    const SasBoundary& boundary = this->surface_.boundary;
+    const ExcludedSurfaceContour& field = this->field_;
+    // Without a piece within the limit, every point lies outside the union, or inside it
+    // deeper than the limit: no zero.
+    bool near_pieces = !field.arcs_.empty(block) || !field.vertices_.empty(block);
+    for (const std::uint32_t* i = field.spheres_.begin(block);
+         i != field.spheres_.end(block) && !near_pieces; ++i)
     {
-      this->levels_.resize(static_cast<std::size_t>(level) + 1);
+      near_pieces = boundary.area[*i] > 0;
     }
-    std::vector<std::uint32_t>& spheres = this->levels_[static_cast<std::size_t>(level)];
-    spheres.clear();
-    if (level == 0)
+    if (!near_pieces)
     {
-      this->distance_.spheres_near(centre, radius, spheres);
+      return false;
+    }
+    const double limit = field.reach_, p = this->surface_.probe;
+    const std::uint32_t none = encode_piece(PieceKind::None, 0);
+    std::fill(this->nearest_.begin(), this->nearest_.end(), limit);
+    std::fill(this->nearest_hint_.begin(), this->nearest_hint_.end(), none);
+    std::fill(this->inside_.begin(), this->inside_.end(), 0);
+    std::fill(this->outside_.begin(), this->outside_.end(), -std::numeric_limits<double>::max());
+    std::fill(this->outside_hint_.begin(), this->outside_hint_.end(), none);
+    // The nearest piece of each point within the limit: the least distance, ties to the lower
+    // label, so that every block holding a point finds the same.
+    const auto offer = [&](std::size_t at, double distance, std::uint32_t label) {
+      if (distance < limit &&
+          (distance < this->nearest_[at] ||
+           (distance == this->nearest_[at] && label < this->nearest_hint_[at])))
+      {
+        this->nearest_[at] = distance;
+        this->nearest_hint_[at] = label;
+      }
+    };
+    const Vec reach = Vec::Constant(limit + box_slack);
+    for (const std::uint32_t* k = field.vertices_.begin(block); k != field.vertices_.end(block);
+         ++k)
+    {
+      const Vec& v = boundary.vertices[*k].position;
+      const std::uint32_t label = encode_piece(PieceKind::Vertex, *k);
+      for_points(grid, block, v - reach, v + reach, [&](std::size_t at, const Vec& x) {
+        const double squared = (x - v).squaredNorm();
+        if (squared < limit * limit)
+        {
+          offer(at, std::sqrt(squared), label);
+        }
+      });
+    }
+    for (const std::uint32_t* k = field.arcs_.begin(block); k != field.arcs_.end(block); ++k)
+    {
+      const SasArc& arc = boundary.arcs[*k];
+      const std::uint32_t label = encode_piece(PieceKind::Arc, *k);
+      Vec from, to;
+      arc_box(arc, from, to);
+      for_points(grid, block, from - reach, to + reach, [&](std::size_t at, const Vec& x) {
+        // Nearest on the exposed arc when the circle's nearest point lies within its span (else
+        // an end vertex is nearer); on the axis every point of the circle is as near.
+        const Vec v = x - arc.centre;
+        const double along = v.dot(arc.axis), a1 = v.dot(arc.e1), a2 = v.dot(arc.e2);
+        const double radial = std::sqrt(a1 * a1 + a2 * a2);
+        const double squared = along * along + (radial - arc.radius) * (radial - arc.radius);
+        if (squared < limit * limit &&
+            (radial <= 1e-12 || this->surface_.distance.within_span(*k, a1, a2)))
+        {
+          offer(at, std::sqrt(squared), label);
+        }
+      });
+    }
+    const auto& centres = this->surface_.centres;
+    const auto& radii = field.radii_;
+    for (const std::uint32_t* s = field.spheres_.begin(block); s != field.spheres_.end(block); ++s)
+    {
+      const std::uint32_t i = *s;
+      const Vec& c = centres[i];
+      const double r = radii[i], outer = r + field.outside_reach(i);
+      const bool exposed = boundary.area[i] > 0;
+      const std::uint32_t label = encode_piece(PieceKind::Face, i);
+      const Vec box = Vec::Constant(outer + box_slack);
+      for_points(grid, block, c - box, c + box, [&](std::size_t at, const Vec& x) {
+        const Vec offset = x - c;
+        const double squared = offset.squaredNorm();
+        if (squared < r * r)
+        {
+          this->inside_[at] = 1;
+          // A face is nearest where the radial projection onto it is exposed (shallower
+          // spheres' projections lie inside the deepest one).
+          const double gap = std::sqrt(squared);
+          const double depth = r - gap;
+          if (exposed && gap > 0 && depth < limit &&
+              (depth < this->nearest_[at] ||
+               (depth == this->nearest_[at] && label < this->nearest_hint_[at])) &&
+              this->exposed_projection(i, c + (r / gap) * offset))
+          {
+            offer(at, depth, label);
+          }
+        }
+        else if (exposed && squared < outer * outer)
+        {
+          // Outside this sphere: the nearest sphere decides the value if the point lies
+          // outside the union (ties to the lower index).
+          const double depth = r - std::sqrt(squared);
+          if (depth > this->outside_[at] ||
+              (depth == this->outside_[at] && label < this->outside_hint_[at]))
+          {
+            this->outside_[at] = depth;
+            this->outside_hint_[at] = label;
+          }
+        }
+      });
+    }
+    for (std::size_t at = 0; at < block_size; ++at)
+    {
+      if (this->inside_[at])
+      {
+        values[at] = this->nearest_[at] - p;
+        hints[at] = this->nearest_hint_[at];
+      }
+      else if (this->outside_hint_[at] != none)
+      {
+        values[at] = this->outside_[at] - p;
+        hints[at] = this->outside_hint_[at];
+      }
+      else
+      {
+        values[at] = -field.outside_reach_ - p; // farther from every sphere
+        hints[at] = none;
+      }
+    }
+    return true;
+  }
+
+  ContourVertex vertex(const Sample& outside, const Sample& inside, const Sample* cell) override
+  {
+    // The root along the grid edge itself: vertices kept on their edges cannot fold triangles
+    // over one another, even at the surface's creases. First along the pieces nearest the
+    // edge's ends (mostly one piece for both), then those nearest the cell's other corners, then
+    // the others of the ends' atoms (cheap roots on one piece, each kept when certified on its
+    // patch), else on the field.
+    const std::pair<PieceKind, std::uint32_t> at_inside(hint_kind(inside.hint),
+                                                        hint_index(inside.hint));
+    const std::pair<PieceKind, std::uint32_t> at_outside(hint_kind(outside.hint),
+                                                         hint_index(outside.hint));
+    Vec position;
+    ClosestPiece piece;
+    if (this->along(outside, inside, at_inside, position, piece) ||
+        (at_outside != at_inside && this->along(outside, inside, at_outside, position, piece)))
+    {
+      return this->surface_.vertex(position, piece);
+    }
+    auto& others = this->others_;
+    others.clear();
+    for (int c = 0; c < 8; ++c)
+    {
+      const std::pair<PieceKind, std::uint32_t> at_corner(hint_kind(cell[c].hint),
+                                                          hint_index(cell[c].hint));
+      if (at_corner != at_inside && at_corner != at_outside &&
+          std::find(others.begin(), others.end(), at_corner) == others.end())
+      {
+        others.push_back(at_corner);
+      }
+    }
+    const auto corner_pieces = static_cast<std::ptrdiff_t>(others.size());
+    this->surface_.pieces.pieces_near(at_inside, at_outside, others);
+    for (std::size_t k = 0; k < others.size(); ++k)
+    {
+      const bool tried = std::ptrdiff_t(k) >= corner_pieces &&
+        std::find(others.begin(), others.begin() + corner_pieces, others[k]) !=
+          others.begin() + corner_pieces;
+      if (!tried && this->along(outside, inside, others[k], position, piece))
+      {
+        return this->surface_.vertex(position, piece);
+      }
+    }
+    // The general search, among the pieces near the edge.
+    const Vec middle = 0.5 * (outside.position + inside.position);
+    const double radius = 0.5 * (inside.position - outside.position).norm() * (1.0 + 1e-9);
+    this->surface_.distance.gather(middle, radius, this->surface_.limit, this->local_);
+    const auto value = [&](const Vec& x) {
+      return this->surface_.distance.closest(this->local_, x).distance - this->surface_.probe;
+    };
+    position = segment_root(outside.position, value(outside.position), inside.position,
+                            value(inside.position), value);
+    piece = this->surface_.distance.closest(this->local_, position);
+    return this->surface_.vertex(position, piece);
+  }
+
+private:
+  /// Where the edge passes from the solvent side of the sphere, circle or point carrying `piece`
+  /// to its other side (the last time, for a circle), certified on the piece's patch. The
+  /// carrier's solvent side is inside the probe's sphere at a vertex, within the probe radius
+  /// of an arc's circle, outside a face's atom; an end need not lie on that side, as the piece
+  /// need not be the nearest there.
+  bool along(const Sample& outside, const Sample& inside,
+             const std::pair<PieceKind, std::uint32_t>& piece, Vec& position,
+             ClosestPiece& nearest) const
+  {
+    const auto [kind, index] = piece;
+    if (kind == PieceKind::None)
+    {
+      return false;
+    }
+    const double p = this->surface_.probe;
+    const Vec& a = outside.position;
+    const Vec& b = inside.position;
+    if (kind == PieceKind::Arc)
+    {
+      // Regula falsi from the last of a few samples within the probe radius of the circle.
+      const ProbeDistance& distance = this->surface_.distance;
+      const auto along_piece = [&](const Vec& x) { return distance.arc_distance(index, x) - p; };
+      const double at_inside = along_piece(b);
+      if (!(at_inside > 0))
+      {
+        return false;
+      }
+      constexpr int samples = 4;
+      Vec from = a;
+      double at_from = along_piece(a);
+      for (int s = samples - 1; s > 0 && !(at_from <= 0); --s)
+      {
+        const Vec x = a + (double(s) / samples) * (b - a);
+        const double at_x = along_piece(x);
+        if (at_x <= 0)
+        {
+          from = x;
+          at_from = at_x;
+        }
+      }
+      if (!(at_from <= 0))
+      {
+        return false;
+      }
+      position = segment_root(from, at_from, b, at_inside, along_piece);
     }
     else
     {
-      this->distance_.spheres_near(this->levels_[static_cast<std::size_t>(level) - 1], centre,
-                                   radius, spheres);
+      // Spheres in closed form: the probe's at a vertex (left), the atom's for a face
+      // (entered).
+      const bool face = kind == PieceKind::Face;
+      const Vec& centre =
+        face ? this->surface_.centres[index] : this->surface_.boundary.vertices[index].position;
+      const double radius = face ? this->surface_.atom_radii[index] : p;
+      double entry = 0, exit = 0;
+      if (!line_sphere(a, b, centre, radius, entry, exit))
+      {
+        return false;
+      }
+      const double t = face ? entry : exit;
+      if (!(t >= 0 && t <= 1))
+      {
+        return false;
+      }
+      position = on_segment(a, b, t);
     }
-    this->spheres_ = &spheres;
-    // Every sphere reaching the ball is here, so the depth at the centre is exact where it
-    // matters (above -radius).
-    return std::abs(this->depth(centre)) <= radius;
+    return this->surface_.pieces.certify(position, kind, index, nearest);
   }
 
-  double value(const Vec& x, std::uint32_t& hint) override
+  /// Whether the point `y` of sphere `i` lies outside every neighbour (as the general search
+  /// decides it).
+  bool exposed_projection(std::uint32_t i, const Vec& y) const
   {
-    return this->depth(x, &hint);
+    for (const std::uint32_t j : this->surface_.boundary.neighbours[i])
+    {
+      const double rj = this->field_.radii_[j];
+      if ((y - this->surface_.centres[j]).squaredNorm() < rj * rj * (1.0 - 1e-12))
+      {
+        return false;
+      }
+    }
+    return true;
   }
 
-  ContourVertex vertex(const Sample& outside, const Sample& inside) override
+  const ExcludedSurfaceContour& field_;
+  const ExcludedSurface& surface_;
+  // Per point of the block: the nearest piece within the limit (distance, label), whether it
+  // lies inside the union, and the nearest sphere's depth and label where it does not.
+  std::vector<double> nearest_;
+  std::vector<std::uint32_t> nearest_hint_;
+  std::vector<std::uint8_t> inside_;
+  std::vector<double> outside_;
+  std::vector<std::uint32_t> outside_hint_;
+  std::vector<std::pair<PieceKind, std::uint32_t>> others_;
+  LocalPieces local_;
+};
+
+std::unique_ptr<LocalContourField> ExcludedSurfaceContour::local() const
+{
+  return std::make_unique<ExcludedSurfaceBlock>(*this);
+}
+
+/// The union of spheres' field over a grid: the spheres binned to the blocks they reach.
+class UnionSurfaceContour final : public ContourField
+{
+public:
+  UnionSurfaceContour(const std::vector<Vec>& centres, const std::vector<double>& radii)
+    : centres_(centres)
+    , radii_(radii)
+  {
+  }
+
+  void prepare(const ContourGrid& grid, const ParallelFor& /*parallel_for*/) override
+  {
+    this->spacing_ = grid.spacing;
+    this->spheres_ = BlockBins(grid, this->radii_.size(), [&](std::size_t i, Vec& from, Vec& to) {
+      const Vec reach = Vec::Constant(this->radii_[i] + box_slack);
+      from = this->centres_[i] - reach;
+      to = this->centres_[i] + reach;
+      return true;
+    });
+  }
+
+  std::unique_ptr<LocalContourField> local() const override;
+
+  const std::vector<Vec>& centres_;
+  const std::vector<double>& radii_;
+  double spacing_ = 1;
+  BlockBins spheres_;
+};
+
+class UnionSurfaceBlock final : public LocalContourField
+{
+public:
+  explicit UnionSurfaceBlock(const UnionSurfaceContour& field)
+    : field_(field)
+  {
+  }
+
+  bool sample_block(const ContourGrid& grid, std::size_t block, double* values,
+                    std::uint32_t* hints) override
+  {
+    const UnionSurfaceContour& field = this->field_;
+    this->first_ = field.spheres_.begin(block);
+    this->last_ = field.spheres_.end(block);
+    if (this->first_ == this->last_)
+    {
+      return false;
+    }
+    // Points no sphere's box holds lie outside every sphere: a spacing out stands for them.
+    std::fill(values, values + block_size, -field.spacing_);
+    std::fill(hints, hints + block_size, 0u);
+    for (const std::uint32_t* s = this->first_; s != this->last_; ++s)
+    {
+      const Vec& c = field.centres_[*s];
+      const double r = field.radii_[*s];
+      const Vec box = Vec::Constant(r + box_slack);
+      for_points(grid, block, c - box, c + box, [&](std::size_t at, const Vec& x) {
+        const double depth = r - (x - c).norm();
+        if (depth > values[at])
+        {
+          values[at] = depth;
+          hints[at] = *s;
+        }
+      });
+    }
+    return true;
+  }
+
+  ContourVertex vertex(const Sample& outside, const Sample& inside, const Sample* /*cell*/) override
   {
     ContourVertex vertex;
     vertex.position = segment_root(outside.position, outside.value, inside.position, inside.value,
                                    [&](const Vec& x) { return this->depth(x); });
     std::uint32_t sphere = 0;
     this->depth(vertex.position, &sphere);
-    vertex.normal = (vertex.position - this->centres_[sphere]).normalized();
+    vertex.normal = (vertex.position - this->field_.centres_[sphere]).normalized();
     vertex.atom = static_cast<std::int32_t>(sphere);
     vertex.piece = sphere;
     vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Convex);
@@ -300,214 +519,49 @@ public:
   }
 
 private:
+  /// max over the block's spheres of (R - |x - c|), and the (first) sphere giving it.
   double depth(const Vec& x, std::uint32_t* deepest = nullptr) const
   {
-    return union_depth(*this->spheres_, this->centres_, this->radii_, x, deepest);
+    double best = -std::numeric_limits<double>::max();
+    for (const std::uint32_t* s = this->first_; s != this->last_; ++s)
+    {
+      const double d = this->field_.radii_[*s] - (x - this->field_.centres_[*s]).norm();
+      if (d > best)
+      {
+        best = d;
+        if (deepest)
+        {
+          *deepest = *s;
+        }
+      }
+    }
+    return best;
   }
 
-  const ProbeDistance& distance_;
-  const std::vector<Vec>& centres_;
-  const std::vector<double>& radii_;
-  std::vector<std::vector<std::uint32_t>> levels_; ///< per octree level, its last focus's
-  const std::vector<std::uint32_t>* spheres_ = nullptr;
+  const UnionSurfaceContour& field_;
+  const std::uint32_t* first_ = nullptr; ///< the spheres of the block last sampled
+  const std::uint32_t* last_ = nullptr;
 };
 
-/// Points onto the solvent-excluded surface: along the line from the nearest probe position,
-/// to the probe's sphere, kept when no other probe position is nearer there.
-class ExcludedSurfaceProjection final : public LocalSurfaceProjection
+std::unique_ptr<LocalContourField> UnionSurfaceContour::local() const
 {
-public:
-  explicit ExcludedSurfaceProjection(const ExcludedSurface& surface)
-    : surface_(surface)
-  {
-  }
-
-  void focus(const Vec& centre, double radius) override
-  {
-    // Gathered when a point first needs the search: most are answered on their edge's patches.
-    this->focus_centre_ = centre;
-    this->focus_radius_ = radius;
-    this->gathered_ = false;
-  }
-
-  bool project(const Vec& x, ContourVertex& vertex) override
-  {
-    const double p = this->surface_.probe;
-    if (!this->gathered_)
-    {
-      this->surface_.distance.gather(this->focus_centre_, this->focus_radius_, this->surface_.limit,
-                                     this->local_);
-      this->gathered_ = true;
-    }
-    const ClosestPiece nearest = this->surface_.distance.closest(this->local_, x);
-    const Vec away = x - nearest.point;
-    const double gap = away.norm();
-    if (nearest.kind == PieceKind::None || !(gap > 0))
-    {
-      return false;
-    }
-    const Vec position = nearest.point + p / gap * away;
-    ClosestPiece piece;
-    if (!this->surface_.holds(this->local_, position, piece))
-    {
-      return false;
-    }
-    vertex = excluded_vertex(position, piece, this->surface_.boundary, this->surface_.centres,
-                             this->surface_.atom_radii);
-    return true;
-  }
-
-  bool project_between(const Vec& x, const ContourVertex& from, const ContourVertex& to,
-                       ContourVertex& vertex) override
-  {
-    // Onto a patch near the ends when certified there (see SesPieceProjection): the nearest
-    // surface point inside the ball carrying the patch, else a surface point close to it.
-    Vec position;
-    ClosestPiece piece;
-    if (this->surface_.pieces.nearest_near(x, { piece_kind(from.patch), from.piece },
-                                           { piece_kind(to.patch), to.piece }, position, piece))
-    {
-      vertex = excluded_vertex(position, piece, this->surface_.boundary, this->surface_.centres,
-                               this->surface_.atom_radii);
-      return true;
-    }
-    return this->project(x, vertex);
-  }
-
-  /// Patches meet tangentially where one's atoms are among the other's: a convex patch and a
-  /// torus or concave patch of its atom, a torus and a concave patch of both its atoms.
-  bool smoothly_joined(const ContourVertex& a, const ContourVertex& b) const override
-  {
-    if (a.patch == b.patch && a.piece == b.piece)
-    {
-      return true;
-    }
-    const auto atoms_of = [&](const ContourVertex& v) {
-      std::array<std::uint32_t, 3> atoms{};
-      piece_spheres(this->surface_.boundary, piece_kind(v.patch), v.piece, atoms);
-      return atoms;
-    };
-    const auto among = [](const std::array<std::uint32_t, 3>& some,
-                          const std::array<std::uint32_t, 3>& all) {
-      return std::all_of(some.begin(), some.end(), [&](std::uint32_t atom) {
-        return std::find(all.begin(), all.end(), atom) != all.end();
-      });
-    };
-    const auto first = atoms_of(a), second = atoms_of(b);
-    return among(first, second) || among(second, first);
-  }
-
-  double piece_gap(const ContourVertex& a, const ContourVertex& b, const Vec& x) const override
-  {
-    if (a.patch != b.patch || a.piece != b.piece)
-    {
-      return std::numeric_limits<double>::quiet_NaN();
-    }
-    return std::abs(this->surface_.distance.piece_distance(x, piece_kind(a.patch), a.piece) -
-                    this->surface_.probe);
-  }
-
-private:
-  ExcludedSurface surface_;
-  LocalPieces local_; ///< the pieces of the last focus, once gathered
-  Vec focus_centre_ = Vec::Zero();
-  double focus_radius_ = 0;
-  bool gathered_ = false;
-};
-
-/// Points onto the boundary of a union of spheres: radially onto the sphere the point lies
-/// deepest in (or nearest to), kept when no other sphere covers the foot.
-class UnionSurfaceProjection final : public LocalSurfaceProjection
-{
-public:
-  UnionSurfaceProjection(const ProbeDistance& distance, const std::vector<Vec>& centres,
-                         const std::vector<double>& radii, double reach)
-    : distance_(distance)
-    , centres_(centres)
-    , radii_(radii)
-    , reach_(reach)
-  {
-  }
-
-  void focus(const Vec& centre, double radius) override
-  {
-    this->spheres_.clear();
-    this->distance_.spheres_near(centre, radius + this->reach_, this->spheres_);
-  }
-
-  bool project(const Vec& x, ContourVertex& vertex) override
-  {
-    std::uint32_t sphere = 0;
-    const double deepest = union_depth(this->spheres_, this->centres_, this->radii_, x, &sphere);
-    const Vec away = x - this->centres_[sphere];
-    const double gap = away.norm();
-    if (this->spheres_.empty() || std::abs(deepest) > this->reach_ || !(gap > 0))
-    {
-      return false;
-    }
-    // The foot, on that sphere, is on the boundary unless another sphere covers it.
-    const Vec position = this->centres_[sphere] + this->radii_[sphere] / gap * away;
-    if (union_depth(this->spheres_, this->centres_, this->radii_, position) > 1e-9)
-    {
-      return false;
-    }
-    vertex.position = position;
-    vertex.normal = away / gap;
-    vertex.atom = static_cast<std::int32_t>(sphere);
-    vertex.piece = sphere;
-    vertex.patch = static_cast<std::uint8_t>(SurfacePatch::Convex);
-    return true;
-  }
-
-  double piece_gap(const ContourVertex& a, const ContourVertex& b, const Vec& x) const override
-  {
-    return a.piece == b.piece
-      ? std::abs((x - this->centres_[a.piece]).norm() - this->radii_[a.piece])
-      : std::numeric_limits<double>::quiet_NaN();
-  }
-
-private:
-  const ProbeDistance& distance_;
-  const std::vector<Vec>& centres_;
-  const std::vector<double>& radii_;
-  double reach_;
-  std::vector<std::uint32_t> spheres_; ///< those near the last focus
-};
+  return std::make_unique<UnionSurfaceBlock>(*this);
+}
 } // namespace
 
-std::unique_ptr<LocalContourField> excluded_surface_field(const ProbeDistance& distance,
-                                                          const SesPieceProjection& pieces,
-                                                          const SasBoundary& boundary,
-                                                          const std::vector<Vec>& centres,
-                                                          const std::vector<double>& atom_radii,
-                                                          double probe, double limit)
-{
-  return std::make_unique<ExcludedSurfaceField>(
-    ExcludedSurface{ distance, pieces, boundary, centres, atom_radii, probe, limit });
-}
-
-std::unique_ptr<LocalContourField> union_surface_field(const ProbeDistance& distance,
-                                                       const std::vector<Vec>& centres,
-                                                       const std::vector<double>& radii)
-{
-  return std::make_unique<UnionSurfaceField>(distance, centres, radii);
-}
-
-std::unique_ptr<LocalSurfaceProjection> excluded_surface_projection(
+std::unique_ptr<ContourField> excluded_surface_field(
   const ProbeDistance& distance, const SesPieceProjection& pieces, const SasBoundary& boundary,
-  const std::vector<Vec>& centres, const std::vector<double>& atom_radii, double probe,
-  double limit)
+  const std::vector<Vec>& centres, const std::vector<double>& radii,
+  const std::vector<double>& atom_radii, double probe, double limit)
 {
-  return std::make_unique<ExcludedSurfaceProjection>(
-    ExcludedSurface{ distance, pieces, boundary, centres, atom_radii, probe, limit });
+  return std::make_unique<ExcludedSurfaceContour>(
+    ExcludedSurface{ distance, pieces, boundary, centres, atom_radii, probe, limit }, radii);
 }
 
-std::unique_ptr<LocalSurfaceProjection> union_surface_projection(const ProbeDistance& distance,
-                                                                 const std::vector<Vec>& centres,
-                                                                 const std::vector<double>& radii,
-                                                                 double reach)
+std::unique_ptr<ContourField> union_surface_field(const std::vector<Vec>& centres,
+                                                  const std::vector<double>& radii)
 {
-  return std::make_unique<UnionSurfaceProjection>(distance, centres, radii, reach);
+  return std::make_unique<UnionSurfaceContour>(centres, radii);
 }
 
 } // namespace mesolens

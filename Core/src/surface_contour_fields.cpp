@@ -26,11 +26,12 @@ constexpr double two_pi = 6.28318530717958647692;
 /// near a box's face counts in every block that holds it, whatever the rounding.
 constexpr double box_slack = 1e-6;
 
-/// Calls `visit(at, x)` for every point of `block` in the box [from, to] (Å): its index in the
-/// block and its position (the same, bit for bit, from every block holding it).
+/// Calls `visit(at, x)` for every point of `block` in the box [from, to] (Å) and in the ball
+/// about `centre` of `radius` (a few more, within rounding): its index in the block and its
+/// position (the same, bit for bit, from every block holding it).
 template<typename Visit>
 void for_points(const ContourGrid& grid, std::size_t block, const Vec& from, const Vec& to,
-                Visit&& visit)
+                const Vec& centre, double radius, Visit&& visit)
 {
   std::array<int, 3> first{}, last{};
   if (!grid.points_within(block, from, to, first, last))
@@ -38,13 +39,47 @@ void for_points(const ContourGrid& grid, std::size_t block, const Vec& from, con
     return;
   }
   const auto origin = grid.block_first(block);
+  const double h = grid.spacing;
+  const Vec base = grid.point(origin[0], origin[1], origin[2]);
+  const Vec offset = centre - base; // the ball's centre in the block's frame (Å)
   for (int z = first[2]; z <= last[2]; ++z)
+  {
+    const double dz = h * z - offset[2];
     for (int y = first[1]; y <= last[1]; ++y)
-      for (int x = first[0]; x <= last[0]; ++x)
+    {
+      const double dy = h * y - offset[1];
+      const double rest = radius * radius - dz * dz - dy * dy;
+      if (rest < 0)
+      {
+        continue;
+      }
+      // The row's points within the ball, a point to spare against rounding.
+      const double half = std::sqrt(rest);
+      const int x0 = std::max(first[0], static_cast<int>(std::floor((offset[0] - half) / h)));
+      const int x1 = std::min(last[0], static_cast<int>(std::ceil((offset[0] + half) / h)));
+      for (int x = x0; x <= x1; ++x)
       {
         visit(std::size_t(x + side * (y + side * z)),
               grid.point(origin[0] + x, origin[1] + y, origin[2] + z));
       }
+    }
+  }
+}
+
+/// A ball holding an arc's points: about the middle of its chord when it spans at most half a
+/// turn, else about its circle's centre.
+void arc_ball(const SasArc& arc, Vec& centre, double& radius)
+{
+  if (arc.span <= 0.5 * two_pi)
+  {
+    centre = 0.5 * (arc.point(arc.start) + arc.point(arc.start + arc.span));
+    radius = arc.radius * std::sin(0.5 * arc.span);
+  }
+  else
+  {
+    centre = arc.centre;
+    radius = arc.radius;
+  }
 }
 
 /// The box of an arc's points (its ends included): per axis the ends, and the circle's extremes
@@ -101,10 +136,17 @@ public:
       to = this->surface_.centres[i] + reach;
       return true;
     });
+    this->arc_boxes_.resize(boundary.arcs.size());
+    this->arc_balls_.resize(boundary.arcs.size());
     this->arcs_ = BlockBins(grid, boundary.arcs.size(), [&](std::size_t k, Vec& from, Vec& to) {
       arc_box(boundary.arcs[k], from, to);
       from -= Vec::Constant(limit) + slack;
       to += Vec::Constant(limit) + slack;
+      this->arc_boxes_[k] = { from, to };
+      Vec centre;
+      double radius = 0;
+      arc_ball(boundary.arcs[k], centre, radius);
+      this->arc_balls_[k] = { centre[0], centre[1], centre[2], radius + limit + box_slack };
       return true;
     });
     this->vertices_ =
@@ -130,6 +172,9 @@ public:
   double outside_reach_ = 0;
   double reach_ = 0;
   BlockBins spheres_, arcs_, vertices_;
+  /// Per arc, the box and the ball (centre, radius) holding the points within the reach.
+  std::vector<std::array<Vec, 2>> arc_boxes_;
+  std::vector<std::array<double, 4>> arc_balls_;
 };
 
 /// One block of the solvent-excluded surface's field at a time.
@@ -188,7 +233,7 @@ public:
     {
       const Vec& v = boundary.vertices[*k].position;
       const std::uint32_t label = encode_piece(PieceKind::Vertex, *k);
-      for_points(grid, block, v - reach, v + reach, [&](std::size_t at, const Vec& x) {
+      for_points(grid, block, v - reach, v + reach, v, reach[0], [&](std::size_t at, const Vec& x) {
         const double squared = (x - v).squaredNorm();
         if (squared < limit * limit)
         {
@@ -200,21 +245,23 @@ public:
     {
       const SasArc& arc = boundary.arcs[*k];
       const std::uint32_t label = encode_piece(PieceKind::Arc, *k);
-      Vec from, to;
-      arc_box(arc, from, to);
-      for_points(grid, block, from - reach, to + reach, [&](std::size_t at, const Vec& x) {
-        // Nearest on the exposed arc when the circle's nearest point lies within its span (else
-        // an end vertex is nearer); on the axis every point of the circle is as near.
-        const Vec v = x - arc.centre;
-        const double along = v.dot(arc.axis), a1 = v.dot(arc.e1), a2 = v.dot(arc.e2);
-        const double radial = std::sqrt(a1 * a1 + a2 * a2);
-        const double squared = along * along + (radial - arc.radius) * (radial - arc.radius);
-        if (squared < limit * limit &&
-            (radial <= 1e-12 || this->surface_.distance.within_span(*k, a1, a2)))
-        {
-          offer(at, std::sqrt(squared), label);
-        }
-      });
+      const auto& box = field.arc_boxes_[*k];
+      const auto& ball = field.arc_balls_[*k];
+      const Vec ball_centre(ball[0], ball[1], ball[2]);
+      for_points(
+        grid, block, box[0], box[1], ball_centre, ball[3], [&](std::size_t at, const Vec& x) {
+          // Nearest on the exposed arc when the circle's nearest point lies within its span (else
+          // an end vertex is nearer); on the axis every point of the circle is as near.
+          const Vec v = x - arc.centre;
+          const double along = v.dot(arc.axis), a1 = v.dot(arc.e1), a2 = v.dot(arc.e2);
+          const double radial = std::sqrt(a1 * a1 + a2 * a2);
+          const double squared = along * along + (radial - arc.radius) * (radial - arc.radius);
+          if (squared < limit * limit &&
+              (radial <= 1e-12 || this->surface_.distance.within_span(*k, a1, a2)))
+          {
+            offer(at, std::sqrt(squared), label);
+          }
+        });
     }
     const auto& centres = this->surface_.centres;
     const auto& radii = field.radii_;
@@ -226,7 +273,7 @@ public:
       const bool exposed = boundary.area[i] > 0;
       const std::uint32_t label = encode_piece(PieceKind::Face, i);
       const Vec box = Vec::Constant(outer + box_slack);
-      for_points(grid, block, c - box, c + box, [&](std::size_t at, const Vec& x) {
+      for_points(grid, block, c - box, c + box, c, box[0], [&](std::size_t at, const Vec& x) {
         const Vec offset = x - c;
         const double squared = offset.squaredNorm();
         if (squared < r * r)
@@ -321,10 +368,14 @@ public:
         return this->surface_.vertex(position, piece);
       }
     }
-    // The general search, among the pieces near the edge.
-    const Vec middle = 0.5 * (outside.position + inside.position);
-    const double radius = 0.5 * (inside.position - outside.position).norm() * (1.0 + 1e-9);
-    this->surface_.distance.gather(middle, radius, this->surface_.limit, this->local_);
+    // The general search, among the pieces near the cell (gathered once for its edges).
+    const Vec middle = 0.5 * (cell[0].position + cell[7].position);
+    if (!this->gathered_ || this->local_.centre != middle)
+    {
+      const double radius = 0.5 * (cell[7].position - cell[0].position).norm() * (1.0 + 1e-9);
+      this->surface_.distance.gather(middle, radius, this->surface_.limit, this->local_);
+      this->gathered_ = true;
+    }
     const auto value = [&](const Vec& x) {
       return this->surface_.distance.closest(this->local_, x).distance - this->surface_.probe;
     };
@@ -429,7 +480,8 @@ private:
   std::vector<double> outside_;
   std::vector<std::uint32_t> outside_hint_;
   std::vector<std::pair<PieceKind, std::uint32_t>> others_;
-  LocalPieces local_;
+  LocalPieces local_; ///< the pieces near the cell of the last general search
+  bool gathered_ = false;
 };
 
 std::unique_ptr<LocalContourField> ExcludedSurfaceContour::local() const
@@ -492,7 +544,7 @@ public:
       const Vec& c = field.centres_[*s];
       const double r = field.radii_[*s];
       const Vec box = Vec::Constant(r + box_slack);
-      for_points(grid, block, c - box, c + box, [&](std::size_t at, const Vec& x) {
+      for_points(grid, block, c - box, c + box, c, box[0], [&](std::size_t at, const Vec& x) {
         const double depth = r - (x - c).norm();
         if (depth > values[at])
         {

@@ -172,7 +172,10 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
     std::unique_ptr<LocalContourField> local;
     std::vector<double> values;
     std::vector<std::uint32_t> hints;
-    std::vector<std::int64_t> made;
+    /// Per block point and Kuhn direction (1 to 7), the block that made the vertex on that edge
+    /// (its number plus one, in the high half) and the vertex's index: entries of earlier blocks
+    /// are stale, so the table is never cleared.
+    std::vector<std::uint64_t> made;
   };
   constexpr int side = ContourGrid::block_points;
   const auto run_block = [&](std::size_t block, BlockBuffers& buffers) {
@@ -181,6 +184,7 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
       buffers.local = field.local();
       buffers.values.resize(side * side * side);
       buffers.hints.resize(side * side * side);
+      buffers.made.assign(std::size_t(side * side * side * 8), 0);
     }
     LocalContourField* const local = buffers.local.get();
     if (!local->sample_block(grid, block, buffers.values.data(), buffers.hints.data()))
@@ -196,9 +200,8 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
       return LocalContourField::Sample{ grid.point(x, y, z), values[at], hints[at] };
     };
     BlockOutput& out = outputs[block];
-    // Per block point and Kuhn direction (1 to 7), the index of the vertex on that edge.
-    std::vector<std::int64_t>& made = buffers.made;
-    made.assign(std::size_t(side * side * side * 8), -1);
+    std::vector<std::uint64_t>& made = buffers.made;
+    const std::uint64_t stamp = std::uint64_t(block + 1) << 32;
     const auto contour_cell = [&](const std::array<std::int64_t, 3>& cell) {
       std::array<LocalContourField::Sample, 8> corner;
       for (int m = 0; m < 8; ++m)
@@ -212,16 +215,17 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
         const int from = std::min(a, b), to = std::max(a, b);
         const std::int64_t x = cell[0] + (from & 1), y = cell[1] + ((from >> 1) & 1),
                            z = cell[2] + ((from >> 2) & 1);
-        std::int64_t& index =
+        std::uint64_t& entry =
           made[std::size_t(8 * ((x - x0) + side * ((y - y0) + side * (z - z0))) + (to ^ from))];
-        if (index < 0)
+        if ((entry & ~std::uint64_t(0xffffffffu)) != stamp)
         {
+          std::uint32_t index = 0;
           const std::uint64_t key = point_key(x, y, z) * 8 + std::uint64_t(to ^ from);
           if (owner_of(x, y, z) == block)
           {
             const int outside = corner[a].value > 0 ? b : a;
             const int inside = corner[a].value > 0 ? a : b;
-            index = static_cast<std::int64_t>(out.vertices.size());
+            index = static_cast<std::uint32_t>(out.vertices.size());
             out.vertices.push_back(local->vertex(corner[outside], corner[inside], corner.data()));
             out.keys.push_back(key);
           }
@@ -229,11 +233,12 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
           {
             // The owner computes it: every cell holding a crossed edge is contoured, as the
             // signs at grid points do not depend on the block asking.
-            index = static_cast<std::int64_t>(out.foreign_keys.size() | foreign_bit);
+            index = static_cast<std::uint32_t>(out.foreign_keys.size()) | foreign_bit;
             out.foreign_keys.push_back(key);
           }
+          entry = stamp | index;
         }
-        return static_cast<std::uint32_t>(index);
+        return static_cast<std::uint32_t>(entry);
       };
       for (const auto& tet : tets)
       {

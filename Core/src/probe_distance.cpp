@@ -355,20 +355,6 @@ bool ProbeDistance::nearest_face(const SphereScan& scan, const Vec& x, ClosestPi
   return true;
 }
 
-bool ProbeDistance::within_span(std::uint32_t k, double a1, double a2) const
-{
-  const SasArc& arc = this->boundary_.arcs[k];
-  if (arc.span >= two_pi)
-  {
-    return true;
-  }
-  // By the signs of cross products with its ends (no angles).
-  const ArcEnds& ends = this->arc_ends_[k];
-  const bool after_start = ends.start_cos * a2 - ends.start_sin * a1 >= 0;
-  const bool before_end = a1 * ends.end_sin - a2 * ends.end_cos >= 0;
-  return arc.span <= 0.5 * two_pi ? after_start && before_end : after_start || before_end;
-}
-
 ProbeDistance::ArcFrame ProbeDistance::arc_frame(std::uint32_t k, const Vec& x) const
 {
   const SasArc& arc = this->boundary_.arcs[k];

@@ -184,7 +184,20 @@ public:
 
   /// Whether the point of arc `k`'s circle at in-plane coordinates (a1, a2) (along e1, e2 from
   /// its centre) lies on the exposed arc.
-  bool within_span(std::uint32_t k, double a1, double a2) const;
+  bool within_span(std::uint32_t k, double a1, double a2) const
+  {
+    const SasArc& arc = this->boundary_.arcs[k];
+    if (arc.span >= 2.0 * 3.14159265358979323846)
+    {
+      return true;
+    }
+    // By the signs of cross products with its ends (no angles).
+    const ArcEnds& ends = this->arc_ends_[k];
+    const bool after_start = ends.start_cos * a2 - ends.start_sin * a1 >= 0;
+    const bool before_end = a1 * ends.end_sin - a2 * ends.end_cos >= 0;
+    return arc.span <= 3.14159265358979323846 ? after_start && before_end
+                                              : after_start || before_end;
+  }
 
   /// Appends to `arcs` (sorted, each once) every arc `filter` admits with an exposed point within
   /// `radius` of `x`, and perhaps a few a little farther.

@@ -97,6 +97,22 @@ SesPieceProjection::SesPieceProjection(const std::vector<Vec>& centres,
       }
     },
     this->atom_vertex_start_, this->atom_vertex_items_);
+  this->vertex_cones_.resize(boundary.vertices.size());
+  for (std::size_t k = 0; k < boundary.vertices.size(); ++k)
+  {
+    const SasVertex& vertex = boundary.vertices[k];
+    Vec u[3];
+    for (int s = 0; s < 3; ++s)
+    {
+      u[s] = (centres[vertex.spheres[std::size_t(s)]] - vertex.position).normalized();
+    }
+    VertexCone& cone = this->vertex_cones_[k];
+    cone.orientation = u[0].dot(u[1].cross(u[2]));
+    for (int s = 0; s < 3; ++s)
+    {
+      cone.sides[s] = u[(s + 1) % 3].cross(u[(s + 2) % 3]);
+    }
+  }
 }
 
 void SesPieceProjection::take_uncut_patches(const std::vector<char>& arc_uncut,
@@ -341,20 +357,14 @@ bool SesPieceProjection::certify_vertex(const Vec& y, std::uint32_t k, ClosestPi
     return false;
   }
   // Within the cone of the directions to the three atoms.
-  Vec u[3];
-  for (int s = 0; s < 3; ++s)
-  {
-    u[s] = (this->centres_[vertex.spheres[std::size_t(s)]] - vertex.position).normalized();
-  }
-  const double orientation = u[0].dot(u[1].cross(u[2]));
-  if (!(std::abs(orientation) > 0))
+  const VertexCone& cone = this->vertex_cones_[k];
+  if (!(std::abs(cone.orientation) > 0))
   {
     return false;
   }
   for (int s = 0; s < 3; ++s)
   {
-    const double side = towards_y.dot(u[(s + 1) % 3].cross(u[(s + 2) % 3]));
-    if (side * orientation < -side_slack)
+    if (towards_y.dot(cone.sides[s]) * cone.orientation < -side_slack)
     {
       return false;
     }

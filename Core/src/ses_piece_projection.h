@@ -104,6 +104,14 @@ private:
   /// Per atom (compressed rows): its arcs and its vertices.
   std::vector<std::uint32_t> atom_arc_start_, atom_arc_items_, atom_vertex_start_,
     atom_vertex_items_;
+  /// Per vertex, the sides of the cone of directions from the probe to its three atoms: u_b x u_c
+  /// for each atom a (unit directions u), and the cone's orientation u_0 . (u_1 x u_2).
+  struct VertexCone
+  {
+    Eigen::Vector3d sides[3];
+    double orientation = 0;
+  };
+  std::vector<VertexCone> vertex_cones_;
   mutable std::vector<Cutters> arc_cutters_, vertex_cutters_; ///< per arc, per vertex
 };
 

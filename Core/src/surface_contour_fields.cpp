@@ -39,7 +39,7 @@ void for_points(const ContourGrid& grid, std::size_t block, const Vec& from, con
     return;
   }
   const auto origin = grid.block_first(block);
-  const double h = grid.spacing;
+  const double h = grid.spacing, per_spacing = 1.0 / h;
   const Vec base = grid.point(origin[0], origin[1], origin[2]);
   const Vec offset = centre - base; // the ball's centre in the block's frame (Å)
   for (int z = first[2]; z <= last[2]; ++z)
@@ -55,8 +55,10 @@ void for_points(const ContourGrid& grid, std::size_t block, const Vec& from, con
       }
       // The row's points within the ball, a point to spare against rounding.
       const double half = std::sqrt(rest);
-      const int x0 = std::max(first[0], static_cast<int>(std::floor((offset[0] - half) / h)));
-      const int x1 = std::min(last[0], static_cast<int>(std::ceil((offset[0] + half) / h)));
+      const int x0 =
+        std::max(first[0], static_cast<int>(std::floor((offset[0] - half) * per_spacing)));
+      const int x1 =
+        std::min(last[0], static_cast<int>(std::ceil((offset[0] + half) * per_spacing)));
       for (int x = x0; x <= x1; ++x)
       {
         visit(std::size_t(x + side * (y + side * z)),
@@ -218,10 +220,13 @@ public:
     std::fill(this->outside_hint_.begin(), this->outside_hint_.end(), none);
     // The nearest piece of each point within the limit: the least distance, ties to the lower
     // label, so that every block holding a point finds the same.
+    const auto improves = [&](std::size_t at, double distance, std::uint32_t label) {
+      return distance < limit &&
+        (distance < this->nearest_[at] ||
+         (distance == this->nearest_[at] && label < this->nearest_hint_[at]));
+    };
     const auto offer = [&](std::size_t at, double distance, std::uint32_t label) {
-      if (distance < limit &&
-          (distance < this->nearest_[at] ||
-           (distance == this->nearest_[at] && label < this->nearest_hint_[at])))
+      if (improves(at, distance, label))
       {
         this->nearest_[at] = distance;
         this->nearest_hint_[at] = label;
@@ -252,14 +257,25 @@ public:
         grid, block, box[0], box[1], ball_centre, ball[3], [&](std::size_t at, const Vec& x) {
           // Nearest on the exposed arc when the circle's nearest point lies within its span (else
           // an end vertex is nearer); on the axis every point of the circle is as near.
+          // (The span is looked at last: most points have a nearer piece.)
           const Vec v = x - arc.centre;
-          const double along = v.dot(arc.axis), a1 = v.dot(arc.e1), a2 = v.dot(arc.e2);
+          const double along = v.dot(arc.axis);
+          if (std::abs(along) > this->nearest_[at])
+          {
+            return;
+          }
+          const double a1 = v.dot(arc.e1), a2 = v.dot(arc.e2);
           const double radial = std::sqrt(a1 * a1 + a2 * a2);
           const double squared = along * along + (radial - arc.radius) * (radial - arc.radius);
-          if (squared < limit * limit &&
+          if (!(squared < limit * limit))
+          {
+            return;
+          }
+          const double distance = std::sqrt(squared);
+          if (improves(at, distance, label) &&
               (radial <= 1e-12 || this->surface_.distance.within_span(*k, a1, a2)))
           {
-            offer(at, std::sqrt(squared), label);
+            offer(at, distance, label);
           }
         });
     }
@@ -283,9 +299,7 @@ public:
           // spheres' projections lie inside the deepest one).
           const double gap = std::sqrt(squared);
           const double depth = r - gap;
-          if (exposed && gap > 0 && depth < limit &&
-              (depth < this->nearest_[at] ||
-               (depth == this->nearest_[at] && label < this->nearest_hint_[at])) &&
+          if (exposed && gap > 0 && improves(at, depth, label) &&
               this->exposed_projection(i, c + (r / gap) * offset))
           {
             offer(at, depth, label);

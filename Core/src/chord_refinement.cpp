@@ -5,13 +5,13 @@
 
 #include "balanced_loop.h"
 #include "frozen_creases.h"
+#include "grid_cells.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
 #include <numeric>
-#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -32,9 +32,9 @@ constexpr double half_pi = 1.57079632679489661923;
 /// cube of focus it falls in.
 struct Candidate
 {
+  std::uint64_t cube; ///< the cube as a key (grid_cell_key())
   std::size_t corner;
   Vec middle;
-  std::array<std::int64_t, 3> cube;
 };
 
 /// The new vertices of one chunk and the edges (lower end, upper end) they split.
@@ -277,7 +277,7 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
           {
             continue;
           }
-          candidates.push_back({ corner, middle, {} });
+          candidates.push_back({ 0, corner, middle });
         }
       }
       if (candidates.empty())
@@ -290,13 +290,12 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
       for (Candidate& candidate : candidates)
       {
         const Vec cube = (candidate.middle / focus_size).array().floor();
-        for (int a = 0; a < 3; ++a)
-        {
-          candidate.cube[a] = static_cast<std::int64_t>(cube[a]);
-        }
+        candidate.cube =
+          grid_cell_key({ static_cast<std::int64_t>(cube[0]), static_cast<std::int64_t>(cube[1]),
+                          static_cast<std::int64_t>(cube[2]) });
       }
       std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
-        return std::tie(x.cube, x.corner) < std::tie(y.cube, y.corner);
+        return x.cube < y.cube || (x.cube == y.cube && x.corner < y.corner);
       });
       ChunkSplits& out = splits[chunk];
       for (std::size_t first = 0; first < candidates.size();)

@@ -132,6 +132,17 @@ FrozenCreases::FrozenCreases(const ContourMesh& mesh, const std::vector<char>& f
         }
   }
   std::sort(this->cells_.begin(), this->cells_.end());
+  for (std::size_t e = 0; e < this->cells_.size();)
+  {
+    std::size_t end = e;
+    while (end < this->cells_.size() && this->cells_[end].first == this->cells_[e].first)
+    {
+      ++end;
+    }
+    this->cell_ranges_.emplace(this->cells_[e].first,
+                               std::make_pair(std::uint32_t(e), std::uint32_t(end)));
+    e = end;
+  }
   for (std::size_t v = 0; v < vertex_count; ++v)
   {
     this->around_start_[v + 1] += this->around_start_[v];
@@ -184,10 +195,13 @@ bool FrozenCreases::meets(const std::vector<std::int64_t>& triangles,
     for (std::int64_t y = from[1]; y <= to[1]; ++y)
       for (std::int64_t x = from[0]; x <= to[0]; ++x)
       {
-        const std::uint64_t key = grid_cell_key({ x, y, z });
-        auto entry = std::lower_bound(this->cells_.begin(), this->cells_.end(),
-                                      std::pair<std::uint64_t, std::uint32_t>(key, 0));
-        for (; entry != this->cells_.end() && entry->first == key; ++entry)
+        const auto range = this->cell_ranges_.find(grid_cell_key({ x, y, z }));
+        if (range == this->cell_ranges_.end())
+        {
+          continue;
+        }
+        for (auto entry = this->cells_.begin() + range->second.first;
+             entry != this->cells_.begin() + range->second.second; ++entry)
         {
           const Box& box = this->boxes_[entry->second];
           // A frozen triangle lies in every cell its box meets: tested in the first cell that

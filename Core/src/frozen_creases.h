@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstdint>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -62,6 +63,8 @@ private:
   std::vector<Box> boxes_;                           ///< per frozen triangle
   /// (cell key, frozen triangle) sorted by key: every cell a triangle's box meets.
   std::vector<std::pair<std::uint64_t, std::uint32_t>> cells_;
+  /// Per cell key, its entries' range in cells_.
+  std::unordered_map<std::uint64_t, std::pair<std::uint32_t, std::uint32_t>> cell_ranges_;
   /// Per vertex of the mesh at construction, its frozen triangles (compressed rows).
   std::vector<std::uint32_t> around_start_, around_;
   double cell_width_;

@@ -192,29 +192,23 @@ bool SesPieceProjection::nearest_near(const Vec& x, const std::pair<PieceKind, s
                                       const std::pair<PieceKind, std::uint32_t>& b, Vec& point,
                                       ClosestPiece& nearest) const
 {
-  if (this->nearest(x, a.first, a.second, point, nearest) ||
-      (b != a && this->nearest(x, b.first, b.second, point, nearest)))
-  {
-    return true;
-  }
-  thread_local std::vector<std::pair<PieceKind, std::uint32_t>> others;
-  others.clear();
-  this->pieces_near(a, b, others);
-  for (const auto& piece : others)
-  {
-    if (this->nearest(x, piece.first, piece.second, point, nearest))
-    {
-      return true;
-    }
-  }
-  return false;
+  return this->nearest(x, a.first, a.second, point, nearest) ||
+    (b != a && this->nearest(x, b.first, b.second, point, nearest)) ||
+    this->visit_pieces_near(a, b, [&](PieceKind kind, std::uint32_t index) {
+      return this->nearest(x, kind, index, point, nearest);
+    });
 }
 
-void SesPieceProjection::pieces_near(const std::pair<PieceKind, std::uint32_t>& a,
-                                     const std::pair<PieceKind, std::uint32_t>& b,
-                                     std::vector<std::pair<PieceKind, std::uint32_t>>& pieces) const
+bool SesPieceProjection::visit_pieces_near(
+  const std::pair<PieceKind, std::uint32_t>& a, const std::pair<PieceKind, std::uint32_t>& b,
+  const std::function<bool(PieceKind, std::uint32_t)>& visit) const
 {
-  // The atoms of both pieces (at most six), then their other pieces.
+  // The atoms of both pieces (at most six), each marked with its place among them plus one.
+  thread_local std::vector<std::uint8_t> place;
+  if (place.size() < this->centres_.size())
+  {
+    place.assign(this->centres_.size(), 0);
+  }
   std::uint32_t atoms[6];
   int atom_count = 0;
   const auto add_atoms = [&](const std::pair<PieceKind, std::uint32_t>& piece) {
@@ -222,58 +216,65 @@ void SesPieceProjection::pieces_near(const std::pair<PieceKind, std::uint32_t>& 
     const int count = piece_spheres(this->boundary_, piece.first, piece.second, spheres);
     for (int c = 0; c < count; ++c)
     {
-      if (std::find(atoms, atoms + atom_count, spheres[std::size_t(c)]) == atoms + atom_count)
+      const std::uint32_t atom = spheres[std::size_t(c)];
+      if (place[atom] == 0)
       {
-        atoms[atom_count++] = spheres[std::size_t(c)];
+        atoms[atom_count] = atom;
+        place[atom] = static_cast<std::uint8_t>(++atom_count);
       }
     }
   };
   add_atoms(a);
   add_atoms(b);
-  const auto among = [&](std::uint32_t atom) {
-    return std::find(atoms, atoms + atom_count, atom) != atoms + atom_count;
-  };
   const auto other_than_ends = [&](PieceKind kind, std::uint32_t index) {
     return !(a.first == kind && a.second == index) && !(b.first == kind && b.second == index);
   };
-  for (int n = 0; n < atom_count; ++n)
-  {
-    // Each arc once, from whichever of its atoms comes first among them.
-    for (std::uint32_t e = this->atom_arc_start_[atoms[n]]; e < this->atom_arc_start_[atoms[n] + 1];
-         ++e)
+  const auto search = [&] {
+    for (int n = 0; n < atom_count; ++n)
     {
-      const std::uint32_t k = this->atom_arc_items_[e];
-      const SasArc& arc = this->boundary_.arcs[k];
-      const std::uint32_t other = arc.first == atoms[n] ? arc.second : arc.first;
-      const auto other_at = std::find(atoms, atoms + atom_count, other) - atoms;
-      if (other_at < atom_count && other_at > n && other_than_ends(PieceKind::Arc, k))
+      // Each arc once, from whichever of its atoms comes first among them.
+      for (std::uint32_t e = this->atom_arc_start_[atoms[n]];
+           e < this->atom_arc_start_[atoms[n] + 1]; ++e)
       {
-        pieces.emplace_back(PieceKind::Arc, k);
+        const std::uint32_t k = this->atom_arc_items_[e];
+        const SasArc& arc = this->boundary_.arcs[k];
+        const std::uint32_t other = arc.first == atoms[n] ? arc.second : arc.first;
+        if (place[other] > n + 1 && other_than_ends(PieceKind::Arc, k) && visit(PieceKind::Arc, k))
+        {
+          return true;
+        }
       }
     }
-  }
-  for (int n = 0; n < atom_count; ++n)
-  {
-    // Each vertex from its lowest atom.
-    for (std::uint32_t e = this->atom_vertex_start_[atoms[n]];
-         e < this->atom_vertex_start_[atoms[n] + 1]; ++e)
+    for (int n = 0; n < atom_count; ++n)
     {
-      const std::uint32_t k = this->atom_vertex_items_[e];
-      const auto& spheres = this->boundary_.vertices[k].spheres;
-      if (spheres[0] == atoms[n] && among(spheres[1]) && among(spheres[2]) &&
-          other_than_ends(PieceKind::Vertex, k))
+      // Each vertex from its lowest atom.
+      for (std::uint32_t e = this->atom_vertex_start_[atoms[n]];
+           e < this->atom_vertex_start_[atoms[n] + 1]; ++e)
       {
-        pieces.emplace_back(PieceKind::Vertex, k);
+        const std::uint32_t k = this->atom_vertex_items_[e];
+        const auto& spheres = this->boundary_.vertices[k].spheres;
+        if (spheres[0] == atoms[n] && place[spheres[1]] != 0 && place[spheres[2]] != 0 &&
+            other_than_ends(PieceKind::Vertex, k) && visit(PieceKind::Vertex, k))
+        {
+          return true;
+        }
       }
     }
-  }
+    for (int n = 0; n < atom_count; ++n)
+    {
+      if (other_than_ends(PieceKind::Face, atoms[n]) && visit(PieceKind::Face, atoms[n]))
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  const bool found = search();
   for (int n = 0; n < atom_count; ++n)
   {
-    if (other_than_ends(PieceKind::Face, atoms[n]))
-    {
-      pieces.emplace_back(PieceKind::Face, atoms[n]);
-    }
+    place[atoms[n]] = 0;
   }
+  return found;
 }
 
 bool SesPieceProjection::certify(const Vec& y, PieceKind kind, std::uint32_t index,

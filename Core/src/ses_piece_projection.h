@@ -11,6 +11,7 @@
 
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -54,12 +55,12 @@ public:
                     const std::pair<PieceKind, std::uint32_t>& b, Eigen::Vector3d& point,
                     ClosestPiece& nearest) const;
 
-  /// The pieces near pieces `a` and `b` (as nearest_near() tries them after those two): the
-  /// arcs between two of their atoms, the vertices of three, and the atoms' faces, each once,
-  /// appended to `pieces` (`a` and `b` left out).
-  void pieces_near(const std::pair<PieceKind, std::uint32_t>& a,
-                   const std::pair<PieceKind, std::uint32_t>& b,
-                   std::vector<std::pair<PieceKind, std::uint32_t>>& pieces) const;
+  /// Calls `visit(kind, index)` with each piece near pieces `a` and `b`, as nearest_near() tries
+  /// them after those two (the arcs between two of their atoms, the vertices of three, the
+  /// atoms' faces, each once, `a` and `b` left out), until it returns true; whether one did.
+  bool visit_pieces_near(const std::pair<PieceKind, std::uint32_t>& a,
+                         const std::pair<PieceKind, std::uint32_t>& b,
+                         const std::function<bool(PieceKind, std::uint32_t)>& visit) const;
 
   /// Whether `y`, on the sphere or torus carrying the patch of the piece (to 1e-9 Å), is
   /// certified on the surface with that piece's position nearest (then set in `nearest`, the

@@ -370,17 +370,21 @@ public:
         others.push_back(at_corner);
       }
     }
-    const auto corner_pieces = static_cast<std::ptrdiff_t>(others.size());
-    this->surface_.pieces.pieces_near(at_inside, at_outside, others);
-    for (std::size_t k = 0; k < others.size(); ++k)
+    for (const auto& other : others)
     {
-      const bool tried = std::ptrdiff_t(k) >= corner_pieces &&
-        std::find(others.begin(), others.begin() + corner_pieces, others[k]) !=
-          others.begin() + corner_pieces;
-      if (!tried && this->along(outside, inside, others[k], position, piece))
+      if (this->along(outside, inside, other, position, piece))
       {
         return this->surface_.vertex(position, piece);
       }
+    }
+    if (this->surface_.pieces.visit_pieces_near(
+          at_inside, at_outside, [&](PieceKind kind, std::uint32_t index) {
+            const std::pair<PieceKind, std::uint32_t> near(kind, index);
+            return std::find(others.begin(), others.end(), near) == others.end() &&
+              this->along(outside, inside, near, position, piece);
+          }))
+    {
+      return this->surface_.vertex(position, piece);
     }
     // The general search, among the pieces near the cell (gathered once for its edges).
     const Vec middle = 0.5 * (cell[0].position + cell[7].position);

@@ -369,6 +369,28 @@ ProbeDistance::ArcFrame ProbeDistance::arc_frame(std::uint32_t k, const Vec& x) 
   return frame;
 }
 
+double ProbeDistance::arc_distance(std::uint32_t k, const Vec& x, Vec& nearest) const
+{
+  const ArcFrame frame = this->arc_frame(k, x);
+  const SasArc& arc = this->boundary_.arcs[k];
+  if (frame.radial <= 1e-12)
+  {
+    nearest = arc.point(arc.start); // on the axis: every point of the circle is as near
+    return std::sqrt(frame.squared);
+  }
+  if (this->within_span(k, frame.a1, frame.a2))
+  {
+    nearest = arc.centre + arc.radius / frame.radial * (frame.a1 * arc.e1 + frame.a2 * arc.e2);
+    return std::sqrt(frame.squared);
+  }
+  const ArcEnds& ends = this->arc_ends_[k];
+  const Vec start = arc.centre + arc.radius * (ends.start_cos * arc.e1 + ends.start_sin * arc.e2);
+  const Vec end = arc.centre + arc.radius * (ends.end_cos * arc.e1 + ends.end_sin * arc.e2);
+  const double to_start = (x - start).squaredNorm(), to_end = (x - end).squaredNorm();
+  nearest = to_start <= to_end ? start : end;
+  return std::sqrt(std::min(to_start, to_end));
+}
+
 double ProbeDistance::arc_distance(std::uint32_t k, const Vec& x) const
 {
   const ArcFrame frame = this->arc_frame(k, x);

@@ -181,6 +181,8 @@ public:
 
   /// The distance from `x` to exposed arc `k` (its ends included).
   double arc_distance(std::uint32_t k, const Eigen::Vector3d& x) const;
+  /// The same, with the nearest point of the exposed arc in `nearest`.
+  double arc_distance(std::uint32_t k, const Eigen::Vector3d& x, Eigen::Vector3d& nearest) const;
 
   /// Whether the point of arc `k`'s circle at in-plane coordinates (a1, a2) (along e1, e2 from
   /// its centre) lies on the exposed arc.

@@ -94,4 +94,48 @@ Eigen::Vector3d segment_root(const Eigen::Vector3d& a, double value_a, const Eig
   return on_segment(a, b, t);
 }
 
+/// The root of `value` on the segment from a (value <= 0) to b (value > 0) as segment_root()
+/// finds it, by Newton's method where `value(x, slope)` also gives the slope along the segment
+/// (per unit of its parameter): steps that leave the bracket, or a slope that is not positive,
+/// fall back to regula falsi. Quadratic near a simple root, so a few evaluations do.
+template<typename ValueAndSlope>
+Eigen::Vector3d segment_root_newton(const Eigen::Vector3d& a, double value_a,
+                                    const Eigen::Vector3d& b, double value_b, ValueAndSlope&& value)
+{
+  double t0 = 0, t1 = 1, f0 = value_a, f1 = value_b;
+  const double length = (b - a).norm();
+  double t = f0 / (f0 - f1);
+  for (int iteration = 0; iteration < 60; ++iteration)
+  {
+    double slope = 0;
+    const double f = value(a + t * (b - a), slope);
+    if (f == 0)
+    {
+      break;
+    }
+    if (f < 0)
+    {
+      t0 = t;
+      f0 = f;
+    }
+    else
+    {
+      t1 = t;
+      f1 = f;
+    }
+    double next = slope > 0 ? t - f / slope : -1.0;
+    if (!(next > t0 && next < t1))
+    {
+      next = (t0 * f1 - t1 * f0) / (f1 - f0);
+    }
+    const bool converged = std::abs(next - t) * length <= 1e-10 || (t1 - t0) * length <= 1e-9;
+    t = next;
+    if (converged)
+    {
+      break;
+    }
+  }
+  return on_segment(a, b, t);
+}
+
 } // namespace mesolens

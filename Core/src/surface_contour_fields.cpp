@@ -448,7 +448,12 @@ private:
       {
         return false;
       }
-      position = segment_root(from, at_from, b, at_inside, along_piece);
+      position = segment_root_newton(from, at_from, b, at_inside, [&](const Vec& x, double& slope) {
+        Vec nearest_point;
+        const double gap = distance.arc_distance(index, x, nearest_point);
+        slope = gap > 0 ? (x - nearest_point).dot(b - from) / gap : 0.0;
+        return gap - p;
+      });
     }
     else
     {

@@ -2,11 +2,14 @@
 // Projections onto single solvent-excluded patches with their cheap certificates (a private part
 // of MesoLensCore), against the general search: every certified point must lie on the surface,
 // points inside a patch's ball must get their nearest surface point, and most points near the
-// surface must be certified (else the speed-up is gone).
+// surface must be certified (else the speed-up is gone). The contour's field, sampled a block
+// at a time from the same pieces, against the same search.
+#include "contour_tetrahedra.h"
 #include "probe_distance.h"
 #include "sas_boundary.h"
 #include "ses_patches.h"
 #include "ses_piece_projection.h"
+#include "surface_contour_fields.h"
 
 #include "mesolens/elements.h"
 #include "mesolens/structure_file.h"
@@ -403,6 +406,124 @@ TEST(SesPieceProjection, DegeneratePointsAreRefused)
   // A point off the sphere it is said to be on.
   EXPECT_FALSE(surface.pieces->certify(surface.centres[0] + Vec(0, 0, radii[0] + 0.01),
                                        PieceKind::Face, 0, nearest));
+}
+
+/// Samples every block of a grid over `surface` with the contour's field and checks each point
+/// against the general search: the same sign, and inside the union the same distance to the
+/// nearest probe position (up to the field's limit) from a piece that lies that far.
+void check_field_against_search(const Surface& surface, double spacing)
+{
+  const double limit = probe + spacing;
+  const auto field = mesolens::excluded_surface_field(
+    *surface.distance, *surface.pieces, surface.boundary, surface.centres, surface.inflated,
+    surface.atom_radii, probe, limit);
+  Vec low = Vec::Constant(1e300), high = -low;
+  for (std::size_t i = 0; i < surface.centres.size(); ++i)
+  {
+    low = low.cwiseMin(surface.centres[i] - Vec::Constant(surface.inflated[i] + 2.0));
+    high = high.cwiseMax(surface.centres[i] + Vec::Constant(surface.inflated[i] + 2.0));
+  }
+  const mesolens::ContourGrid grid(low, high, spacing);
+  field->prepare(grid, {});
+  const auto local = field->local();
+  constexpr int side = mesolens::ContourGrid::block_points;
+  std::vector<double> values(side * side * side);
+  std::vector<std::uint32_t> hints(side * side * side);
+  std::size_t checked = 0, near_surface = 0;
+  for (std::size_t b = 0; b < grid.block_count(); ++b)
+  {
+    const auto first = grid.block_first(b);
+    const bool sampled = local->sample_block(grid, b, values.data(), hints.data());
+    for (int z = 0; z < side; ++z)
+      for (int y = 0; y < side; ++y)
+        for (int x = 0; x < side; ++x)
+        {
+          const Vec point = grid.point(first[0] + x, first[1] + y, first[2] + z);
+          const ClosestPiece exact = surface.distance->closest(point, {}, limit);
+          if (!sampled)
+          {
+            // Unsampled blocks hold no zero: all outside the union or deeper than the limit.
+            ASSERT_TRUE(exact.distance <= 0 || exact.distance >= limit) << point.transpose();
+            continue;
+          }
+          const std::size_t at = std::size_t(x + side * (y + side * z));
+          ++checked;
+          ASSERT_EQ(values[at] > 0, exact.distance - probe > 0) << point.transpose();
+          if (exact.distance > 0 && exact.distance < limit)
+          {
+            EXPECT_NEAR(values[at] + probe, exact.distance, 1e-12) << point.transpose();
+            const auto kind = static_cast<PieceKind>(hints[at] >> 30);
+            const std::uint32_t index = hints[at] & ((1u << 30) - 1);
+            ASSERT_NE(kind, PieceKind::None);
+            // The hinted piece lies that far (faces: its whole sphere; arcs: the exposed arc).
+            const double hinted = kind == PieceKind::Arc
+              ? surface.distance->arc_distance(index, point)
+              : surface.distance->piece_distance(point, kind, index);
+            EXPECT_NEAR(hinted, exact.distance, 1e-12) << point.transpose();
+            near_surface += std::abs(exact.distance - probe) < spacing ? 1 : 0;
+          }
+        }
+  }
+  EXPECT_GT(checked, 10000u);
+  EXPECT_GT(near_surface, 1000u);
+}
+
+TEST(SesContourField, CrambinsGridMatchesTheGeneralSearch)
+{
+  std::vector<double> radii;
+  const std::vector<Vec> atoms = protein_atoms("proteins/1crn.pdb", radii);
+  const Surface surface(atoms, radii, {});
+  check_field_against_search(surface, 0.9);
+}
+
+TEST(SesContourField, PinchedToriAndOverlappingProbesMatchTheGeneralSearch)
+{
+  std::vector<double> radii;
+  const std::vector<Vec> atoms = packed_atoms(radii);
+  const Surface surface(atoms, radii, {});
+  check_field_against_search(surface, 0.37);
+}
+
+TEST(SesContourField, VerticesLieOnTheSurfaceOnTheirGridEdges)
+{
+  for (const bool packed : { false, true })
+  {
+    std::vector<double> radii;
+    const std::vector<Vec> atoms =
+      packed ? packed_atoms(radii) : protein_atoms("proteins/1crn.pdb", radii);
+    const Surface surface(atoms, radii, mesolens_test::two_threads());
+    const double spacing = packed ? 0.41 : 1.1;
+    const auto field = mesolens::excluded_surface_field(
+      *surface.distance, *surface.pieces, surface.boundary, surface.centres, surface.inflated,
+      surface.atom_radii, probe, probe + spacing);
+    Vec low = Vec::Constant(1e300), high = -low;
+    for (std::size_t i = 0; i < atoms.size(); ++i)
+    {
+      low = low.cwiseMin(atoms[i] - Vec::Constant(surface.inflated[i] + 1.0));
+      high = high.cwiseMax(atoms[i] + Vec::Constant(surface.inflated[i] + 1.0));
+    }
+    const mesolens::ContourMesh mesh = mesolens::contour_tetrahedra(
+      *field, low, high, spacing, mesolens_test::two_threads(), [](double) {});
+    ASSERT_GT(mesh.vertices.size(), 1000u);
+    for (const auto& vertex : mesh.vertices)
+    {
+      const ClosestPiece nearest = surface.distance->closest(vertex.position);
+      ASSERT_NEAR(nearest.distance, probe, 1e-7) << vertex.position.transpose();
+      // On a grid edge: at most two of its coordinates off the grid, along a Kuhn direction.
+      const Vec cell = (vertex.position - low) / spacing;
+      int off_grid = 0;
+      for (int a = 0; a < 3; ++a)
+      {
+        off_grid += std::abs(cell[a] - std::round(cell[a])) > 1e-6 ? 1 : 0;
+      }
+      EXPECT_GE(off_grid, 1);
+      EXPECT_EQ(vertex.patch,
+                static_cast<std::uint8_t>(nearest.kind == PieceKind::Arc        ? 1
+                                            : nearest.kind == PieceKind::Vertex ? 2
+                                                                                : 0))
+        << vertex.position.transpose();
+    }
+  }
 }
 
 } // namespace

@@ -3,15 +3,20 @@
 
 #include "probe_distance.h"
 
+#include "mesolens/errors.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 namespace mesolens {
 
 namespace {
 using Vec = Eigen::Vector3d;
 constexpr double two_pi = 6.28318530717958647692;
+/// The most cells the index may have (three 4-byte tables: 12 GB).
+constexpr double largest_cell_count = 1e9;
 
 /// Compressed rows from (cell, item) pairs.
 void build_rows(std::size_t cell_count, std::vector<std::pair<std::int64_t, std::uint32_t>>& pairs,
@@ -91,8 +96,19 @@ ProbeDistance::ProbeDistance(const std::vector<Vec>& centres, const std::vector<
     this->dims_[a] =
       static_cast<std::int64_t>(std::ceil((high[a] - low[a] + 2 * margin) / this->cell_)) + 1;
   }
-  const std::size_t cell_count =
-    static_cast<std::size_t>(this->dims_[0] * this->dims_[1] * this->dims_[2]);
+  // Three tables of one 4-byte entry per cell: atoms spread so far apart (thousands of Å along
+  // each axis) that they would take over 12 GB are refused rather than exhaust the memory.
+  const double cells = double(this->dims_[0]) * double(this->dims_[1]) * double(this->dims_[2]);
+  if (cells > largest_cell_count)
+  {
+    throw InvalidInput("the spheres span " + std::to_string(int(high[0] - low[0])) + " x " +
+                       std::to_string(int(high[1] - low[1])) + " x " +
+                       std::to_string(int(high[2] - low[2])) +
+                       " Å: too far apart for one surface (its search grid would need " +
+                       std::to_string(int(12.0 * cells / 1e9)) +
+                       " GB); surround groups of atoms that lie close together separately");
+  }
+  const std::size_t cell_count = static_cast<std::size_t>(cells);
   std::array<std::int64_t, 3> ijk{};
   std::vector<std::pair<std::int64_t, std::uint32_t>> pairs;
   for (std::size_t i = 0; i < centres.size(); ++i)

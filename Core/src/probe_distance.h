@@ -131,7 +131,8 @@ struct LocalPieces
 class ProbeDistance
 {
 public:
-  /// `reach` > 0.
+  /// `reach` > 0. Throws InvalidInput when the spheres lie so far apart that its grid of cells
+  /// (a quarter of the reach wide) would need more than 1e9 of them.
   ProbeDistance(const std::vector<Eigen::Vector3d>& centres, const std::vector<double>& radii,
                 const SasBoundary& boundary, double reach);
 

@@ -4,6 +4,7 @@
 #include "contour_tetrahedra.h"
 
 #include "balanced_loop.h"
+#include "grid_cells.h"
 
 #include <algorithm>
 #include <array>
@@ -122,9 +123,11 @@ bool ContourGrid::points_within(std::size_t block, const Vec& from, const Vec& t
   for (int a = 0; a < 3; ++a)
   {
     const double base = this->low[a] + this->spacing * double(origin[a]);
-    first[a] = static_cast<int>(std::max(0.0, std::ceil((from[a] - base) / this->spacing)));
-    last[a] =
-      static_cast<int>(std::min(double(block_cells), std::floor((to[a] - base) / this->spacing)));
+    // Clamped to the block before rounding (far boxes would overflow an int).
+    const double lower = std::clamp((from[a] - base) / this->spacing, -1.0, block_cells + 1.0);
+    const double upper = std::clamp((to[a] - base) / this->spacing, -1.0, block_cells + 1.0);
+    first[a] = std::max(0, ceil_to_int(lower));
+    last[a] = std::min(block_cells, floor_to_int(upper));
     if (first[a] > last[a])
     {
       return false;

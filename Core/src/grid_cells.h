@@ -11,6 +11,19 @@ namespace mesolens {
 
 using GridCell = std::array<std::int64_t, 3>;
 
+/// floor() and ceil() to an int, for values well within its range, without a library call
+/// (hot loops over grid points: the library's rounding is a call without SSE4.1).
+inline int floor_to_int(double x)
+{
+  const int truncated = static_cast<int>(x);
+  return truncated - (x < truncated ? 1 : 0);
+}
+inline int ceil_to_int(double x)
+{
+  const int truncated = static_cast<int>(x);
+  return truncated + (x > truncated ? 1 : 0);
+}
+
 /// The cell of edge `size` holding `p`.
 inline GridCell grid_cell(const std::array<double, 3>& p, double size)
 {

@@ -5,6 +5,7 @@
 
 #include "block_bins.h"
 #include "excluded_surface.h"
+#include "grid_cells.h"
 #include "segment_roots.h"
 
 #include "mesolens/molecular_surface.h"
@@ -55,10 +56,8 @@ void for_points(const ContourGrid& grid, std::size_t block, const Vec& from, con
       }
       // The row's points within the ball, a point to spare against rounding.
       const double half = std::sqrt(rest);
-      const int x0 =
-        std::max(first[0], static_cast<int>(std::floor((offset[0] - half) * per_spacing)));
-      const int x1 =
-        std::min(last[0], static_cast<int>(std::ceil((offset[0] + half) * per_spacing)));
+      const int x0 = std::max(first[0], floor_to_int((offset[0] - half) * per_spacing));
+      const int x1 = std::min(last[0], ceil_to_int((offset[0] + half) * per_spacing));
       for (int x = x0; x <= x1; ++x)
       {
         visit(std::size_t(x + side * (y + side * z)),
@@ -84,9 +83,10 @@ void arc_ball(const SasArc& arc, Vec& centre, double& radius)
   }
 }
 
-/// The box of an arc's points (its ends included): per axis the ends, and the circle's extremes
-/// where they fall within the span.
-void arc_box(const SasArc& arc, Vec& from, Vec& to)
+/// The box of arc `k`'s points (its ends included): per axis the ends, and the circle's
+/// extremes where they fall within the span (in the circle's frame the extreme along an axis
+/// lies in the direction of that axis's components on e1 and e2).
+void arc_box(const ProbeDistance& distance, const SasArc& arc, std::uint32_t k, Vec& from, Vec& to)
 {
   from = to = arc.point(arc.start);
   const Vec last = arc.point(arc.start + arc.span);
@@ -94,18 +94,18 @@ void arc_box(const SasArc& arc, Vec& from, Vec& to)
   to = to.cwiseMax(last);
   for (int a = 0; a < 3; ++a)
   {
-    // coordinate = centre + radius * amplitude * cos(azimuth - peak)
-    const double amplitude = std::hypot(arc.e1[a], arc.e2[a]);
-    const double peak = std::atan2(arc.e2[a], arc.e1[a]);
-    for (const double extreme : { peak, peak + 0.5 * two_pi })
+    const double amplitude = std::sqrt(arc.e1[a] * arc.e1[a] + arc.e2[a] * arc.e2[a]);
+    if (amplitude == 0)
     {
-      const double past_start = std::fmod(std::fmod(extreme - arc.start, two_pi) + two_pi, two_pi);
-      if (past_start <= arc.span)
-      {
-        const double value = arc.centre[a] + arc.radius * amplitude * std::cos(extreme - peak);
-        from[a] = std::min(from[a], value);
-        to[a] = std::max(to[a], value);
-      }
+      continue; // the circle's plane is across this axis
+    }
+    if (distance.within_span(k, arc.e1[a], arc.e2[a]))
+    {
+      to[a] = std::max(to[a], arc.centre[a] + arc.radius * amplitude);
+    }
+    if (distance.within_span(k, -arc.e1[a], -arc.e2[a]))
+    {
+      from[a] = std::min(from[a], arc.centre[a] - arc.radius * amplitude);
     }
   }
 }
@@ -141,7 +141,7 @@ public:
     this->arc_boxes_.resize(boundary.arcs.size());
     this->arc_balls_.resize(boundary.arcs.size());
     this->arcs_ = BlockBins(grid, boundary.arcs.size(), [&](std::size_t k, Vec& from, Vec& to) {
-      arc_box(boundary.arcs[k], from, to);
+      arc_box(this->surface_.distance, boundary.arcs[k], static_cast<std::uint32_t>(k), from, to);
       from -= Vec::Constant(limit) + slack;
       to += Vec::Constant(limit) + slack;
       this->arc_boxes_[k] = { from, to };

@@ -58,10 +58,14 @@ void for_points(const ContourGrid& grid, std::size_t block, const Vec& from, con
       const double half = std::sqrt(rest);
       const int x0 = std::max(first[0], floor_to_int((offset[0] - half) * per_spacing));
       const int x1 = std::min(last[0], ceil_to_int((offset[0] + half) * per_spacing));
+      // Coordinates as grid.point() makes them, per row.
+      Vec point(0.0, grid.low[1] + h * double(origin[1] + y),
+                grid.low[2] + h * double(origin[2] + z));
+      const std::size_t row = std::size_t(side * (y + side * z));
       for (int x = x0; x <= x1; ++x)
       {
-        visit(std::size_t(x + side * (y + side * z)),
-              grid.point(origin[0] + x, origin[1] + y, origin[2] + z));
+        point[0] = grid.low[0] + h * double(origin[0] + x);
+        visit(row + std::size_t(x), point);
       }
     }
   }

@@ -21,7 +21,7 @@ namespace mesolens {
 
 /// A piece as a field's hint: its kind in the top two bits, its index below.
 constexpr std::uint32_t piece_index_mask = (1u << 30) - 1;
-inline std::uint32_t encode_piece(PieceKind kind, std::uint32_t index)
+constexpr std::uint32_t encode_piece(PieceKind kind, std::uint32_t index)
 {
   return (static_cast<std::uint32_t>(kind) << 30) | (index & piece_index_mask);
 }

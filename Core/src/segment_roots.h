@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Where a grid edge crosses a surface (private to MesoLensCore): the molecular surfaces'
-// vertices, on one sphere in closed form, on any other piece by regula falsi.
+// vertices, on one sphere in closed form, on a circle's tube by Newton's method, on any other
+// piece by regula falsi.
 #pragma once
 
 #include <Eigen/Core>
@@ -15,20 +16,6 @@ namespace mesolens {
 inline Eigen::Vector3d on_segment(const Eigen::Vector3d& a, const Eigen::Vector3d& b, double t)
 {
   return a + std::clamp(t, 1e-5, 1.0 - 1e-5) * (b - a);
-}
-
-/// Where the segment from a to b crosses the sphere (`centre`, `radius`) when one end lies
-/// inside it and the other outside: the parameter in [0, 1] of the one crossing, from the
-/// quadratic formula in its cancellation-free form. Precondition: a != b.
-inline double sphere_crossing(const Eigen::Vector3d& a, const Eigen::Vector3d& b,
-                              const Eigen::Vector3d& centre, double radius)
-{
-  const Eigen::Vector3d d = b - a, e = a - centre;
-  const double dd = d.squaredNorm(), ed = e.dot(d), c = e.squaredNorm() - radius * radius;
-  const double q = -(ed + std::copysign(std::sqrt(std::max(0.0, ed * ed - dd * c)), ed));
-  const double first = q / dd, second = q != 0 ? c / q : first;
-  const auto miss = [](double t) { return t < 0 ? -t : std::max(0.0, t - 1); };
-  return std::clamp(miss(first) <= miss(second) ? first : second, 0.0, 1.0);
 }
 
 /// The parameters along the line a + t (b - a) where it enters (`entry`) and leaves (`exit`) the

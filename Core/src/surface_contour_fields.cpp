@@ -14,7 +14,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <optional>
 
 namespace mesolens {
 
@@ -127,9 +126,7 @@ public:
 
   void prepare(const ContourGrid& grid, const ParallelFor& /*parallel_for*/) override
   {
-    this->grid_.emplace(grid);
-    this->reach_ = this->surface_.limit;
-    const double limit = this->reach_;
+    const double limit = this->surface_.limit;
     const SasBoundary& boundary = this->surface_.boundary;
     // An edge the surface crosses has its outside end within sqrt(3) spacings of the surface,
     // which lies a probe radius inside the union: the nearest sphere of such ends is found.
@@ -174,9 +171,7 @@ public:
 
   ExcludedSurface surface_;
   const std::vector<double>& radii_; ///< the inflated spheres'
-  std::optional<ContourGrid> grid_;
   double outside_reach_ = 0;
-  double reach_ = 0;
   BlockBins spheres_, arcs_, vertices_;
   /// Per arc, the box and the ball (centre, radius) holding the points within the reach.
   std::vector<std::array<Vec, 2>> arc_boxes_;
@@ -215,114 +210,16 @@ public:
     {
       return false;
     }
-    const double limit = field.reach_, p = this->surface_.probe;
-    const std::uint32_t none = encode_piece(PieceKind::None, 0);
-    std::fill(this->nearest_.begin(), this->nearest_.end(), limit);
-    std::fill(this->nearest_hint_.begin(), this->nearest_hint_.end(), none);
+    std::fill(this->nearest_.begin(), this->nearest_.end(), this->surface_.limit);
+    std::fill(this->nearest_hint_.begin(), this->nearest_hint_.end(), no_piece);
     std::fill(this->inside_.begin(), this->inside_.end(), 0);
     std::fill(this->outside_.begin(), this->outside_.end(), -std::numeric_limits<double>::max());
-    std::fill(this->outside_hint_.begin(), this->outside_hint_.end(), none);
-    // The nearest piece of each point within the limit: the least distance, ties to the lower
-    // label, so that every block holding a point finds the same.
-    const auto improves = [&](std::size_t at, double distance, std::uint32_t label) {
-      return distance < limit &&
-        (distance < this->nearest_[at] ||
-         (distance == this->nearest_[at] && label < this->nearest_hint_[at]));
-    };
-    const auto offer = [&](std::size_t at, double distance, std::uint32_t label) {
-      if (improves(at, distance, label))
-      {
-        this->nearest_[at] = distance;
-        this->nearest_hint_[at] = label;
-      }
-    };
-    const Vec reach = Vec::Constant(limit + box_slack);
-    for (const std::uint32_t* k = field.vertices_.begin(block); k != field.vertices_.end(block);
-         ++k)
-    {
-      const Vec& v = boundary.vertices[*k].position;
-      const std::uint32_t label = encode_piece(PieceKind::Vertex, *k);
-      for_points(grid, block, v - reach, v + reach, v, reach[0], [&](std::size_t at, const Vec& x) {
-        const double squared = (x - v).squaredNorm();
-        if (squared < limit * limit)
-        {
-          offer(at, std::sqrt(squared), label);
-        }
-      });
-    }
-    for (const std::uint32_t* k = field.arcs_.begin(block); k != field.arcs_.end(block); ++k)
-    {
-      const SasArc& arc = boundary.arcs[*k];
-      const std::uint32_t label = encode_piece(PieceKind::Arc, *k);
-      const auto& box = field.arc_boxes_[*k];
-      const auto& ball = field.arc_balls_[*k];
-      const Vec ball_centre(ball[0], ball[1], ball[2]);
-      for_points(
-        grid, block, box[0], box[1], ball_centre, ball[3], [&](std::size_t at, const Vec& x) {
-          // Nearest on the exposed arc when the circle's nearest point lies within its span (else
-          // an end vertex is nearer); on the axis every point of the circle is as near.
-          // (The span is looked at last: most points have a nearer piece.)
-          const Vec v = x - arc.centre;
-          const double along = v.dot(arc.axis);
-          if (std::abs(along) > this->nearest_[at])
-          {
-            return;
-          }
-          const double a1 = v.dot(arc.e1), a2 = v.dot(arc.e2);
-          const double radial = std::sqrt(a1 * a1 + a2 * a2);
-          const double squared = along * along + (radial - arc.radius) * (radial - arc.radius);
-          if (!(squared < limit * limit))
-          {
-            return;
-          }
-          const double distance = std::sqrt(squared);
-          if (improves(at, distance, label) &&
-              (radial <= 1e-12 || this->surface_.distance.within_span(*k, a1, a2)))
-          {
-            offer(at, distance, label);
-          }
-        });
-    }
-    const auto& centres = this->surface_.centres;
-    const auto& radii = field.radii_;
-    for (const std::uint32_t* s = field.spheres_.begin(block); s != field.spheres_.end(block); ++s)
-    {
-      const std::uint32_t i = *s;
-      const Vec& c = centres[i];
-      const double r = radii[i], outer = r + field.outside_reach(i);
-      const bool exposed = boundary.area[i] > 0;
-      const std::uint32_t label = encode_piece(PieceKind::Face, i);
-      const Vec box = Vec::Constant(outer + box_slack);
-      for_points(grid, block, c - box, c + box, c, box[0], [&](std::size_t at, const Vec& x) {
-        const Vec offset = x - c;
-        const double squared = offset.squaredNorm();
-        if (squared < r * r)
-        {
-          this->inside_[at] = 1;
-          // A face is nearest where the radial projection onto it is exposed (shallower
-          // spheres' projections lie inside the deepest one).
-          const double gap = std::sqrt(squared);
-          const double depth = r - gap;
-          if (exposed && gap > 0 && improves(at, depth, label) &&
-              this->exposed_projection(i, c + (r / gap) * offset))
-          {
-            offer(at, depth, label);
-          }
-        }
-        else if (exposed && squared < outer * outer)
-        {
-          // Outside this sphere: the nearest sphere decides the value if the point lies
-          // outside the union (ties to the lower index).
-          const double depth = r - std::sqrt(squared);
-          if (depth > this->outside_[at] ||
-              (depth == this->outside_[at] && label < this->outside_hint_[at]))
-          {
-            this->outside_[at] = depth;
-            this->outside_hint_[at] = label;
-          }
-        }
-      });
-    }
+    std::fill(this->outside_hint_.begin(), this->outside_hint_.end(), no_piece);
+    // Vertices and arcs first: where they lie nearer than a sphere, its exposure is not tested.
+    this->visit_vertices(grid, block);
+    this->visit_arcs(grid, block);
+    this->visit_spheres(grid, block);
+    const double p = this->surface_.probe;
     for (std::size_t at = 0; at < block_size; ++at)
     {
       if (this->inside_[at])
@@ -330,7 +227,7 @@ public:
         values[at] = this->nearest_[at] - p;
         hints[at] = this->nearest_hint_[at];
       }
-      else if (this->outside_hint_[at] != none)
+      else if (this->outside_hint_[at] != no_piece)
       {
         values[at] = this->outside_[at] - p;
         hints[at] = this->outside_hint_[at];
@@ -338,7 +235,7 @@ public:
       else
       {
         values[at] = -field.outside_reach_ - p; // farther from every sphere
-        hints[at] = none;
+        hints[at] = no_piece;
       }
     }
     return true;
@@ -408,6 +305,129 @@ public:
   }
 
 private:
+  static constexpr std::uint32_t no_piece = encode_piece(PieceKind::None, 0);
+
+  /// Whether a piece `distance` from the point `at` (its label `label`) is nearer than what the
+  /// point has, within the limit: the least distance, ties to the lower label, so that every
+  /// block holding a point finds the same.
+  bool improves(std::size_t at, double distance, std::uint32_t label) const
+  {
+    return distance < this->surface_.limit &&
+      (distance < this->nearest_[at] ||
+       (distance == this->nearest_[at] && label < this->nearest_hint_[at]));
+  }
+  void offer(std::size_t at, double distance, std::uint32_t label)
+  {
+    if (this->improves(at, distance, label))
+    {
+      this->nearest_[at] = distance;
+      this->nearest_hint_[at] = label;
+    }
+  }
+
+  /// The block's points within the limit of each vertex near it.
+  void visit_vertices(const ContourGrid& grid, std::size_t block)
+  {
+    const ExcludedSurfaceContour& field = this->field_;
+    const double limit = this->surface_.limit;
+    const Vec reach = Vec::Constant(limit + box_slack);
+    for (const std::uint32_t* k = field.vertices_.begin(block); k != field.vertices_.end(block);
+         ++k)
+    {
+      const Vec& v = this->surface_.boundary.vertices[*k].position;
+      const std::uint32_t label = encode_piece(PieceKind::Vertex, *k);
+      for_points(grid, block, v - reach, v + reach, v, reach[0], [&](std::size_t at, const Vec& x) {
+        const double squared = (x - v).squaredNorm();
+        if (squared < limit * limit)
+        {
+          this->offer(at, std::sqrt(squared), label);
+        }
+      });
+    }
+  }
+
+  /// The block's points within the limit of each exposed arc near it: those whose nearest point
+  /// of the circle lies within the span (else an end vertex is nearer); on the axis every point
+  /// of the circle is as near. The span is looked at last: most points have a nearer piece.
+  void visit_arcs(const ContourGrid& grid, std::size_t block)
+  {
+    const ExcludedSurfaceContour& field = this->field_;
+    const double limit = this->surface_.limit;
+    for (const std::uint32_t* k = field.arcs_.begin(block); k != field.arcs_.end(block); ++k)
+    {
+      const SasArc& arc = this->surface_.boundary.arcs[*k];
+      const std::uint32_t label = encode_piece(PieceKind::Arc, *k);
+      const auto& box = field.arc_boxes_[*k];
+      const auto& ball = field.arc_balls_[*k];
+      const Vec ball_centre(ball[0], ball[1], ball[2]);
+      for_points(
+        grid, block, box[0], box[1], ball_centre, ball[3], [&](std::size_t at, const Vec& x) {
+          const Vec v = x - arc.centre;
+          const double along = v.dot(arc.axis);
+          if (std::abs(along) > this->nearest_[at])
+          {
+            return;
+          }
+          const double a1 = v.dot(arc.e1), a2 = v.dot(arc.e2);
+          const double radial = std::sqrt(a1 * a1 + a2 * a2);
+          const double squared = along * along + (radial - arc.radius) * (radial - arc.radius);
+          if (!(squared < limit * limit))
+          {
+            return;
+          }
+          const double distance = std::sqrt(squared);
+          if (this->improves(at, distance, label) &&
+              (radial <= 1e-12 || this->surface_.distance.within_span(*k, a1, a2)))
+          {
+            this->offer(at, distance, label);
+          }
+        });
+    }
+  }
+
+  /// Each sphere near the block marks the points inside it; an exposed one offers its face where
+  /// the point's radial projection onto it is exposed (shallower spheres' projections lie inside
+  /// the deepest one), and outside it gives the nearest sphere of points outside the union (ties
+  /// to the lower index).
+  void visit_spheres(const ContourGrid& grid, std::size_t block)
+  {
+    const ExcludedSurfaceContour& field = this->field_;
+    for (const std::uint32_t* s = field.spheres_.begin(block); s != field.spheres_.end(block); ++s)
+    {
+      const std::uint32_t i = *s;
+      const Vec& c = this->surface_.centres[i];
+      const double r = field.radii_[i], outer = r + field.outside_reach(i);
+      const bool exposed = this->surface_.boundary.area[i] > 0;
+      const std::uint32_t label = encode_piece(PieceKind::Face, i);
+      const Vec box = Vec::Constant(outer + box_slack);
+      for_points(grid, block, c - box, c + box, c, box[0], [&](std::size_t at, const Vec& x) {
+        const Vec offset = x - c;
+        const double squared = offset.squaredNorm();
+        if (squared < r * r)
+        {
+          this->inside_[at] = 1;
+          const double gap = std::sqrt(squared);
+          const double depth = r - gap;
+          if (exposed && gap > 0 && this->improves(at, depth, label) &&
+              this->exposed_projection(i, c + (r / gap) * offset))
+          {
+            this->offer(at, depth, label);
+          }
+        }
+        else if (exposed && squared < outer * outer)
+        {
+          const double depth = r - std::sqrt(squared);
+          if (depth > this->outside_[at] ||
+              (depth == this->outside_[at] && label < this->outside_hint_[at]))
+          {
+            this->outside_[at] = depth;
+            this->outside_hint_[at] = label;
+          }
+        }
+      });
+    }
+  }
+
   /// Where the edge passes from the solvent side of the sphere, circle or point carrying `piece`
   /// to its other side (the last time, for a circle), certified on the piece's patch. The
   /// carrier's solvent side is inside the probe's sphere at a vertex, within the probe radius

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Where a grid edge crosses a surface (a private part of MesoLensCore, used for the molecular
-// surfaces' vertices): the closed-form sphere crossing and regula falsi against exact roots.
+// surfaces' vertices): the closed-form sphere crossings, Newton's method and regula falsi
+// against exact roots.
 #include "segment_roots.h"
 
 #include <gtest/gtest.h>
@@ -14,24 +15,7 @@ namespace {
 using Vec = Eigen::Vector3d;
 }
 
-TEST(SegmentRoots, SphereCrossingEntersAndLeaves)
-{
-  const Vec centre(1, 2, 3);
-  // Entering: the nearer of the line's two crossings; leaving: the farther.
-  EXPECT_NEAR(mesolens::sphere_crossing(centre + Vec(-3, 0, 0), centre, centre, 1.0), 2.0 / 3.0,
-              1e-15);
-  EXPECT_NEAR(mesolens::sphere_crossing(centre, centre + Vec(0, 3, 0), centre, 1.0), 1.0 / 3.0,
-              1e-15);
-  // Both ends on the far side of the centre: the crossing is still the one between them.
-  EXPECT_NEAR(
-    mesolens::sphere_crossing(centre + Vec(0, 0, 0.5), centre + Vec(0, 0, 2.5), centre, 1.0), 0.25,
-    1e-15);
-  // An end on the sphere is the crossing.
-  EXPECT_NEAR(mesolens::sphere_crossing(centre + Vec(0, 1, 0), centre + Vec(0, 1, 1), centre, 1.0),
-              0.0, 1e-15);
-}
-
-TEST(SegmentRoots, SphereCrossingIsOnTheSphereForAnySegment)
+TEST(SegmentRoots, LineSphereCrossingsAreOnTheSphereForAnySegment)
 {
   std::mt19937 random(7);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
@@ -51,10 +35,15 @@ TEST(SegmentRoots, SphereCrossingIsOnTheSphereForAnySegment)
     {
       continue;
     }
-    const double t = mesolens::sphere_crossing(a, b, centre, radius);
-    ASSERT_GE(t, 0.0);
-    ASSERT_LE(t, 1.0);
+    // One end inside: the line crosses, once between the ends (the entry when b is inside, the
+    // exit when a is).
+    double entry = 0, exit = 0;
+    ASSERT_TRUE(mesolens::line_sphere(a, b, centre, radius, entry, exit));
+    const double t = b_in ? entry : exit;
+    ASSERT_GE(t, -1e-12);
+    ASSERT_LE(t, 1.0 + 1e-12);
     ASSERT_NEAR((a + t * (b - a) - centre).norm(), radius, 1e-12 * (1 + (b - a).norm()));
+    ASSERT_TRUE(b_in ? exit > 1.0 - 1e-12 : entry < 1e-12);
     ++checked;
   }
 }

@@ -270,6 +270,11 @@ bool ProbeDistance::exposed_projection(std::uint32_t i, const Vec& x, Vec& y) co
     return false;
   }
   y = this->centres_[i] + this->radii_[i] / length * offset;
+  return this->uncovered(i, y);
+}
+
+bool ProbeDistance::uncovered(std::uint32_t i, const Vec& y) const
+{
   for (const std::uint32_t j : this->boundary_.neighbours[i])
   {
     const double rj = this->radii_[j];
@@ -409,6 +414,7 @@ double ProbeDistance::arc_distance(std::uint32_t k, const Vec& x, Vec& nearest) 
 
 double ProbeDistance::arc_distance(std::uint32_t k, const Vec& x) const
 {
+  // As the overload above, without making the nearest point (the searches' hot path).
   const ArcFrame frame = this->arc_frame(k, x);
   if (frame.radial <= 1e-12 || this->within_span(k, frame.a1, frame.a2))
   {

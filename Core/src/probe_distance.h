@@ -125,6 +125,30 @@ struct LocalPieces
   std::vector<std::pair<double, std::uint32_t>> arcs, vertices;
 };
 
+/// max over the spheres `first` .. `last` (indices into `centres`, `radii`) of R - |x - c|: the
+/// signed distance to their union's boundary outside it, a lower bound of it inside; `deepest`
+/// (may be null) gets the first sphere giving it. -1e300 for no sphere.
+inline double union_depth(const std::uint32_t* first, const std::uint32_t* last,
+                          const std::vector<Eigen::Vector3d>& centres,
+                          const std::vector<double>& radii, const Eigen::Vector3d& x,
+                          std::uint32_t* deepest = nullptr)
+{
+  double best = -1e300;
+  for (const std::uint32_t* s = first; s != last; ++s)
+  {
+    const double d = radii[*s] - (x - centres[*s]).norm();
+    if (d > best)
+    {
+      best = d;
+      if (deepest)
+      {
+        *deepest = *s;
+      }
+    }
+  }
+  return best;
+}
+
 /// Distance queries against the boundary of spheres `centres` with radii `radii` (those of
 /// `boundary`, built with its pieces). Queries are exact within `reach` of the boundary and
 /// may run concurrently.
@@ -184,6 +208,10 @@ public:
   double arc_distance(std::uint32_t k, const Eigen::Vector3d& x) const;
   /// The same, with the nearest point of the exposed arc in `nearest`.
   double arc_distance(std::uint32_t k, const Eigen::Vector3d& x, Eigen::Vector3d& nearest) const;
+
+  /// Whether the point `y` of sphere `i` lies outside each of its neighbours (to a relative
+  /// 1e-12 of their squared radii): on the union's boundary, where `i` is exposed at all.
+  bool uncovered(std::uint32_t i, const Eigen::Vector3d& y) const;
 
   /// Whether the point of arc `k`'s circle at in-plane coordinates (a1, a2) (along e1, e2 from
   /// its centre) lies on the exposed arc.

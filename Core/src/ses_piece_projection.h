@@ -58,6 +58,8 @@ public:
   /// Calls `visit(kind, index)` with each piece near pieces `a` and `b`, as nearest_near() tries
   /// them after those two (the arcs between two of their atoms, the vertices of three, the
   /// atoms' faces, each once, `a` and `b` left out), until it returns true; whether one did.
+  /// `visit` must not call this again on the same thread (the atoms are marked in a buffer of
+  /// the thread's).
   bool visit_pieces_near(const std::pair<PieceKind, std::uint32_t>& a,
                          const std::pair<PieceKind, std::uint32_t>& b,
                          const std::function<bool(PieceKind, std::uint32_t)>& visit) const;

@@ -316,12 +316,16 @@ private:
       (distance < this->nearest_[at] ||
        (distance == this->nearest_[at] && label < this->nearest_hint_[at]));
   }
+  void take(std::size_t at, double distance, std::uint32_t label)
+  {
+    this->nearest_[at] = distance;
+    this->nearest_hint_[at] = label;
+  }
   void offer(std::size_t at, double distance, std::uint32_t label)
   {
     if (this->improves(at, distance, label))
     {
-      this->nearest_[at] = distance;
-      this->nearest_hint_[at] = label;
+      this->take(at, distance, label);
     }
   }
 
@@ -379,7 +383,7 @@ private:
           if (this->improves(at, distance, label) &&
               (radial <= 1e-12 || this->surface_.distance.within_span(*k, a1, a2)))
           {
-            this->offer(at, distance, label);
+            this->take(at, distance, label);
           }
         });
     }
@@ -409,9 +413,9 @@ private:
           const double gap = std::sqrt(squared);
           const double depth = r - gap;
           if (exposed && gap > 0 && this->improves(at, depth, label) &&
-              this->exposed_projection(i, c + (r / gap) * offset))
+              this->surface_.distance.uncovered(i, c + (r / gap) * offset))
           {
-            this->offer(at, depth, label);
+            this->take(at, depth, label);
           }
         }
         else if (exposed && squared < outer * outer)
@@ -447,7 +451,7 @@ private:
     const Vec& b = inside.position;
     if (kind == PieceKind::Arc)
     {
-      // Regula falsi from the last of a few samples within the probe radius of the circle.
+      // Newton from the last of a few samples within the probe radius of the circle.
       const ProbeDistance& distance = this->surface_.distance;
       const auto along_piece = [&](const Vec& x) { return distance.arc_distance(index, x) - p; };
       const double at_inside = along_piece(b);
@@ -500,21 +504,6 @@ private:
       position = on_segment(a, b, t);
     }
     return this->surface_.pieces.certify(position, kind, index, nearest);
-  }
-
-  /// Whether the point `y` of sphere `i` lies outside every neighbour (as the general search
-  /// decides it).
-  bool exposed_projection(std::uint32_t i, const Vec& y) const
-  {
-    for (const std::uint32_t j : this->surface_.boundary.neighbours[i])
-    {
-      const double rj = this->field_.radii_[j];
-      if ((y - this->surface_.centres[j]).squaredNorm() < rj * rj * (1.0 - 1e-12))
-      {
-        return false;
-      }
-    }
-    return true;
   }
 
   const ExcludedSurfaceContour& field_;
@@ -618,23 +607,10 @@ public:
   }
 
 private:
-  /// max over the block's spheres of (R - |x - c|), and the (first) sphere giving it.
   double depth(const Vec& x, std::uint32_t* deepest = nullptr) const
   {
-    double best = -std::numeric_limits<double>::max();
-    for (const std::uint32_t* s = this->first_; s != this->last_; ++s)
-    {
-      const double d = this->field_.radii_[*s] - (x - this->field_.centres_[*s]).norm();
-      if (d > best)
-      {
-        best = d;
-        if (deepest)
-        {
-          *deepest = *s;
-        }
-      }
-    }
-    return best;
+    return union_depth(this->first_, this->last_, this->field_.centres_, this->field_.radii_, x,
+                       deepest);
   }
 
   const UnionSurfaceContour& field_;

@@ -15,28 +15,6 @@ namespace mesolens {
 namespace {
 using Vec = Eigen::Vector3d;
 
-/// max over `spheres` of (R - |x - c|): the signed distance to their union's boundary outside
-/// it, a lower bound of it inside; `deepest` (may be null) gets the maximising sphere. -1e300
-/// for no sphere.
-double union_depth(const std::vector<std::uint32_t>& spheres, const std::vector<Vec>& centres,
-                   const std::vector<double>& radii, const Vec& x, std::uint32_t* deepest = nullptr)
-{
-  double best = -1e300;
-  for (const std::uint32_t i : spheres)
-  {
-    const double d = radii[i] - (x - centres[i]).norm();
-    if (d > best)
-    {
-      best = d;
-      if (deepest)
-      {
-        *deepest = i;
-      }
-    }
-  }
-  return best;
-}
-
 /// Points onto the solvent-excluded surface: along the line from the nearest probe position,
 /// to the probe's sphere, kept when no other probe position is nearer there.
 class ExcludedSurfaceProjection final : public LocalSurfaceProjection
@@ -161,7 +139,9 @@ public:
   bool project(const Vec& x, ContourVertex& vertex) override
   {
     std::uint32_t sphere = 0;
-    const double deepest = union_depth(this->spheres_, this->centres_, this->radii_, x, &sphere);
+    const double deepest =
+      union_depth(this->spheres_.data(), this->spheres_.data() + this->spheres_.size(),
+                  this->centres_, this->radii_, x, &sphere);
     const Vec away = x - this->centres_[sphere];
     const double gap = away.norm();
     if (this->spheres_.empty() || std::abs(deepest) > this->reach_ || !(gap > 0))
@@ -170,7 +150,8 @@ public:
     }
     // The foot, on that sphere, is on the boundary unless another sphere covers it.
     const Vec position = this->centres_[sphere] + this->radii_[sphere] / gap * away;
-    if (union_depth(this->spheres_, this->centres_, this->radii_, position) > 1e-9)
+    if (union_depth(this->spheres_.data(), this->spheres_.data() + this->spheres_.size(),
+                    this->centres_, this->radii_, position) > 1e-9)
     {
       return false;
     }

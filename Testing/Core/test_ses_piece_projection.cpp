@@ -5,6 +5,7 @@
 // surface must be certified (else the speed-up is gone). The contour's field, sampled a block
 // at a time from the same pieces, against the same search.
 #include "contour_tetrahedra.h"
+#include "excluded_surface.h"
 #include "probe_distance.h"
 #include "sas_boundary.h"
 #include "ses_patches.h"
@@ -452,8 +453,8 @@ void check_field_against_search(const Surface& surface, double spacing)
           if (exact.distance > 0 && exact.distance < limit)
           {
             EXPECT_NEAR(values[at] + probe, exact.distance, 1e-12) << point.transpose();
-            const auto kind = static_cast<PieceKind>(hints[at] >> 30);
-            const std::uint32_t index = hints[at] & ((1u << 30) - 1);
+            const PieceKind kind = mesolens::hint_kind(hints[at]);
+            const std::uint32_t index = mesolens::hint_index(hints[at]);
             ASSERT_NE(kind, PieceKind::None);
             // The hinted piece lies that far (faces: its whole sphere; arcs: the exposed arc).
             const double hinted = kind == PieceKind::Arc
@@ -509,14 +510,21 @@ TEST(SesContourField, VerticesLieOnTheSurfaceOnTheirGridEdges)
     {
       const ClosestPiece nearest = surface.distance->closest(vertex.position);
       ASSERT_NEAR(nearest.distance, probe, 1e-7) << vertex.position.transpose();
-      // On a grid edge: at most two of its coordinates off the grid, along a Kuhn direction.
+      // On a grid edge (Kuhn's directions: sums of distinct axes): the coordinates off the grid
+      // are as far past their grid points, the others on them.
       const Vec cell = (vertex.position - low) / spacing;
-      int off_grid = 0;
+      double least = 1, most = 0;
       for (int a = 0; a < 3; ++a)
       {
-        off_grid += std::abs(cell[a] - std::round(cell[a])) > 1e-6 ? 1 : 0;
+        const double past = cell[a] - std::floor(cell[a]);
+        if (std::abs(cell[a] - std::round(cell[a])) > 1e-6)
+        {
+          least = std::min(least, past);
+          most = std::max(most, past);
+        }
       }
-      EXPECT_GE(off_grid, 1);
+      ASSERT_LE(least, most) << vertex.position.transpose(); // one coordinate at least is off
+      EXPECT_LT(most - least, 1e-6) << vertex.position.transpose();
       EXPECT_EQ(vertex.patch,
                 static_cast<std::uint8_t>(nearest.kind == PieceKind::Arc        ? 1
                                             : nearest.kind == PieceKind::Vertex ? 2

@@ -449,8 +449,21 @@ bool uncovered_unit_area(const std::vector<UnitCap>& unit_caps, double& area,
     caps[k].neighbour = static_cast<std::uint32_t>(k);
   }
   // Refused near degeneracy: circles nearly tangent, or a third through their crossing (the
-  // arrangement would depend on rounding).
-  constexpr double near = 1e-9;
+  // arrangement would depend on rounding). A crossing deep inside a fourth cap is no corner
+  // whatever the rounding (nor are the crossings of the three circles beside it): allowed, as
+  // where the edges of a piece of a concave patch, extended, pass through a torus's cusp that
+  // another edge of the piece leaves outside.
+  constexpr double near = 1e-9, deep = 1e-7;
+  const auto deep_in_fourth = [&](const Vec& u, std::size_t a, std::size_t b, std::size_t c) {
+    for (std::size_t d = 0; d < caps.size(); ++d)
+    {
+      if (d != a && d != b && d != c && u.dot(caps[d].axis) - caps[d].height > deep)
+      {
+        return true;
+      }
+    }
+    return false;
+  };
   for (std::size_t a = 0; a < caps.size(); ++a)
   {
     for (std::size_t b = a + 1; b < caps.size(); ++b)
@@ -466,7 +479,8 @@ bool uncovered_unit_area(const std::vector<UnitCap>& unit_caps, double& area,
       {
         for (const Vec& u : crossing)
         {
-          if (c != a && c != b && std::abs(u.dot(caps[c].axis) - caps[c].height) < near)
+          if (c != a && c != b && std::abs(u.dot(caps[c].axis) - caps[c].height) < near &&
+              !deep_in_fourth(u, a, b, c))
           {
             return false;
           }

@@ -79,8 +79,8 @@ struct UnitCap
 /// The part of the unit sphere that no cap covers, exactly (the arrangement of the caps'
 /// circles and Gauss-Bonnet, as for each sphere of sas_boundary()): its `area` (steradians) and
 /// `direction_integral`, the integral of u over it. False, and nothing set, when two circles
-/// are within 1e-9 of tangent or a third passes within 1e-9 of their crossing, where the
-/// arrangement would depend on rounding.
+/// are within 1e-9 of tangent or a third passes within 1e-9 of their crossing (unless a fourth
+/// cap holds that crossing deeper than 1e-7), where the arrangement would depend on rounding.
 bool uncovered_unit_area(const std::vector<UnitCap>& caps, double& area,
                          Eigen::Vector3d& direction_integral);
 

@@ -67,3 +67,25 @@ TEST(UncoveredArea, ThreeCirclesThroughOnePointAreRefused)
   EXPECT_FALSE(mesolens::uncovered_unit_area(caps, area, direction));
   EXPECT_EQ(area, -1);
 }
+
+TEST(UncoveredArea, ThreeCirclesThroughPointsThatFourthCapsHoldAreMeasured)
+{
+  // The three great circles above, with caps of 60 degrees about both poles, where they cross:
+  // the lune 45 <= azimuth <= 90 degrees within |z| < 0.5. Its area is an eighth of the band's
+  // 2 pi, and its integral of u is, with dA = dz dazimuth, the band's integral of sqrt(1 - z^2)
+  // times that of (cos, sin) over the lune's azimuths.
+  const std::vector<UnitCap> caps = { { -Vec::UnitX(), 0.0 },
+                                      { -Vec::UnitY(), 0.0 },
+                                      { Vec(1, -1, 0).normalized(), 0.0 },
+                                      { Vec::UnitZ(), 0.5 },
+                                      { -Vec::UnitZ(), 0.5 } };
+  double area = 0;
+  Vec direction = Vec::Zero();
+  ASSERT_TRUE(mesolens::uncovered_unit_area(caps, area, direction));
+  EXPECT_NEAR(area, pi / 4, 1e-12);
+  const double band = 0.5 * std::sqrt(0.75) + pi / 6; // integral of sqrt(1 - z^2), |z| < 0.5
+  expect_near(direction, band * Vec(1 - std::sqrt(0.5), std::sqrt(0.5), 0), 1e-12);
+  // With one pole left open, its crossing is degenerate again.
+  const std::vector<UnitCap> one_pole(caps.begin(), caps.end() - 1);
+  EXPECT_FALSE(mesolens::uncovered_unit_area(one_pole, area, direction));
+}

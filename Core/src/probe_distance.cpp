@@ -414,8 +414,24 @@ double ProbeDistance::arc_distance(std::uint32_t k, const Vec& x, Vec& nearest) 
 
 double ProbeDistance::arc_distance(std::uint32_t k, const Vec& x) const
 {
-  // As the overload above, without making the nearest point (the searches' hot path).
+  return this->arc_distance_in(k, x, this->arc_frame(k, x));
+}
+
+bool ProbeDistance::arc_nearer(std::uint32_t k, const Vec& x, double bound, double& distance) const
+{
+  // The circle is no farther than the arc: its distance settles most arcs.
   const ArcFrame frame = this->arc_frame(k, x);
+  if (!(frame.squared < bound * bound))
+  {
+    return false;
+  }
+  distance = this->arc_distance_in(k, x, frame);
+  return distance < bound;
+}
+
+double ProbeDistance::arc_distance_in(std::uint32_t k, const Vec& x, const ArcFrame& frame) const
+{
+  // As the overload with the nearest point, without making it (the searches' hot path).
   if (frame.radial <= 1e-12 || this->within_span(k, frame.a1, frame.a2))
   {
     return std::sqrt(frame.squared);
@@ -538,8 +554,8 @@ void ProbeDistance::gather(const Vec& centre, double radius, double limit, Local
   std::size_t kept = 0;
   for (const auto& arc : local.arcs)
   {
-    const double d = this->arc_distance(arc.second, centre);
-    if (d < bound)
+    double d = 0;
+    if (this->arc_nearer(arc.second, centre, bound, d))
     {
       local.arcs[kept++] = { d, arc.second };
     }
@@ -577,8 +593,8 @@ void ProbeDistance::refine(const LocalPieces& parent, const Vec& centre, double 
     {
       break;
     }
-    const double d = this->arc_distance(arc.second, centre);
-    if (d < bound)
+    double d = 0;
+    if (this->arc_nearer(arc.second, centre, bound, d))
     {
       local.arcs.push_back({ d, arc.second });
     }

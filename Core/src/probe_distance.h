@@ -208,6 +208,9 @@ public:
   double arc_distance(std::uint32_t k, const Eigen::Vector3d& x) const;
   /// The same, with the nearest point of the exposed arc in `nearest`.
   double arc_distance(std::uint32_t k, const Eigen::Vector3d& x, Eigen::Vector3d& nearest) const;
+  /// Whether the distance from `x` to exposed arc `k` is below `bound` (Å); if so, that distance
+  /// in `distance` (else left as it was). Cheaper than arc_distance() for arcs beyond the bound.
+  bool arc_nearer(std::uint32_t k, const Eigen::Vector3d& x, double bound, double& distance) const;
 
   /// Whether the point `y` of sphere `i` lies outside each of its neighbours (to a relative
   /// 1e-12 of their squared radii): on the union's boundary, where `i` is exposed at all.
@@ -267,6 +270,8 @@ private:
     double along, a1, a2, radial, squared;
   };
   ArcFrame arc_frame(std::uint32_t k, const Eigen::Vector3d& x) const;
+  /// arc_distance() from the frame of a point about the arc's circle.
+  double arc_distance_in(std::uint32_t k, const Eigen::Vector3d& x, const ArcFrame& frame) const;
   /// Vertex `k` as the nearest piece when the filter admits it and it is nearer than
   /// `best.distance`: updates `best`.
   void try_vertex(std::uint32_t k, const Eigen::Vector3d& x, const Filter& filter,

@@ -534,6 +534,7 @@ SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
   }
   run_parallel(parallel_for, n, [&](std::size_t begin, std::size_t end) {
     std::vector<Cap> caps; // these buffers are reused by the spheres of this range
+    std::vector<std::pair<double, std::uint32_t>> order;
     UnitPieces pieces;
     UnitWorkspace work;
     for (std::size_t i = begin; i < end; ++i)
@@ -574,7 +575,6 @@ SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
               {
                 continue; // j inside this sphere
               }
-              result.neighbours[i].push_back(j);
               Cap cap;
               cap.neighbour = j;
               cap.axis = offset / d;
@@ -583,7 +583,20 @@ SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
               caps.push_back(cap);
             }
           }
-      std::sort(result.neighbours[i].begin(), result.neighbours[i].end());
+      // The largest caps first (ties to the lower index): coverage tests that scan the list
+      // find a covering neighbour sooner.
+      auto& neighbours = result.neighbours[i];
+      order.clear();
+      for (const Cap& cap : caps)
+      {
+        order.emplace_back(cap.height, cap.neighbour);
+      }
+      std::sort(order.begin(), order.end());
+      neighbours.reserve(order.size());
+      for (const auto& [height, j] : order)
+      {
+        neighbours.push_back(j);
+      }
       if (buried)
       {
         continue;

@@ -313,7 +313,10 @@ void foreign_arcs_near(const ProbeDistance& distance, const ProbeDistance::Filte
   const std::size_t first = arcs.size();
   distance.arcs_within(x, reach, arcs, foreign);
   arcs.erase(std::remove_if(arcs.begin() + std::ptrdiff_t(first), arcs.end(),
-                            [&](std::uint32_t k) { return distance.arc_distance(k, x) >= reach; }),
+                            [&](std::uint32_t k) {
+                              double d = 0;
+                              return !distance.arc_nearer(k, x, reach, d);
+                            }),
              arcs.end());
 }
 

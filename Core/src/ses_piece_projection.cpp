@@ -403,7 +403,8 @@ bool SesPieceProjection::clear_of_cutters(const Vec& y, bool torus, std::uint32_
   const double least = this->probe_ - covered;
   for (const std::uint32_t arc : cutters->arcs)
   {
-    if (this->distance_.arc_distance(arc, y) < least)
+    double d = 0;
+    if (this->distance_.arc_nearer(arc, y, least, d))
     {
       return false;
     }

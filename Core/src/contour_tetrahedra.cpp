@@ -167,7 +167,11 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
   };
 
   field.prepare(grid, parallel_for);
-  std::vector<BlockOutput> outputs(block_count);
+  // The blocks that made triangles, in increasing order, with what they made: far fewer than
+  // the grid's blocks where the molecule is sparse (every block's output would take gigabytes
+  // for atoms thousands of Å apart).
+  std::vector<std::size_t> active;
+  std::vector<BlockOutput> outputs;
   // What a thread reuses from block to block: the field's local view and the block's tables.
   struct BlockBuffers
   {
@@ -180,7 +184,7 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
     std::vector<std::uint64_t> made;
   };
   constexpr int side = ContourGrid::block_points;
-  const auto run_block = [&](std::size_t block, BlockBuffers& buffers) {
+  const auto run_block = [&](std::size_t block, BlockOutput& out, BlockBuffers& buffers) {
     if (!buffers.local)
     {
       buffers.local = field.local();
@@ -201,7 +205,6 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
       const std::size_t at = std::size_t((x - x0) + side * ((y - y0) + side * (z - z0)));
       return LocalContourField::Sample{ grid.point(x, y, z), values[at], hints[at] };
     };
-    BlockOutput& out = outputs[block];
     std::vector<std::uint64_t>& made = buffers.made;
     const std::uint64_t stamp = std::uint64_t(block + 1) << 32;
     const auto contour_cell = [&](const std::array<std::int64_t, 3>& cell) {
@@ -320,13 +323,24 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
 
   // Blocks in rounds, so progress is reported from this thread.
   const std::size_t round = 256;
+  std::vector<BlockOutput> round_outputs(round);
   for (std::size_t first = 0; first < block_count; first += round)
   {
     const std::size_t count = std::min(round, block_count - first);
     // Blocks the surface crosses cost far more than the others: taken one at a time.
     run_balanced<BlockBuffers>(parallel_for, count, [&](std::size_t k, BlockBuffers& buffers) {
-      run_block(first + k, buffers);
+      run_block(first + k, round_outputs[k], buffers);
     });
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      BlockOutput& out = round_outputs[k];
+      if (!out.vertices.empty() || !out.triangles.empty() || !out.foreign_keys.empty())
+      {
+        active.push_back(first + k);
+        outputs.push_back(std::move(out));
+        out = {};
+      }
+    }
     if (progress)
     {
       progress(double(first + count) / double(block_count));
@@ -334,14 +348,15 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
   }
 
   // Vertices numbered block by block; foreign references found in their owners' keys.
-  std::vector<std::int64_t> first_vertex(block_count + 1, 0), first_triangle(block_count + 1, 0);
-  for (std::size_t b = 0; b < block_count; ++b)
+  const std::size_t active_count = active.size();
+  std::vector<std::int64_t> first_vertex(active_count + 1, 0), first_triangle(active_count + 1, 0);
+  for (std::size_t b = 0; b < active_count; ++b)
   {
     first_vertex[b + 1] = first_vertex[b] + std::int64_t(outputs[b].vertices.size());
     first_triangle[b + 1] = first_triangle[b] + std::int64_t(outputs[b].triangles.size());
   }
-  std::vector<std::vector<std::pair<std::uint64_t, std::uint32_t>>> owned(block_count);
-  run_parallel(parallel_for, block_count, [&](std::size_t begin, std::size_t end) {
+  std::vector<std::vector<std::pair<std::uint64_t, std::uint32_t>>> owned(active_count);
+  run_parallel(parallel_for, active_count, [&](std::size_t begin, std::size_t end) {
     for (std::size_t b = begin; b < end; ++b)
     {
       auto& sorted = owned[b];
@@ -355,7 +370,13 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
   });
   const auto global_of = [&](std::uint64_t key) -> std::int64_t {
     const auto point = key_point(key);
-    const std::size_t owner = owner_of(point[0], point[1], point[2]);
+    const std::size_t block = owner_of(point[0], point[1], point[2]);
+    const auto at = std::lower_bound(active.begin(), active.end(), block);
+    if (at == active.end() || *at != block)
+    {
+      return -1;
+    }
+    const std::size_t owner = static_cast<std::size_t>(at - active.begin());
     const auto& sorted = owned[owner];
     const auto found = std::lower_bound(sorted.begin(), sorted.end(),
                                         std::pair<std::uint64_t, std::uint32_t>(key, 0));
@@ -365,12 +386,12 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
     }
     return first_vertex[owner] + std::int64_t(found->second);
   };
-  mesh.vertices.resize(std::size_t(first_vertex[block_count]));
-  mesh.triangles.resize(3 * std::size_t(first_triangle[block_count]));
+  mesh.vertices.resize(std::size_t(first_vertex[active_count]));
+  mesh.triangles.resize(3 * std::size_t(first_triangle[active_count]));
   // Signs at grid points do not depend on the block asking, so every cell holding a crossed
   // edge is contoured and each foreign vertex has been made by its owner.
-  std::vector<char> complete(block_count, 1);
-  run_parallel(parallel_for, block_count, [&](std::size_t begin, std::size_t end) {
+  std::vector<char> complete(active_count, 1);
+  run_parallel(parallel_for, active_count, [&](std::size_t begin, std::size_t end) {
     for (std::size_t b = begin; b < end; ++b)
     {
       BlockOutput& out = outputs[b];

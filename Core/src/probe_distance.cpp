@@ -15,29 +15,9 @@ namespace mesolens {
 namespace {
 using Vec = Eigen::Vector3d;
 constexpr double two_pi = 6.28318530717958647692;
-/// The most cells the index may have (three 4-byte tables: 12 GB).
-constexpr double largest_cell_count = 1e9;
+/// The most rows of cells the index may have (three tables of 12 bytes per row: 360 MB).
+constexpr double largest_row_count = 1e7;
 
-/// Compressed rows from (cell, item) pairs.
-void build_rows(std::size_t cell_count, std::vector<std::pair<std::int64_t, std::uint32_t>>& pairs,
-                std::vector<std::uint32_t>& starts, std::vector<std::uint32_t>& items)
-{
-  std::sort(pairs.begin(), pairs.end());
-  starts.assign(cell_count + 1, 0);
-  for (const auto& pair : pairs)
-  {
-    ++starts[static_cast<std::size_t>(pair.first) + 1];
-  }
-  for (std::size_t c = 0; c < cell_count; ++c)
-  {
-    starts[c + 1] += starts[c];
-  }
-  items.resize(pairs.size());
-  for (std::size_t k = 0; k < pairs.size(); ++k)
-  {
-    items[k] = pairs[k].second;
-  }
-}
 /// Sorts pieces by distance; lists refined from a parent's come nearly sorted, where insertion
 /// is linear.
 void sort_nearly_sorted(std::vector<std::pair<double, std::uint32_t>>& pieces)
@@ -96,33 +76,33 @@ ProbeDistance::ProbeDistance(const std::vector<Vec>& centres, const std::vector<
     this->dims_[a] =
       static_cast<std::int64_t>(std::ceil((high[a] - low[a] + 2 * margin) / this->cell_)) + 1;
   }
-  // Three tables of one 4-byte entry per cell: atoms spread so far apart (thousands of Å along
-  // each axis) that they would take over 12 GB are refused rather than exhaust the memory.
-  const double cells = double(this->dims_[0]) * double(this->dims_[1]) * double(this->dims_[2]);
-  if (cells > largest_cell_count)
+  // Three tables of 12 bytes per row of cells along x: atoms spread so far apart (over about
+  // 5000 Å along both y and z) that they would take gigabytes are refused rather than exhaust
+  // the memory.
+  const double rows = double(this->dims_[1]) * double(this->dims_[2]);
+  if (rows > largest_row_count || double(this->dims_[0]) > 1e9)
   {
     throw InvalidInput("the spheres span " + std::to_string(int(high[0] - low[0])) + " x " +
                        std::to_string(int(high[1] - low[1])) + " x " +
                        std::to_string(int(high[2] - low[2])) +
                        " Å: too far apart for one surface (its search grid would need " +
-                       std::to_string(int(12.0 * cells / 1e9)) +
+                       std::to_string(int(36.0 * rows / 1e9)) +
                        " GB); surround groups of atoms that lie close together separately");
   }
-  const std::size_t cell_count = static_cast<std::size_t>(cells);
   std::array<std::int64_t, 3> ijk{};
   std::vector<std::pair<std::int64_t, std::uint32_t>> pairs;
   for (std::size_t i = 0; i < centres.size(); ++i)
   {
     pairs.emplace_back(this->cell_of(centres[i], ijk), static_cast<std::uint32_t>(i));
   }
-  build_rows(cell_count, pairs, this->sphere_start_, this->sphere_items_);
+  this->build_table(pairs, this->spheres_);
   pairs.clear();
   for (std::size_t k = 0; k < boundary.vertices.size(); ++k)
   {
     pairs.emplace_back(this->cell_of(boundary.vertices[k].position, ijk),
                        static_cast<std::uint32_t>(k));
   }
-  build_rows(cell_count, pairs, this->vertex_start_, this->vertex_items_);
+  this->build_table(pairs, this->vertices_);
   pairs.clear();
   std::vector<Vec> middles;
   // Arcs by the middles of their pieces of at most 22.5 degrees, each within arc_extent_ of its
@@ -155,15 +135,16 @@ ProbeDistance::ProbeDistance(const std::vector<Vec>& centres, const std::vector<
     {
       entries[e] = { pairs[e].first, static_cast<std::uint32_t>(e) };
     }
-    build_rows(cell_count, entries, this->arc_start_, this->arc_entries_);
+    this->build_table(entries, this->arc_cells_);
+    auto& arc_entries = this->arc_cells_.items;
     this->arc_items_.resize(pairs.size());
     this->arc_piece_middle_.resize(pairs.size());
-    for (std::size_t e = 0; e < this->arc_entries_.size(); ++e)
+    for (std::size_t e = 0; e < arc_entries.size(); ++e)
     {
-      const std::uint32_t original = this->arc_entries_[e];
+      const std::uint32_t original = arc_entries[e];
       this->arc_items_[e] = pairs[original].second;
       this->arc_piece_middle_[e] = middles[original];
-      this->arc_entries_[e] = static_cast<std::uint32_t>(e);
+      arc_entries[e] = static_cast<std::uint32_t>(e);
     }
   }
 }
@@ -179,9 +160,52 @@ std::int64_t ProbeDistance::cell_of(const Vec& x, std::array<std::int64_t, 3>& i
   return ijk[0] + this->dims_[0] * (ijk[1] + this->dims_[1] * ijk[2]);
 }
 
+void ProbeDistance::build_table(std::vector<std::pair<std::int64_t, std::uint32_t>>& pairs,
+                                CellTable& table) const
+{
+  std::sort(pairs.begin(), pairs.end());
+  const std::size_t rows = static_cast<std::size_t>(this->dims_[1] * this->dims_[2]);
+  table.row_first.assign(rows, 0);
+  table.row_last.assign(rows, -1);
+  table.row_offset.assign(rows, 0);
+  table.starts.clear();
+  table.items.resize(pairs.size());
+  const std::int64_t width = this->dims_[0];
+  for (std::size_t k = 0; k < pairs.size();)
+  {
+    // One row's pairs: its span of cells, and each cell's first item (the next cell's first
+    // closes it).
+    const std::size_t row = static_cast<std::size_t>(pairs[k].first / width);
+    std::size_t end = k;
+    while (end < pairs.size() && static_cast<std::size_t>(pairs[end].first / width) == row)
+    {
+      ++end;
+    }
+    const std::int32_t first = static_cast<std::int32_t>(pairs[k].first % width);
+    const std::int32_t last = static_cast<std::int32_t>(pairs[end - 1].first % width);
+    table.row_first[row] = first;
+    table.row_last[row] = last;
+    table.row_offset[row] = static_cast<std::uint32_t>(table.starts.size());
+    std::size_t item = k;
+    for (std::int32_t x = first; x <= last + 1; ++x)
+    {
+      while (item < end && pairs[item].first % width < x)
+      {
+        ++item;
+      }
+      table.starts.push_back(static_cast<std::uint32_t>(item));
+    }
+    k = end;
+  }
+  for (std::size_t k = 0; k < pairs.size(); ++k)
+  {
+    table.items[k] = pairs[k].second;
+  }
+}
+
 template<typename Visit>
-void ProbeDistance::for_cells(const Vec& x, double radius, const std::vector<std::uint32_t>& starts,
-                              const std::vector<std::uint32_t>& items, Visit&& visit) const
+void ProbeDistance::for_cells(const Vec& x, double radius, const CellTable& table,
+                              Visit&& visit) const
 {
   std::array<std::int64_t, 3> from{}, to{};
   this->cell_of(x - Vec::Constant(radius), from);
@@ -189,13 +213,20 @@ void ProbeDistance::for_cells(const Vec& x, double radius, const std::vector<std
   for (std::int64_t z = from[2]; z <= to[2]; ++z)
     for (std::int64_t y = from[1]; y <= to[1]; ++y)
     {
-      // Cells along x are consecutive rows: one range.
-      const std::int64_t row = this->dims_[0] * (y + this->dims_[1] * z);
-      const std::uint32_t begin = starts[static_cast<std::size_t>(row + from[0])];
-      const std::uint32_t end = starts[static_cast<std::size_t>(row + to[0] + 1)];
+      // Cells along x are consecutive in a row: one range of items.
+      const std::size_t row = static_cast<std::size_t>(y + this->dims_[1] * z);
+      const std::int64_t first = std::max<std::int64_t>(from[0], table.row_first[row]);
+      const std::int64_t last = std::min<std::int64_t>(to[0], table.row_last[row]);
+      if (first > last)
+      {
+        continue;
+      }
+      const std::uint32_t* starts = table.starts.data() + table.row_offset[row];
+      const std::uint32_t begin = starts[first - table.row_first[row]];
+      const std::uint32_t end = starts[last - table.row_first[row] + 1];
       for (std::uint32_t k = begin; k < end; ++k)
       {
-        visit(items[k]);
+        visit(table.items[k]);
       }
     }
 }
@@ -218,7 +249,7 @@ double ProbeDistance::piece_distance(const Vec& x, PieceKind kind, std::uint32_t
 void ProbeDistance::vertices_within(const Vec& x, double radius,
                                     const std::function<void(std::uint32_t)>& visit) const
 {
-  this->for_cells(x, radius, this->vertex_start_, this->vertex_items_, [&](std::uint32_t k) {
+  this->for_cells(x, radius, this->vertices_, [&](std::uint32_t k) {
     if ((this->boundary_.vertices[k].position - x).squaredNorm() < radius * radius)
     {
       visit(k);
@@ -232,7 +263,7 @@ void ProbeDistance::arcs_within(const Vec& x, double radius, std::vector<std::ui
   const std::size_t first = arcs.size();
   const double reach = radius + this->arc_extent_;
   const bool filtered = filter.mode != Filter::Mode::All;
-  this->for_cells(x, reach, this->arc_start_, this->arc_entries_, [&](std::uint32_t entry) {
+  this->for_cells(x, reach, this->arc_cells_, [&](std::uint32_t entry) {
     if ((x - this->arc_piece_middle_[entry]).squaredNorm() < reach * reach &&
         (!filtered || filter.admits(this->boundary_.arcs[this->arc_items_[entry]])))
     {
@@ -246,7 +277,7 @@ void ProbeDistance::arcs_within(const Vec& x, double radius, std::vector<std::ui
 double ProbeDistance::union_depth(const Vec& x, std::uint32_t* sphere) const
 {
   double depth = -this->reach_;
-  this->for_cells(x, this->outside_exact_, this->sphere_start_, this->sphere_items_,
+  this->for_cells(x, this->outside_exact_, this->spheres_,
                   [&](std::uint32_t i) {
                     const double d = this->radii_[i] - (x - this->centres_[i]).norm();
                     if (d > depth)
@@ -493,7 +524,7 @@ bool ProbeDistance::sphere_reaches(std::uint32_t i, const Vec& centre, double ra
 void ProbeDistance::spheres_near(const Vec& centre, double radius,
                                  std::vector<std::uint32_t>& spheres) const
 {
-  this->for_cells(centre, this->largest_ + radius, this->sphere_start_, this->sphere_items_,
+  this->for_cells(centre, this->largest_ + radius, this->spheres_,
                   [&](std::uint32_t i) {
                     if (this->sphere_reaches(i, centre, radius))
                     {
@@ -535,7 +566,7 @@ void ProbeDistance::gather(const Vec& centre, double radius, double limit, Local
     return; // the ball lies outside the union: spheres alone matter
   }
   std::uint32_t last_arc = UINT32_MAX;
-  this->for_cells(centre, bound + this->arc_extent_, this->arc_start_, this->arc_entries_,
+  this->for_cells(centre, bound + this->arc_extent_, this->arc_cells_,
                   [&](std::uint32_t entry) {
                     const double reach = bound + this->arc_extent_;
                     const std::uint32_t k = this->arc_items_[entry];
@@ -685,7 +716,7 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Filter& filter, double l
   ClosestPiece best;
   // Spheres holding x: only the deepest can carry the nearest face point (see nearest_face).
   SphereScan scan;
-  this->for_cells(x, this->largest_, this->sphere_start_, this->sphere_items_,
+  this->for_cells(x, this->largest_, this->spheres_,
                   [&](std::uint32_t i) {
                     const double squared = (x - this->centres_[i]).squaredNorm();
                     const double r = this->radii_[i];
@@ -698,7 +729,7 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Filter& filter, double l
   {
     // Outside every sphere: the nearest may lie farther.
     this->for_cells(
-      x, this->outside_exact_, this->sphere_start_, this->sphere_items_,
+      x, this->outside_exact_, this->spheres_,
       [&](std::uint32_t i) { scan.consider(i, this->radii_[i] - (x - this->centres_[i]).norm()); });
     // Spheres beyond the search are at least this far below zero: when none nearer was found,
     // the distance is reported as that bound (nearer zero than the truth may be), so that a
@@ -721,7 +752,7 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Filter& filter, double l
     return best;
   }
   std::uint32_t last_arc = UINT32_MAX;
-  this->for_cells(x, best.distance + this->arc_extent_, this->arc_start_, this->arc_entries_,
+  this->for_cells(x, best.distance + this->arc_extent_, this->arc_cells_,
                   [&](std::uint32_t entry) {
                     // A piece whose bounding ball lies beyond the best so far is skipped cheaply.
                     const double reach = best.distance + this->arc_extent_;
@@ -740,7 +771,7 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Filter& filter, double l
                       this->try_arc(k, x, best);
                     }
                   });
-  this->for_cells(x, best.distance, this->vertex_start_, this->vertex_items_,
+  this->for_cells(x, best.distance, this->vertices_,
                   [&](std::uint32_t k) { this->try_vertex(k, x, filter, best); });
   return best;
 }

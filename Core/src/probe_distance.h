@@ -248,9 +248,21 @@ public:
   double union_depth(const Eigen::Vector3d& x, std::uint32_t* sphere = nullptr) const;
 
 private:
+  /// Items per cell, stored by rows of cells along x: each row only over the cells from its
+  /// first occupied one to its last, so that empty space costs a few bytes per row.
+  struct CellTable
+  {
+    std::vector<std::int32_t> row_first, row_last; ///< occupied cells along x (last < first: none)
+    std::vector<std::uint32_t> row_offset;         ///< where the row's starts begin in `starts`
+    std::vector<std::uint32_t> starts;             ///< per occupied span, the cells' first items
+    std::vector<std::uint32_t> items;
+  };
+  /// `table` from (cell, item) pairs (sorted here).
+  void build_table(std::vector<std::pair<std::int64_t, std::uint32_t>>& pairs,
+                   CellTable& table) const;
   template<typename Visit>
-  void for_cells(const Eigen::Vector3d& x, double radius, const std::vector<std::uint32_t>& starts,
-                 const std::vector<std::uint32_t>& items, Visit&& visit) const;
+  void for_cells(const Eigen::Vector3d& x, double radius, const CellTable& table,
+                 Visit&& visit) const;
   std::int64_t cell_of(const Eigen::Vector3d& x, std::array<std::int64_t, 3>& ijk) const;
   /// The spheres holding a query point, and the deepest sphere (see the source).
   struct SphereScan;
@@ -297,13 +309,13 @@ private:
   double arc_extent_ = 0; ///< every indexed arc piece lies within this of its middle
   Eigen::Vector3d origin_ = Eigen::Vector3d::Zero();
   std::array<std::int64_t, 3> dims_{};
-  // Per cell (compressed rows): the spheres centred in it, the arcs whose bounding ball
-  // overlaps it, the vertices in it.
-  std::vector<std::uint32_t> sphere_start_, sphere_items_;
-  std::vector<std::uint32_t> arc_start_, arc_entries_; ///< entries: indices into the two below
-  std::vector<std::uint32_t> arc_items_;               ///< per entry, the arc
-  std::vector<Eigen::Vector3d> arc_piece_middle_;      ///< per entry, its piece's middle
-  std::vector<std::uint32_t> vertex_start_, vertex_items_;
+  // Per cell: the spheres centred in it, the arcs whose bounding ball overlaps it, the vertices
+  // in it.
+  CellTable spheres_;
+  CellTable arc_cells_;                           ///< items: entries, indices into the two below
+  std::vector<std::uint32_t> arc_items_;          ///< per entry, the arc
+  std::vector<Eigen::Vector3d> arc_piece_middle_; ///< per entry, its piece's middle
+  CellTable vertices_;
   std::vector<ArcEnds> arc_ends_;
 };
 

@@ -661,9 +661,11 @@ TEST(MolecularSurface, BadInputsAreRefused)
     refused(many, std::vector<double>(many.size(), 1.5), options);
   }
   // Atoms so far apart that the search grid would not fit in memory: refused before it is made
-  // (the same pair 300 Å apart is surrounded as two spheres).
-  refused({ { 0, 0, 0 }, { 5000, 5000, 5000 } }, { 1.5, 1.5 });
-  const MolecularSurface apart = surface_of({ { 0, 0, 0 }, { 300, 300, 300 } }, { 1.5, 1.5 }, 0.2);
+  // (the same pair 1000 Å apart is surrounded as two spheres, its grids holding the occupied
+  // space alone).
+  refused({ { 0, 0, 0 }, { 20000, 20000, 20000 } }, { 1.5, 1.5 });
+  const MolecularSurface apart =
+    surface_of({ { 0, 0, 0 }, { 1000, 1000, 1000 } }, { 1.5, 1.5 }, 0.2);
   EXPECT_NEAR(apart.area, 2 * 4 * pi * 1.5 * 1.5, 1e-9);
   EXPECT_EQ(apart.component_count, 2u);
   // No atoms: an empty surface.

@@ -54,8 +54,9 @@ struct SasLoop
 
 /// The pieces of a union's boundary. Per sphere (radius R): `area` (exposed, length^2),
 /// `normal_integral` (integral of the outward unit normal over the exposed part, length^2),
-/// `neighbours` (the spheres that overlap it, neither inside the other; those that cover more
-/// of it first). Arcs and vertices only when asked for.
+/// `neighbours` (the spheres that overlap it, neither inside the other, and where it has many,
+/// those bounding its power cell near it: every point of it that another sphere covers, one of
+/// these covers; those that cover more of it first). Arcs and vertices only when asked for.
 struct SasBoundary
 {
   std::vector<double> area;

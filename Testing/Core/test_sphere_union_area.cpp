@@ -139,6 +139,46 @@ TEST(SphereUnionArea, ThreeInARowAndAClusterAgreeWithSampling)
   EXPECT_EQ(mesolens::sphere_union_area(centres, radii, two_threads).per_sphere, exact.per_sphere);
 }
 
+TEST(SphereUnionArea, SpheresWithManyNeighboursAgreeWithSampling)
+{
+  // Large spheres packed in a small box, as atoms inflated by a large probe: each overlaps
+  // most of the others, and those with the most keep only their power cell's neighbours.
+  std::mt19937 generator(11);
+  std::uniform_real_distribution<double> position(0.0, 12.0), size(2.5, 4.0);
+  std::vector<std::array<double, 3>> centres;
+  std::vector<double> radii;
+  for (int i = 0; i < 150; ++i)
+  {
+    centres.push_back({ position(generator), position(generator), position(generator) });
+    radii.push_back(size(generator));
+  }
+  std::size_t most = 0;
+  for (std::size_t i = 0; i < centres.size(); ++i)
+  {
+    std::size_t overlapping = 0;
+    for (std::size_t j = 0; j < centres.size(); ++j)
+    {
+      const double dx = centres[i][0] - centres[j][0], dy = centres[i][1] - centres[j][1],
+                   dz = centres[i][2] - centres[j][2];
+      overlapping += j != i && std::sqrt(dx * dx + dy * dy + dz * dz) < radii[i] + radii[j];
+    }
+    most = std::max(most, overlapping);
+  }
+  ASSERT_GT(most, 100u);
+  const auto exact = mesolens::sphere_union_area(centres, radii);
+  const auto sampled = sampled_areas(centres, radii, 5000);
+  double total = 0, sampled_total = 0;
+  for (std::size_t i = 0; i < centres.size(); ++i)
+  {
+    EXPECT_NEAR(exact.per_sphere[i], sampled[i], 0.005 * 4 * pi * radii[i] * radii[i])
+      << "sphere " << i;
+    total += exact.per_sphere[i];
+    sampled_total += sampled[i];
+  }
+  EXPECT_NEAR(total, sampled_total, 0.002 * total);
+  EXPECT_GT(total, 100.0); // an outer layer is exposed
+}
+
 TEST(SphereUnionArea, SolventAccessibleAreaOfUbiquitinAsFreeSasa)
 {
   // FreeSASA 2.1.2's per-atom output for 1ubq (ProtOr radii in the occupancy column, Lee &

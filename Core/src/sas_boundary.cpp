@@ -543,6 +543,13 @@ SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
   }
   run_parallel(parallel_for, n, [&](std::size_t begin, std::size_t end) {
     std::vector<Cap> caps; // these buffers are reused by the spheres of this range
+    struct CapKey
+    {
+      double height;
+      std::uint32_t neighbour, index;
+    };
+    std::vector<CapKey> order;
+    std::vector<Cap> sorted;
     std::vector<PowerPlane> planes;
     std::vector<char> bounding;
     PowerCellWork cell_work;
@@ -596,9 +603,21 @@ SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
           }
       // The largest caps first (ties to the lower index): the power cell shrinks fastest, and
       // coverage tests that scan the neighbours find a covering one sooner.
-      std::sort(caps.begin(), caps.end(), [](const Cap& a, const Cap& b) {
+      // (Sorted by key, then moved: the caps are large to move, and large probes give hundreds.)
+      order.clear();
+      for (std::size_t k = 0; k < caps.size(); ++k)
+      {
+        order.push_back({ caps[k].height, caps[k].neighbour, static_cast<std::uint32_t>(k) });
+      }
+      std::sort(order.begin(), order.end(), [](const CapKey& a, const CapKey& b) {
         return a.height < b.height || (a.height == b.height && a.neighbour < b.neighbour);
       });
+      sorted.clear();
+      for (const CapKey& key : order)
+      {
+        sorted.push_back(caps[key.index]);
+      }
+      caps.swap(sorted);
       if (!buried && caps.size() > power_cell_caps)
       {
         // Only the neighbours bounding the sphere's power cell can bound its exposed part (the

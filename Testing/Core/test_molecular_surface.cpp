@@ -661,8 +661,8 @@ TEST(MolecularSurface, BadInputsAreRefused)
     refused(many, std::vector<double>(many.size(), 1.5), options);
   }
   // Atoms so far apart that the search grid would not fit in memory: refused before it is made
-  // (the same pair 1000 Å apart is surrounded as two spheres, its grids holding the occupied
-  // space alone).
+  // (the same pair 1000 Å apart is surrounded as two spheres; BenchmarkMolecularSurface reports
+  // its time and peak memory).
   refused({ { 0, 0, 0 }, { 20000, 20000, 20000 } }, { 1.5, 1.5 });
   const MolecularSurface apart =
     surface_of({ { 0, 0, 0 }, { 1000, 1000, 1000 } }, { 1.5, 1.5 }, 0.2);

@@ -21,8 +21,8 @@ constexpr double climb_margin = 1e-6;
 
 /// The corner where u . axis is largest, climbing from `start` along edges (on a convex
 /// polytope a corner no neighbour of which lies higher is highest).
-std::int32_t highest_corner(const std::vector<Corner>& corners, const Vec& axis,
-                            std::int32_t start, double& height)
+std::int32_t highest_corner(const std::vector<Corner>& corners, const Vec& axis, std::int32_t start,
+                            double& height)
 {
   std::int32_t at = start;
   height = corners[std::size_t(at)].position.dot(axis);
@@ -182,7 +182,6 @@ int power_cell_faces(const std::vector<PowerPlane>& planes, std::vector<char>& b
     {
       return mark_all(); // a face met at one point only
     }
-    side.resize(corners.size());
     // The corners beyond go, the last one moving into each hole (highest holes first, so that
     // the last one is never beyond). No corner left points to one beyond any more.
     std::sort(beyond.begin(), beyond.end(), std::greater<>());
@@ -192,7 +191,6 @@ int power_cell_faces(const std::vector<PowerPlane>& planes, std::vector<char>& b
       if (hole != last)
       {
         corners[std::size_t(hole)] = corners[std::size_t(last)];
-        side[std::size_t(hole)] = side[std::size_t(last)];
         for (const std::int32_t next : corners[std::size_t(hole)].next)
         {
           if (!redirect(corners[std::size_t(next)], last, hole))

@@ -156,11 +156,40 @@ struct ExposedArc
   Vec middle;
 };
 
+/// A cap's place in the order of sort_larger_first().
+struct CapKey
+{
+  double height;
+  std::uint32_t neighbour, index;
+};
+
+/// Sorts `caps` largest first (the lower height; ties to the lower neighbour), by key and then
+/// moved: the caps are large to move, and large probes give hundreds. `keys` and `sorted` are
+/// buffers.
+void sort_larger_first(std::vector<Cap>& caps, std::vector<CapKey>& keys, std::vector<Cap>& sorted)
+{
+  keys.clear();
+  for (std::size_t k = 0; k < caps.size(); ++k)
+  {
+    keys.push_back({ caps[k].height, caps[k].neighbour, static_cast<std::uint32_t>(k) });
+  }
+  std::sort(keys.begin(), keys.end(), [](const CapKey& a, const CapKey& b) {
+    return a.height < b.height || (a.height == b.height && a.neighbour < b.neighbour);
+  });
+  sorted.clear();
+  for (const CapKey& key : keys)
+  {
+    sorted.push_back(caps[key.index]);
+  }
+  caps.swap(sorted);
+}
+
 /// The buffers of exposed_unit_area(), reused from sphere to sphere (their capacity stays).
 struct UnitWorkspace
 {
   std::vector<Cap> kept;
-  std::vector<std::pair<double, std::uint32_t>> order;
+  std::vector<CapKey> keys; ///< for sort_larger_first()
+  std::vector<Cap> sorted;  ///< for sort_larger_first()
   std::vector<std::vector<std::uint32_t>> overlapping;
   std::vector<Vec> vertices;
   std::vector<std::vector<std::pair<double, std::size_t>>> on_circle;
@@ -184,7 +213,7 @@ void reset_lists(std::vector<List>& lists, std::size_t count)
 
 /// The exposed area of the unit sphere under `caps` (times R^2 by the caller), and in
 /// `normal_integral` the integral of the outward unit normal over it (for the volume). With
-/// `pieces`, also the arcs and corners that bound it.
+/// `pieces`, also the arcs and corners that bound it. `caps` sorted by sort_larger_first().
 double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPieces* pieces,
                          UnitWorkspace& work)
 {
@@ -192,19 +221,10 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
   // Caps inside another cap bound nothing: dropped (cap b lies in cap a when the angle between
   // their axes plus b's radius is at most a's radius; compared as cosines, without acos).
   {
-    // Largest first (by index: the caps are large to move).
-    std::vector<std::pair<double, std::uint32_t>>& order = work.order;
-    order.clear();
-    for (std::size_t k = 0; k < caps.size(); ++k)
-    {
-      order.emplace_back(caps[k].height, static_cast<std::uint32_t>(k));
-    }
-    std::sort(order.begin(), order.end());
     std::vector<Cap>& kept = work.kept;
     kept.clear();
-    for (const auto& [height, index] : order)
+    for (const Cap& cap : caps)
     {
-      const Cap& cap = caps[index];
       bool inside = false;
       for (const Cap& larger : kept)
       {
@@ -497,6 +517,7 @@ bool uncovered_unit_area(const std::vector<UnitCap>& unit_caps, double& area,
       }
     }
   }
+  sort_larger_first(caps, work.keys, work.sorted);
   area = exposed_unit_area(caps, direction_integral, nullptr, work);
   return true;
 }
@@ -543,13 +564,6 @@ SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
   }
   run_parallel(parallel_for, n, [&](std::size_t begin, std::size_t end) {
     std::vector<Cap> caps; // these buffers are reused by the spheres of this range
-    struct CapKey
-    {
-      double height;
-      std::uint32_t neighbour, index;
-    };
-    std::vector<CapKey> order;
-    std::vector<Cap> sorted;
     std::vector<PowerPlane> planes;
     std::vector<char> bounding;
     PowerCellWork cell_work;
@@ -603,21 +617,7 @@ SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
           }
       // The largest caps first (ties to the lower index): the power cell shrinks fastest, and
       // coverage tests that scan the neighbours find a covering one sooner.
-      // (Sorted by key, then moved: the caps are large to move, and large probes give hundreds.)
-      order.clear();
-      for (std::size_t k = 0; k < caps.size(); ++k)
-      {
-        order.push_back({ caps[k].height, caps[k].neighbour, static_cast<std::uint32_t>(k) });
-      }
-      std::sort(order.begin(), order.end(), [](const CapKey& a, const CapKey& b) {
-        return a.height < b.height || (a.height == b.height && a.neighbour < b.neighbour);
-      });
-      sorted.clear();
-      for (const CapKey& key : order)
-      {
-        sorted.push_back(caps[key.index]);
-      }
-      caps.swap(sorted);
+      sort_larger_first(caps, work.keys, work.sorted);
       if (!buried && caps.size() > power_cell_caps)
       {
         // Only the neighbours bounding the sphere's power cell can bound its exposed part (the

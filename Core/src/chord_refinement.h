@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include <functional>
+#include <limits>
 #include <memory>
 
 namespace mesolens {
@@ -49,6 +50,17 @@ public:
   /// chord whose midpoint projects onto the same piece. NaN otherwise.
   virtual double piece_gap(const ContourVertex& a, const ContourVertex& b,
                            const Eigen::Vector3d& x) const = 0;
+  /// When vertices `a` and `b` lie on different pieces: the distance from `x` to the surface as
+  /// it would be were the piece nearest `x` one of theirs (as it is near the middle of most
+  /// short edges), from those two pieces' whole surfaces alone. NaN by default (unknown).
+  virtual double end_pieces_gap(const ContourVertex& a, const ContourVertex& b,
+                                const Eigen::Vector3d& x) const
+  {
+    static_cast<void>(a);
+    static_cast<void>(b);
+    static_cast<void>(x);
+    return std::numeric_limits<double>::quiet_NaN();
+  }
 };
 
 /// A new local projection (called once per chunk of work, from any thread).
@@ -65,10 +77,11 @@ using SurfaceProjection = std::function<std::unique_ptr<LocalSurfaceProjection>(
 /// corner's), which stays as it was; and the splits of a triangle whose pieces would face away from
 /// it, lie across the surface or pass through a triangle at a crease. Edges are kept without a
 /// projection when both ends lie on one piece and the midpoint lies within the tolerance of that
-/// piece, or when their ends' normals show them bending by less than half the tolerance (the
-/// sagitta of a circular arc through both ends). Rounds after the first look at the triangles the
-/// last one cut alone. Deterministic whatever `parallel_for`; triangles keep the order of the ones
-/// they come from. Midpoints are projected in groups, those in one cube of `focus_size` (Å, > 0; a
+/// piece, when their ends' normals show them bending by less than half the tolerance (the
+/// sagitta of a circular arc through both ends), or when they bend by less than the tolerance
+/// and end_pieces_gap() is within it. Rounds after the first look at the triangles the last one
+/// cut alone. Deterministic whatever `parallel_for`; triangles keep the order of the ones they
+/// come from. Midpoints are projected in groups, those in one cube of `focus_size` (Å, > 0; a
 /// few times the edges' length) under one focus.
 void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, double tolerance,
                    double focus_size, int max_rounds, const ParallelFor& parallel_for);

@@ -108,6 +108,14 @@ public:
                     this->surface_.probe);
   }
 
+  double end_pieces_gap(const ContourVertex& a, const ContourVertex& b, const Vec& x) const override
+  {
+    const ProbeDistance& distance = this->surface_.distance;
+    const double nearer = std::min(distance.piece_distance(x, piece_kind(a.patch), a.piece),
+                                   distance.piece_distance(x, piece_kind(b.patch), b.piece));
+    return std::abs(nearer - this->surface_.probe);
+  }
+
 private:
   ExcludedSurface surface_;
   LocalPieces local_; ///< the pieces of the last focus, once gathered
@@ -168,6 +176,14 @@ public:
     return a.piece == b.piece
       ? std::abs((x - this->centres_[a.piece]).norm() - this->radii_[a.piece])
       : std::numeric_limits<double>::quiet_NaN();
+  }
+
+  double end_pieces_gap(const ContourVertex& a, const ContourVertex& b, const Vec& x) const override
+  {
+    const auto depth = [&](std::uint32_t sphere) {
+      return this->radii_[sphere] - (x - this->centres_[sphere]).norm();
+    };
+    return std::abs(std::max(depth(a.piece), depth(b.piece)));
   }
 
 private:

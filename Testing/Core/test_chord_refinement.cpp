@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -56,6 +57,33 @@ public:
 private:
   Vec axes_;
   bool refuse_;
+};
+
+/// The sphere of `radius` as if every vertex lay on a piece of its own: edges are settled by
+/// their bend and by end_pieces_gap(), which claims `claimed_gap` (NaN: unknown).
+class SeparatePiecesSphere final : public mesolens::LocalSurfaceProjection
+{
+public:
+  explicit SeparatePiecesSphere(double claimed_gap)
+    : claimed_gap_(claimed_gap)
+  {
+  }
+  void focus(const Vec&, double) override {}
+  bool project(const Vec& x, ContourVertex& vertex) override
+  {
+    return EllipsoidProjection(Vec::Constant(radius), false).project(x, vertex);
+  }
+  double piece_gap(const ContourVertex&, const ContourVertex&, const Vec&) const override
+  {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  double end_pieces_gap(const ContourVertex&, const ContourVertex&, const Vec&) const override
+  {
+    return this->claimed_gap_;
+  }
+
+private:
+  double claimed_gap_;
 };
 
 /// The icosahedron inscribed in the sphere, counter-clockwise seen from outside.
@@ -254,6 +282,33 @@ TEST(ChordRefinement, EdgesWithinTheToleranceOrWithoutAProjectionStay)
   const ContourMesh refused = refined(0.01, 10, 2, true);
   EXPECT_EQ(refused.triangles, coarse.triangles);
   EXPECT_EQ(refused.vertices.size(), coarse.vertices.size());
+}
+
+TEST(ChordRefinement, EdgesBendingLittleStayWhenTheirEndsPiecesAreNear)
+{
+  // The icosahedron's edges (2.103 Å on the sphere of 2 Å) bend by 1.107 rad, an estimated
+  // sagitta of 0.2910 Å; their true one is 0.2987 Å. At 0.295 Å the bend alone does not settle
+  // them (it would below half that), so end_pieces_gap() does: within the tolerance they stay
+  // unprojected, even where the projection would have split them; beyond it, or unknown, they
+  // are projected and split.
+  const double tolerance = 0.295;
+  const auto refine_with = [&](double claimed_gap) {
+    ContourMesh mesh = icosahedron();
+    mesolens::refine_chords(
+      mesh, [claimed_gap] { return std::make_unique<SeparatePiecesSphere>(claimed_gap); },
+      tolerance, 1.0, 1, mesolens::ParallelFor());
+    return mesh;
+  };
+  EXPECT_EQ(refine_with(0.0).triangles, icosahedron().triangles);
+  EXPECT_EQ(refine_with(tolerance).triangles, icosahedron().triangles);
+  EXPECT_EQ(refine_with(1.001 * tolerance).triangles.size(), 3u * 80u);
+  EXPECT_EQ(refine_with(std::numeric_limits<double>::quiet_NaN()).triangles.size(), 3u * 80u);
+  // Edges bending by more than twice the limit are projected whatever the claim.
+  ContourMesh sharp = icosahedron();
+  mesolens::refine_chords(
+    sharp, [] { return std::make_unique<SeparatePiecesSphere>(0.0); }, 0.14, 1.0, 1,
+    mesolens::ParallelFor());
+  EXPECT_EQ(sharp.triangles.size(), 3u * 80u);
 }
 
 TEST(ChordRefinement, TrianglesAtACreaseStayAndTheOnesBesideThemAreRefined)

@@ -295,11 +295,21 @@ public:
       this->surface_.distance.gather(middle, radius, this->surface_.limit, this->local_);
       this->gathered_ = true;
     }
-    const auto value = [&](const Vec& x) {
-      return this->surface_.distance.closest(this->local_, x).distance - this->surface_.probe;
+    // Newton's method on the distance: its gradient points away from the nearest boundary
+    // point (for a sphere's face, outside the union too), where there is one within the limit.
+    const Vec along_edge = inside.position - outside.position;
+    const auto value = [&](const Vec& x, double& slope) {
+      const ClosestPiece nearest = this->surface_.distance.closest(this->local_, x);
+      slope = nearest.kind == PieceKind::None || nearest.distance == 0
+        ? 0.0
+        : (x - nearest.point).dot(along_edge) / nearest.distance;
+      return nearest.distance - this->surface_.probe;
     };
-    position = segment_root(outside.position, value(outside.position), inside.position,
-                            value(inside.position), value);
+    double slope = 0;
+    const double at_outside_end = value(outside.position, slope);
+    const double at_inside_end = value(inside.position, slope);
+    position = segment_root_newton(outside.position, at_outside_end, inside.position,
+                                   at_inside_end, value);
     piece = this->surface_.distance.closest(this->local_, position);
     return this->surface_.vertex(position, piece);
   }

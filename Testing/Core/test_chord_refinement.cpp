@@ -288,9 +288,9 @@ TEST(ChordRefinement, EdgesBendingLittleStayWhenTheirEndsPiecesAreNear)
 {
   // The icosahedron's edges (2.103 Å on the sphere of 2 Å) bend by 1.107 rad, an estimated
   // sagitta of 0.2910 Å; their true one is 0.2987 Å. At 0.295 Å the bend alone does not settle
-  // them (it would below half that), so end_pieces_gap() does: within the tolerance they stay
-  // unprojected, even where the projection would have split them; beyond it, or unknown, they
-  // are projected and split.
+  // them (it settles estimated sagittas below half the tolerance), so end_pieces_gap() does:
+  // within the tolerance they stay unprojected, even where the projection would have split
+  // them; beyond it, or unknown, they are projected and split.
   const double tolerance = 0.295;
   const auto refine_with = [&](double claimed_gap) {
     ContourMesh mesh = icosahedron();

@@ -79,6 +79,52 @@ struct UnionFind
   }
 };
 
+/// Per cap, the set of caps overlapping it, as bits in a buffer reused from sphere to sphere:
+/// the sets of two caps intersect in a few words, and members come out in increasing order (the
+/// larger caps first).
+struct CapSets
+{
+  std::vector<std::uint64_t>& bits;
+  std::size_t words;
+  CapSets(std::vector<std::uint64_t>& buffer, std::size_t count)
+    : bits(buffer)
+    , words((count + 63) / 64)
+  {
+    bits.assign(count * this->words, 0);
+  }
+  void add(std::size_t set, std::size_t member)
+  {
+    this->bits[set * this->words + member / 64] |= std::uint64_t(1) << (member % 64);
+  }
+  /// Calls visit(member) for each member of set a (and of set b, when given) above `after`
+  /// (SIZE_MAX: all), in increasing order, until it returns true; whether one did.
+  template<typename Visit>
+  bool any(std::size_t a, std::size_t b, std::size_t after, Visit&& visit) const
+  {
+    const std::uint64_t* in_a = &this->bits[a * this->words];
+    const std::uint64_t* in_b = b == SIZE_MAX ? nullptr : &this->bits[b * this->words];
+    const std::size_t first = after == SIZE_MAX ? 0 : after + 1;
+    for (std::size_t w = first / 64; w < this->words; ++w)
+    {
+      std::uint64_t word = in_b ? in_a[w] & in_b[w] : in_a[w];
+      if (w == first / 64)
+      {
+        word &= ~std::uint64_t(0) << (first % 64);
+      }
+      while (word)
+      {
+        const std::size_t member = 64 * w + std::size_t(__builtin_ctzll(word));
+        if (visit(member))
+        {
+          return true;
+        }
+        word &= word - 1;
+      }
+    }
+    return false;
+  }
+};
+
 /// What bounds one sphere's exposed part, on its unit sphere: arcs of caps' circles (azimuths
 /// [low, high] in the cap's frame) and the corners between them (unit vectors).
 struct UnitPieces
@@ -190,7 +236,7 @@ struct UnitWorkspace
   std::vector<Cap> kept;
   std::vector<CapKey> keys; ///< for sort_larger_first()
   std::vector<Cap> sorted;  ///< for sort_larger_first()
-  std::vector<std::vector<std::uint32_t>> overlapping;
+  std::vector<std::uint64_t> overlapping; ///< for CapSets
   std::vector<Vec> vertices;
   std::vector<std::vector<std::pair<double, std::size_t>>> on_circle;
   std::vector<ExposedArc> arcs;
@@ -258,8 +304,7 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
   // Overlapping caps (between < angle a + angle b: while a + b < pi, cos(between) > cos(a + b)):
   // they make the union's components, and only they can cover a point of each other's circles.
   UnionFind cap_groups(work.groups, count);
-  auto& overlapping = work.overlapping;
-  reset_lists(overlapping, count);
+  CapSets overlapping(work.overlapping, count);
   for (std::size_t a = 0; a < count; ++a)
   {
     for (std::size_t b = a + 1; b < count; ++b)
@@ -271,8 +316,8 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
           g > caps[a].height * caps[b].height - caps[a].sine * caps[b].sine)
       {
         cap_groups.join(a, b);
-        overlapping[a].push_back(static_cast<std::uint32_t>(b));
-        overlapping[b].push_back(static_cast<std::uint32_t>(a));
+        overlapping.add(a, b);
+        overlapping.add(b, a);
       }
     }
   }
@@ -282,14 +327,8 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
     unions += cap_groups.find(a) == a ? 1 : 0;
   }
   auto covered = [&](const Vec& u, std::size_t on) {
-    for (const std::uint32_t c : overlapping[on])
-    {
-      if (u.dot(caps[c].axis) > caps[c].height)
-      {
-        return true;
-      }
-    }
-    return false;
+    return overlapping.any(on, SIZE_MAX, SIZE_MAX,
+                           [&](std::size_t c) { return u.dot(caps[c].axis) > caps[c].height; });
   };
 
   // The crossing points of the caps' circles, and on each circle their azimuths.
@@ -299,48 +338,28 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
   reset_lists(on_circle, count);
   for (std::size_t a = 0; a < count; ++a)
   {
-    for (const std::uint32_t b : overlapping[a])
-    {
-      if (b < a)
-      {
-        continue;
-      }
+    overlapping.any(a, SIZE_MAX, a, [&](std::size_t b) {
       Vec crossing[2];
       if (!circle_crossings(caps[a], caps[b], crossing))
       {
-        continue;
+        return false;
       }
       for (const Vec& u : crossing)
       {
         // A crossing inside a third cap is no corner of the exposed part: exposure along a
         // circle changes only at crossings no other cap covers, so those alone cut the arcs.
-        // (A cap holding a point of both circles overlaps both caps: the shorter list will do.)
-        bool inside_third = false;
-        const std::size_t fewer = overlapping[a].size() <= overlapping[b].size() ? a : b;
-        const std::size_t other = fewer == a ? b : a;
-        for (const std::uint32_t c : overlapping[fewer])
-        {
-          if (c != other && u.dot(caps[c].axis) > caps[c].height)
-          {
-            inside_third = true;
-            break;
-          }
-        }
-        if (inside_third)
+        // (A cap holding a point of both circles overlaps both caps.)
+        if (overlapping.any(a, b, SIZE_MAX,
+                            [&](std::size_t c) { return u.dot(caps[c].axis) > caps[c].height; }))
         {
           continue;
         }
-        if (pieces)
+        // A third circle through the crossing (to rounding): four spheres meet at one point.
+        if (pieces && overlapping.any(a, SIZE_MAX, SIZE_MAX, [&](std::size_t c) {
+              return c != b && std::abs(u.dot(caps[c].axis) - caps[c].height) < 1e-9;
+            }))
         {
-          // A third circle through the crossing (to rounding): four spheres meet at one point.
-          for (const std::uint32_t c : overlapping[a])
-          {
-            if (c != b && std::abs(u.dot(caps[c].axis) - caps[c].height) < 1e-9)
-            {
-              ++pieces->degenerate_corners;
-              break;
-            }
-          }
+          ++pieces->degenerate_corners;
         }
         const std::size_t id = vertices.size();
         vertices.push_back(u);
@@ -351,7 +370,8 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
         on_circle[a].emplace_back(caps[a].azimuth_of(u), id);
         on_circle[b].emplace_back(caps[b].azimuth_of(u), id);
       }
-    }
+      return false;
+    });
   }
 
   // The exposed arcs: travelled clockwise about each axis (uncovered side on the left).

@@ -171,11 +171,13 @@ bool circle_crossings(const Cap& a, const Cap& b, Vec (&points)[2], double* clos
   {
     return false;
   }
-  const double alpha = (a.height - b.height * g) / (1.0 - g * g);
-  const double beta = (b.height - a.height * g) / (1.0 - g * g);
-  const Vec w = alpha * a.axis + beta * b.axis;
-  const Vec m = a.axis.cross(b.axis);
-  const double rest = 1.0 - w.squaredNorm();
+  // With unit axes |m|^2 = 1 - g^2, and |w|^2 (1 - g^2) = ha^2 + hb^2 - 2 ha hb g.
+  const double across = 1.0 - g * g;
+  const double inverse = 1.0 / across;
+  const double alpha = (a.height - b.height * g) * inverse;
+  const double beta = (b.height - a.height * g) * inverse;
+  const double rest =
+    (across - a.height * a.height - b.height * b.height + 2.0 * a.height * b.height * g) * inverse;
   if (closeness)
   {
     *closeness = rest; // how far from tangent
@@ -185,7 +187,9 @@ bool circle_crossings(const Cap& a, const Cap& b, Vec (&points)[2], double* clos
     return false;
   }
   // Unit vectors already (w and m are orthogonal, |w|^2 + gamma^2 |m|^2 = 1), to rounding.
-  const double gamma = std::sqrt(rest / m.squaredNorm());
+  const double gamma = std::sqrt(rest * inverse);
+  const Vec w = alpha * a.axis + beta * b.axis;
+  const Vec m = a.axis.cross(b.axis);
   points[0] = w - gamma * m;
   points[1] = w + gamma * m;
   return true;

@@ -100,6 +100,8 @@ public:
   virtual std::unique_ptr<LocalContourField> local() const = 0;
 };
 
+/// A contour's mesh. contour_tetrahedra() leaves room for as many vertices and triangles again
+/// (capacity, not committed memory until used), for refinements that add them in place.
 struct ContourMesh
 {
   std::vector<ContourVertex> vertices;

@@ -198,8 +198,8 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
   std::unique_ptr<const ProbeDistance> distance_index;
   if (patch_reach > 0 || mesh_reach > 0)
   {
-    distance_index = std::make_unique<const ProbeDistance>(centres, radii, boundary,
-                                                           std::max(patch_reach, mesh_reach));
+    distance_index = std::make_unique<const ProbeDistance>(
+      centres, radii, boundary, std::max(patch_reach, mesh_reach), parallel_for);
   }
 
   // Exact figures from the patches.

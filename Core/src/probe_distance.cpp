@@ -5,6 +5,8 @@
 
 #include "mesolens/errors.h"
 
+#include "balanced_loop.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -45,7 +47,8 @@ double local_bound(const LocalPieces& local)
 } // namespace
 
 ProbeDistance::ProbeDistance(const std::vector<Vec>& centres, const std::vector<double>& radii,
-                             const SasBoundary& boundary, double reach)
+                             const SasBoundary& boundary, double reach,
+                             const ParallelFor& parallel_for)
   : centres_(centres)
   , radii_(radii)
   , boundary_(boundary)
@@ -89,21 +92,43 @@ ProbeDistance::ProbeDistance(const std::vector<Vec>& centres, const std::vector<
                        std::to_string(int(36.0 * rows / 1e9)) +
                        " GB); surround groups of atoms that lie close together separately");
   }
+  // The three tables are independent: built side by side, the arcs' (the largest) first.
+  run_balanced<char>(parallel_for, 3, [&](std::size_t table, char&) {
+    if (table == 0)
+    {
+      this->index_arcs();
+    }
+    else if (table == 1)
+    {
+      std::array<std::int64_t, 3> ijk{};
+      std::vector<std::pair<std::int64_t, std::uint32_t>> pairs;
+      pairs.reserve(boundary.vertices.size());
+      for (std::size_t k = 0; k < boundary.vertices.size(); ++k)
+      {
+        pairs.emplace_back(this->cell_of(boundary.vertices[k].position, ijk),
+                           static_cast<std::uint32_t>(k));
+      }
+      this->build_table(pairs, this->vertices_);
+    }
+    else
+    {
+      std::array<std::int64_t, 3> ijk{};
+      std::vector<std::pair<std::int64_t, std::uint32_t>> pairs;
+      pairs.reserve(centres.size());
+      for (std::size_t i = 0; i < centres.size(); ++i)
+      {
+        pairs.emplace_back(this->cell_of(centres[i], ijk), static_cast<std::uint32_t>(i));
+      }
+      this->build_table(pairs, this->spheres_);
+    }
+  });
+}
+
+void ProbeDistance::index_arcs()
+{
+  const SasBoundary& boundary = this->boundary_;
   std::array<std::int64_t, 3> ijk{};
   std::vector<std::pair<std::int64_t, std::uint32_t>> pairs;
-  for (std::size_t i = 0; i < centres.size(); ++i)
-  {
-    pairs.emplace_back(this->cell_of(centres[i], ijk), static_cast<std::uint32_t>(i));
-  }
-  this->build_table(pairs, this->spheres_);
-  pairs.clear();
-  for (std::size_t k = 0; k < boundary.vertices.size(); ++k)
-  {
-    pairs.emplace_back(this->cell_of(boundary.vertices[k].position, ijk),
-                       static_cast<std::uint32_t>(k));
-  }
-  this->build_table(pairs, this->vertices_);
-  pairs.clear();
   std::vector<Vec> middles;
   // Arcs by the middles of their pieces of at most 22.5 degrees, each within arc_extent_ of its
   // middle (small: queries look a little beyond their radius).
@@ -128,24 +153,22 @@ ProbeDistance::ProbeDistance(const std::vector<Vec>& centres, const std::vector<
     this->arc_ends_.push_back(
       { std::cos(arc.start), std::sin(arc.start), std::cos(end), std::sin(end) });
   }
+  // Entries point at (arc, piece middle) pairs, in cell order.
+  std::vector<std::pair<std::int64_t, std::uint32_t>> entries(pairs.size());
+  for (std::size_t e = 0; e < pairs.size(); ++e)
   {
-    // Entries point at (arc, piece middle) pairs, in cell order.
-    std::vector<std::pair<std::int64_t, std::uint32_t>> entries(pairs.size());
-    for (std::size_t e = 0; e < pairs.size(); ++e)
-    {
-      entries[e] = { pairs[e].first, static_cast<std::uint32_t>(e) };
-    }
-    this->build_table(entries, this->arc_cells_);
-    auto& arc_entries = this->arc_cells_.items;
-    this->arc_items_.resize(pairs.size());
-    this->arc_piece_middle_.resize(pairs.size());
-    for (std::size_t e = 0; e < arc_entries.size(); ++e)
-    {
-      const std::uint32_t original = arc_entries[e];
-      this->arc_items_[e] = pairs[original].second;
-      this->arc_piece_middle_[e] = middles[original];
-      arc_entries[e] = static_cast<std::uint32_t>(e);
-    }
+    entries[e] = { pairs[e].first, static_cast<std::uint32_t>(e) };
+  }
+  this->build_table(entries, this->arc_cells_);
+  auto& arc_entries = this->arc_cells_.items;
+  this->arc_items_.resize(pairs.size());
+  this->arc_piece_middle_.resize(pairs.size());
+  for (std::size_t e = 0; e < arc_entries.size(); ++e)
+  {
+    const std::uint32_t original = arc_entries[e];
+    this->arc_items_[e] = pairs[original].second;
+    this->arc_piece_middle_[e] = middles[original];
+    arc_entries[e] = static_cast<std::uint32_t>(e);
   }
 }
 

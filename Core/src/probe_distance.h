@@ -6,6 +6,7 @@
 // are cut.
 #pragma once
 
+#include "mesolens/parallel_for.h"
 #include "sas_boundary.h"
 
 #include <Eigen/Core>
@@ -156,9 +157,10 @@ class ProbeDistance
 {
 public:
   /// `reach` > 0. Throws InvalidInput when the spheres lie so far apart that its grid of cells
-  /// (a quarter of the reach wide) would need more than 1e9 of them.
+  /// (a quarter of the reach wide) would need more than 1e9 of them. The tables are built on
+  /// the threads of `parallel_for` (empty: the calling thread).
   ProbeDistance(const std::vector<Eigen::Vector3d>& centres, const std::vector<double>& radii,
-                const SasBoundary& boundary, double reach);
+                const SasBoundary& boundary, double reach, const ParallelFor& parallel_for = {});
 
   using Filter = PieceFilter;
 
@@ -257,6 +259,8 @@ private:
     std::vector<std::uint32_t> starts;             ///< per occupied span, the cells' first items
     std::vector<std::uint32_t> items;
   };
+  /// The arcs' table, their pieces' middles and their ends' directions.
+  void index_arcs();
   /// `table` from (cell, item) pairs (sorted here).
   void build_table(std::vector<std::pair<std::int64_t, std::uint32_t>>& pairs,
                    CellTable& table) const;

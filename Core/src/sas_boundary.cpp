@@ -85,12 +85,13 @@ struct UnionFind
 struct CapSets
 {
   std::vector<std::uint64_t>& bits;
-  std::size_t words;
-  CapSets(std::vector<std::uint64_t>& buffer, std::size_t count)
+  std::size_t count, words;
+  CapSets(std::vector<std::uint64_t>& buffer, std::size_t set_count)
     : bits(buffer)
-    , words((count + 63) / 64)
+    , count(set_count)
+    , words((set_count + 63) / 64)
   {
-    bits.assign(count * this->words, 0);
+    bits.assign(set_count * this->words, 0);
   }
   void add(std::size_t set, std::size_t member)
   {
@@ -122,6 +123,49 @@ struct CapSets
       }
     }
     return false;
+  }
+  /// The number of groups of sets joined by membership (the components of the overlap graph),
+  /// with `seen` and `frontier` as buffers.
+  std::size_t components(std::vector<std::uint64_t>& seen, std::vector<std::uint64_t>& frontier) const
+  {
+    seen.assign(this->words, 0);
+    frontier.assign(this->words, 0);
+    std::size_t groups = 0;
+    for (std::size_t start = 0; start < this->count; ++start)
+    {
+      if (seen[start / 64] >> (start % 64) & 1)
+      {
+        continue;
+      }
+      ++groups;
+      // Members reached and not yet expanded are in the frontier.
+      seen[start / 64] |= std::uint64_t(1) << (start % 64);
+      frontier[start / 64] |= std::uint64_t(1) << (start % 64);
+      for (std::size_t w = 0; w < this->words;)
+      {
+        if (frontier[w] == 0)
+        {
+          ++w;
+          continue;
+        }
+        const std::size_t member = 64 * w + std::size_t(__builtin_ctzll(frontier[w]));
+        frontier[w] &= frontier[w] - 1;
+        const std::uint64_t* neighbours = &this->bits[member * this->words];
+        std::size_t lowest = w;
+        for (std::size_t v = 0; v < this->words; ++v)
+        {
+          const std::uint64_t fresh = neighbours[v] & ~seen[v];
+          if (fresh)
+          {
+            seen[v] |= fresh;
+            frontier[v] |= fresh;
+            lowest = std::min(lowest, v);
+          }
+        }
+        w = lowest;
+      }
+    }
+    return groups;
   }
 };
 
@@ -244,7 +288,8 @@ struct UnitWorkspace
   std::vector<Vec> vertices;
   std::vector<std::vector<std::pair<double, std::size_t>>> on_circle;
   std::vector<ExposedArc> arcs;
-  std::vector<std::size_t> leaving, groups, chains, loop_of_root;
+  std::vector<std::uint64_t> seen, frontier; ///< for CapSets::components()
+  std::vector<std::size_t> leaving, chains, loop_of_root;
 };
 
 /// Resizes a list of lists to `count`, each emptied (keeping their capacity).
@@ -307,7 +352,6 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
   }
   // Overlapping caps (between < angle a + angle b: while a + b < pi, cos(between) > cos(a + b)):
   // they make the union's components, and only they can cover a point of each other's circles.
-  UnionFind cap_groups(work.groups, count);
   CapSets overlapping(work.overlapping, count);
   for (std::size_t a = 0; a < count; ++a)
   {
@@ -319,17 +363,12 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
       if (caps[a].height + caps[b].height < 0 ||
           g > caps[a].height * caps[b].height - caps[a].sine * caps[b].sine)
       {
-        cap_groups.join(a, b);
         overlapping.add(a, b);
         overlapping.add(b, a);
       }
     }
   }
-  std::size_t unions = 0;
-  for (std::size_t a = 0; a < count; ++a)
-  {
-    unions += cap_groups.find(a) == a ? 1 : 0;
-  }
+  const std::size_t unions = overlapping.components(work.seen, work.frontier);
   auto covered = [&](const Vec& u, std::size_t on) {
     return overlapping.any(on, SIZE_MAX, SIZE_MAX,
                            [&](std::size_t c) { return u.dot(caps[c].axis) > caps[c].height; });

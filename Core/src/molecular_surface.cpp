@@ -15,10 +15,10 @@
 #include "surface_projections.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 #include <memory>
-#include <numeric>
 #include <string>
 
 namespace mesolens {
@@ -75,42 +75,68 @@ void check_input(const std::vector<std::array<double, 3>>& centres,
   }
 }
 
-/// Per mesh component (triangles joined by vertices): labels per vertex, and signed volumes.
+/// Per vertex, its mesh component (triangles joined by vertices), numbered in the order of their
+/// lowest vertices; `count` gets their number. Concurrent union-find: a root is only ever linked
+/// to a lower root, so each component's root ends as its lowest vertex whatever the threads.
 std::vector<std::size_t> component_labels(const std::vector<std::int64_t>& triangles,
-                                          std::size_t vertex_count, std::size_t& count)
+                                          std::size_t vertex_count, std::size_t& count,
+                                          const ParallelFor& parallel_for)
 {
-  std::vector<std::size_t> parent(vertex_count);
-  std::iota(parent.begin(), parent.end(), std::size_t(0));
-  const auto find = [&](std::size_t x) {
-    while (parent[x] != x)
+  std::vector<std::atomic<std::size_t>> parent(vertex_count);
+  run_parallel(parallel_for, vertex_count, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v)
     {
-      parent[x] = parent[parent[x]];
-      x = parent[x];
+      parent[v].store(v, std::memory_order_relaxed);
     }
-    return x;
-  };
-  for (std::size_t t = 0; t < triangles.size(); t += 3)
-  {
-    for (int k = 1; k < 3; ++k)
+  });
+  const auto find = [&](std::size_t x) {
+    for (;;)
     {
-      const std::size_t a = find(std::size_t(triangles[t])),
-                        b = find(std::size_t(triangles[t + k]));
-      if (a != b)
+      std::size_t up = parent[x].load(std::memory_order_relaxed);
+      if (up == x)
       {
-        parent[std::max(a, b)] = std::min(a, b);
+        return x;
+      }
+      const std::size_t next = parent[up].load(std::memory_order_relaxed);
+      if (next != up)
+      {
+        // Path halving: `next` is an ancestor of x too.
+        parent[x].compare_exchange_weak(up, next, std::memory_order_relaxed);
+      }
+      x = next;
+    }
+  };
+  const auto unite = [&](std::size_t a, std::size_t b) {
+    for (;;)
+    {
+      a = find(a);
+      b = find(b);
+      if (a == b)
+      {
+        return;
+      }
+      std::size_t higher = std::max(a, b);
+      if (parent[higher].compare_exchange_strong(higher, std::min(a, b),
+                                                 std::memory_order_relaxed))
+      {
+        return;
       }
     }
-  }
-  std::vector<std::size_t> label(vertex_count, 0), root_label(vertex_count, SIZE_MAX);
+  };
+  run_parallel(parallel_for, triangles.size() / 3, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t)
+    {
+      unite(std::size_t(triangles[3 * t]), std::size_t(triangles[3 * t + 1]));
+      unite(std::size_t(triangles[3 * t]), std::size_t(triangles[3 * t + 2]));
+    }
+  });
+  // Each root is its component's lowest vertex: numbered on meeting it.
+  std::vector<std::size_t> label(vertex_count, 0);
   count = 0;
   for (std::size_t v = 0; v < vertex_count; ++v)
   {
-    const std::size_t root = find(v);
-    if (root_label[root] == SIZE_MAX)
-    {
-      root_label[root] = count++;
-    }
-    label[v] = root_label[root];
+    const std::size_t root = parent[v].load(std::memory_order_relaxed);
+    label[v] = root == v ? count++ : label[find(root)];
   }
   return label;
 }
@@ -277,7 +303,7 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
   // Components; cavities are those enclosing negative volume (their normals face inwards).
   std::size_t component_count = 0;
   const std::vector<std::size_t> component =
-    component_labels(triangles, vertices.size(), component_count);
+    component_labels(triangles, vertices.size(), component_count, parallel_for);
   std::vector<double> component_volume(component_count, 0.0);
   for (std::size_t t = 0; t < triangles.size(); t += 3)
   {

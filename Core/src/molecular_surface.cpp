@@ -116,8 +116,7 @@ std::vector<std::size_t> component_labels(const std::vector<std::int64_t>& trian
         return;
       }
       std::size_t higher = std::max(a, b);
-      if (parent[higher].compare_exchange_strong(higher, std::min(a, b),
-                                                 std::memory_order_relaxed))
+      if (parent[higher].compare_exchange_strong(higher, std::min(a, b), std::memory_order_relaxed))
       {
         return;
       }

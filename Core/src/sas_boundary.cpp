@@ -79,6 +79,21 @@ struct UnionFind
   }
 };
 
+/// The index of the lowest set bit of `word` (not zero).
+inline std::size_t lowest_bit(std::uint64_t word)
+{
+#if defined(__GNUC__) || defined(__clang__)
+  return std::size_t(__builtin_ctzll(word));
+#else
+  std::size_t index = 0;
+  for (; !(word & 1); word >>= 1)
+  {
+    ++index;
+  }
+  return index;
+#endif
+}
+
 /// Per cap, the set of caps overlapping it, as bits in a buffer reused from sphere to sphere:
 /// the sets of two caps intersect in a few words, and members come out in increasing order (the
 /// larger caps first).
@@ -114,7 +129,7 @@ struct CapSets
       }
       while (word)
       {
-        const std::size_t member = 64 * w + std::size_t(__builtin_ctzll(word));
+        const std::size_t member = 64 * w + lowest_bit(word);
         if (visit(member))
         {
           return true;
@@ -126,7 +141,8 @@ struct CapSets
   }
   /// The number of groups of sets joined by membership (the components of the overlap graph),
   /// with `seen` and `frontier` as buffers.
-  std::size_t components(std::vector<std::uint64_t>& seen, std::vector<std::uint64_t>& frontier) const
+  std::size_t components(std::vector<std::uint64_t>& seen,
+                         std::vector<std::uint64_t>& frontier) const
   {
     seen.assign(this->words, 0);
     frontier.assign(this->words, 0);
@@ -148,7 +164,7 @@ struct CapSets
           ++w;
           continue;
         }
-        const std::size_t member = 64 * w + std::size_t(__builtin_ctzll(frontier[w]));
+        const std::size_t member = 64 * w + lowest_bit(frontier[w]);
         frontier[w] &= frontier[w] - 1;
         const std::uint64_t* neighbours = &this->bits[member * this->words];
         std::size_t lowest = w;
@@ -282,8 +298,8 @@ void sort_larger_first(std::vector<Cap>& caps, std::vector<CapKey>& keys, std::v
 struct UnitWorkspace
 {
   std::vector<Cap> kept;
-  std::vector<CapKey> keys; ///< for sort_larger_first()
-  std::vector<Cap> sorted;  ///< for sort_larger_first()
+  std::vector<CapKey> keys;               ///< for sort_larger_first()
+  std::vector<Cap> sorted;                ///< for sort_larger_first()
   std::vector<std::uint64_t> overlapping; ///< for CapSets
   std::vector<Vec> vertices;
   std::vector<std::vector<std::pair<double, std::size_t>>> on_circle;

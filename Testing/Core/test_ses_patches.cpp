@@ -161,9 +161,8 @@ TEST(SesPatches, ConcavePatchesCutByNeighboursAndForeignArcsMatchADenseSampling)
   // refuses as they stand and measures with the caps widened by 1e-7 (5e-7 from the sampling).
   // Splitting those pieces down to the deepest level instead gave 6.6e-6 too little; the
   // foreign cuts' error is the rest (7e-7 on crambin).
-  for (const auto& [file, bound] :
-       { std::pair<std::string, double>{ "proteins/1crn.pdb", 2e-6 },
-         std::pair<std::string, double>{ "proteins/1ubq.pdb", 2e-6 } })
+  for (const auto& [file, bound] : { std::pair<std::string, double>{ "proteins/1crn.pdb", 2e-6 },
+                                     std::pair<std::string, double>{ "proteins/1ubq.pdb", 2e-6 } })
   {
     SCOPED_TRACE(file);
     const CutPatchFigures figures = cut_patch_figures(file);

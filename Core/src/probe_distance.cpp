@@ -93,6 +93,16 @@ ProbeDistance::ProbeDistance(const std::vector<Vec>& centres, const std::vector<
                        " GB); surround groups of atoms that lie close together separately");
   }
   // The three tables are independent: built side by side, the arcs' (the largest) first.
+  const auto index_points = [this](std::size_t count, const auto& point_of, CellTable& table) {
+    std::array<std::int64_t, 3> ijk{};
+    std::vector<std::pair<std::int64_t, std::uint32_t>> pairs;
+    pairs.reserve(count);
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      pairs.emplace_back(this->cell_of(point_of(k), ijk), static_cast<std::uint32_t>(k));
+    }
+    this->build_table(pairs, table);
+  };
   run_balanced<char>(parallel_for, 3, [&](std::size_t table, char&) {
     if (table == 0)
     {
@@ -100,26 +110,15 @@ ProbeDistance::ProbeDistance(const std::vector<Vec>& centres, const std::vector<
     }
     else if (table == 1)
     {
-      std::array<std::int64_t, 3> ijk{};
-      std::vector<std::pair<std::int64_t, std::uint32_t>> pairs;
-      pairs.reserve(boundary.vertices.size());
-      for (std::size_t k = 0; k < boundary.vertices.size(); ++k)
-      {
-        pairs.emplace_back(this->cell_of(boundary.vertices[k].position, ijk),
-                           static_cast<std::uint32_t>(k));
-      }
-      this->build_table(pairs, this->vertices_);
+      index_points(
+        boundary.vertices.size(),
+        [&](std::size_t k) -> const Vec& { return boundary.vertices[k].position; },
+        this->vertices_);
     }
     else
     {
-      std::array<std::int64_t, 3> ijk{};
-      std::vector<std::pair<std::int64_t, std::uint32_t>> pairs;
-      pairs.reserve(centres.size());
-      for (std::size_t i = 0; i < centres.size(); ++i)
-      {
-        pairs.emplace_back(this->cell_of(centres[i], ijk), static_cast<std::uint32_t>(i));
-      }
-      this->build_table(pairs, this->spheres_);
+      index_points(
+        centres.size(), [&](std::size_t i) -> const Vec& { return centres[i]; }, this->spheres_);
     }
   });
 }

@@ -301,7 +301,7 @@ public:
       this->gathered_ = true;
     }
     // Newton's method on the distance: its gradient points away from the nearest boundary
-    // point (for a sphere's face, outside the union too), where there is one within the limit.
+    // point (for a sphere's face, outside the union too), where there is one within the depth.
     const Vec along_edge = inside.position - outside.position;
     const auto value = [&](const Vec& x, double& slope) {
       const ClosestPiece nearest = this->surface_.distance.closest(this->local_, x);

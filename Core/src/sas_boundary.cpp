@@ -783,13 +783,31 @@ SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
       }
     }
   });
-  for (std::size_t i = 0; i < arcs_of.size(); ++i)
+  // Each sphere's pieces in order: their places first, then copied side by side.
+  const std::size_t listed = arcs_of.size();
+  std::vector<std::size_t> arc_at(listed + 1, 0), vertex_at(listed + 1, 0), loop_at(listed + 1, 0);
+  for (std::size_t i = 0; i < listed; ++i)
   {
-    result.arcs.insert(result.arcs.end(), arcs_of[i].begin(), arcs_of[i].end());
-    result.vertices.insert(result.vertices.end(), vertices_of[i].begin(), vertices_of[i].end());
-    result.loops.insert(result.loops.end(), loops_of[i].begin(), loops_of[i].end());
+    arc_at[i + 1] = arc_at[i] + arcs_of[i].size();
+    vertex_at[i + 1] = vertex_at[i] + vertices_of[i].size();
+    loop_at[i + 1] = loop_at[i] + loops_of[i].size();
     result.degenerate_vertices += degenerate_of[i];
   }
+  result.arcs.resize(arc_at[listed]);
+  result.vertices.resize(vertex_at[listed]);
+  result.loops.resize(loop_at[listed]);
+  run_parallel(parallel_for, listed, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      std::copy(arcs_of[i].begin(), arcs_of[i].end(), result.arcs.begin() + arc_at[i]);
+      std::copy(vertices_of[i].begin(), vertices_of[i].end(),
+                result.vertices.begin() + vertex_at[i]);
+      std::copy(loops_of[i].begin(), loops_of[i].end(), result.loops.begin() + loop_at[i]);
+      arcs_of[i] = {};
+      vertices_of[i] = {};
+      loops_of[i] = {};
+    }
+  });
   return result;
 }
 

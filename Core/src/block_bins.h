@@ -5,6 +5,8 @@
 
 #include "contour_tetrahedra.h"
 
+#include "mesolens/parallel_for.h"
+
 #include <Eigen/Core>
 
 #include <array>
@@ -21,25 +23,34 @@ public:
   BlockBins() = default;
 
   /// Bins items 0 .. count - 1; `box(k, from, to)` sets item k's box (Å) and returns false to
-  /// leave the item out.
+  /// leave the item out. The boxes are found on the threads of `parallel_for` (empty: the
+  /// calling thread), so `box` may be called concurrently for different items.
   template<typename Box>
-  BlockBins(const ContourGrid& grid, std::size_t count, Box&& box)
+  BlockBins(const ContourGrid& grid, std::size_t count, Box&& box,
+            const ParallelFor& parallel_for = {})
   {
     const std::size_t blocks = grid.block_count();
     this->start_.assign(blocks + 1, 0);
     std::vector<std::array<std::int64_t, 6>> ranges(count);
     std::vector<char> binned(count, 0);
+    run_parallel(parallel_for, count, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k)
+      {
+        Eigen::Vector3d from, to;
+        std::array<std::int64_t, 3> first{}, last{};
+        if (box(k, from, to) && grid.blocks_meeting(from, to, first, last))
+        {
+          binned[k] = 1;
+          ranges[k] = { first[0], first[1], first[2], last[0], last[1], last[2] };
+        }
+      }
+    });
     for (std::size_t k = 0; k < count; ++k)
     {
-      Eigen::Vector3d from, to;
-      std::array<std::int64_t, 3> first{}, last{};
-      if (!box(k, from, to) || !grid.blocks_meeting(from, to, first, last))
+      if (binned[k])
       {
-        continue;
+        this->for_blocks(grid, ranges[k], [&](std::size_t block) { ++this->start_[block + 1]; });
       }
-      binned[k] = 1;
-      ranges[k] = { first[0], first[1], first[2], last[0], last[1], last[2] };
-      this->for_blocks(grid, ranges[k], [&](std::size_t block) { ++this->start_[block + 1]; });
     }
     for (std::size_t b = 0; b < blocks; ++b)
     {

@@ -126,7 +126,7 @@ public:
   {
   }
 
-  void prepare(const ContourGrid& grid, const ParallelFor& /*parallel_for*/) override
+  void prepare(const ContourGrid& grid, const ParallelFor& parallel_for) override
   {
     const double limit = this->surface_.limit;
     const SasBoundary& boundary = this->surface_.boundary;
@@ -135,31 +135,39 @@ public:
     this->outside_reach_ =
       std::max(0.0, std::sqrt(3.0) * grid.spacing - this->surface_.probe) + 0.1 * grid.spacing;
     const Vec slack = Vec::Constant(box_slack);
-    this->spheres_ = BlockBins(grid, this->radii_.size(), [&](std::size_t i, Vec& from, Vec& to) {
-      const Vec reach = Vec::Constant(this->radii_[i] + this->outside_reach(i)) + slack;
-      from = this->surface_.centres[i] - reach;
-      to = this->surface_.centres[i] + reach;
-      return true;
-    });
+    this->spheres_ = BlockBins(
+      grid, this->radii_.size(),
+      [&](std::size_t i, Vec& from, Vec& to) {
+        const Vec reach = Vec::Constant(this->radii_[i] + this->outside_reach(i)) + slack;
+        from = this->surface_.centres[i] - reach;
+        to = this->surface_.centres[i] + reach;
+        return true;
+      },
+      parallel_for);
     this->arc_boxes_.resize(boundary.arcs.size());
     this->arc_balls_.resize(boundary.arcs.size());
-    this->arcs_ = BlockBins(grid, boundary.arcs.size(), [&](std::size_t k, Vec& from, Vec& to) {
-      arc_box(this->surface_.distance, boundary.arcs[k], static_cast<std::uint32_t>(k), from, to);
-      from -= Vec::Constant(limit) + slack;
-      to += Vec::Constant(limit) + slack;
-      this->arc_boxes_[k] = { from, to };
-      Vec centre;
-      double radius = 0;
-      arc_ball(boundary.arcs[k], centre, radius);
-      this->arc_balls_[k] = { centre[0], centre[1], centre[2], radius + limit + box_slack };
-      return true;
-    });
-    this->vertices_ =
-      BlockBins(grid, boundary.vertices.size(), [&](std::size_t k, Vec& from, Vec& to) {
+    this->arcs_ = BlockBins(
+      grid, boundary.arcs.size(),
+      [&](std::size_t k, Vec& from, Vec& to) {
+        arc_box(this->surface_.distance, boundary.arcs[k], static_cast<std::uint32_t>(k), from, to);
+        from -= Vec::Constant(limit) + slack;
+        to += Vec::Constant(limit) + slack;
+        this->arc_boxes_[k] = { from, to };
+        Vec centre;
+        double radius = 0;
+        arc_ball(boundary.arcs[k], centre, radius);
+        this->arc_balls_[k] = { centre[0], centre[1], centre[2], radius + limit + box_slack };
+        return true;
+      },
+      parallel_for);
+    this->vertices_ = BlockBins(
+      grid, boundary.vertices.size(),
+      [&](std::size_t k, Vec& from, Vec& to) {
         from = boundary.vertices[k].position - Vec::Constant(limit) - slack;
         to = boundary.vertices[k].position + Vec::Constant(limit) + slack;
         return true;
-      });
+      },
+      parallel_for);
   }
 
   std::unique_ptr<LocalContourField> local() const override;
@@ -550,15 +558,18 @@ public:
   {
   }
 
-  void prepare(const ContourGrid& grid, const ParallelFor& /*parallel_for*/) override
+  void prepare(const ContourGrid& grid, const ParallelFor& parallel_for) override
   {
     this->spacing_ = grid.spacing;
-    this->spheres_ = BlockBins(grid, this->radii_.size(), [&](std::size_t i, Vec& from, Vec& to) {
-      const Vec reach = Vec::Constant(this->radii_[i] + box_slack);
-      from = this->centres_[i] - reach;
-      to = this->centres_[i] + reach;
-      return true;
-    });
+    this->spheres_ = BlockBins(
+      grid, this->radii_.size(),
+      [&](std::size_t i, Vec& from, Vec& to) {
+        const Vec reach = Vec::Constant(this->radii_[i] + box_slack);
+        from = this->centres_[i] - reach;
+        to = this->centres_[i] + reach;
+        return true;
+      },
+      parallel_for);
   }
 
   std::unique_ptr<LocalContourField> local() const override;

@@ -385,8 +385,9 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
     }
   }
   const std::size_t unions = overlapping.components(work.seen, work.frontier);
-  auto covered = [&](const Vec& u, std::size_t on) {
-    return overlapping.any(on, SIZE_MAX, SIZE_MAX,
+  // Whether a cap overlapping cap `on` (and cap `also`, unless SIZE_MAX) holds u.
+  auto covered = [&](const Vec& u, std::size_t on, std::size_t also = SIZE_MAX) {
+    return overlapping.any(on, also, SIZE_MAX,
                            [&](std::size_t c) { return u.dot(caps[c].axis) > caps[c].height; });
   };
 
@@ -408,8 +409,7 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
         // A crossing inside a third cap is no corner of the exposed part: exposure along a
         // circle changes only at crossings no other cap covers, so those alone cut the arcs.
         // (A cap holding a point of both circles overlaps both caps.)
-        if (overlapping.any(a, b, SIZE_MAX,
-                            [&](std::size_t c) { return u.dot(caps[c].axis) > caps[c].height; }))
+        if (covered(u, a, b))
         {
           continue;
         }

@@ -82,10 +82,10 @@ public:
 
   ///@{
   /// Largest distance between a triangle and the exact surface on its smooth patches (chord
-  /// error), Å, [0.005, 1]; default 0.1 (interaction: the mesh area 0.4-0.5 % below the
+  /// error), Å, [0.005, 1]; default 0.1 (interaction: the mesh area 0.3-0.6 % below the
   /// exact one on proteins). 0.01 to 0.02 suit figures. Where the surface has creases (the van
   /// der Waals and accessible surfaces' seams, the SES's singular cusps and rims) the error
-  /// stays within the spacing of the grid the mesh is refined from (field GridSpacing).
+  /// stays within the spacing of the lattice the mesh is refined from (field GridSpacing).
   vtkSetClampMacro(Tolerance, double, 0.005, 1.0);
   vtkGetMacro(Tolerance, double);
   ///@}

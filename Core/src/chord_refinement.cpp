@@ -137,6 +137,15 @@ void cut_triangle(const std::array<std::int64_t, 3>& t, const std::array<std::in
   }
 }
 
+/// Whether a triangle whose corners are `a`, `b`, `c` with `normal` (their edges' cross
+/// product) is a sliver, narrower than a tenth of its longest edge.
+bool sliver(const Vec& a, const Vec& b, const Vec& c, const Vec& normal)
+{
+  const double longest =
+    std::max({ (b - a).squaredNorm(), (c - b).squaredNorm(), (a - c).squaredNorm() });
+  return normal.norm() < 0.1 * longest;
+}
+
 /// Whether triangle (a, b, c) lies across the surface: a corner's surface normal more than
 /// about 70 degrees from the triangle's. Slivers (narrower than a tenth of their longest edge)
 /// only when they face away from a corner's normal: three nearly aligned points of a smooth
@@ -144,11 +153,8 @@ void cut_triangle(const std::array<std::int64_t, 3>& t, const std::array<std::in
 bool lies_across(const ContourVertex& a, const ContourVertex& b, const ContourVertex& c)
 {
   const Vec normal = (b.position - a.position).cross(c.position - a.position);
-  const double length = normal.norm();
-  const double longest =
-    std::max({ (b.position - a.position).squaredNorm(), (c.position - b.position).squaredNorm(),
-               (a.position - c.position).squaredNorm() });
-  const double least = length < 0.1 * longest ? 0.0 : crease_cosine * length;
+  const double least =
+    sliver(a.position, b.position, c.position, normal) ? 0.0 : crease_cosine * normal.norm();
   return a.normal.dot(normal) < least || b.normal.dot(normal) < least ||
     c.normal.dot(normal) < least;
 }
@@ -164,16 +170,22 @@ bool at_a_crease(const ContourVertex& a, const ContourVertex& b, const ContourVe
   return lies_across(a, b, c) || apart(a, b) || apart(b, c) || apart(c, a);
 }
 
-/// Whether the pieces `children` (3 corners each) of triangle `t` face as it does, none at a
-/// crease: splits that fold the mesh over a crease fail.
+/// Whether the pieces `children` (3 corners each) of triangle `t` face as it does (a sliver,
+/// as the surface at its corners), none at a crease: splits that fold the mesh over a crease
+/// fail.
 bool children_face_outwards(const std::array<std::int64_t, 3>& t,
                             const std::vector<std::int64_t>& children,
                             const std::vector<ContourVertex>& vertices,
                             const LocalSurfaceProjection& surface)
 {
   const auto at = [&](std::int64_t v) -> const ContourVertex& { return vertices[std::size_t(v)]; };
-  const Vec parent =
+  Vec parent =
     (at(t[1]).position - at(t[0]).position).cross(at(t[2]).position - at(t[0]).position);
+  if (sliver(at(t[0]).position, at(t[1]).position, at(t[2]).position, parent))
+  {
+    // Three nearly aligned points span a plane of almost any tilt.
+    parent = at(t[0]).normal + at(t[1]).normal + at(t[2]).normal;
+  }
   for (std::size_t k = 0; k < children.size(); k += 3)
   {
     const ContourVertex &a = at(children[k]), &b = at(children[k + 1]), &c = at(children[k + 2]);

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 
@@ -19,28 +20,144 @@ using Vec = Eigen::Vector3d;
 /// gather their boundary pieces less often; much larger ones leave threads idle at the end.
 constexpr int block_cells = 16;
 
-/// Kuhn's six tetrahedra of the unit cube, corners as bit masks (x 1, y 2, z 4), each ordered
-/// so that its orientation is positive.
-std::array<std::array<int, 4>, 6> kuhn_tetrahedra()
+/// The points a cell (x, y, z) of the grid takes its tetrahedra from: 0 the grid's point
+/// (x, y, z); 1 + d the next one along axis d; 4 + m the centred grid's point (x, y, z) plus the
+/// bits of m (x 1, y 2, z 4), at the centre of the cell below it. The cell's tetrahedra are the
+/// four about each of its three edges from point 0 (each edge of the grid is one cell's).
+constexpr int cell_points = 12;
+constexpr int edge_kinds = 14;
+
+/// Position of cell point k in spacings from the cell's grid point.
+Vec cell_point_offset(int k)
 {
-  const int axes[6][3] = { { 1, 2, 4 }, { 1, 4, 2 }, { 2, 1, 4 },
-                           { 2, 4, 1 }, { 4, 1, 2 }, { 4, 2, 1 } };
-  std::array<std::array<int, 4>, 6> tets{};
-  for (int t = 0; t < 6; ++t)
+  if (k == 0)
   {
-    std::array<int, 4> tet = { 0, axes[t][0], axes[t][0] | axes[t][1], 7 };
-    const auto corner = [](int mask) {
-      return Vec(mask & 1 ? 1 : 0, mask & 2 ? 1 : 0, mask & 4 ? 1 : 0);
-    };
-    const Vec a = corner(tet[0]);
-    const double det = (corner(tet[1]) - a).cross(corner(tet[2]) - a).dot(corner(tet[3]) - a);
-    if (det < 0)
-    {
-      std::swap(tet[2], tet[3]);
-    }
-    tets[t] = tet;
+    return Vec::Zero();
   }
-  return tets;
+  if (k < 4)
+  {
+    return Vec::Unit(k - 1);
+  }
+  const int m = k - 4;
+  return Vec(m & 1 ? 0.5 : -0.5, m & 2 ? 0.5 : -0.5, m & 4 ? 0.5 : -0.5);
+}
+
+/// An edge between two cell points: the lattice point it is filed under (offset from the cell,
+/// on the grid or the centred grid by its kind) and its kind.
+struct CellEdge
+{
+  std::array<int, 3> point{};
+  /// 0-2 the grid's edges along x, y, z, filed under their lower end; 3-5 the centred grid's;
+  /// 6 + m the edge from a grid point to the centred grid's point m steps (bits as above) from
+  /// it, filed under the grid point. -1 no edge.
+  int kind = -1;
+};
+
+struct CellTables
+{
+  std::array<std::array<int, 4>, 12> tetrahedra{}; ///< each ordered with positive orientation
+  std::array<std::array<CellEdge, cell_points>, cell_points> edges{};
+};
+
+CellTables cell_tables()
+{
+  CellTables tables;
+  const auto bits = [](int m) { return std::array<int, 3>{ m & 1, (m >> 1) & 1, (m >> 2) & 1 }; };
+  const int around[4][2] = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } };
+  for (int d = 0; d < 3; ++d)
+  {
+    // About the edge from point 0 along d: the centred points half a step along d, half a step
+    // either way along the other two axes, in turn.
+    const int u = (d + 1) % 3, v = (d + 2) % 3;
+    for (int q = 0; q < 4; ++q)
+    {
+      const auto centred = [&](int step) {
+        return 4 + (1 << d) + (around[step % 4][0] << u) + (around[step % 4][1] << v);
+      };
+      std::array<int, 4> tet = { 0, 1 + d, centred(q), centred(q + 1) };
+      const Vec a = cell_point_offset(tet[0]);
+      const double volume = (cell_point_offset(tet[1]) - a)
+                              .cross(cell_point_offset(tet[2]) - a)
+                              .dot(cell_point_offset(tet[3]) - a);
+      if (volume < 0)
+      {
+        std::swap(tet[2], tet[3]);
+      }
+      tables.tetrahedra[std::size_t(4 * d + q)] = tet;
+    }
+  }
+  for (int a = 0; a < cell_points; ++a)
+  {
+    for (int b = 0; b < cell_points; ++b)
+    {
+      CellEdge& edge = tables.edges[std::size_t(a)][std::size_t(b)];
+      const int low = std::min(a, b), high = std::max(a, b);
+      if (a == b)
+      {
+        continue;
+      }
+      if (high < 4)
+      {
+        if (low != 0)
+        {
+          continue; // not an edge of the cell's tetrahedra
+        }
+        edge.kind = high - 1;
+        edge.point = { 0, 0, 0 };
+      }
+      else if (low >= 4)
+      {
+        const int m = low - 4, n = high - 4;
+        const int w = m ^ n;
+        if (w != 1 && w != 2 && w != 4)
+        {
+          continue;
+        }
+        const int axis = w == 1 ? 0 : (w == 2 ? 1 : 2);
+        edge.kind = 3 + axis;
+        edge.point = bits(m);
+      }
+      else
+      {
+        const std::array<int, 3> grid_point =
+          low == 0 ? std::array<int, 3>{ 0, 0, 0 } : bits(1 << (low - 1));
+        const std::array<int, 3> centred_point = bits(high - 4);
+        int mask = 0;
+        for (int k = 0; k < 3; ++k)
+        {
+          const int step = centred_point[std::size_t(k)] - grid_point[std::size_t(k)];
+          if (step < 0 || step > 1)
+          {
+            mask = -1;
+            break;
+          }
+          mask |= step << k;
+        }
+        if (mask < 0)
+        {
+          continue;
+        }
+        edge.kind = 6 + mask;
+        edge.point = grid_point;
+      }
+    }
+  }
+  return tables;
+}
+
+/// The cell (offset from the point an edge of `kind` is filed under) that makes the edge's
+/// vertex: one whose tetrahedra hold the edge. A grid edge's is its lower end's; a centred
+/// edge's, of the four cells about it, the one below it on both other axes; a diagonal's, the
+/// grid point's own cell when the centred point lies above it on some axis (the cell's edge along
+/// that axis holds it), else the cell below along x.
+std::array<int, 3> owner_offset(int kind)
+{
+  if (kind >= 3 && kind < 6)
+  {
+    const int axis = kind - 3;
+    return { axis == 0 ? 0 : -1, axis == 1 ? 0 : -1, axis == 2 ? 0 : -1 };
+  }
+  return { kind == 6 ? -1 : 0, 0, 0 };
 }
 
 // Even permutations of a positive tetrahedron putting the listed corners first (they keep the
@@ -88,6 +205,13 @@ ContourGrid::ContourGrid(const Vec& low_corner, const Vec& high, double grid_spa
   }
 }
 
+ContourGrid ContourGrid::centred() const
+{
+  ContourGrid grid = *this;
+  grid.low = this->low - Vec::Constant(0.5 * this->spacing);
+  return grid;
+}
+
 std::array<std::int64_t, 3> ContourGrid::block_first(std::size_t block) const
 {
   const std::int64_t b = static_cast<std::int64_t>(block);
@@ -101,9 +225,11 @@ bool ContourGrid::blocks_meeting(const Vec& from, const Vec& to, std::array<std:
 {
   for (int a = 0; a < 3; ++a)
   {
-    // Block b holds the points block_cells b .. block_cells (b + 1).
+    // Block b holds the points block_cells b .. block_cells (b + 1), and those of the centred
+    // grid half a spacing lower.
     const double lower = (from[a] - this->low[a]) / (this->spacing * block_cells);
-    const double upper = (to[a] - this->low[a]) / (this->spacing * block_cells);
+    const double upper =
+      (to[a] + 0.5 * this->spacing - this->low[a]) / (this->spacing * block_cells);
     first[a] = std::max<std::int64_t>(0, static_cast<std::int64_t>(std::ceil(lower - 1.0)));
     last[a] =
       std::min<std::int64_t>(this->blocks[a] - 1, static_cast<std::int64_t>(std::floor(upper)));
@@ -141,29 +267,35 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
 {
   ContourMesh mesh;
   const ContourGrid grid(low, high, spacing);
+  const ContourGrid centred = grid.centred();
   const auto& cells = grid.cells;
   const auto& blocks = grid.blocks;
   constexpr int block_cells = ContourGrid::block_cells;
   const std::array<std::int64_t, 3> points = { cells[0] + 1, cells[1] + 1, cells[2] + 1 };
   const std::size_t block_count = grid.block_count();
-  const auto tets = kuhn_tetrahedra();
+  static const CellTables tables = cell_tables();
+  // Edges are keyed by the point they are filed under and their kind.
   const auto point_key = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
     return static_cast<std::uint64_t>(x + points[0] * (y + points[1] * z));
   };
-  // The block owning a grid point (points on the far faces belong to the last blocks).
-  const auto owner_of = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
-    const std::int64_t bx = std::min(x / block_cells, blocks[0] - 1);
-    const std::int64_t by = std::min(y / block_cells, blocks[1] - 1);
-    const std::int64_t bz = std::min(z / block_cells, blocks[2] - 1);
-    return static_cast<std::size_t>(bx + blocks[0] * (by + blocks[1] * bz));
+  const auto block_of_cell = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
+    const auto along = [&](std::int64_t c, int a) {
+      return std::clamp<std::int64_t>(c / block_cells, 0, blocks[a] - 1);
+    };
+    return static_cast<std::size_t>(along(x, 0) +
+                                    blocks[0] * (along(y, 1) + blocks[1] * along(z, 2)));
   };
-  const auto key_point = [&](std::uint64_t key) {
-    const std::uint64_t point = key / 8;
-    return std::array<std::int64_t, 3>{
+  // The block making an edge's vertex: that of the cell the edge's kind names.
+  const auto owner_of = [&](std::uint64_t key) {
+    const std::uint64_t point = key / 16;
+    const int kind = static_cast<int>(key % 16);
+    const std::array<std::int64_t, 3> at = {
       static_cast<std::int64_t>(point % std::uint64_t(points[0])),
       static_cast<std::int64_t>((point / std::uint64_t(points[0])) % std::uint64_t(points[1])),
       static_cast<std::int64_t>(point / std::uint64_t(points[0] * points[1]))
     };
+    const auto offset = owner_offset(kind);
+    return block_of_cell(at[0] + offset[0], at[1] + offset[1], at[2] + offset[2]);
   };
 
   field.prepare(grid, parallel_for);
@@ -176,68 +308,93 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
   struct BlockBuffers
   {
     std::unique_ptr<LocalContourField> local;
-    std::vector<double> values;
-    std::vector<std::uint32_t> hints;
-    /// Per block point and Kuhn direction (1 to 7), the block that made the vertex on that edge
-    /// (its number plus one, in the high half) and the vertex's index: entries of earlier blocks
-    /// are stale, so the table is never cleared.
+    std::array<std::vector<double>, 2> values;       ///< of the grid and the centred grid
+    std::array<std::vector<std::uint32_t>, 2> hints; ///< of the grid and the centred grid
+    /// Per block point and edge kind, the block that made the vertex on that edge (its number
+    /// plus one, in the high half) and the vertex's index: entries of earlier blocks are
+    /// stale, so the table is never cleared.
     std::vector<std::uint64_t> made;
   };
   constexpr int side = ContourGrid::block_points;
+  std::atomic<bool> one_sided_block{ false };
   const auto run_block = [&](std::size_t block, BlockOutput& out, BlockBuffers& buffers) {
     if (!buffers.local)
     {
       buffers.local = field.local();
-      buffers.values.resize(side * side * side);
-      buffers.hints.resize(side * side * side);
-      buffers.made.assign(std::size_t(side * side * side * 8), 0);
+      for (int g = 0; g < 2; ++g)
+      {
+        buffers.values[std::size_t(g)].resize(side * side * side);
+        buffers.hints[std::size_t(g)].resize(side * side * side);
+      }
+      buffers.made.assign(std::size_t(side * side * side * edge_kinds), 0);
     }
     LocalContourField* const local = buffers.local.get();
-    if (!local->sample_block(grid, block, buffers.values.data(), buffers.hints.data()))
+    if (!local->sample_block(grid, block, buffers.values[0].data(), buffers.hints[0].data()))
     {
+      return;
+    }
+    if (!local->sample_block(centred, block, buffers.values[1].data(), buffers.hints[1].data()))
+    {
+      one_sided_block = true;
       return;
     }
     const auto first = grid.block_first(block);
     const std::int64_t x0 = first[0], y0 = first[1], z0 = first[2];
-    const double* const values = buffers.values.data();
-    const std::uint32_t* const hints = buffers.hints.data();
-    const auto sample_at = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
-      const std::size_t at = std::size_t((x - x0) + side * ((y - y0) + side * (z - z0)));
-      return LocalContourField::Sample{ grid.point(x, y, z), values[at], hints[at] };
-    };
     std::vector<std::uint64_t>& made = buffers.made;
     const std::uint64_t stamp = std::uint64_t(block + 1) << 32;
-    const auto contour_cell = [&](const std::array<std::int64_t, 3>& cell) {
-      std::array<LocalContourField::Sample, 8> corner;
-      for (int m = 0; m < 8; ++m)
+    // A cell's twelve points: their lattice (0 the grid, 1 the centred grid), their index
+    // steps from the cell's own on it, and so their place in the block's arrays.
+    std::array<int, cell_points> lattice{};
+    std::array<std::array<int, 3>, cell_points> step{};
+    std::array<std::size_t, cell_points> place{};
+    for (int k = 0; k < cell_points; ++k)
+    {
+      lattice[std::size_t(k)] = k >= 4 ? 1 : 0;
+      const Vec offset = cell_point_offset(k) + Vec::Constant(k >= 4 ? 0.5 : 0.0);
+      for (int a = 0; a < 3; ++a)
       {
-        corner[m] =
-          sample_at(cell[0] + (m & 1), cell[1] + ((m >> 1) & 1), cell[2] + ((m >> 2) & 1));
+        step[std::size_t(k)][std::size_t(a)] = static_cast<int>(std::lround(offset[a]));
       }
-      const auto edge = [&](int a, int b) {
-        // Kuhn edges join a corner to one whose bits include its own: key by the lower corner
-        // and the offset.
-        const int from = std::min(a, b), to = std::max(a, b);
-        const std::int64_t x = cell[0] + (from & 1), y = cell[1] + ((from >> 1) & 1),
-                           z = cell[2] + ((from >> 2) & 1);
-        std::uint64_t& entry =
-          made[std::size_t(8 * ((x - x0) + side * ((y - y0) + side * (z - z0))) + (to ^ from))];
+      const auto& d = step[std::size_t(k)];
+      place[std::size_t(k)] = std::size_t(d[0] + side * (d[1] + side * d[2]));
+    }
+    const auto contour_cell = [&](const std::array<std::int64_t, 3>& cell, std::size_t at) {
+      std::array<LocalContourField::Sample, cell_points> corner;
+      for (int k = 0; k < cell_points; ++k)
+      {
+        const std::size_t g = std::size_t(lattice[std::size_t(k)]);
+        const std::size_t i = at + place[std::size_t(k)];
+        const auto& d = step[std::size_t(k)];
+        corner[std::size_t(k)] = { (g ? centred : grid).point(cell[0] + d[0], cell[1] + d[1],
+                                                             cell[2] + d[2]),
+                                   buffers.values[g][i], buffers.hints[g][i] };
+      }
+      const auto edge = [&](int a, int b, const std::array<int, 4>& tet) {
+        const CellEdge& kind = tables.edges[std::size_t(a)][std::size_t(b)];
+        const std::int64_t x = cell[0] + kind.point[0], y = cell[1] + kind.point[1],
+                           z = cell[2] + kind.point[2];
+        std::uint64_t& entry = made[std::size_t(
+          edge_kinds * ((x - x0) + side * ((y - y0) + side * (z - z0))) + kind.kind)];
         if ((entry & ~std::uint64_t(0xffffffffu)) != stamp)
         {
           std::uint32_t index = 0;
-          const std::uint64_t key = point_key(x, y, z) * 8 + std::uint64_t(to ^ from);
-          if (owner_of(x, y, z) == block)
+          const std::uint64_t key = point_key(x, y, z) * 16 + std::uint64_t(kind.kind);
+          const auto owner = owner_offset(kind.kind);
+          if (block_of_cell(x + owner[0], y + owner[1], z + owner[2]) == block)
           {
-            const int outside = corner[a].value > 0 ? b : a;
-            const int inside = corner[a].value > 0 ? a : b;
+            const int outside = corner[std::size_t(a)].value > 0 ? b : a;
+            const int inside = corner[std::size_t(a)].value > 0 ? a : b;
             index = static_cast<std::uint32_t>(out.vertices.size());
-            out.vertices.push_back(local->vertex(corner[outside], corner[inside], corner.data()));
+            out.vertices.push_back(local->vertex(
+              corner[std::size_t(outside)], corner[std::size_t(inside)],
+              { corner[std::size_t(tet[0])], corner[std::size_t(tet[1])],
+                corner[std::size_t(tet[2])], corner[std::size_t(tet[3])] }));
             out.keys.push_back(key);
           }
           else
           {
             // The owner computes it: every cell holding a crossed edge is contoured, as the
-            // signs at grid points do not depend on the block asking.
+            // signs at lattice points do not depend on the block asking.
             index = static_cast<std::uint32_t>(out.foreign_keys.size()) | foreign_bit;
             out.foreign_keys.push_back(key);
           }
@@ -245,12 +402,12 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
         }
         return static_cast<std::uint32_t>(entry);
       };
-      for (const auto& tet : tets)
+      for (const auto& tet : tables.tetrahedra)
       {
         int inside_mask = 0, inside_count = 0;
         for (int k = 0; k < 4; ++k)
         {
-          if (corner[tet[k]].value > 0)
+          if (corner[std::size_t(tet[std::size_t(k)])].value > 0)
           {
             inside_mask |= 1 << k;
             ++inside_count;
@@ -272,14 +429,15 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
             }
           }
           const int* order = first_alone[lone];
-          const int a = tet[order[0]], b = tet[order[1]], c = tet[order[2]], d = tet[order[3]];
+          const int a = tet[std::size_t(order[0])], b = tet[std::size_t(order[1])],
+                    c = tet[std::size_t(order[2])], d = tet[std::size_t(order[3])];
           if (inside_count == 1)
           {
-            out.triangles.push_back({ edge(a, b), edge(a, c), edge(a, d) });
+            out.triangles.push_back({ edge(a, b, tet), edge(a, c, tet), edge(a, d, tet) });
           }
           else
           {
-            out.triangles.push_back({ edge(a, b), edge(a, d), edge(a, c) });
+            out.triangles.push_back({ edge(a, b, tet), edge(a, d, tet), edge(a, c, tet) });
           }
           continue;
         }
@@ -293,13 +451,16 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
         }
         int order[4];
         pair_order(pair[0], pair[1], order);
-        const int a = tet[order[0]], b = tet[order[1]], c = tet[order[2]], d = tet[order[3]];
-        const std::uint32_t ac = edge(a, c), ad = edge(a, d), bd = edge(b, d), bc = edge(b, c);
+        const int a = tet[std::size_t(order[0])], b = tet[std::size_t(order[1])],
+                  c = tet[std::size_t(order[2])], d = tet[std::size_t(order[3])];
+        const std::uint32_t ac = edge(a, c, tet), ad = edge(a, d, tet), bd = edge(b, d, tet),
+                            bc = edge(b, c, tet);
         out.triangles.push_back({ ac, ad, bd });
         out.triangles.push_back({ ac, bd, bc });
       }
     };
-    // The cells whose corners change sign.
+    // The cells whose twelve points change sign.
+    const double* const values[2] = { buffers.values[0].data(), buffers.values[1].data() };
     const std::int64_t x1 = std::min(x0 + block_cells, cells[0]);
     const std::int64_t y1 = std::min(y0 + block_cells, cells[1]);
     const std::int64_t z1 = std::min(z0 + block_cells, cells[2]);
@@ -307,16 +468,15 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
       for (std::int64_t y = y0; y < y1; ++y)
         for (std::int64_t x = x0; x < x1; ++x)
         {
-          const double* corner = values + ((x - x0) + side * ((y - y0) + side * (z - z0)));
+          const std::size_t at = std::size_t((x - x0) + side * ((y - y0) + side * (z - z0)));
           int inside = 0;
-          for (const std::ptrdiff_t offset : { 0, 1, side, side + 1, side * side, side * side + 1,
-                                               side * side + side, side * side + side + 1 })
+          for (int k = 0; k < cell_points; ++k)
           {
-            inside += corner[offset] > 0 ? 1 : 0;
+            inside += values[lattice[std::size_t(k)]][at + place[std::size_t(k)]] > 0 ? 1 : 0;
           }
-          if (inside != 0 && inside != 8)
+          if (inside != 0 && inside != cell_points)
           {
-            contour_cell({ x, y, z });
+            contour_cell({ x, y, z }, at);
           }
         }
   };
@@ -369,8 +529,7 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
     }
   });
   const auto global_of = [&](std::uint64_t key) -> std::int64_t {
-    const auto point = key_point(key);
-    const std::size_t block = owner_of(point[0], point[1], point[2]);
+    const std::size_t block = owner_of(key);
     const auto at = std::lower_bound(active.begin(), active.end(), block);
     if (at == active.end() || *at != block)
     {
@@ -392,7 +551,7 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
   mesh.triangles.reserve(6 * std::size_t(first_triangle[active_count]));
   mesh.vertices.resize(std::size_t(first_vertex[active_count]));
   mesh.triangles.resize(3 * std::size_t(first_triangle[active_count]));
-  // Signs at grid points do not depend on the block asking, so every cell holding a crossed
+  // Signs at lattice points do not depend on the block asking, so every cell holding a crossed
   // edge is contoured and each foreign vertex has been made by its owner.
   std::vector<char> complete(active_count, 1);
   run_parallel(parallel_for, active_count, [&](std::size_t begin, std::size_t end) {
@@ -418,10 +577,10 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
       out = {};
     }
   });
-  if (std::find(complete.begin(), complete.end(), 0) != complete.end())
+  if (one_sided_block || std::find(complete.begin(), complete.end(), 0) != complete.end())
   {
-    throw std::logic_error("contour_tetrahedra: a field gave a grid point different signs in "
-                           "different blocks");
+    throw std::logic_error("contour_tetrahedra: a field gave a lattice point different signs in "
+                           "different blocks, or a zero in one grid of a block and not the other");
   }
   return mesh;
 }

@@ -27,18 +27,30 @@ namespace {
 using Vec = Eigen::Vector3d;
 constexpr double largest_radius = 20.0;        // Å: no atom, bead or probe is larger
 constexpr double largest_triangle_count = 2e7; // about 2 GB: a finer tolerance is refused
-/// The grid's chord error: the tolerance's times grid_tolerance_ratio, at most
-/// coarse_grid_tolerance (Å), and the splits bring the mesh to the tolerance. Finer grids cost
-/// more than the splits that refine a coarse mesh as far; coarser ones would miss narrow necks,
-/// thin walls between cavities and small cavities (0.6 Å loses one cavity in twenty on 3wip,
-/// 4jsv and 1tii); and triangles at creases, which splits leave as the grid made them, must
-/// shrink with the tolerance for the mesh's area to converge to the exact one.
-constexpr double coarse_grid_tolerance = 0.45;
+/// The lattice's resolution, the farthest any point lies from a lattice point (its reach), is
+/// that of a cubic grid whose cells' diagonals have a chord error of the tolerance's times
+/// grid_tolerance_ratio, at most coarse_grid_tolerance (Å); the splits bring the mesh to the
+/// tolerance. Finer lattices cost more than the splits that refine a coarse mesh as far; and
+/// triangles at creases, which splits leave as the lattice made them, must shrink with the
+/// tolerance for the mesh's area to converge to the exact one. At the coarsest, a 1.4 Å probe's
+/// surface on atoms of 1.4 Å and more meets the cavity limit below. (Walls between cavities
+/// thinner than the lattice's spacing may be missed and their cavities merged: in 3wip cubic
+/// grids of 1.3 Å to 0.47 Å find 56 to 67 cavities, body-centred lattices of 1.6, 2.0, 2.24
+/// and 2.5 Å find 57, 48, 55 and 51.)
+constexpr double coarse_grid_tolerance = 0.56;
 constexpr double grid_tolerance_ratio = 6.0;
-/// The solvent-excluded surface's grid spacing is at most this times the probe radius: every
-/// point then lies within 0.9 probe radii of a grid point (half a cell's diagonal), so each
-/// cavity and neck, which holds a probe's ball, holds a grid point outside the surface.
-constexpr double cavity_spacing_ratio = 0.9 * 2.0 / 1.7320508075688772;
+/// The solvent-excluded surface's lattice reaches every point from at most this many probe
+/// radii, so each cavity and neck, which holds a probe's ball, holds a lattice point outside
+/// the surface.
+constexpr double cavity_reach_ratio = 0.9;
+/// A body-centred lattice's spacing (cube side) per Å of reach: sqrt(5) / 4 spacings.
+constexpr double spacing_per_reach = 4.0 / 2.23606797749979;
+/// How far beyond the probe radius the solvent-excluded field labels lattice points with their
+/// nearest boundary piece, in spacings: the inner ends of most edges the surface crosses then
+/// carry the piece that places the vertex. (Labelling farther costs more than the searches it
+/// saves: on 3wip 0.5, 0.6, 0.7, 0.87 and 1.0 spacings took 6.17, 6.14, 6.15, 6.22 and 6.29
+/// billion instructions.)
+constexpr double hint_reach = 0.6;
 
 void check_input(const std::vector<std::array<double, 3>>& centres,
                  const std::vector<double>& radii, const MolecularSurfaceOptions& options)
@@ -175,24 +187,28 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
   surface.degenerate_vertex_count = boundary.degenerate_vertices;
   report(0.1);
 
-  // The tessellation: a grid for the surface's shape, then edges split where they stray from
-  // the surface. A grid spacing gives a chord error of triangles about sqrt(3) spacings long on
-  // the most curved patches (radius: the probe's or the smallest atom's); the grid's is coarser
-  // than the tolerance (see grid_tolerance_ratio), and the splits bring each edge's midpoint
-  // within three quarters of the tolerance (so the triangles' centres within it).
+  // The tessellation: a body-centred cubic lattice for the surface's shape (its tetrahedra's
+  // longest edges one spacing long), then edges split where they stray from the surface. An
+  // edge gives a chord error of its length squared over eight radii of curvature on the most
+  // curved patches (the probe's or the smallest atom's); the lattice's is coarser than the
+  // tolerance (see grid_tolerance_ratio), and the splits bring each edge's midpoint within three
+  // quarters of the tolerance (so the triangles' centres within it).
   const double curvature_radius = excluded
     ? std::min(p, smallest)
     : smallest + (options.kind == SurfaceKind::SolventAccessible ? p : 0.0);
-  const auto spacing_for = [curvature_radius](double tolerance) {
+  // The spacing of a cubic grid whose cells' diagonals have a chord error of `tolerance`.
+  const auto cubic_spacing_for = [curvature_radius](double tolerance) {
     return std::sqrt(8.0 * tolerance * curvature_radius) / std::sqrt(3.0);
   };
-  double spacing = spacing_for(std::max(
-    options.tolerance, std::min(coarse_grid_tolerance, grid_tolerance_ratio * options.tolerance)));
+  double reach = 0.5 * std::sqrt(3.0) *
+    cubic_spacing_for(std::max(options.tolerance, std::min(coarse_grid_tolerance,
+                                                           grid_tolerance_ratio * options.tolerance)));
   if (excluded)
   {
-    spacing = std::min(spacing, cavity_spacing_ratio * p);
+    reach = std::min(reach, cavity_reach_ratio * p);
   }
-  const double grid_tolerance = 3.0 * spacing * spacing / (8.0 * curvature_radius);
+  const double spacing = spacing_per_reach * reach;
+  const double grid_tolerance = spacing * spacing / (8.0 * curvature_radius);
   surface.grid_spacing = spacing;
   if (options.tessellate)
   {
@@ -204,7 +220,7 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
       estimate += a;
     }
     estimate *= excluded ? 1.2 : 1.0;
-    const double fine_spacing = spacing_for(options.tolerance);
+    const double fine_spacing = cubic_spacing_for(options.tolerance);
     const double expected_triangles = 5.0 * estimate / (fine_spacing * fine_spacing);
     if (expected_triangles > largest_triangle_count)
     {
@@ -219,7 +235,7 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
   // larger reach either asks for (a larger one only coarsens its cells).
   const bool figures = !excluded || options.exact_figures;
   const double patch_reach = excluded && figures ? 2.0 * p + 0.6 * largest : 0.0;
-  const double mesh_reach = options.tessellate ? p * (excluded ? 1.0 : 0.0) + 4.0 * spacing : 0.0;
+  const double mesh_reach = options.tessellate ? p * (excluded ? 1.0 : 0.0) + 3.0 * spacing : 0.0;
   std::unique_ptr<const ProbeDistance> distance_index;
   if (patch_reach > 0 || mesh_reach > 0)
   {
@@ -257,7 +273,7 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
     pieces.take_uncut_patches(patches.arc_uncut, patches.vertex_uncut);
     const std::unique_ptr<ContourField> field = excluded
       ? excluded_surface_field(distance, pieces, boundary, centres, radii, atom_radii, p,
-                               p + spacing)
+                               p + hint_reach * spacing)
       : union_surface_field(centres, radii);
     // The grid: the spheres' box with two cells to spare, shifted off any symmetry of the input.
     Vec low = Vec::Constant(1e300), high = -low;
@@ -281,7 +297,8 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
     SurfaceProjection projection;
     if (excluded)
     {
-      const double projection_limit = p + spacing; // midpoints stray less than a spacing
+      // Midpoints of edges up to a spacing long stray less than three quarters of one.
+      const double projection_limit = p + 0.75 * spacing;
       projection = [&, projection_limit] {
         return excluded_surface_projection(distance, pieces, boundary, centres, atom_radii, p,
                                            projection_limit);
@@ -290,10 +307,10 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
     else
     {
       projection = [&] {
-        return union_surface_projection(distance, centres, radii, 2.0 * spacing);
+        return union_surface_projection(distance, centres, radii, 1.5 * spacing);
       };
     }
-    refine_chords(mesh, projection, split_tolerance, 2.0 * spacing, rounds, parallel_for);
+    refine_chords(mesh, projection, split_tolerance, 1.5 * spacing, rounds, parallel_for);
     report(0.95);
     vertices = std::move(mesh.vertices);
     triangles = std::move(mesh.triangles);

@@ -130,10 +130,11 @@ public:
   {
     const double limit = this->surface_.limit;
     const SasBoundary& boundary = this->surface_.boundary;
-    // An edge the surface crosses has its outside end within sqrt(3) spacings of the surface,
-    // which lies a probe radius inside the union: the nearest sphere of such ends is found.
+    // An edge the surface crosses has its outside end within a spacing (the lattice's longest
+    // edge) of the surface, which lies a probe radius inside the union: the nearest sphere of
+    // such ends is found.
     this->outside_reach_ =
-      std::max(0.0, std::sqrt(3.0) * grid.spacing - this->surface_.probe) + 0.1 * grid.spacing;
+      std::max(0.0, grid.spacing - this->surface_.probe) + 0.1 * grid.spacing;
     const Vec slack = Vec::Constant(box_slack);
     this->spheres_ = BlockBins(
       grid, this->radii_.size(),
@@ -251,11 +252,13 @@ public:
     return true;
   }
 
-  ContourVertex vertex(const Sample& outside, const Sample& inside, const Sample* cell) override
+  ContourVertex vertex(const Sample& outside, const Sample& inside,
+                       const std::array<Sample, 4>& corners) override
   {
-    // The root along the grid edge itself: vertices kept on their edges cannot fold triangles
-    // over one another, even at the surface's creases. First along the pieces nearest the
-    // edge's ends (mostly one piece for both), then those nearest the cell's other corners, then
+    // The root along the lattice edge itself: vertices kept on their edges cannot fold
+    // triangles over one another, even at the surface's creases. First along the pieces nearest
+    // the edge's ends (mostly one piece for both), then those nearest the tetrahedron's other
+    // corners, then
     // the others of the ends' atoms (cheap roots on one piece, each kept when certified on its
     // patch), else on the field.
     const std::pair<PieceKind, std::uint32_t> at_inside(hint_kind(inside.hint),
@@ -271,10 +274,10 @@ public:
     }
     auto& others = this->others_;
     others.clear();
-    for (int c = 0; c < 8; ++c)
+    for (const Sample& corner : corners)
     {
-      const std::pair<PieceKind, std::uint32_t> at_corner(hint_kind(cell[c].hint),
-                                                          hint_index(cell[c].hint));
+      const std::pair<PieceKind, std::uint32_t> at_corner(hint_kind(corner.hint),
+                                                          hint_index(corner.hint));
       if (at_corner != at_inside && at_corner != at_outside &&
           std::find(others.begin(), others.end(), at_corner) == others.end())
       {
@@ -297,13 +300,20 @@ public:
     {
       return this->surface_.vertex(position, piece);
     }
-    // The general search, among the pieces near the cell (gathered once for its edges). It
-    // needs the distance's sign against the probe radius and the piece at the root, so pieces
-    // a little deeper than the probe radius (general_search_depth) are enough: fewer to gather.
-    const Vec middle = 0.5 * (cell[0].position + cell[7].position);
+    // The general search, among the pieces near the tetrahedron (gathered once for its edges).
+    // It needs the distance's sign against the probe radius and the piece at the root, so
+    // pieces a little deeper than the probe radius (general_search_depth) are enough: fewer to
+    // gather.
+    const Vec middle = 0.25 * (corners[0].position + corners[1].position + corners[2].position +
+                               corners[3].position);
     if (!this->gathered_ || this->local_.centre != middle)
     {
-      const double radius = 0.5 * (cell[7].position - cell[0].position).norm() * (1.0 + 1e-9);
+      double radius = 0;
+      for (const Sample& corner : corners)
+      {
+        radius = std::max(radius, (corner.position - middle).norm());
+      }
+      radius *= 1.0 + 1e-9;
       this->surface_.distance.gather(middle, radius, this->surface_.probe + general_search_depth,
                                      this->local_);
       this->gathered_ = true;
@@ -618,7 +628,8 @@ public:
     return true;
   }
 
-  ContourVertex vertex(const Sample& outside, const Sample& inside, const Sample* /*cell*/) override
+  ContourVertex vertex(const Sample& outside, const Sample& inside,
+                       const std::array<Sample, 4>& /*corners*/) override
   {
     ContourVertex vertex;
     vertex.position = segment_root(outside.position, outside.value, inside.position, inside.value,

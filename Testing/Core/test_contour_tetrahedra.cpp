@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Contouring a field a block at a time (a private part of MesoLensCore, under the molecular
-// surfaces' meshes): the grid's blocks and the points of a box in them, items binned to the
-// blocks they reach, and the mesh of an analytic field.
+// Contouring a field a block at a time on a body-centred lattice (a private part of
+// MesoLensCore, under the molecular surfaces' meshes): the grid's blocks and the points of a box
+// in them, items binned to the blocks they reach, and the mesh of an analytic field.
 #include "block_bins.h"
 #include "contour_tetrahedra.h"
 
@@ -70,10 +70,10 @@ public:
     return true;
   }
   mesolens::ContourVertex vertex(const Sample& outside, const Sample& inside,
-                                 const Sample* cell) override
+                                 const std::array<Sample, 4>& corners) override
   {
     EXPECT_EQ(outside.hint, 7u);
-    EXPECT_EQ(cell[0].hint, 7u);
+    EXPECT_EQ(corners[0].hint, 7u);
     // The root of the sphere's field on the edge, by bisection.
     Vec a = outside.position, b = inside.position;
     for (int k = 0; k < 60; ++k)
@@ -170,6 +170,9 @@ TEST(ContourTetrahedra, EachBlockFindsThePointsOfABoxItHolds)
 TEST(ContourTetrahedra, ItemsAreBinnedToTheBlocksTheirBoxesMeet)
 {
   const mesolens::ContourGrid grid(Vec(0, 0, 0), Vec(30.0, 20.0, 25.0), 0.5);
+  const mesolens::ContourGrid centred = grid.centred();
+  EXPECT_EQ(centred.low, Vec::Constant(-0.25));
+  EXPECT_EQ(centred.blocks, grid.blocks);
   std::mt19937 random(11);
   std::uniform_real_distribution<double> where(-3.0, 33.0), reach(0.0, 4.0);
   std::vector<std::pair<Vec, Vec>> boxes;
@@ -190,13 +193,15 @@ TEST(ContourTetrahedra, ItemsAreBinnedToTheBlocksTheirBoxesMeet)
     for (std::size_t k = 0; k < boxes.size(); ++k)
     {
       std::array<int, 3> first{}, last{};
-      if (k % 7 != 3 && grid.points_within(b, boxes[k].first, boxes[k].second, first, last))
+      if (k % 7 != 3 &&
+          (grid.points_within(b, boxes[k].first, boxes[k].second, first, last) ||
+           centred.points_within(b, boxes[k].first, boxes[k].second, first, last)))
       {
         expected.insert(static_cast<std::uint32_t>(k));
       }
     }
-    // Each block lists (in order) at least every item with a point of it in its box; items
-    // binned but holding none of its points only cost a look.
+    // Each block lists (in order) at least every item with a point of it (of either grid) in
+    // its box; items binned but holding none of its points only cost a look.
     std::vector<std::uint32_t> listed(bins.begin(b), bins.end(b));
     EXPECT_TRUE(std::is_sorted(listed.begin(), listed.end()));
     for (const std::uint32_t k : expected)

@@ -44,11 +44,11 @@ struct MolecularSurfaceOptions
   /// Largest distance between a triangle and the exact surface it stands for (chord error) on
   /// smooth patches, Å, [0.005, 1]: edges are split until their middles lie within three
   /// quarters of it (the triangles' centres within it). Triangles spanning creases (the SAS and
-  /// vdW seams, the SES's cusps and rims where probes meet) stay as the grid made them, within
-  /// its chord error: six times the tolerance, at most 0.45 Å, the SES's grid points at most
-  /// 1.04 probe radii apart so that every cavity holds one (see grid_spacing). On proteins the
-  /// mesh area lies below the exact one by 0.4-0.5 % at 0.1 (0.8-1.0 % at 0.15, 1.3-1.9 % at
-  /// 0.3), which suits interaction; 0.01-0.02 suits figures (0.05-0.16 %).
+  /// vdW seams, the SES's cusps and rims where probes meet) stay as the lattice made them,
+  /// within its chord error: six times the tolerance, at most 0.56 Å, the SES's lattice points
+  /// at most 0.9 probe radii from any point so that every cavity holds one (see grid_spacing).
+  /// On proteins the mesh area lies below the exact one by 0.3-0.6 % at 0.1 (0.9-1.3 % at 0.15,
+  /// 2.3-2.9 % at 0.3), which suits interaction; 0.01-0.02 suits figures (0.14-0.27 % at 0.02).
   double tolerance = 0.1;
   /// Keep the surfaces of cavities inside the molecule (closed components whose normals face
   /// inwards). Default true.
@@ -87,7 +87,9 @@ struct MolecularSurface
   /// in a perfect lattice): where not 0, the exact area and volume are unreliable (the mesh is
   /// not affected). Counted once per sphere through the point.
   std::size_t degenerate_vertex_count = 0;
-  /// Spacing of the grid the tessellation started from (before its edges were split), Å.
+  /// Spacing (cubes' side) of the body-centred cubic lattice the tessellation started from
+  /// (before its edges were split), Å: every point lies within sqrt(5) / 4 of it from a lattice
+  /// point.
   double grid_spacing = 0;
 
   std::vector<double> points;          ///< 3 per vertex, Å

@@ -365,9 +365,10 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
         const std::size_t g = std::size_t(lattice[std::size_t(k)]);
         const std::size_t i = at + place[std::size_t(k)];
         const auto& d = step[std::size_t(k)];
-        corner[std::size_t(k)] = { (g ? centred : grid).point(cell[0] + d[0], cell[1] + d[1],
-                                                             cell[2] + d[2]),
-                                   buffers.values[g][i], buffers.hints[g][i] };
+        corner[std::size_t(k)] = {
+          (g ? centred : grid).point(cell[0] + d[0], cell[1] + d[1], cell[2] + d[2]),
+          buffers.values[g][i], buffers.hints[g][i]
+        };
       }
       const auto edge = [&](int a, int b, const std::array<int, 4>& tet) {
         const CellEdge& kind = tables.edges[std::size_t(a)][std::size_t(b)];
@@ -385,10 +386,10 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
             const int outside = corner[std::size_t(a)].value > 0 ? b : a;
             const int inside = corner[std::size_t(a)].value > 0 ? a : b;
             index = static_cast<std::uint32_t>(out.vertices.size());
-            out.vertices.push_back(local->vertex(
-              corner[std::size_t(outside)], corner[std::size_t(inside)],
-              { corner[std::size_t(tet[0])], corner[std::size_t(tet[1])],
-                corner[std::size_t(tet[2])], corner[std::size_t(tet[3])] }));
+            out.vertices.push_back(
+              local->vertex(corner[std::size_t(outside)], corner[std::size_t(inside)],
+                            { corner[std::size_t(tet[0])], corner[std::size_t(tet[1])],
+                              corner[std::size_t(tet[2])], corner[std::size_t(tet[3])] }));
             out.keys.push_back(key);
           }
           else

@@ -128,9 +128,9 @@ struct ContourMesh
 /// beside it, the four others sqrt(3) / 2 spacings long) whose corners change sign is cut, so
 /// the mesh is watertight and 2-manifold without ambiguous cases. Every point lies within
 /// sqrt(5) / 4 spacings of a lattice point: about half as many points as a cubic grid with that
-/// reach, and 0.6 times as many edges crossing a surface, in better shaped tetrahedra. Each block is sampled once (on both
-/// grids). `progress` (may be empty) gets the fraction done from the calling thread.
-/// Deterministic whatever `parallel_for`.
+/// reach, and 0.6 times as many edges crossing a surface, in better shaped tetrahedra. Each block
+/// is sampled once (on both grids). `progress` (may be empty) gets the fraction done from the
+/// calling thread. Deterministic whatever `parallel_for`.
 ContourMesh contour_tetrahedra(ContourField& field, const Eigen::Vector3d& low,
                                const Eigen::Vector3d& high, double spacing,
                                const ParallelFor& parallel_for,

@@ -43,7 +43,8 @@ constexpr double grid_tolerance_ratio = 6.0;
 /// radii, so each cavity and neck, which holds a probe's ball, holds a lattice point outside
 /// the surface.
 constexpr double cavity_reach_ratio = 0.9;
-/// A body-centred lattice's spacing (cube side) per Å of reach: sqrt(5) / 4 spacings.
+/// A body-centred cubic lattice reaches every point from sqrt(5) / 4 of its spacing (the cubes'
+/// side): its spacing per Å of reach.
 constexpr double spacing_per_reach = 4.0 / 2.23606797749979;
 /// How far beyond the probe radius the solvent-excluded field labels lattice points with their
 /// nearest boundary piece, in spacings: the inner ends of most edges the surface crosses then
@@ -201,8 +202,9 @@ MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& cen
     return std::sqrt(8.0 * tolerance * curvature_radius) / std::sqrt(3.0);
   };
   double reach = 0.5 * std::sqrt(3.0) *
-    cubic_spacing_for(std::max(options.tolerance, std::min(coarse_grid_tolerance,
-                                                           grid_tolerance_ratio * options.tolerance)));
+    cubic_spacing_for(std::max(
+      options.tolerance,
+      std::min(coarse_grid_tolerance, grid_tolerance_ratio * options.tolerance)));
   if (excluded)
   {
     reach = std::min(reach, cavity_reach_ratio * p);

@@ -133,8 +133,7 @@ public:
     // An edge the surface crosses has its outside end within a spacing (the lattice's longest
     // edge) of the surface, which lies a probe radius inside the union: the nearest sphere of
     // such ends is found.
-    this->outside_reach_ =
-      std::max(0.0, grid.spacing - this->surface_.probe) + 0.1 * grid.spacing;
+    this->outside_reach_ = std::max(0.0, grid.spacing - this->surface_.probe) + 0.1 * grid.spacing;
     const Vec slack = Vec::Constant(box_slack);
     this->spheres_ = BlockBins(
       grid, this->radii_.size(),
@@ -258,9 +257,8 @@ public:
     // The root along the lattice edge itself: vertices kept on their edges cannot fold
     // triangles over one another, even at the surface's creases. First along the pieces nearest
     // the edge's ends (mostly one piece for both), then those nearest the tetrahedron's other
-    // corners, then
-    // the others of the ends' atoms (cheap roots on one piece, each kept when certified on its
-    // patch), else on the field.
+    // corners, then the others of the ends' atoms (cheap roots on one piece, each kept when
+    // certified on its patch), else on the field.
     const std::pair<PieceKind, std::uint32_t> at_inside(hint_kind(inside.hint),
                                                         hint_index(inside.hint));
     const std::pair<PieceKind, std::uint32_t> at_outside(hint_kind(outside.hint),
@@ -304,8 +302,8 @@ public:
     // It needs the distance's sign against the probe radius and the piece at the root, so
     // pieces a little deeper than the probe radius (general_search_depth) are enough: fewer to
     // gather.
-    const Vec middle = 0.25 * (corners[0].position + corners[1].position + corners[2].position +
-                               corners[3].position);
+    const Vec middle = 0.25 *
+      (corners[0].position + corners[1].position + corners[2].position + corners[3].position);
     if (!this->gathered_ || this->local_.centre != middle)
     {
       double radius = 0;

@@ -213,7 +213,7 @@ int main(int argc, char* argv[])
     double exact_area = 0, exact_volume = 0; // the same at every tolerance
     // The fastest tolerance whose mesh area lies within 0.5 % of the exact area.
     double accurate_seconds = 0, accurate_tolerance = 0;
-    for (const double tolerance : { 0.3, 0.15, 0.13, 0.12, 0.11, 0.1, 0.08, 0.06, 0.02 })
+    for (const double tolerance : { 0.3, 0.15, 0.13, 0.12, 0.11, 0.1, 0.09, 0.08, 0.06, 0.02 })
     {
       surface->SetTolerance(tolerance);
       reset_peak();

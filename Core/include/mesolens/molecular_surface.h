@@ -120,7 +120,8 @@ using SurfaceProgress = std::function<void(double)>;
 /// Throws InvalidInput for lists of different lengths, a non-finite centre or radius, a radius
 /// <= 0 or > 20 Å, an option out of range, a tolerance that would need more than 2e7
 /// triangles, or atoms spread so far apart (thousands of Å along each axis) that the search
-/// grid would need more than about 12 GB. No atoms give an empty surface. Deterministic whatever `parallel_for`.
+/// grid would need more than about 12 GB. No atoms give an empty surface. Deterministic
+/// whatever `parallel_for`.
 MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& centres,
                                    const std::vector<double>& radii,
                                    const MolecularSurfaceOptions& options = {},

@@ -57,6 +57,11 @@ struct CellTables
 {
   std::array<std::array<int, 4>, 12> tetrahedra{}; ///< each ordered with positive orientation
   std::array<std::array<CellEdge, cell_points>, cell_points> edges{};
+  /// Per cell point: its lattice (0 the grid, 1 the centred grid), its index steps from the
+  /// cell's own on it, and so its place in a block's arrays from the cell's.
+  std::array<int, cell_points> lattice{};
+  std::array<std::array<int, 3>, cell_points> step{};
+  std::array<std::size_t, cell_points> place{};
 };
 
 CellTables cell_tables()
@@ -85,6 +90,18 @@ CellTables cell_tables()
       }
       tables.tetrahedra[std::size_t(4 * d + q)] = tet;
     }
+  }
+  constexpr int side = ContourGrid::block_points;
+  for (int k = 0; k < cell_points; ++k)
+  {
+    tables.lattice[std::size_t(k)] = k >= 4 ? 1 : 0;
+    const Vec offset = cell_point_offset(k) + Vec::Constant(k >= 4 ? 0.5 : 0.0);
+    auto& step = tables.step[std::size_t(k)];
+    for (int a = 0; a < 3; ++a)
+    {
+      step[std::size_t(a)] = static_cast<int>(std::lround(offset[a]));
+    }
+    tables.place[std::size_t(k)] = std::size_t(step[0] + side * (step[1] + side * step[2]));
   }
   for (int a = 0; a < cell_points; ++a)
   {
@@ -342,29 +359,15 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
     const std::int64_t x0 = first[0], y0 = first[1], z0 = first[2];
     std::vector<std::uint64_t>& made = buffers.made;
     const std::uint64_t stamp = std::uint64_t(block + 1) << 32;
-    // A cell's twelve points: their lattice (0 the grid, 1 the centred grid), their index
-    // steps from the cell's own on it, and so their place in the block's arrays.
-    std::array<int, cell_points> lattice{};
-    std::array<std::array<int, 3>, cell_points> step{};
-    std::array<std::size_t, cell_points> place{};
-    for (int k = 0; k < cell_points; ++k)
-    {
-      lattice[std::size_t(k)] = k >= 4 ? 1 : 0;
-      const Vec offset = cell_point_offset(k) + Vec::Constant(k >= 4 ? 0.5 : 0.0);
-      for (int a = 0; a < 3; ++a)
-      {
-        step[std::size_t(k)][std::size_t(a)] = static_cast<int>(std::lround(offset[a]));
-      }
-      const auto& d = step[std::size_t(k)];
-      place[std::size_t(k)] = std::size_t(d[0] + side * (d[1] + side * d[2]));
-    }
+    const auto& lattice = tables.lattice;
+    const auto& place = tables.place;
     const auto contour_cell = [&](const std::array<std::int64_t, 3>& cell, std::size_t at) {
       std::array<LocalContourField::Sample, cell_points> corner;
       for (int k = 0; k < cell_points; ++k)
       {
         const std::size_t g = std::size_t(lattice[std::size_t(k)]);
         const std::size_t i = at + place[std::size_t(k)];
-        const auto& d = step[std::size_t(k)];
+        const auto& d = tables.step[std::size_t(k)];
         corner[std::size_t(k)] = {
           (g ? centred : grid).point(cell[0] + d[0], cell[1] + d[1], cell[2] + d[2]),
           buffers.values[g][i], buffers.hints[g][i]

@@ -53,12 +53,11 @@ struct ExcludedSurface
   const std::vector<double>& atom_radii;
   double probe, limit;
 
-  /// Whether `position` (within the ball of `local`) lies on the surface, to 1e-7 Å: its
-  /// nearest probe position, in `piece`, is the probe radius away. The search need not look
-  /// farther than that.
-  bool holds(const LocalPieces& local, const Eigen::Vector3d& position, ClosestPiece& piece) const
+  /// Whether `position` lies on the surface, to 1e-7 Å: its nearest probe position, in
+  /// `piece`, is the probe radius away. The search need not look farther than that.
+  bool holds(const Eigen::Vector3d& position, ClosestPiece& piece) const
   {
-    piece = this->distance.closest(local, position, {}, this->probe + 1e-6);
+    piece = this->distance.closest(position, {}, this->probe + 1e-6);
     return std::abs(piece.distance - this->probe) <= 1e-7;
   }
 

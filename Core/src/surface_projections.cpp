@@ -25,24 +25,15 @@ public:
   {
   }
 
-  void focus(const Vec& centre, double radius) override
-  {
-    // Gathered when a point first needs the search: most are answered on their edge's patches.
-    this->focus_centre_ = centre;
-    this->focus_radius_ = radius;
-    this->gathered_ = false;
-  }
+  /// Nothing to gather: most points are answered on their edge's patches, and the others are
+  /// looked up in the index one at a time. (On 3wip a focus served 1.5 such points, and
+  /// gathering its pieces cost 5 % more instructions than the lookups.)
+  void focus(const Vec& /*centre*/, double /*radius*/) override {}
 
   bool project(const Vec& x, ContourVertex& vertex) override
   {
     const double p = this->surface_.probe;
-    if (!this->gathered_)
-    {
-      this->surface_.distance.gather(this->focus_centre_, this->focus_radius_, this->surface_.limit,
-                                     this->local_);
-      this->gathered_ = true;
-    }
-    const ClosestPiece nearest = this->surface_.distance.closest(this->local_, x);
+    const ClosestPiece nearest = this->surface_.distance.closest(x, {}, this->surface_.limit);
     const Vec away = x - nearest.point;
     const double gap = away.norm();
     if (nearest.kind == PieceKind::None || !(gap > 0))
@@ -51,7 +42,7 @@ public:
     }
     const Vec position = nearest.point + p / gap * away;
     ClosestPiece piece;
-    if (!this->surface_.holds(this->local_, position, piece))
+    if (!this->surface_.holds(position, piece))
     {
       return false;
     }
@@ -118,10 +109,6 @@ public:
 
 private:
   ExcludedSurface surface_;
-  LocalPieces local_; ///< the pieces of the last focus, once gathered
-  Vec focus_centre_ = Vec::Zero();
-  double focus_radius_ = 0;
-  bool gathered_ = false;
 };
 
 /// Points onto the boundary of a union of spheres: radially onto the sphere the point lies

@@ -27,21 +27,6 @@ constexpr int block_cells = 16;
 constexpr int cell_points = 12;
 constexpr int edge_kinds = 14;
 
-/// Position of cell point k in spacings from the cell's grid point.
-Vec cell_point_offset(int k)
-{
-  if (k == 0)
-  {
-    return Vec::Zero();
-  }
-  if (k < 4)
-  {
-    return Vec::Unit(k - 1);
-  }
-  const int m = k - 4;
-  return Vec(m & 1 ? 0.5 : -0.5, m & 2 ? 0.5 : -0.5, m & 4 ? 0.5 : -0.5);
-}
-
 /// An edge between two cell points: the lattice point it is filed under (offset from the cell,
 /// on the grid or the centred grid by its kind) and its kind.
 struct CellEdge
@@ -68,6 +53,21 @@ CellTables cell_tables()
 {
   CellTables tables;
   const auto bits = [](int m) { return std::array<int, 3>{ m & 1, (m >> 1) & 1, (m >> 2) & 1 }; };
+  constexpr int side = ContourGrid::block_points;
+  for (int k = 0; k < cell_points; ++k)
+  {
+    tables.lattice[std::size_t(k)] = k >= 4 ? 1 : 0;
+    tables.step[std::size_t(k)] =
+      k == 0 ? std::array<int, 3>{ 0, 0, 0 } : bits(k < 4 ? 1 << (k - 1) : k - 4);
+    const auto& step = tables.step[std::size_t(k)];
+    tables.place[std::size_t(k)] = std::size_t(step[0] + side * (step[1] + side * step[2]));
+  }
+  // Positions in spacings from the cell's grid point: a centred point lies half a step below
+  // its index.
+  const auto position = [&](int k) -> Vec {
+    const auto& step = tables.step[std::size_t(k)];
+    return Vec(step[0], step[1], step[2]) - Vec::Constant(0.5 * tables.lattice[std::size_t(k)]);
+  };
   const int around[4][2] = { { 0, 0 }, { 1, 0 }, { 1, 1 }, { 0, 1 } };
   for (int d = 0; d < 3; ++d)
   {
@@ -76,32 +76,19 @@ CellTables cell_tables()
     const int u = (d + 1) % 3, v = (d + 2) % 3;
     for (int q = 0; q < 4; ++q)
     {
-      const auto centred = [&](int step) {
-        return 4 + (1 << d) + (around[step % 4][0] << u) + (around[step % 4][1] << v);
+      const auto centred = [&](int turn) {
+        return 4 + (1 << d) + (around[turn % 4][0] << u) + (around[turn % 4][1] << v);
       };
       std::array<int, 4> tet = { 0, 1 + d, centred(q), centred(q + 1) };
-      const Vec a = cell_point_offset(tet[0]);
-      const double volume = (cell_point_offset(tet[1]) - a)
-                              .cross(cell_point_offset(tet[2]) - a)
-                              .dot(cell_point_offset(tet[3]) - a);
+      const Vec a = position(tet[0]);
+      const double volume =
+        (position(tet[1]) - a).cross(position(tet[2]) - a).dot(position(tet[3]) - a);
       if (volume < 0)
       {
         std::swap(tet[2], tet[3]);
       }
       tables.tetrahedra[std::size_t(4 * d + q)] = tet;
     }
-  }
-  constexpr int side = ContourGrid::block_points;
-  for (int k = 0; k < cell_points; ++k)
-  {
-    tables.lattice[std::size_t(k)] = k >= 4 ? 1 : 0;
-    const Vec offset = cell_point_offset(k) + Vec::Constant(k >= 4 ? 0.5 : 0.0);
-    auto& step = tables.step[std::size_t(k)];
-    for (int a = 0; a < 3; ++a)
-    {
-      step[std::size_t(a)] = static_cast<int>(std::lround(offset[a]));
-    }
-    tables.place[std::size_t(k)] = std::size_t(step[0] + side * (step[1] + side * step[2]));
   }
   for (int a = 0; a < cell_points; ++a)
   {
@@ -113,6 +100,8 @@ CellTables cell_tables()
       {
         continue;
       }
+      const auto& low_step = tables.step[std::size_t(low)];
+      const auto& high_step = tables.step[std::size_t(high)];
       if (high < 4)
       {
         if (low != 0)
@@ -120,42 +109,33 @@ CellTables cell_tables()
           continue; // not an edge of the cell's tetrahedra
         }
         edge.kind = high - 1;
-        edge.point = { 0, 0, 0 };
+        edge.point = low_step;
       }
       else if (low >= 4)
       {
-        const int m = low - 4, n = high - 4;
-        const int w = m ^ n;
+        const int w = (low - 4) ^ (high - 4);
         if (w != 1 && w != 2 && w != 4)
         {
           continue;
         }
-        const int axis = w == 1 ? 0 : (w == 2 ? 1 : 2);
-        edge.kind = 3 + axis;
-        edge.point = bits(m);
+        edge.kind = 3 + (w == 1 ? 0 : (w == 2 ? 1 : 2));
+        edge.point = low_step;
       }
       else
       {
-        const std::array<int, 3> grid_point =
-          low == 0 ? std::array<int, 3>{ 0, 0, 0 } : bits(1 << (low - 1));
-        const std::array<int, 3> centred_point = bits(high - 4);
+        // From the grid point to a centred point 0 or 1 step above it on every axis.
         int mask = 0;
-        for (int k = 0; k < 3; ++k)
+        for (int k = 0; k < 3 && mask >= 0; ++k)
         {
-          const int step = centred_point[std::size_t(k)] - grid_point[std::size_t(k)];
-          if (step < 0 || step > 1)
-          {
-            mask = -1;
-            break;
-          }
-          mask |= step << k;
+          const int step = high_step[std::size_t(k)] - low_step[std::size_t(k)];
+          mask = step < 0 || step > 1 ? -1 : mask | (step << k);
         }
         if (mask < 0)
         {
           continue;
         }
         edge.kind = 6 + mask;
-        edge.point = grid_point;
+        edge.point = low_step;
       }
     }
   }

@@ -45,11 +45,28 @@ GridCell cell_of(const Vec& x, double width)
 {
   return grid_cell({ x[0], x[1], x[2] }, width);
 }
-} // namespace
 
-bool segment_meets_triangle(const Vec& p, const Vec& q, const Vec& a, const Vec& b, const Vec& c)
+/// A triangle's plane as orientation() sees it: the side of p is orientation(a, b, c, p),
+/// computed the same way (the same rounding) with the cross product made once.
+struct TrianglePlane
 {
-  const double from = orientation(a, b, c, p), to = orientation(a, b, c, q);
+  TrianglePlane(const Vec& a, const Vec& b, const Vec& c)
+    : corner(a)
+    , normal((b - a).cross(c - a))
+  {
+  }
+  double side(const Vec& p) const
+  {
+    return this->normal.dot(p - this->corner);
+  }
+  Vec corner, normal;
+};
+
+/// Whether the segment [p, q], whose ends lie on sides `from` and `to` of triangle (a, b, c)'s
+/// plane, meets the triangle (see segment_meets_triangle()).
+bool crossing_meets_triangle(double from, double to, const Vec& p, const Vec& q, const Vec& a,
+                             const Vec& b, const Vec& c)
+{
   if ((from > 0 && to > 0) || (from < 0 && to < 0) || (from == 0 && to == 0))
   {
     return false;
@@ -57,6 +74,13 @@ bool segment_meets_triangle(const Vec& p, const Vec& q, const Vec& a, const Vec&
   const double ab = orientation(p, q, a, b), bc = orientation(p, q, b, c),
                ca = orientation(p, q, c, a);
   return (ab >= 0 && bc >= 0 && ca >= 0) || (ab <= 0 && bc <= 0 && ca <= 0);
+}
+} // namespace
+
+bool segment_meets_triangle(const Vec& p, const Vec& q, const Vec& a, const Vec& b, const Vec& c)
+{
+  const TrianglePlane plane(a, b, c);
+  return crossing_meets_triangle(plane.side(p), plane.side(q), p, q, a, b, c);
 }
 
 bool triangles_meet(const std::array<std::int64_t, 3>& first,
@@ -80,21 +104,34 @@ bool triangles_meet(const std::array<std::int64_t, 3>& first,
   {
     return false;
   }
-  const auto edge_meets = [&](const std::array<std::int64_t, 3>& edges, int k,
-                              const std::array<std::int64_t, 3>& other) {
-    return segment_meets_triangle(
-      at(vertices, edges[std::size_t(k)]), at(vertices, edges[std::size_t((k + 1) % 3)]),
-      at(vertices, other[0]), at(vertices, other[1]), at(vertices, other[2]));
+  // Each triangle's corners against the other's plane, once: most edges stay on one side.
+  const std::array<const Vec*, 3> one = { &at(vertices, first[0]), &at(vertices, first[1]),
+                                          &at(vertices, first[2]) };
+  const std::array<const Vec*, 3> other = { &at(vertices, second[0]), &at(vertices, second[1]),
+                                            &at(vertices, second[2]) };
+  const TrianglePlane one_plane(*one[0], *one[1], *one[2]),
+    other_plane(*other[0], *other[1], *other[2]);
+  const std::array<double, 3> one_sides = { other_plane.side(*one[0]), other_plane.side(*one[1]),
+                                            other_plane.side(*one[2]) };
+  const std::array<double, 3> other_sides = { one_plane.side(*other[0]), one_plane.side(*other[1]),
+                                              one_plane.side(*other[2]) };
+  // Edge k (from corner k to k + 1) of `edges` against triangle `into`.
+  const auto edge_meets = [](const std::array<const Vec*, 3>& edges,
+                             const std::array<double, 3>& sides, int k,
+                             const std::array<const Vec*, 3>& into) {
+    const std::size_t from = std::size_t(k), to = std::size_t((k + 1) % 3);
+    return crossing_meets_triangle(sides[from], sides[to], *edges[from], *edges[to], *into[0],
+                                   *into[1], *into[2]);
   };
   if (shared == 1)
   {
     // The edge opposite corner k starts at corner k + 1.
-    return edge_meets(first, (first_shared + 1) % 3, second) ||
-      edge_meets(second, (second_shared + 1) % 3, first);
+    return edge_meets(one, one_sides, (first_shared + 1) % 3, other) ||
+      edge_meets(other, other_sides, (second_shared + 1) % 3, one);
   }
   for (int k = 0; k < 3; ++k)
   {
-    if (edge_meets(first, k, second) || edge_meets(second, k, first))
+    if (edge_meets(one, one_sides, k, other) || edge_meets(other, other_sides, k, one))
     {
       return true;
     }
@@ -124,6 +161,7 @@ FrozenCreases::FrozenCreases(const ContourMesh& mesh, const std::vector<char>& f
     const Box box = box_of(corners, mesh.vertices);
     this->boxes_.push_back(box);
     const GridCell from = cell_of(box[0], cell_width), to = cell_of(box[1], cell_width);
+    this->first_cells_.push_back(from);
     for (std::int64_t z = from[2]; z <= to[2]; ++z)
       for (std::int64_t y = from[1]; y <= to[1]; ++y)
         for (std::int64_t x = from[0]; x <= to[0]; ++x)
@@ -183,11 +221,19 @@ bool FrozenCreases::meets(const std::vector<std::int64_t>& triangles,
   {
     return false;
   }
-  // Boxes first: most frozen triangles in the cells lie clear of the pieces.
+  // Boxes first: most frozen triangles in the cells lie clear of the pieces. (The boxes of the
+  // first few pieces, as many as a triangle cut along its edges gives, are kept.)
+  constexpr std::size_t kept_boxes = 4;
+  std::array<Box, kept_boxes> boxes;
   Box all = box_of(&triangles[0], vertices);
+  boxes[0] = all;
   for (std::size_t k = 3; k < triangles.size(); k += 3)
   {
     const Box box = box_of(&triangles[k], vertices);
+    if (k < 3 * kept_boxes)
+    {
+      boxes[k / 3] = box;
+    }
     all = { all[0].cwiseMin(box[0]), all[1].cwiseMax(box[1]) };
   }
   const GridCell from = cell_of(all[0], this->cell_width_), to = cell_of(all[1], this->cell_width_);
@@ -206,7 +252,7 @@ bool FrozenCreases::meets(const std::vector<std::int64_t>& triangles,
           const Box& box = this->boxes_[entry->second];
           // A frozen triangle lies in every cell its box meets: tested in the first cell that
           // both boxes meet alone.
-          const GridCell first = cell_of(box[0], this->cell_width_);
+          const GridCell& first = this->first_cells_[entry->second];
           if (!overlap(all, box) || std::max(first[0], from[0]) != x ||
               std::max(first[1], from[1]) != y || std::max(first[2], from[2]) != z)
           {
@@ -215,7 +261,7 @@ bool FrozenCreases::meets(const std::vector<std::int64_t>& triangles,
           const auto& frozen = this->corners_[entry->second];
           for (std::size_t k = 0; k < triangles.size(); k += 3)
           {
-            if (overlap(box_of(&triangles[k], vertices), box) &&
+            if (overlap(k < 3 * kept_boxes ? boxes[k / 3] : box_of(&triangles[k], vertices), box) &&
                 triangles_meet({ triangles[k], triangles[k + 1], triangles[k + 2] }, frozen,
                                vertices))
             {

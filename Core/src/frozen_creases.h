@@ -4,6 +4,7 @@
 #pragma once
 
 #include "contour_tetrahedra.h"
+#include "grid_cells.h"
 
 #include <Eigen/Core>
 
@@ -61,6 +62,7 @@ private:
 
   std::vector<std::array<std::int64_t, 3>> corners_; ///< per frozen triangle, in order
   std::vector<Box> boxes_;                           ///< per frozen triangle
+  std::vector<GridCell> first_cells_; ///< per frozen triangle, the cell of its box's low corner
   /// (cell key, frozen triangle) sorted by key: every cell a triangle's box meets.
   std::vector<std::pair<std::uint64_t, std::uint32_t>> cells_;
   /// Per cell key, its entries' range in cells_.

@@ -385,22 +385,34 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
     // Split k's vertex is vertex_count + k; it stays while kept[k].
     std::vector<char> kept(proposed.size(), 1);
     const SplitEdges proposed_edges(proposed, vertex_count);
-    const auto middles_of = [&](std::size_t t) {
-      std::array<std::int64_t, 3> middles{};
-      for (int k = 0; k < 3; ++k)
+    // Per active triangle (by its place in `active`), the splits proposed on its edges, looked
+    // up once; middles_of() leaves out those dropped since.
+    std::vector<std::array<std::int64_t, 3>> proposed_middles(active.size());
+    run_parallel(parallel_for, active.size(), [&](std::size_t begin, std::size_t end) {
+      for (std::size_t k = begin; k < end; ++k)
       {
-        const std::int64_t m = proposed_edges.find(mesh.triangles[3 * t + std::size_t(k)],
-                                                   mesh.triangles[3 * t + std::size_t(k + 1) % 3]);
-        middles[k] = m != unsplit && kept[std::size_t(m) - vertex_count] ? m : unsplit;
+        const std::int64_t* corner = &mesh.triangles[3 * active[k]];
+        for (std::size_t e = 0; e < 3; ++e)
+        {
+          proposed_middles[k][e] = proposed_edges.find(corner[e], corner[(e + 1) % 3]);
+        }
+      }
+    });
+    const auto middles_of = [&](std::size_t k) {
+      std::array<std::int64_t, 3> middles = proposed_middles[k];
+      for (std::int64_t& m : middles)
+      {
+        m = m != unsplit && kept[std::size_t(m) - vertex_count] ? m : unsplit;
       }
       return middles;
     };
-    // Whether triangle t, cut along its kept splits, folds or passes through a triangle that
-    // stays at a crease: then those splits go (into `out`). (Those never have a split: their
-    // edges are not looked at.)
-    const auto check = [&](std::size_t t, std::vector<std::int64_t>& children,
+    // Whether active triangle k, cut along its kept splits, folds or passes through a triangle
+    // that stays at a crease: then those splits go (into `out`). (Those never have a split:
+    // their edges are not looked at.)
+    const auto check = [&](std::size_t k, std::vector<std::int64_t>& children,
                            std::vector<std::int64_t>& out) {
-      const auto middles = middles_of(t);
+      const std::size_t t = active[k];
+      const auto middles = middles_of(k);
       const std::array<std::int64_t, 3> corners = { mesh.triangles[3 * t],
                                                     mesh.triangles[3 * t + 1],
                                                     mesh.triangles[3 * t + 2] };
@@ -428,8 +440,7 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
       {
         for (std::size_t k = chunk * chunk_triangles; k < chunk_end(chunk); ++k)
         {
-          const std::size_t t = active[k];
-          const auto middles = middles_of(t);
+          const auto middles = middles_of(k);
           if (middles[0] == unsplit && middles[1] == unsplit && middles[2] == unsplit)
           {
             continue;
@@ -438,20 +449,21 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
           {
             if (m != unsplit)
             {
-              touching[chunk].emplace_back(m, t);
+              touching[chunk].emplace_back(m, k);
             }
           }
-          check(t, children, dropped[chunk]);
+          check(k, children, dropped[chunk]);
         }
       }
     });
+    // Per split, the places in `active` of the two triangles it cuts.
     std::vector<std::array<std::size_t, 2>> cut_by(proposed.size(), { SIZE_MAX, SIZE_MAX });
     for (const auto& chunk : touching)
     {
-      for (const auto& [m, t] : chunk)
+      for (const auto& [m, place] : chunk)
       {
         auto& pair = cut_by[std::size_t(m) - vertex_count];
-        pair[pair[0] == SIZE_MAX ? 0 : 1] = t;
+        pair[pair[0] == SIZE_MAX ? 0 : 1] = place;
       }
     }
     std::vector<std::int64_t> newly, children;
@@ -468,11 +480,11 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
         if (kept[k])
         {
           kept[k] = 0;
-          for (const std::size_t t : cut_by[k])
+          for (const std::size_t place : cut_by[k])
           {
-            if (t != SIZE_MAX)
+            if (place != SIZE_MAX)
             {
-              again.push_back(t);
+              again.push_back(place);
             }
           }
         }
@@ -480,9 +492,9 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
       std::sort(again.begin(), again.end());
       again.erase(std::unique(again.begin(), again.end()), again.end());
       newly.clear();
-      for (const std::size_t t : again)
+      for (const std::size_t place : again)
       {
-        check(t, children, newly);
+        check(place, children, newly);
       }
     }
     // The kept vertices renumbered in order, the others removed.
@@ -513,7 +525,7 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
         for (std::size_t k = chunk * chunk_triangles; k < chunk_end(chunk); ++k)
         {
           const std::size_t t = active[k];
-          std::array<std::int64_t, 3> middles = middles_of(t);
+          std::array<std::int64_t, 3> middles = middles_of(k);
           if (middles[0] == unsplit && middles[1] == unsplit && middles[2] == unsplit)
           {
             continue;

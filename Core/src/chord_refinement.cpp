@@ -432,8 +432,11 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
     };
     // Every triangle once (and, per split, the two triangles it cuts), then again those beside
     // dropped splits until none drops.
+    // Per split, the places in `active` of the two triangles it cuts: first the one where its
+    // edge runs from the lower end to the upper, then the other (the triangles are oriented
+    // alike, so they run it in opposite directions, and each slot is written once).
+    std::vector<std::array<std::size_t, 2>> cut_by(proposed.size(), { SIZE_MAX, SIZE_MAX });
     std::vector<std::vector<std::int64_t>> dropped(chunks);
-    std::vector<std::vector<std::pair<std::int64_t, std::size_t>>> touching(chunks);
     run_parallel(parallel_for, chunks, [&](std::size_t begin, std::size_t end) {
       std::vector<std::int64_t> children;
       for (std::size_t chunk = begin; chunk < end; ++chunk)
@@ -445,27 +448,19 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
           {
             continue;
           }
-          for (const std::int64_t m : middles)
+          const std::int64_t* corner = &mesh.triangles[3 * active[k]];
+          for (std::size_t e = 0; e < 3; ++e)
           {
-            if (m != unsplit)
+            if (middles[e] != unsplit)
             {
-              touching[chunk].emplace_back(m, k);
+              const std::size_t slot = corner[e] < corner[(e + 1) % 3] ? 0 : 1;
+              cut_by[std::size_t(middles[e]) - vertex_count][slot] = k;
             }
           }
           check(k, children, dropped[chunk]);
         }
       }
     });
-    // Per split, the places in `active` of the two triangles it cuts.
-    std::vector<std::array<std::size_t, 2>> cut_by(proposed.size(), { SIZE_MAX, SIZE_MAX });
-    for (const auto& chunk : touching)
-    {
-      for (const auto& [m, place] : chunk)
-      {
-        auto& pair = cut_by[std::size_t(m) - vertex_count];
-        pair[pair[0] == SIZE_MAX ? 0 : 1] = place;
-      }
-    }
     std::vector<std::int64_t> newly, children;
     for (const auto& chunk : dropped)
     {

@@ -37,8 +37,9 @@ struct Candidate
   Vec middle;
 };
 
-/// The new vertices of one chunk and the edges (lower end, upper end) they split.
-struct ChunkSplits
+/// The new vertices of one chunk and the edges (lower end, upper end) they split. (A cache line
+/// each: neighbouring chunks are filled at once by different threads.)
+struct alignas(64) ChunkSplits
 {
   std::vector<ContourVertex> vertices;
   std::vector<std::pair<std::int64_t, std::int64_t>> edges;

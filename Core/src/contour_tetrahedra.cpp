@@ -180,8 +180,9 @@ constexpr std::uint32_t foreign_bit = 0x80000000u;
 
 /// What one block made: the vertices it owns (those on edges whose lower point lies in it),
 /// with the grid key of their edge; the keys of the edges it uses but another block owns; and
-/// its triangles, as indices into those.
-struct BlockOutput
+/// its triangles, as indices into those. (A cache line each: neighbouring blocks are filled at
+/// once by different threads.)
+struct alignas(64) BlockOutput
 {
   std::vector<ContourVertex> vertices;
   std::vector<std::uint64_t> keys;

@@ -431,12 +431,12 @@ void refine_chords(ContourMesh& mesh, const SurfaceProjection& projection, doubl
         }
       }
     };
-    // Every triangle once (and, per split, the two triangles it cuts), then again those beside
-    // dropped splits until none drops.
     // Per split, the places in `active` of the two triangles it cuts: first the one where its
     // edge runs from the lower end to the upper, then the other (the triangles are oriented
     // alike, so they run it in opposite directions, and each slot is written once).
     std::vector<std::array<std::size_t, 2>> cut_by(proposed.size(), { SIZE_MAX, SIZE_MAX });
+    // Every triangle once (noting the splits' triangles), then again those beside dropped
+    // splits until none drops.
     std::vector<std::vector<std::int64_t>> dropped(chunks);
     run_parallel(parallel_for, chunks, [&](std::size_t begin, std::size_t end) {
       std::vector<std::int64_t> children;

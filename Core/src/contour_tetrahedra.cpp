@@ -273,6 +273,8 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
   const std::size_t block_count = grid.block_count();
   static const CellTables tables = cell_tables();
   // Edges are keyed by the point they are filed under and their kind.
+  constexpr std::uint64_t key_kinds = 16;
+  static_assert(edge_kinds <= int(key_kinds), "an edge's kind must fit its key");
   const auto point_key = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
     return static_cast<std::uint64_t>(x + points[0] * (y + points[1] * z));
   };
@@ -283,17 +285,19 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
     return static_cast<std::size_t>(along(x, 0) +
                                     blocks[0] * (along(y, 1) + blocks[1] * along(z, 2)));
   };
-  // The block making an edge's vertex: that of the cell the edge's kind names.
+  // The block making the vertex of the edge of `kind` filed under point (x, y, z): that of the
+  // cell owner_offset() names.
+  const auto owner_block = [&](std::int64_t x, std::int64_t y, std::int64_t z, int kind) {
+    const auto offset = owner_offset(kind);
+    return block_of_cell(x + offset[0], y + offset[1], z + offset[2]);
+  };
   const auto owner_of = [&](std::uint64_t key) {
-    const std::uint64_t point = key / 16;
-    const int kind = static_cast<int>(key % 16);
-    const std::array<std::int64_t, 3> at = {
+    const std::uint64_t point = key / key_kinds;
+    return owner_block(
       static_cast<std::int64_t>(point % std::uint64_t(points[0])),
       static_cast<std::int64_t>((point / std::uint64_t(points[0])) % std::uint64_t(points[1])),
-      static_cast<std::int64_t>(point / std::uint64_t(points[0] * points[1]))
-    };
-    const auto offset = owner_offset(kind);
-    return block_of_cell(at[0] + offset[0], at[1] + offset[1], at[2] + offset[2]);
+      static_cast<std::int64_t>(point / std::uint64_t(points[0] * points[1])),
+      static_cast<int>(key % key_kinds));
   };
 
   field.prepare(grid, parallel_for);
@@ -363,9 +367,8 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
         if ((entry & ~std::uint64_t(0xffffffffu)) != stamp)
         {
           std::uint32_t index = 0;
-          const std::uint64_t key = point_key(x, y, z) * 16 + std::uint64_t(kind.kind);
-          const auto owner = owner_offset(kind.kind);
-          if (block_of_cell(x + owner[0], y + owner[1], z + owner[2]) == block)
+          const std::uint64_t key = point_key(x, y, z) * key_kinds + std::uint64_t(kind.kind);
+          if (owner_block(x, y, z, kind.kind) == block)
           {
             const int outside = corner[std::size_t(a)].value > 0 ? b : a;
             const int inside = corner[std::size_t(a)].value > 0 ? a : b;

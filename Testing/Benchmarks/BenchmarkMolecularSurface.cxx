@@ -57,10 +57,9 @@ double mesh_area(vtkPolyData* mesh)
 }
 
 /// The mesh's area with each triangle projected onto the mean of its corners' normals (the
-/// surface's), Å²: what it would be without the tilt of triangles against the surface, so its
-/// shortfall from the exact area is that of the chords. (A triangle tilted by an angle adds
-/// 1 - cos of it to its share of the mesh's area: a mesh can reach the exact area with
-/// triangles too short and too tilted.)
+/// surface's), Å²: its shortfall from the exact area is the chords' alone. A triangle tilted
+/// against the surface by an angle t has 1 - cos t of its area beyond that projection, so a mesh
+/// can match the exact area with chords that fall short and triangles that tilt.
 double projected_area(vtkPolyData* mesh)
 {
   vtkDataArray* normals = mesh->GetPointData()->GetNormals();

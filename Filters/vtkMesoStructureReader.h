@@ -4,7 +4,11 @@
  * @brief   Reads PDB and PDBx/mmCIF files (plain or .gz) into atoms and bonds, losing no atom.
  *
  * Parsing is done by gemmi. Unlike vtkPDBReader, every atom is kept: hydrogens, HETATM
- * records, waters and (optionally) every alternate location.
+ * records, waters and (optionally) every alternate location. PDB files written by MD programs
+ * keep their true serials and residue numbers past 99999 and 9999: hybrid-36 (also in CONECT),
+ * numbers written in full that shift the rest of the record, and numbers written modulo 100000
+ * and 10000 as GROMACS writes them (see mesolens::read_structure()); four-letter residue names
+ * (DPPC) are kept whole.
  *
  * Output: a vtkPolyData with one point and one vertex cell per atom (coordinates in Å), one
  * line cell per bond, and these point arrays:

@@ -2,8 +2,8 @@
 #include "mesolens/structure_file.h"
 
 #include "file_checks.h"
+#include "pdb_text_scan.h"
 #include "mesolens/bond_consensus.h"
-#include "mesolens/elements.h"
 #include "mesolens/errors.h"
 #include "mesolens/molecule_assignment.h"
 
@@ -16,8 +16,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdlib>
-#include <cstring>
 #include <map>
 #include <unordered_map>
 
@@ -30,194 +28,6 @@ bool ends_with(const std::string& text, const std::string& suffix)
   return text.size() >= suffix.size() &&
     std::equal(suffix.rbegin(), suffix.rend(), text.rbegin(),
                [](char a, char b) { return std::tolower(a) == std::tolower(b); });
-}
-
-/// What the raw-text pass over a PDB file found.
-struct ConectRecords
-{
-  std::vector<std::pair<int, int>> pairs; ///< CONECT (serial, bonded serial)
-  std::size_t unreadable_fields = 0;      ///< CONECT fields that are not numbers
-  std::size_t legacy_columns = 0;         ///< records whose columns 77-80 were blanked
-  std::size_t atom_records = 0;           ///< ATOM/HETATM records
-  std::size_t element_records = 0;        ///< ... with an element symbol in columns 77-78
-};
-
-bool is_charge_field(char a, char b)
-{
-  const auto digit = [](char c) { return c >= '0' && c <= '9'; };
-  const auto sign = [](char c) { return c == '+' || c == '-'; };
-  return (a == ' ' && b == ' ') || (digit(a) && sign(b)) || (sign(a) && digit(b)) ||
-    (a == ' ' && digit(b)) || (digit(a) && b == ' ');
-}
-
-bool is_element_field(char a, char b)
-{
-  if (a == ' ' && b == ' ')
-  {
-    return true;
-  }
-  const std::string symbol = std::string(1, a) + std::string(1, b);
-  return atomic_number_from_symbol(symbol) != 0 || symbol == " X" || symbol == "X ";
-}
-
-/// True when the fixed-width field holds one decimal number (blanks around it allowed), or
-/// "nan"/"inf", which the finiteness check reports later with the atom's name.
-bool is_number_field(const char* field, std::size_t width)
-{
-  std::size_t i = 0;
-  while (i < width && field[i] == ' ')
-  {
-    ++i;
-  }
-  const std::size_t first = i;
-  if (i < width && (field[i] == '-' || field[i] == '+'))
-  {
-    ++i;
-  }
-  std::size_t digits = 0;
-  bool dot = false;
-  for (; i < width && field[i] != ' '; ++i)
-  {
-    const char c = field[i];
-    if (c >= '0' && c <= '9')
-    {
-      ++digits;
-    }
-    else if (c == '.' && !dot)
-    {
-      dot = true;
-    }
-    else if ((c == 'e' || c == 'E') && digits > 0 && i + 1 < width)
-    {
-      if (field[i + 1] == '-' || field[i + 1] == '+')
-      {
-        ++i;
-      }
-    }
-    else
-    {
-      const std::string word(field + first, std::min<std::size_t>(width - first, 4));
-      return word.rfind("nan", 0) == 0 || word.rfind("-nan", 0) == 0 || word.rfind("inf", 0) == 0 ||
-        word.rfind("-inf", 0) == 0;
-    }
-  }
-  while (i < width && field[i] == ' ')
-  {
-    ++i;
-  }
-  return digits > 0 && i == width;
-}
-
-/// Pre-remediation files (1HPV) keep the entry id and a serial in columns 73-80. Blanks columns
-/// 77-80 of such a record, so gemmi infers the element from the atom name instead of failing
-/// on the "charge".
-bool blank_legacy_columns(char* line, std::size_t length)
-{
-  if (length < 77)
-  {
-    return false;
-  }
-  const char element_a = line[76];
-  const char element_b = length > 77 ? line[77] : ' ';
-  const char charge_a = length > 78 ? line[78] : ' ';
-  const char charge_b = length > 79 ? line[79] : ' ';
-  if (is_element_field(element_a, element_b) && is_charge_field(charge_a, charge_b))
-  {
-    return false;
-  }
-  for (std::size_t column = 76; column < std::min<std::size_t>(length, 80); ++column)
-  {
-    line[column] = ' ';
-  }
-  return true;
-}
-
-/// Scans the raw PDB text once: collects CONECT pairs (gemmi 0.5 ignores CONECT), rejects
-/// ATOM/HETATM records too short to hold coordinates (the mark of a truncated file), and
-/// blanks legacy text in columns 77-80.
-ConectRecords scan_pdb_text(char* data, std::size_t size, const std::string& path)
-{
-  ConectRecords records;
-  std::size_t line_number = 0;
-  char* line = data;
-  char* end = data + size;
-  while (line < end)
-  {
-    char* newline = static_cast<char*>(std::memchr(line, '\n', std::size_t(end - line)));
-    const char* line_end = newline ? newline : end;
-    std::size_t length = std::size_t(line_end - line);
-    if (length > 0 && line[length - 1] == '\r')
-    {
-      --length;
-    }
-    ++line_number;
-    const bool atom =
-      length >= 6 && (std::strncmp(line, "ATOM  ", 6) == 0 || std::strncmp(line, "HETATM", 6) == 0);
-    if (atom && length < 54)
-    {
-      throw FileError(path + ": line " + std::to_string(line_number) + " is an " +
-                      std::string(line, 6) + " record of " + std::to_string(length) +
-                      " columns, too short to hold coordinates (54); the file looks truncated");
-    }
-    for (std::size_t column = 30; atom && column < 54; column += 8)
-    {
-      if (!is_number_field(line + column, 8))
-      {
-        throw FileError(path + ": line " + std::to_string(line_number) + " has '" +
-                        std::string(line + column, 8) + "' in coordinate columns " +
-                        std::to_string(column + 1) + "-" + std::to_string(column + 8) +
-                        ", not a number");
-      }
-    }
-    if (atom && blank_legacy_columns(line, length))
-    {
-      ++records.legacy_columns;
-    }
-    if (atom)
-    {
-      ++records.atom_records;
-      if (length > 77 &&
-          (std::isalpha(static_cast<unsigned char>(line[76])) ||
-           std::isalpha(static_cast<unsigned char>(line[77]))))
-      {
-        ++records.element_records;
-      }
-    }
-    if (length >= 11 && std::strncmp(line, "CONECT", 6) == 0)
-    {
-      auto field = [&](std::size_t column) -> int {
-        if (column + 5 > length)
-        {
-          return 0;
-        }
-        const std::string text(line + column, 5);
-        char* parse_end = nullptr;
-        const long value = std::strtol(text.c_str(), &parse_end, 10);
-        if (parse_end == text.c_str() ||
-            std::any_of(static_cast<const char*>(parse_end), text.c_str() + text.size(),
-                        [](char c) { return c != ' '; }))
-        {
-          if (text.find_first_not_of(' ') != std::string::npos)
-          {
-            ++records.unreadable_fields;
-          }
-          return 0;
-        }
-        return int(value);
-      };
-      const int from = field(6);
-      for (std::size_t column = 11; column <= 26 && from > 0; column += 5)
-      {
-        const int to = field(column);
-        if (to > 0)
-        {
-          records.pairs.emplace_back(from, to);
-        }
-      }
-    }
-    line = newline ? newline + 1 : end;
-  }
-  return records;
 }
 
 SecondaryStructure helix_kind(gemmi::Helix::HelixClass helix_class)
@@ -369,7 +179,11 @@ void mark_alternate_locations(const AtomTable& table, const ResidueRange& range,
 }
 
 /// Converts one gemmi model; fills `ranges` with the residue layout for secondary structure.
-AtomTable convert_model(const gemmi::Model& model, std::vector<ChainResidues>& chains)
+/// `pdb_atoms` (empty for mmCIF) holds each PDB record's serial, residue number and residue
+/// name end, which gemmi reads wrongly from MD files; gemmi's serial indexes it.
+AtomTable convert_model(const gemmi::Model& model,
+                        const std::vector<detail::PdbAtomFields>& pdb_atoms,
+                        std::vector<ChainResidues>& chains)
 {
   AtomTable table;
   std::size_t atom_count = 0;
@@ -406,6 +220,19 @@ AtomTable convert_model(const gemmi::Model& model, std::vector<ChainResidues>& c
         table.is_hetero.back() = residue.het_flag == 'H' ? 1 : 0;
         table.serials.back() = atom.serial;
         table.formal_charges.back() = atom.charge;
+        if (atom.serial >= 1 && std::size_t(atom.serial) <= pdb_atoms.size())
+        {
+          const detail::PdbAtomFields& fields = pdb_atoms[std::size_t(atom.serial) - 1];
+          table.serials.back() = fields.serial;
+          if (fields.residue_number_read)
+          {
+            table.residue_numbers.back() = fields.residue_number;
+          }
+          if (fields.residue_name_end != ' ')
+          {
+            table.residue_names.back() += fields.residue_name_end;
+          }
+        }
       }
       chains.back().residues.push_back({ &residue, begin, table.size() });
     }
@@ -415,7 +242,7 @@ AtomTable convert_model(const gemmi::Model& model, std::vector<ChainResidues>& c
 
 std::vector<Bond> explicit_bonds(const gemmi::Structure& structure, const gemmi::Model& model,
                                  const std::vector<ChainResidues>& chains, const AtomTable& table,
-                                 const ConectRecords& conect, std::vector<std::string>& warnings)
+                                 const detail::PdbTextScan& pdb, std::vector<std::string>& warnings)
 {
   std::vector<Bond> bonds;
   auto add = [&bonds](std::size_t a, std::size_t b) {
@@ -424,7 +251,7 @@ std::vector<Bond> explicit_bonds(const gemmi::Structure& structure, const gemmi:
       bonds.push_back({ std::uint32_t(std::min(a, b)), std::uint32_t(std::max(a, b)) });
     }
   };
-  if (!conect.pairs.empty())
+  if (!pdb.conect_pairs.empty())
   {
     std::unordered_map<int, std::size_t> by_serial;
     for (std::size_t i = 0; i < table.size(); ++i)
@@ -432,7 +259,7 @@ std::vector<Bond> explicit_bonds(const gemmi::Structure& structure, const gemmi:
       by_serial.emplace(table.serials[i], i);
     }
     std::size_t unresolved = 0;
-    for (const auto& pair : conect.pairs)
+    for (const auto& pair : pdb.conect_pairs)
     {
       const auto a = by_serial.find(pair.first);
       const auto b = by_serial.find(pair.second);
@@ -450,17 +277,42 @@ std::vector<Bond> explicit_bonds(const gemmi::Structure& structure, const gemmi:
         " CONECT entries name atom serials that are not in the file; they were ignored");
     }
   }
-  if (conect.legacy_columns > 0)
+  if (pdb.legacy_columns > 0)
   {
     warnings.push_back(
-      std::to_string(conect.legacy_columns) +
+      std::to_string(pdb.legacy_columns) +
       " atom records carry non-standard text in columns 77-80 (pre-remediation PDB format); "
       "their elements were inferred from the atom names");
   }
-  if (conect.unreadable_fields > 0)
+  if (pdb.unreadable_conect_fields > 0)
   {
-    warnings.push_back(std::to_string(conect.unreadable_fields) +
+    warnings.push_back(std::to_string(pdb.unreadable_conect_fields) +
                        " CONECT fields are not numbers (e.g. ***** serials); they were ignored");
+  }
+  if (pdb.run_together_conect_records > 0)
+  {
+    warnings.push_back(std::to_string(pdb.run_together_conect_records) +
+                       " CONECT records have serials over 99999 written in full, running into "
+                       "each other; they were ignored");
+  }
+  if (pdb.shifted_records > 0)
+  {
+    warnings.push_back(std::to_string(pdb.shifted_records) +
+                       " atom records have a serial over 99999 or a residue number over 9999 "
+                       "written in full, which pushes the later fields right; they were read from "
+                       "where their coordinates are");
+  }
+  if (pdb.continued_serials > 0)
+  {
+    warnings.push_back(
+      "atom serials restart after 99999 (written modulo 100000, as GROMACS does); " +
+      std::to_string(pdb.continued_serials) + " atom records were numbered on from 100000");
+  }
+  if (pdb.continued_residue_numbers > 0)
+  {
+    warnings.push_back(
+      "residue numbers restart after 9999 (written modulo 10000, as GROMACS does); " +
+      std::to_string(pdb.continued_residue_numbers) + " atom records were numbered on from 10000");
   }
   // Table index of each residue's first atom, to turn gemmi atom pointers into indices.
   std::unordered_map<const gemmi::Residue*, std::size_t> first_atom_of;
@@ -517,7 +369,7 @@ void check_finite(const AtomTable& table, const std::string& path)
   }
 }
 
-gemmi::Structure parse_with_gemmi(const std::string& path, ConectRecords& conect)
+gemmi::Structure parse_with_gemmi(const std::string& path, detail::PdbTextScan& pdb)
 {
   detail::require_readable_file(path);
   try
@@ -544,7 +396,7 @@ gemmi::Structure parse_with_gemmi(const std::string& path, ConectRecords& conect
     }
     if (format == gemmi::CoorFormat::Pdb)
     {
-      conect = scan_pdb_text(buffer.data(), buffer.size(), path);
+      pdb = detail::scan_pdb_text(buffer.data(), buffer.size(), path);
       return gemmi::read_pdb_from_memory(buffer.data(), buffer.size(), path);
     }
     if (format == gemmi::CoorFormat::Mmcif)
@@ -637,11 +489,11 @@ StructureFile read_structure(const std::string& path, const StructureReadParams&
       throw FileError("reading was aborted");
     }
   };
-  ConectRecords conect;
-  const gemmi::Structure structure = parse_with_gemmi(path, conect);
+  detail::PdbTextScan pdb;
+  const gemmi::Structure structure = parse_with_gemmi(path, pdb);
   // mmCIF always names elements (type_symbol); a PDB file does when most records fill 77-78.
-  const bool elements_given = structure.input_format != gemmi::CoorFormat::Pdb ||
-    2 * conect.element_records > conect.atom_records;
+  const bool elements_given =
+    structure.input_format != gemmi::CoorFormat::Pdb || 2 * pdb.element_records > pdb.atoms.size();
   report(0.5);
 
   StructureFile file;
@@ -650,7 +502,7 @@ StructureFile read_structure(const std::string& path, const StructureReadParams&
   {
     const gemmi::Model& model = structure.models[m];
     std::vector<ChainResidues> chains;
-    AtomTable table = convert_model(model, chains);
+    AtomTable table = convert_model(model, pdb.atoms, chains);
     if (table.size() == 0)
     {
       continue;
@@ -673,7 +525,7 @@ StructureFile read_structure(const std::string& path, const StructureReadParams&
       }
     }
     std::vector<std::string> warnings;
-    table.bonds = explicit_bonds(structure, model, chains, table, conect, warnings);
+    table.bonds = explicit_bonds(structure, model, chains, table, pdb, warnings);
     if (m == 0)
     {
       file.warnings = warnings;

@@ -9,7 +9,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <dirent.h>
+#include <functional>
+#include <numeric>
 #include <set>
 #include <tuple>
 #include <zlib.h>
@@ -325,4 +328,255 @@ TEST(StructureFile, AwkwardElementsAndNames)
   auto conect = mesolens::read_structure(folder + "mdanalysis_conect_error.pdb");
   ASSERT_FALSE(conect.warnings.empty());
   EXPECT_NE(conect.warnings[0].find("CONECT"), std::string::npos);
+}
+
+namespace {
+/// One ATOM/HETATM record in GROMACS' gmx_fprintf_pdb_atomline format, without the modulo that
+/// GROMACS applies first: a serial over 99999 or a residue number over 9999 takes more than its
+/// field and pushes the rest of the record right.
+std::string printf_atom_record(const char* record, int serial, const char* name, char alt_loc,
+                               const char* residue, char chain, int residue_number,
+                               char insertion_code, double x, double y, double z, double occupancy,
+                               double b_factor, const char* element)
+{
+  char line[128];
+  std::snprintf(line, sizeof(line),
+                "%-6s%5d %-4.4s%c%4.4s%c%4d%c   %8.3f%8.3f%8.3f%6.2f%6.2f          %2s\n", record,
+                serial, name, alt_loc, residue, chain, residue_number, insertion_code, x, y, z,
+                occupancy, b_factor, element);
+  return line;
+}
+
+std::size_t index_of_serial(const mesolens::AtomTable& t, int serial)
+{
+  const auto found = std::find(t.serials.begin(), t.serials.end(), serial);
+  return found == t.serials.end() ? t.size() : std::size_t(found - t.serials.begin());
+}
+} // namespace
+
+// Written by GROMACS 2022's own PDB writer (Testing/Tools/write_gromacs_pdb_fixture.cpp): one
+// DPPC and 50 waters numbered 9990..10040, atoms 99811..100090. GROMACS writes residue numbers
+// modulo 10000 and serials modulo 100000 in the standard columns ("ATOM      0  H2  SOL A  10"),
+// and four-letter residue names run into the chain column ("DPPCA9990").
+TEST(StructureFile, GromacsNumbersContinueWhereTheyRestart)
+{
+  const auto file =
+    mesolens::read_structure(data_file("proteins/awkward/gromacs_wrapped_numbers.pdb"));
+  ASSERT_EQ(file.models.size(), 1u);
+  const mesolens::AtomTable& t = file.models[0];
+  ASSERT_EQ(t.size(), 280u);
+  std::vector<int> serials, residue_numbers;
+  std::vector<std::string> residue_names;
+  for (int i = 0; i < 280; ++i)
+  {
+    serials.push_back(99811 + i);
+    residue_numbers.push_back(i < 130 ? 9990 : 9991 + (i - 130) / 3);
+    residue_names.push_back(i < 130 ? "DPPC" : "SOL");
+  }
+  EXPECT_EQ(t.serials, serials);
+  EXPECT_EQ(t.residue_numbers, residue_numbers);
+  EXPECT_EQ(t.residue_names, residue_names);
+  EXPECT_EQ(t.chain_ids, std::vector<std::string>(280, "A"));
+  EXPECT_EQ(t.insertion_codes, std::vector<char>(280, ' '));
+  EXPECT_EQ(t.occupancies, std::vector<float>(280, 1.0f));
+  EXPECT_EQ(t.b_factors, std::vector<float>(280, 0.0f));
+  EXPECT_EQ(t.residue_indices.back() + 1, 51);
+
+  struct Atom
+  {
+    std::size_t index;
+    const char* name;
+    int atomic_number;
+    float x, y, z;
+  };
+  const Atom atoms[] = {
+    { 0, "N", 7, 19.680f, 34.850f, 55.850f },      // ATOM  99811  N   DPPCA9990
+    { 125, "H15Y", 1, 23.430f, 32.110f, 40.480f }, // ATOM  99936 H15Y DPPCA9990
+    { 157, "OH2", 8, 3.780f, 50.140f, 51.870f },   // ATOM  99968  OH2 SOL A   0 (10000)
+    { 189, "H2", 1, 1.760f, 4.140f, 55.370f },     // ATOM      0  H2  SOL A  10 (100000)
+    { 279, "H2", 1, 24.570f, 55.060f, 59.660f },   // ATOM     90  H2  SOL A  40
+  };
+  for (const Atom& atom : atoms)
+  {
+    SCOPED_TRACE(atom.index);
+    EXPECT_EQ(t.atom_names[atom.index], atom.name);
+    EXPECT_EQ(t.atomic_numbers[atom.index], atom.atomic_number);
+    EXPECT_NEAR(t.positions[3 * atom.index], atom.x, 1e-4);
+    EXPECT_NEAR(t.positions[3 * atom.index + 1], atom.y, 1e-4);
+    EXPECT_NEAR(t.positions[3 * atom.index + 2], atom.z, 1e-4);
+  }
+  EXPECT_EQ(t.residue_numbers[157], 10000);
+  EXPECT_EQ(t.serials[189], 100000);
+  const std::string warnings = std::accumulate(file.warnings.begin(), file.warnings.end(),
+                                               std::string(), std::plus<std::string>());
+  EXPECT_NE(warnings.find("restart after 9999 "), std::string::npos) << warnings;
+  EXPECT_NE(warnings.find("restart after 99999 "), std::string::npos) << warnings;
+}
+
+// Serials and residue numbers written in full push the record right by one column each.
+TEST(StructureFile, OverflowingNumbersShiftTheRecord)
+{
+  // Open Babel 3's PDB writer: its own format, no modulo either.
+  char open_babel_record[128];
+  std::snprintf(open_babel_record, sizeof(open_babel_record),
+                "%s%5d %-4s %-3s %c%4d    %8.3f%8.3f%8.3f  1.00  0.00          %2s%2s\n", "HETATM",
+                100006, " O", "HOH", 'W', 10003, 13.0, 14.0, -15.0, "O", "");
+  const std::string text =
+    std::string("CRYST1  100.000  100.000  100.000  90.00  90.00  90.00 P 1           1\n") +
+    printf_atom_record("ATOM", 99998, " N", ' ', "LYS ", 'C', 9999, ' ', 1.5, -2.25, 3.125, 1.0,
+                       0.0, "N") +
+    printf_atom_record("ATOM", 99999, " CA", ' ', "LYS ", 'C', 9999, ' ', 2.5, -2.25, 3.125, 1.0,
+                       0.0, "C") +
+    printf_atom_record("ATOM", 100000, " C", ' ', "LYS ", 'C', 9999, ' ', 3.0, -1.0, 3.125, 1.0,
+                       0.0, "C") +
+    printf_atom_record("ATOM", 100001, " O", ' ', "LYS ", 'C', 9999, ' ', 3.5, -0.5, 3.125, 0.5,
+                       12.34, "O") +
+    printf_atom_record("ATOM", 100002, " N", 'A', "GLY ", 'C', 10000, ' ', -123.456, 999.999,
+                       -0.001, 1.0, 0.0, "N") +
+    printf_atom_record("ATOM", 100003, " N", ' ', "GLY ", 'C', 10001, 'B', 4.0, 5.0, 6.0, 1.0, 0.0,
+                       "N") +
+    printf_atom_record("HETATM", 100004, "CL", ' ', " CL ", 'C', 10002, ' ', 7.0, 8.0, 9.0, 1.0,
+                       0.0, "CL") +
+    printf_atom_record("ATOM", 100005, " P", ' ', "POPC", ' ', 123456, ' ', 10.0, 11.0, 12.0, 1.0,
+                       0.0, "P") +
+    open_babel_record + "CONECT100000100001\nEND\n";
+  mesolens::StructureReadParams params;
+  params.perceive_bonds = false;
+  const auto file =
+    mesolens::read_structure(mesolens_test::write_bytes("shifted.pdb", text), params);
+  const mesolens::AtomTable& t = file.models.at(0);
+  ASSERT_EQ(t.size(), 9u);
+  EXPECT_EQ(
+    t.serials,
+    (std::vector<int>{ 99998, 99999, 100000, 100001, 100002, 100003, 100004, 100005, 100006 }));
+  EXPECT_EQ(t.residue_numbers,
+            (std::vector<int>{ 9999, 9999, 9999, 9999, 10000, 10001, 10002, 123456, 10003 }));
+  EXPECT_EQ(t.atom_names,
+            (std::vector<std::string>{ "N", "CA", "C", "O", "N", "N", "CL", "P", "O" }));
+  EXPECT_EQ(
+    t.residue_names,
+    (std::vector<std::string>{ "LYS", "LYS", "LYS", "LYS", "GLY", "GLY", "CL", "POPC", "HOH" }));
+  EXPECT_EQ(t.chain_ids, (std::vector<std::string>{ "C", "C", "C", "C", "C", "C", "C", "", "W" }));
+  EXPECT_EQ(t.alt_locs, (std::vector<char>{ ' ', ' ', ' ', ' ', 'A', ' ', ' ', ' ', ' ' }));
+  EXPECT_EQ(t.insertion_codes, (std::vector<char>{ ' ', ' ', ' ', ' ', ' ', 'B', ' ', ' ', ' ' }));
+  EXPECT_EQ(t.atomic_numbers, (std::vector<std::uint8_t>{ 7, 6, 6, 8, 7, 7, 17, 15, 8 }));
+  EXPECT_EQ(t.is_hetero, (std::vector<std::uint8_t>{ 0, 0, 0, 0, 0, 0, 1, 0, 1 }));
+  EXPECT_FLOAT_EQ(t.occupancies[3], 0.5f);
+  EXPECT_FLOAT_EQ(t.b_factors[3], 12.34f);
+  const struct
+  {
+    std::size_t index;
+    float x, y, z;
+  } positions[] = { { 0, 1.5f, -2.25f, 3.125f },
+                    { 4, -123.456f, 999.999f, -0.001f },
+                    { 7, 10.0f, 11.0f, 12.0f },
+                    { 8, 13.0f, 14.0f, -15.0f } };
+  for (const auto& p : positions)
+  {
+    SCOPED_TRACE(p.index);
+    EXPECT_FLOAT_EQ(t.positions[3 * p.index], p.x);
+    EXPECT_FLOAT_EQ(t.positions[3 * p.index + 1], p.y);
+    EXPECT_FLOAT_EQ(t.positions[3 * p.index + 2], p.z);
+  }
+  EXPECT_EQ(t.residue_indices.back() + 1, 6);
+  // Serials over 99999 in CONECT run into each other: no split is certain, so no bond.
+  EXPECT_TRUE(t.bonds.empty());
+  const std::string warnings = std::accumulate(file.warnings.begin(), file.warnings.end(),
+                                               std::string(), std::plus<std::string>());
+  EXPECT_NE(warnings.find("running into each other"), std::string::npos) << warnings;
+  EXPECT_NE(warnings.find("7 atom records have a serial over 99999"), std::string::npos)
+    << warnings;
+}
+
+// Hybrid-36 (cci.lbl.gov/hybrid_36): A0000 = 100000 and A000 = 10000 in base 36 on from there,
+// a0000 after ZZZZZ; in ATOM/HETATM and in CONECT records.
+TEST(StructureFile, Hybrid36SerialsAndResidueNumbers)
+{
+  const std::string text =
+    "ATOM  99998  N   GLY B9999      10.000  20.000  30.000  1.00 10.00           N\n"
+    "ATOM  99999  CA  GLY B9999      11.450  20.000  30.000  1.00 10.00           C\n"
+    "ATOM  A0000  C   GLY B9999      12.000  21.400  30.000  1.00 10.00           C\n"
+    "ATOM  A0001  O   GLY B9999      11.300  22.400  30.000  1.00 10.00           O\n"
+    "ATOM  A0002  N   ALA BA000      13.330  21.500  30.000  1.00 10.00           N\n"
+    "ATOM  A000Z  CA  ALA BA000      14.000  22.800  30.000  1.00 10.00           C\n"
+    "HETATM0a000 ZN    ZN BA001      20.000  20.000  20.000  1.00 10.00          ZN\n"
+    "HETATMa0000 ZN    ZN Ba000      25.000  20.000  20.000  1.00 10.00          ZN\n"
+    "CONECT9999899999\n"
+    "CONECT99999A0000\n"
+    "CONECTA0000A0001A0002\n"
+    "CONECTA0002A000Z\n"
+    "CONECTa0000A000Z\n"
+    "END\n";
+  mesolens::StructureReadParams params;
+  params.perceive_bonds = false;
+  const auto file =
+    mesolens::read_structure(mesolens_test::write_bytes("hybrid36.pdb", text), params);
+  const mesolens::AtomTable& t = file.models.at(0);
+  ASSERT_EQ(t.size(), 8u);
+  // 0a000 is no number (hybrid-36 codes fill their field): no serial, as for "*****".
+  EXPECT_EQ(t.serials,
+            (std::vector<int>{ 99998, 99999, 100000, 100001, 100002, 100035, 0, 43770016 }));
+  EXPECT_EQ(t.residue_numbers,
+            (std::vector<int>{ 9999, 9999, 9999, 9999, 10000, 10000, 10001, 1223056 }));
+  EXPECT_EQ(t.atom_names, (std::vector<std::string>{ "N", "CA", "C", "O", "N", "CA", "ZN", "ZN" }));
+  EXPECT_EQ(t.residue_names,
+            (std::vector<std::string>{ "GLY", "GLY", "GLY", "GLY", "ALA", "ALA", "ZN", "ZN" }));
+  EXPECT_EQ(t.atomic_numbers, (std::vector<std::uint8_t>{ 7, 6, 6, 8, 7, 6, 30, 30 }));
+  EXPECT_FLOAT_EQ(t.positions[3 * 5], 14.0f);
+  std::set<std::pair<int, int>> bonded_serials;
+  for (const mesolens::Bond& bond : t.bonds)
+  {
+    bonded_serials.emplace(t.serials[bond.first], t.serials[bond.second]);
+  }
+  const std::set<std::pair<int, int>> expected = { { 99998, 99999 },   { 99999, 100000 },
+                                                   { 100000, 100001 }, { 100000, 100002 },
+                                                   { 100002, 100035 }, { 100035, 43770016 } };
+  EXPECT_EQ(bonded_serials, expected);
+  EXPECT_EQ(index_of_serial(t, 43770016), 7u);
+}
+
+// CHARMM writes a five-digit residue number in columns 23-27, where the insertion code would be.
+TEST(StructureFile, CharmmFiveDigitResidueNumbers)
+{
+  const auto t =
+    mesolens::read_structure(data_file("proteins/awkward/mdanalysis_5digitResid.pdb")).models.at(0);
+  EXPECT_EQ(t.residue_numbers, (std::vector<int>{ 1, 10, 100, 1000, 10000 }));
+  EXPECT_EQ(t.insertion_codes, std::vector<char>(5, ' '));
+  EXPECT_EQ(t.residue_names, std::vector<std::string>(5, "TIP3"));
+  EXPECT_EQ(t.serials, (std::vector<int>{ 1, 2, 3, 4, 5 }));
+  EXPECT_NEAR(t.positions[3 * 4], -50.081f, 1e-4);
+}
+
+// A record pushed right by an overflowing number and then cut short or garbled is still an
+// error naming the line, not a record read from the wrong columns.
+TEST(StructureFile, DamagedShiftedRecordsThrow)
+{
+  const std::string good = printf_atom_record("ATOM", 100002, " N", ' ', "GLY ", 'C', 10000, ' ',
+                                              11.104, 6.012, -3.456, 1.0, 0.0, "N");
+  const std::string first = printf_atom_record("ATOM", 99999, " CA", ' ', "LYS ", 'C', 9999, ' ',
+                                               2.5, -2.25, 3.125, 1.0, 0.0, "C");
+  const struct
+  {
+    const char* name;
+    std::string record;
+    const char* problem;
+  } cases[] = {
+    { "shifted_truncated.pdb", good.substr(0, 46) + "\n", "too short" },
+    { "shifted_garbled.pdb", good.substr(0, 38) + "1.1x4" + good.substr(43), "not a number" },
+    { "shifted_unexplained.pdb", good.substr(0, 12) + "X" + good.substr(13), "not a number" },
+  };
+  for (const auto& c : cases)
+  {
+    SCOPED_TRACE(c.name);
+    try
+    {
+      mesolens::read_structure(mesolens_test::write_bytes(c.name, first + c.record + "END\n"));
+      ADD_FAILURE() << "no error";
+    }
+    catch (const mesolens::FileError& e)
+    {
+      EXPECT_NE(std::string(e.what()).find("line 2"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(c.problem), std::string::npos) << e.what();
+    }
+  }
 }

@@ -58,8 +58,20 @@ using ProgressCallback = std::function<bool(double)>;
 /// decompressed). Every atom of every model is kept (hydrogens included) unless the params
 /// drop some; HELIX/SHEET records become per-atom secondary structure; CONECT records (which
 /// gemmi does not read) and LINK/SSBOND/struct_conn covalent and disulfide links become bonds.
-/// Throws FileError for a missing, empty, truncated or unparsable file, or one without atoms;
-/// InvalidInput for non-finite coordinates.
+///
+/// PDB files written by MD programs keep their true serials and residue numbers past 99999 and
+/// 9999: hybrid-36 (A0000 = 100000, A000 = 10000; also in CONECT), numbers written in full that
+/// push the rest of the record right (Open Babel; found from where the "%8.3f" coordinates
+/// are), CHARMM's five-digit residue numbers in columns 23-27, and numbers written modulo
+/// 100000 and 10000, as GROMACS writes them, continued where they restart (a drop by more than
+/// half the modulus; for residue numbers inside one chain with no TER between). Four-letter
+/// residue names in columns 18-21 ("DPPC") are kept whole unless the file uses two-letter chain
+/// ids there. StructureFile::warnings says when any of this was needed. VMD's hexadecimal
+/// numbers past 99999 and 9999 are not recognized.
+///
+/// Throws FileError for a missing, empty, truncated or unparsable file (an ATOM/HETATM record
+/// without coordinates in the standard or a consistently shifted place names its line), or one
+/// without atoms; InvalidInput for non-finite coordinates.
 StructureFile read_structure(const std::string& path, const StructureReadParams& params = {},
                              const ProgressCallback& progress = {});
 

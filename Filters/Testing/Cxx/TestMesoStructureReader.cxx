@@ -104,6 +104,25 @@ TEST(vtkMesoStructureReader, OptionsChangeTheOutput)
   EXPECT_EQ(reader->GetBondTolerance(), 1.0);
 }
 
+// GROMACS writes residue numbers modulo 10000 and serials modulo 100000; the arrays have the
+// true ones (Data/README.md: 280 atoms numbered 99811.., residues 9990..10040).
+TEST(vtkMesoStructureReader, GromacsNumbersReachTheArrays)
+{
+  vtkNew<vtkMesoStructureReader> reader;
+  reader->SetFileName(data_file("proteins/awkward/gromacs_wrapped_numbers.pdb").c_str());
+  ASSERT_EQ(reader->GetExecutive()->Update(), 1);
+  vtkPointData* pd = reader->GetOutput()->GetPointData();
+  ASSERT_EQ(reader->GetOutput()->GetNumberOfPoints(), 280);
+  EXPECT_EQ(pd->GetArray("SerialNumber")->GetTuple1(189), 100000.0);
+  EXPECT_EQ(pd->GetArray("SerialNumber")->GetTuple1(279), 100090.0);
+  EXPECT_EQ(pd->GetArray("ResidueNumber")->GetTuple1(157), 10000.0);
+  EXPECT_EQ(pd->GetArray("ResidueNumber")->GetTuple1(279), 10040.0);
+  auto* residue_names = vtkStringArray::SafeDownCast(pd->GetAbstractArray("ResidueName"));
+  EXPECT_EQ(residue_names->GetValue(0), "DPPC");
+  EXPECT_EQ(residue_names->GetValue(279), "SOL");
+  EXPECT_NE(std::string(reader->GetWarnings()).find("restart after 9999 "), std::string::npos);
+}
+
 TEST(vtkMesoStructureReader, CanReadFile)
 {
   EXPECT_EQ(vtkMesoStructureReader::CanReadFile(data_file("proteins/1crn.pdb").c_str()), 1);
@@ -132,6 +151,11 @@ TEST(vtkMesoStructureReader, BadInputsFailCleanly)
       "truncated" },
     { mesolens_test::garbage_file("reader_garbage.pdb"), "binary data" },
     { mesolens_test::write_bytes("reader_nan.pdb", nan_text), "non-finite" },
+    // A record shifted right by a six-digit serial, with a garbled x coordinate.
+    { mesolens_test::write_bytes("reader_garbled_shift.pdb",
+                                 "ATOM  100000  N   GLY C10000      11.1x4   6.012  -3.456  1.00  "
+                                 "0.00           N\n"),
+      "not a number" },
   };
   for (const auto& c : cases)
   {

@@ -4,6 +4,8 @@
 #include "vtkMesoSurfaceConversion.h"
 
 #include "mesolens/errors.h"
+#include "mesolens/geodesic_disk.h"
+#include "mesolens/membrane_mapper.h"
 
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
@@ -14,7 +16,7 @@ vtkStandardNewMacro(vtkMesoGeodesicDisk);
 
 struct vtkMesoGeodesicDisk::Cache
 {
-  vtkMesoSurfaceConversion::GeodesicDiskBuilder Builder;
+  vtkMesoSurfaceConversion::SurfaceMapper Mapper;
 };
 
 vtkMesoGeodesicDisk::vtkMesoGeodesicDisk()
@@ -32,14 +34,16 @@ int vtkMesoGeodesicDisk::RequestData(vtkInformation*, vtkInformationVector** inp
   output->Initialize();
   try
   {
-    this->Solver->Builder.SetSurface(input, input->GetMTime());
+    const mesolens::MembraneMapper& mapper = this->Solver->Mapper.For(input, input->GetMTime());
     this->UpdateProgress(0.5);
     mesolens::GeodesicDiskParams params;
     params.radius = this->Radius;
     params.min_triangles = static_cast<std::size_t>(this->MinimumTriangles);
-    params.max_refinement_levels = this->MaximumRefinementLevels;
-    const mesolens::GeodesicDisk disk =
-      this->Solver->Builder.Disk(this->SeedPoint, this->SeedTolerance, params);
+    const mesolens::GeodesicDisk disk = mesolens::geodesic_disk(
+      mapper.surface(),
+      mapper.seed_near({ this->SeedPoint[0], this->SeedPoint[1], this->SeedPoint[2] },
+                       this->SeedTolerance),
+      params);
     vtkMesoSurfaceConversion::FromTriangleMesh(disk.mesh, output);
     vtkMesoSurfaceConversion::AddDiskArrays(disk, this->Radius, output);
   }
@@ -61,5 +65,4 @@ void vtkMesoGeodesicDisk::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SeedTolerance: " << this->SeedTolerance << "\n";
   os << indent << "Radius: " << this->Radius << "\n";
   os << indent << "MinimumTriangles: " << this->MinimumTriangles << "\n";
-  os << indent << "MaximumRefinementLevels: " << this->MaximumRefinementLevels << "\n";
 }

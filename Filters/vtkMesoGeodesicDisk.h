@@ -7,10 +7,12 @@
  * unfolded) from the surface point closest to SeedPoint measures geodesic distances; the mesh is
  * cut exactly on the isoline d = Radius. The output is a topological disk (one boundary loop,
  * Euler characteristic 1): small holes left by the front are closed; a disk that reaches a
- * boundary of the mesh, wraps a handle or covers a whole closed component is an error. When the
- * disk would hold fewer than MinimumTriangles triangles (cell meshes are coarse next to a
- * membrane patch), the region is Loop-subdivided and the disk grown again, up to
- * MaximumRefinementLevels times; field data RefinementLevels says how often.
+ * boundary of the mesh, wraps a handle or covers a whole closed component is an error. Only the
+ * triangles within Radius of the seed are visited. Where they are coarser than the disk needs
+ * to hold about MinimumTriangles triangles (cell meshes are coarse next to a membrane patch),
+ * they are bisected, longest edge first, with the new points on the smooth surface through the
+ * input's vertices (curved PN triangles, mesolens::SmoothSurface): the input's vertices stay
+ * put. Field data RefinementLevels is the most times an input triangle was halved.
  *
  * Input: a triangle mesh (vtkPolyData polygons, all triangles; a clean 2-manifold). The solver
  * set up for it is kept, so changing only the seed or the radius re-marches without rebuilding.
@@ -59,16 +61,10 @@ public:
   ///@}
 
   ///@{
-  /// Refine (Loop subdivision) until the disk holds at least this many triangles; 0: never.
+  /// Refine coarse triangles so that the disk holds at least about this many; 0: never.
   /// Default 2000.
   vtkSetClampMacro(MinimumTriangles, int, 0, VTK_INT_MAX);
   vtkGetMacro(MinimumTriangles, int);
-  ///@}
-
-  ///@{
-  /// Most Loop subdivision levels. Range [0, 8]; default 5.
-  vtkSetClampMacro(MaximumRefinementLevels, int, 0, 8);
-  vtkGetMacro(MaximumRefinementLevels, int);
   ///@}
 
 protected:
@@ -81,7 +77,6 @@ protected:
   double SeedTolerance = 0;
   double Radius = 1;
   int MinimumTriangles = 2000;
-  int MaximumRefinementLevels = 5;
 
 private:
   vtkMesoGeodesicDisk(const vtkMesoGeodesicDisk&) = delete;

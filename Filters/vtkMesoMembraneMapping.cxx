@@ -8,7 +8,7 @@
 
 #include "mesolens/elements.h"
 #include "mesolens/errors.h"
-#include "mesolens/membrane_mapping.h"
+#include "mesolens/membrane_mapper.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
@@ -17,6 +17,7 @@
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
+#include <vtkIdList.h>
 #include <vtkIdTypeArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
@@ -26,31 +27,17 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
+#include <vtkStringArray.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 vtkStandardNewMacro(vtkMesoMembraneMapping);
 
 namespace {
-/// What the cached disk and its parameterization were built from.
-struct ChartKey
-{
-  vtkMTimeType surface = 0;
-  std::array<double, 3> seed{};
-  double tolerance = 0;
-  double radius = 0;
-  int min_triangles = 0;
-  int max_levels = 0;
-  bool operator==(const ChartKey& o) const
-  {
-    return surface == o.surface && seed == o.seed && tolerance == o.tolerance &&
-      radius == o.radius && min_triangles == o.min_triangles && max_levels == o.max_levels;
-  }
-};
-
 /// The membrane input as Core sees it, with its own copies of the arrays it points into.
 struct PatchData
 {
@@ -59,7 +46,6 @@ struct PatchData
   std::vector<float> masses;
   std::vector<std::array<std::uint32_t, 2>> bonds;
   mesolens::MembranePatch patch;
-  double width = 0; ///< larger cell vector length, membrane units
 };
 
 PatchData read_patch(vtkPolyData* atoms)
@@ -107,7 +93,6 @@ PatchData read_patch(vtkPolyData* atoms)
     patch.a = { high[0] - low[0], 0 };
     patch.b = { 0, high[1] - low[1] };
   }
-  data.width = std::max(std::hypot(patch.a[0], patch.a[1]), std::hypot(patch.b[0], patch.b[1]));
   if (vtkDataArray* molecules = atoms->GetPointData()->GetArray("MoleculeId"))
   {
     data.molecule_ids.resize(static_cast<std::size_t>(n));
@@ -152,89 +137,127 @@ void add_field(vtkPolyData* output, const char* name, const std::vector<double>&
   output->GetFieldData()->AddArray(array);
 }
 
-/// Output 0: the mapped atoms, bonds and arrays, k^2 copies of the patch.
+/// Output 0: the mapped atoms, bonds and arrays, k^2 copies of the patch (atoms a cut tile
+/// dropped left out). MoleculeId is made unique over the tiles: tile t's molecule m becomes
+/// t (largest id + 1) + m.
 void build_atoms(vtkPolyData* atoms, const PatchData& data, const mesolens::MappedMembrane& mapped,
                  const std::vector<double>& bond_changes, vtkPolyData* output)
 {
   const vtkIdType n = atoms->GetNumberOfPoints();
   const vtkIdType tiles = static_cast<vtkIdType>(mapped.positions.size() / (3 * std::size_t(n)));
-  const vtkIdType total = n * tiles;
+  const vtkIdType copies = n * tiles;
+  // Output index of every copied atom, -1 when dropped.
+  std::vector<vtkIdType> kept(static_cast<std::size_t>(copies));
+  vtkIdType total = 0;
+  for (vtkIdType i = 0; i < copies; ++i)
+  {
+    const bool mapped_here = mapped.atom_mapped.empty() || mapped.atom_mapped[std::size_t(i)];
+    kept[std::size_t(i)] = mapped_here ? total++ : -1;
+  }
   vtkNew<vtkDoubleArray> coordinates;
   coordinates->SetNumberOfComponents(3);
   coordinates->SetNumberOfTuples(total);
-  std::copy(mapped.positions.begin(), mapped.positions.end(), coordinates->GetPointer(0));
+  vtkNew<vtkIdList> source_ids;
+  source_ids->SetNumberOfIds(total);
+  for (vtkIdType i = 0; i < copies; ++i)
+  {
+    if (kept[std::size_t(i)] >= 0)
+    {
+      coordinates->SetTypedTuple(kept[std::size_t(i)], mapped.positions.data() + 3 * i);
+      source_ids->SetId(kept[std::size_t(i)], i % n);
+    }
+  }
   vtkNew<vtkPoints> points;
   points->SetData(coordinates);
   output->SetPoints(points);
-
   vtkMesoAtomTableConversion::SetAtomVertices(output);
-  const vtkIdType bonds = static_cast<vtkIdType>(data.bonds.size());
-  vtkNew<vtkIdTypeArray> line_offsets;
-  vtkNew<vtkIdTypeArray> line_ids;
-  line_offsets->SetNumberOfValues(bonds * tiles + 1);
-  line_ids->SetNumberOfValues(2 * bonds * tiles);
+
+  vtkNew<vtkCellArray> lines;
+  std::vector<float> kept_changes;
+  const std::size_t bonds = data.bonds.size();
   for (vtkIdType t = 0; t < tiles; ++t)
   {
-    for (vtkIdType b = 0; b < bonds; ++b)
+    for (std::size_t b = 0; b < bonds; ++b)
     {
-      const vtkIdType cell = t * bonds + b;
-      line_offsets->SetValue(cell, 2 * cell);
-      line_ids->SetValue(2 * cell, t * n + data.bonds[std::size_t(b)][0]);
-      line_ids->SetValue(2 * cell + 1, t * n + data.bonds[std::size_t(b)][1]);
+      const vtkIdType from = kept[std::size_t(t * n + data.bonds[b][0])];
+      const vtkIdType to = kept[std::size_t(t * n + data.bonds[b][1])];
+      if (from >= 0 && to >= 0)
+      {
+        const vtkIdType ends[2] = { from, to };
+        lines->InsertNextCell(2, ends);
+        kept_changes.push_back(static_cast<float>(bond_changes[std::size_t(t) * bonds + b]));
+      }
     }
   }
-  line_offsets->SetValue(bonds * tiles, 2 * bonds * tiles);
-  vtkNew<vtkCellArray> lines;
-  lines->SetData(line_offsets, line_ids);
   output->SetLines(lines);
 
   // The patch's point arrays, once per tile, and the tile of every atom.
   vtkPointData* in = atoms->GetPointData();
   vtkPointData* out = output->GetPointData();
   out->CopyAllocate(in, total);
-  for (vtkIdType t = 0; t < tiles; ++t)
+  for (vtkIdType i = 0; i < total; ++i)
   {
-    for (vtkIdType i = 0; i < n; ++i)
-    {
-      out->CopyData(in, i, t * n + i);
-    }
+    out->CopyData(in, source_ids->GetId(i), i);
   }
   vtkNew<vtkIntArray> tile_ids;
   tile_ids->SetName("TileId");
   tile_ids->SetNumberOfValues(total);
-  for (vtkIdType i = 0; i < total; ++i)
+  for (vtkIdType i = 0; i < copies; ++i)
   {
-    tile_ids->SetValue(i, static_cast<int>(i / n));
+    if (kept[std::size_t(i)] >= 0)
+    {
+      tile_ids->SetValue(kept[std::size_t(i)], static_cast<int>(i / n));
+    }
   }
   out->AddArray(tile_ids);
+  if (!data.molecule_ids.empty())
+  {
+    const int stride = *std::max_element(data.molecule_ids.begin(), data.molecule_ids.end()) + 1;
+    vtkNew<vtkIntArray> molecules;
+    molecules->SetName("MoleculeId");
+    molecules->SetNumberOfValues(total);
+    for (vtkIdType i = 0; i < copies; ++i)
+    {
+      if (kept[std::size_t(i)] >= 0)
+      {
+        molecules->SetValue(kept[std::size_t(i)],
+                            static_cast<int>(i / n) * stride +
+                              data.molecule_ids[std::size_t(i % n)]);
+      }
+    }
+    out->RemoveArray("MoleculeId");
+    out->AddArray(molecules);
+  }
   if (in->GetArray("AtomicNumber"))
   {
     out->SetActiveScalars("AtomicNumber");
   }
   vtkNew<vtkFloatArray> change;
   change->SetName("BondLengthChange");
-  change->SetNumberOfValues(total + bonds * tiles);
+  change->SetNumberOfValues(total + static_cast<vtkIdType>(kept_changes.size()));
   for (vtkIdType i = 0; i < total; ++i)
   {
     change->SetValue(i, 0.0f);
   }
-  for (std::size_t i = 0; i < bond_changes.size(); ++i)
+  for (std::size_t i = 0; i < kept_changes.size(); ++i)
   {
-    change->SetValue(total + static_cast<vtkIdType>(i), static_cast<float>(bond_changes[i]));
+    change->SetValue(total + static_cast<vtkIdType>(i), kept_changes[i]);
   }
   output->GetCellData()->AddArray(change);
+}
+
+void add_text_field(vtkPolyData* output, const char* name, const std::string& text)
+{
+  vtkNew<vtkStringArray> array;
+  array->SetName(name);
+  array->InsertNextValue(text);
+  output->GetFieldData()->AddArray(array);
 }
 } // namespace
 
 struct vtkMesoMembraneMapping::State
 {
-  vtkMesoSurfaceConversion::GeodesicDiskBuilder Builder;
-  bool HasChart = false;
-  ChartKey Key;
-  mesolens::GeodesicDisk Disk;
-  mesolens::DiskParameterization Map;
-  std::unique_ptr<mesolens::SurfaceChart> Chart;
-  std::array<double, 2> SeedUV{};
+  vtkMesoSurfaceConversion::SurfaceMapper Mapper;
 };
 
 vtkMesoMembraneMapping::vtkMesoMembraneMapping()
@@ -280,69 +303,52 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
   vtkPolyData* disk_output = vtkPolyData::GetData(outputVector, 1);
   output->Initialize();
   disk_output->Initialize();
-  State& state = *this->Internal;
   try
   {
-    if (this->Tiles < 1)
-    {
-      throw mesolens::InvalidInput("Tiles must be at least 1, got " + std::to_string(this->Tiles));
-    }
-    if (!(this->MembraneToMeshScale > 0) || !std::isfinite(this->MembraneToMeshScale))
-    {
-      throw mesolens::InvalidInput("MembraneToMeshScale must be positive");
-    }
     if (!surface || !atoms)
     {
       throw mesolens::InvalidInput(
         "both the surface (input 0) and the membrane (input 1) are needed");
     }
     PatchData data = read_patch(atoms);
-    const double scale = this->MembraneToMeshScale;
-    const double radius = this->RadiusFactor * this->Tiles * data.width * scale;
-    ChartKey key;
-    key.surface = surface->GetMTime();
-    key.seed = { this->SeedPoint[0], this->SeedPoint[1], this->SeedPoint[2] };
-    key.tolerance = this->SeedTolerance;
-    key.radius = radius;
-    key.min_triangles = this->MinimumDiskTriangles;
-    key.max_levels = this->MaximumRefinementLevels;
-    if (!state.HasChart || !(state.Key == key))
+    const mesolens::MembraneMapper& mapper =
+      this->Internal->Mapper.For(surface, surface->GetMTime());
+    this->UpdateProgress(0.2);
+    mesolens::MapRequest request;
+    request.mapping.method = static_cast<mesolens::MappingMethod>(this->MappingMethod);
+    request.mapping.tiles = this->Tiles;
+    request.mapping.scale = this->MembraneToMeshScale;
+    request.mapping.layer_half_thickness = this->LayerHalfThickness;
+    request.mapping.samples = this->PolynomialSamples;
+    request.mapping.max_polynomial_residual = this->MaximumPolynomialResidual;
+    request.mapping.map_atoms = this->OutputAtoms;
+    request.radius_factor = this->RadiusFactor;
+    request.min_disk_triangles = static_cast<std::size_t>(this->MinimumDiskTriangles);
+    request.fit_what_fits = this->MapWhatFits;
+    const mesolens::SurfacePoint seed = mapper.seed_near(
+      { this->SeedPoint[0], this->SeedPoint[1], this->SeedPoint[2] }, this->SeedTolerance);
+    const mesolens::MapResult result =
+      mapper.map(seed, data.patch, request, vtkMesoParallelFor::Get());
+    this->UpdateProgress(0.8);
+    if (!result.note.empty())
     {
-      state.HasChart = false;
-      state.Builder.SetSurface(surface, key.surface);
-      this->UpdateProgress(0.2);
-      mesolens::GeodesicDiskParams params;
-      params.radius = radius;
-      params.min_triangles = static_cast<std::size_t>(this->MinimumDiskTriangles);
-      params.max_refinement_levels = this->MaximumRefinementLevels;
-      state.Disk = state.Builder.Disk(this->SeedPoint, this->SeedTolerance, params);
-      this->UpdateProgress(0.4);
-      state.Map = mesolens::harmonic_parameterization(state.Disk.mesh, radius);
-      state.Chart = std::make_unique<mesolens::SurfaceChart>(state.Disk.mesh, state.Map.uv);
-      state.SeedUV = state.Chart->uv_of(state.Disk.seed);
-      state.Key = key;
-      state.HasChart = true;
+      vtkWarningMacro("" << result.note);
     }
-    this->UpdateProgress(0.6);
-    mesolens::MappingParams params;
-    params.method = static_cast<mesolens::MappingMethod>(this->MappingMethod);
-    params.tiles = this->Tiles;
-    params.scale = scale;
-    params.centre_uv = state.SeedUV;
-    params.layer_half_thickness = this->LayerHalfThickness;
-    params.samples = this->PolynomialSamples;
-    params.map_atoms = this->OutputAtoms;
-    const mesolens::MappedMembrane mapped =
-      mesolens::map_membrane(*state.Chart, data.patch, params, vtkMesoParallelFor::Get());
-    const std::vector<double> changes =
-      mesolens::bond_length_changes(data.patch, mapped, data.bonds, scale);
+    const mesolens::MappedMembrane& mapped = result.mapped;
+    const mesolens::MappingChart& chart = *result.chart;
+    const double scale = this->MembraneToMeshScale;
     if (!mapped.positions.empty())
     {
-      build_atoms(atoms, data, mapped, changes, output);
+      build_atoms(atoms, data, mapped,
+                  mesolens::bond_length_changes(data.patch, mapped, data.bonds, scale), output);
     }
     const mesolens::MembranePatch& patch = data.patch;
-    add_field(output, "GeodesicRadius", { radius });
-    add_field(output, "Tiles", { double(this->Tiles) });
+    add_field(output, "GeodesicRadius", { chart.radius });
+    add_field(output, "Tiles", { double(result.tiles_mapped) });
+    add_field(output, "TilesRequested", { double(result.tiles_asked) });
+    add_field(output, "TilesMapped", { double(result.tiles_mapped) });
+    add_field(output, "CutToDisk", { result.cut_to_disk ? 1.0 : 0.0 });
+    add_text_field(output, "MappingNote", result.note);
     add_field(output, "MappingMethod", { double(this->MappingMethod) });
     add_field(output, "MembraneToMeshScale", { scale });
     add_field(output, "PatchOrigin", { patch.origin[0], patch.origin[1] }, 2);
@@ -350,13 +356,16 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
     add_field(output, "PatchCellB", { patch.b[0], patch.b[1] }, 2);
     add_field(output, "PatchCentreHeight", { patch.centre_height });
     add_field(output, "LayerHalfThickness", { this->LayerHalfThickness });
-    add_field(output, "SeedUV", { state.SeedUV[0], state.SeedUV[1] }, 2);
-    add_field(output, "RefinementLevels", { double(state.Disk.refinement_levels) });
+    add_field(output, "SeedUV", { chart.seed_uv[0], chart.seed_uv[1] }, 2);
+    add_field(output, "RefinementLevels", { double(chart.disk.refinement_levels) });
     if (!mapped.polynomial_coefficients.empty())
     {
       add_field(output, "PolynomialCoefficients", mapped.polynomial_coefficients, 30);
+      add_field(output, "PolynomialSplits", { double(mapped.polynomial_splits) });
       add_field(output, "PolynomialResidualRMS", mapped.polynomial_rms_residual);
       add_field(output, "PolynomialResidualMax", mapped.polynomial_max_residual);
+      add_field(output, "PolynomialFallbackTiles",
+                std::vector<double>(mapped.tile_fallback.begin(), mapped.tile_fallback.end()));
     }
     if (!mapped.instance_matrices.empty())
     {
@@ -372,16 +381,16 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
       output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(),
                                     atoms->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP()));
     }
-    vtkMesoSurfaceConversion::FromTriangleMesh(state.Disk.mesh, disk_output);
-    vtkMesoSurfaceConversion::AddDiskArrays(state.Disk, radius, disk_output);
-    vtkMesoSurfaceConversion::AddParameterizationArrays(state.Map, radius, disk_output);
+    vtkMesoSurfaceConversion::FromTriangleMesh(chart.disk.mesh, disk_output);
+    vtkMesoSurfaceConversion::AddDiskArrays(chart.disk, chart.radius, disk_output);
+    vtkMesoSurfaceConversion::AddParameterizationArrays(chart.parameterization, chart.radius,
+                                                        disk_output);
   }
   catch (const mesolens::Error& e)
   {
     vtkErrorMacro("Cannot map the membrane: " << e.what());
     output->Initialize();
     disk_output->Initialize();
-    state.HasChart = false;
     return 0;
   }
   this->UpdateProgress(1.0);
@@ -401,7 +410,8 @@ void vtkMesoMembraneMapping::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "RadiusFactor: " << this->RadiusFactor << "\n";
   os << indent << "LayerHalfThickness: " << this->LayerHalfThickness << "\n";
   os << indent << "PolynomialSamples: " << this->PolynomialSamples << "\n";
+  os << indent << "MaximumPolynomialResidual: " << this->MaximumPolynomialResidual << "\n";
   os << indent << "MinimumDiskTriangles: " << this->MinimumDiskTriangles << "\n";
-  os << indent << "MaximumRefinementLevels: " << this->MaximumRefinementLevels << "\n";
+  os << indent << "MapWhatFits: " << (this->MapWhatFits ? "on" : "off") << "\n";
   os << indent << "OutputAtoms: " << (this->OutputAtoms ? "on" : "off") << "\n";
 }

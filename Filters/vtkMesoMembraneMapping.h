@@ -12,8 +12,9 @@
  * none) is repeated k x k times (Tiles); the tiled region is d x d with d = k x the cell width,
  * scaled by MembraneToMeshScale (mesh units per membrane unit: 1e-4 for Å onto µm). Around the
  * surface point closest to SeedPoint a geodesic disk of radius r = RadiusFactor x d (2, as in
- * the paper) is grown (see vtkMesoGeodesicDisk; coarse regions are Loop-subdivided) and
- * parameterized onto the planar disk of radius r (vtkMesoDiskParameterization); the patch goes
+ * the paper) is grown (see vtkMesoGeodesicDisk; coarse regions are refined on the smooth surface
+ * through the input's vertices, which every mapped point lies on) and parameterized onto the
+ * planar disk of radius r (vtkMesoDiskParameterization); the patch goes
  * to (u, v) = the seed's plus the atom's (x, y) offset, its heights (z minus the bilayer centre,
  * the mean z) along the normal, by one of three methods (MappingMethod):
  * - DISPLACEMENT: every atom at x0 + w n(x0);
@@ -21,26 +22,40 @@
  *   its x, y, z axes taken to the u tangent, v tangent and normal;
  * - POLYNOMIAL: one quadratic x(s, t, h) per tile, fitted by least squares (Cholesky) to the
  *   displacement map on PolynomialSamples^2 samples in 3 layers (h = -e, 0, +e with e =
- *   LayerHalfThickness).
+ *   LayerHalfThickness). When a tile's largest residual exceeds MaximumPolynomialResidual, every
+ *   tile is split into 2 x 2 (then 4 x 4) pieces with a polynomial each; a tile still above it
+ *   has its atoms mapped by displacement (`PolynomialFallbackTiles`).
+ *
+ * Every click maps what fits (MapWhatFits, on by default): when the asked k x k tiles do not fit
+ * (their disk wraps a handle, meets the mesh's boundary or covers the whole component, or the
+ * tiles leave it), the largest k that fits is mapped, and if not even one tile fits, one tile
+ * cut to the largest disk there is (molecules leaving it are dropped). A warning, field data
+ * `TilesRequested`, `TilesMapped`, `CutToDisk` and the text `MappingNote` say what was mapped.
  *
  * Output 0, the mapped atoms (unless OutputAtoms is off): k^2 copies of the patch (tile t = j k + i
- * holds atoms [t n, (t+1) n)), one vertex per atom and the patch's bonds in every tile; the patch's
- * point arrays repeated, plus `TileId`; cell data `BondLengthChange` (mapped length / scaled patch
- * length - 1 for bond lines, 0 for atom vertices: the paper's intra-molecular distortion). Field
- * data: `GeodesicRadius`, `Tiles`, `MappingMethod`, `MembraneToMeshScale`, `PatchOrigin` (2),
- * `PatchCellA` (2), `PatchCellB` (2), `PatchCentreHeight`, `LayerHalfThickness`, `SeedUV` (2),
- * `RefinementLevels`; POLYNOMIAL adds `PolynomialCoefficients` (30 per tile: x, y, z in the
- * monomial order 1, s, t, h, s², st, sh, t², th, h² of mesolens::quadratic_monomials, with
- * (s, t) = 2 f - 1 from the atom's fractional cell coordinates f and h = (z - centre) / e) and
- * `PolynomialResidualRMS`, `PolynomialResidualMax` (per tile, mesh units); MOLECULE_INSTANCING
- * adds `InstanceMatrices` (16 per instance, row-major), `InstanceMoleculeId`, `InstanceTileId`.
- * Output 1: the parameterized disk (TextureCoordinates, GeodesicDistance, distortions).
+ * holds atoms [t n, (t+1) n), less those a cut tile drops), one vertex per atom and the patch's
+ * bonds in every tile; the patch's point arrays repeated, plus `TileId`, with `MoleculeId` made
+ * unique over the tiles (t (largest id + 1) + id); cell data `BondLengthChange` (mapped length /
+ * scaled patch length - 1 for bond lines, 0 for atom vertices: the paper's intra-molecular
+ * distortion). Field data: `GeodesicRadius`, `Tiles` (= TilesMapped), `MappingMethod`,
+ * `MembraneToMeshScale`, `PatchOrigin` (2), `PatchCellA` (2), `PatchCellB` (2),
+ * `PatchCentreHeight`, `LayerHalfThickness`, `SeedUV` (2), `RefinementLevels`; POLYNOMIAL adds
+ * `PolynomialCoefficients` (30 per piece, m x m pieces per tile, m = `PolynomialSplits`; x, y, z in
+ * the monomial order 1, s, t, h, s², st, sh, t², th, h² of mesolens::quadratic_monomials, with (s,
+ * t) = 2 f - 1 from the atom's fractional coordinates f in its piece and h = (z - centre) / e; see
+ * mesolens::evaluate_tile_polynomial), `PolynomialResidualRMS`, `PolynomialResidualMax` (per tile,
+ * mesh units) and `PolynomialFallbackTiles` (per tile, 1 = displaced); MOLECULE_INSTANCING adds
+ * `InstanceMatrices` (16 per instance, row-major), `InstanceMoleculeId`, `InstanceTileId`. Output
+ * 1: the parameterized disk (TextureCoordinates, GeodesicDistance, distortions).
  *
- * The disk and its parameterization are kept while the surface, the seed and the sizes stay the
- * same, so a new trajectory frame (the membrane input's time steps are passed downstream) only
- * re-maps atoms. Errors (seed far from the surface, k < 1, a disk that meets the mesh boundary
- * or wraps a handle, a non-manifold surface, no MoleculeId for instancing, NaN) are reported
- * with vtkErrorMacro; the outputs are then empty and the update fails.
+ * The surface's preparation and the most recent disks and parameterizations
+ * (mesolens::MembraneMapper) are kept while the surface stays the same, so a new trajectory
+ * frame (the membrane input's time steps are passed downstream) only re-maps atoms. Outputs are
+ * bitwise identical run to run and for any number of threads. Errors (seed far from the
+ * surface, k < 1, not even one molecule's footprint fitting, or with MapWhatFits off a disk
+ * that meets the mesh boundary or wraps a handle; a non-manifold surface, no MoleculeId for
+ * instancing, NaN) are reported with vtkErrorMacro; the outputs are then empty and the update
+ * fails.
  */
 #ifndef vtkMesoMembraneMapping_h
 #define vtkMesoMembraneMapping_h
@@ -149,16 +164,25 @@ public:
   ///@}
 
   ///@{
-  /// Refine the surface locally until the disk holds at least this many triangles; 0: never.
-  /// Default 2000.
+  /// POLYNOMIAL: the largest fit residual accepted in a tile, membrane units (Å); beyond it
+  /// tiles are split, then displaced. <= 0: no bound. Default 1.
+  vtkSetMacro(MaximumPolynomialResidual, double);
+  vtkGetMacro(MaximumPolynomialResidual, double);
+  ///@}
+
+  ///@{
+  /// Refine coarse surface triangles (on the smooth surface through the input's vertices) so
+  /// that the disk holds at least about this many; 0: never. Default 2000.
   vtkSetClampMacro(MinimumDiskTriangles, int, 0, VTK_INT_MAX);
   vtkGetMacro(MinimumDiskTriangles, int);
   ///@}
 
   ///@{
-  /// Most Loop subdivision levels for that refinement. Range [0, 8]; default 5.
-  vtkSetClampMacro(MaximumRefinementLevels, int, 0, 8);
-  vtkGetMacro(MaximumRefinementLevels, int);
+  /// Map the largest k x k (or one tile cut to a disk) that fits when the asked tiles do not
+  /// (on), or fail (off). Default on.
+  vtkSetMacro(MapWhatFits, bool);
+  vtkGetMacro(MapWhatFits, bool);
+  vtkBooleanMacro(MapWhatFits, bool);
   ///@}
 
 protected:
@@ -177,8 +201,9 @@ protected:
   double RadiusFactor = 2;
   double LayerHalfThickness = 25;
   int PolynomialSamples = 6;
+  double MaximumPolynomialResidual = 1;
   int MinimumDiskTriangles = 2000;
-  int MaximumRefinementLevels = 5;
+  bool MapWhatFits = true;
   bool OutputAtoms = true;
 
 private:

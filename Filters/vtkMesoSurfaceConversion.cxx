@@ -92,42 +92,15 @@ void SetTriangles(const std::vector<std::int64_t>& triangles, vtkPolyData* outpu
   output->SetPolys(cells);
 }
 
-void GeodesicDiskBuilder::SetSurface(vtkPolyData* surface, vtkMTimeType surfaceTime)
+const mesolens::MembraneMapper& SurfaceMapper::For(vtkPolyData* surface, vtkMTimeType surfaceTime)
 {
-  if (this->Solver && this->SolverTime == surfaceTime)
+  if (!this->Mapper || this->Time != surfaceTime)
   {
-    return;
+    this->Mapper.reset();
+    this->Mapper = std::make_unique<mesolens::MembraneMapper>(ToTriangleMesh(surface));
+    this->Time = surfaceTime;
   }
-  this->Solver.reset();
-  this->Solver = std::make_shared<mesolens::GeodesicSolver>(ToTriangleMesh(surface));
-  this->SolverTime = surfaceTime;
-  double bounds[6];
-  surface->GetBounds(bounds);
-  this->Diagonal = std::sqrt((bounds[1] - bounds[0]) * (bounds[1] - bounds[0]) +
-                             (bounds[3] - bounds[2]) * (bounds[3] - bounds[2]) +
-                             (bounds[5] - bounds[4]) * (bounds[5] - bounds[4]));
-}
-
-mesolens::GeodesicDisk GeodesicDiskBuilder::Disk(const double seed[3], double seedTolerance,
-                                                 const mesolens::GeodesicDiskParams& params) const
-{
-  if (!this->Solver)
-  {
-    throw mesolens::InvalidInput("no surface");
-  }
-  double distance = 0;
-  const mesolens::SurfacePoint point =
-    this->Solver->closest_point({ seed[0], seed[1], seed[2] }, &distance);
-  const double tolerance = seedTolerance > 0 ? seedTolerance : 0.02 * this->Diagonal;
-  if (distance > tolerance)
-  {
-    std::ostringstream message;
-    message << "the seed point (" << seed[0] << ", " << seed[1] << ", " << seed[2] << ") is "
-            << distance << " away from the surface, farther than the tolerance " << tolerance
-            << "; pick a point on the surface";
-    throw mesolens::InvalidInput(message.str());
-  }
-  return mesolens::geodesic_disk(*this->Solver, point, params);
+  return *this->Mapper;
 }
 
 void AddDiskArrays(const mesolens::GeodesicDisk& disk, double radius, vtkPolyData* output)
@@ -145,6 +118,12 @@ void AddDiskArrays(const mesolens::GeodesicDisk& disk, double radius, vtkPolyDat
   }
   output->GetPointData()->AddArray(distance);
   output->GetPointData()->AddArray(original);
+  vtkNew<vtkDoubleArray> normals;
+  normals->SetName("Normals");
+  normals->SetNumberOfComponents(3);
+  normals->SetNumberOfTuples(static_cast<vtkIdType>(disk.normals.size() / 3));
+  std::copy(disk.normals.begin(), disk.normals.end(), normals->GetPointer(0));
+  output->GetPointData()->SetNormals(normals);
   output->GetPointData()->SetActiveScalars("GeodesicDistance");
   auto add_field = [output](const char* name, std::initializer_list<double> values) {
     vtkNew<vtkDoubleArray> array;

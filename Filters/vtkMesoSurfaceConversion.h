@@ -6,6 +6,7 @@
 
 #include "mesolens/geodesic_disk.h"
 #include "mesolens/harmonic_parameterization.h"
+#include "mesolens/membrane_mapper.h"
 #include "mesolens/triangle_mesh.h"
 
 #include <vtkType.h>
@@ -30,29 +31,23 @@ void FromTriangleMesh(const mesolens::TriangleMesh& mesh, vtkPolyData* output);
 /// straight into the cell array's memory: meshes can have millions of triangles.
 void SetTriangles(const std::vector<std::int64_t>& triangles, vtkPolyData* output);
 
-/// A geodesic solver for the surface of one filter, rebuilt only when the surface changes, and
-/// the disk grown from a seed given as a 3D point.
-class GeodesicDiskBuilder
+/// The mapping chain (mesolens::MembraneMapper) for the surface of one filter, rebuilt only
+/// when the surface changes.
+class SurfaceMapper
 {
 public:
-  /// Builds (or reuses) the solver for `surface`, whose content last changed at `surfaceTime`.
-  void SetSurface(vtkPolyData* surface, vtkMTimeType surfaceTime);
-
-  /// The disk around the surface point closest to `seed` (mesh units). `seedTolerance` > 0 is
-  /// how far the seed may be from the surface; <= 0 allows 2 % of the surface's bounding-box
-  /// diagonal. Throws mesolens::InvalidInput for a seed too far from the surface.
-  mesolens::GeodesicDisk Disk(const double seed[3], double seedTolerance,
-                              const mesolens::GeodesicDiskParams& params) const;
+  /// The mapper for `surface`, whose content last changed at `surfaceTime`. Throws as
+  /// ToTriangleMesh and mesolens::MembraneMapper do.
+  const mesolens::MembraneMapper& For(vtkPolyData* surface, vtkMTimeType surfaceTime);
 
 private:
-  std::shared_ptr<mesolens::GeodesicSolver> Solver;
-  vtkMTimeType SolverTime = 0;
-  double Diagonal = 0;
+  std::unique_ptr<mesolens::MembraneMapper> Mapper;
+  vtkMTimeType Time = 0;
 };
 
 /// Adds the disk's arrays to an output made by FromTriangleMesh: point data GeodesicDistance
-/// and OriginalPointId; field data GeodesicRadius, RefinementLevels, HolesClosed, SeedTriangle,
-/// SeedBarycentric (3) and SeedPosition (3).
+/// OriginalPointId and Normals; field data GeodesicRadius, RefinementLevels, HolesClosed,
+/// SeedTriangle, SeedBarycentric (3) and SeedPosition (3).
 void AddDiskArrays(const mesolens::GeodesicDisk& disk, double radius, vtkPolyData* output);
 
 /// Adds a parameterization to a disk output: TCoords `TextureCoordinates`, cell data

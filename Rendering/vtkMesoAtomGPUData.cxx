@@ -141,19 +141,32 @@ bool polynomial_bounds(vtkPolyData* atoms, vtkPolyData* warp, const PatchFrame& 
     const auto q = mesolens::polynomial_coordinates(patch, *frame.half_thickness, pf);
     grow(local, q.data());
   }
+  const double* split_field = field(warp, "PolynomialSplits", 1);
+  const int splits = split_field ? std::max(1, static_cast<int>(*split_field)) : 1;
+  // Each piece over its own part of the tile's (s, t) box; the edge pieces also reach the
+  // atoms beyond the cell.
+  auto piece_range = [splits](int piece, double low, double high, double range[2]) {
+    const double from = piece == 0 ? std::min(low, -1.0) : -1 + 2.0 * piece / splits;
+    const double to = piece == splits - 1 ? std::max(high, 1.0) : -1 + 2.0 * (piece + 1) / splits;
+    range[0] = (from + 1) * splits - 2 * piece - 1; // the piece's own coordinate
+    range[1] = (to + 1) * splits - 2 * piece - 1;
+  };
   constexpr int steps = 5;
-  for (vtkIdType tile = 0; tile < coefficients->GetNumberOfTuples(); ++tile)
+  for (vtkIdType index = 0; index < coefficients->GetNumberOfTuples(); ++index)
   {
     mesolens::QuadraticWarp polynomial{};
-    coefficients->GetTuple(tile, polynomial.data());
+    coefficients->GetTuple(index, polynomial.data());
+    double s_range[2], t_range[2];
+    piece_range(int(index % splits), local[0], local[1], s_range);
+    piece_range(int(index / splits % splits), local[2], local[3], t_range);
     for (int i = 0; i < steps * steps * steps; ++i)
     {
       const double f[3] = { double(i % steps) / (steps - 1),
                             double(i / steps % steps) / (steps - 1),
                             double(i / (steps * steps)) / (steps - 1) };
       const auto x = mesolens::evaluate_quadratic(
-        polynomial, local[0] + f[0] * (local[1] - local[0]),
-        local[2] + f[1] * (local[3] - local[2]), local[4] + f[2] * (local[5] - local[4]));
+        polynomial, s_range[0] + f[0] * (s_range[1] - s_range[0]),
+        t_range[0] + f[1] * (t_range[1] - t_range[0]), local[4] + f[2] * (local[5] - local[4]));
       grow(bounds, x.data());
     }
   }
@@ -561,6 +574,14 @@ bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp, vtkMapp
                             "membrane patch that was mapped, not the mapped atoms");
     return false;
   }
+  const double* cut = field(warp, "CutToDisk", 1);
+  if (cut && *cut != 0)
+  {
+    vtkErrorWithObjectMacro(mapper,
+                            "Cannot warp the atoms: the mapping cut its one tile to the disk "
+                            "(molecules outside it are dropped); draw its mapped atoms instead");
+    return false;
+  }
   const int method = static_cast<int>(*frame.method);
   const double determinant = frame.a[0] * frame.b[1] - frame.a[1] * frame.b[0];
   if (!(std::abs(determinant) > 0))
@@ -581,24 +602,27 @@ bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp, vtkMapp
   if (method == POLYNOMIAL)
   {
     vtkDataArray* coefficients = warp->GetFieldData()->GetArray("PolynomialCoefficients");
+    const double* splits = field(warp, "PolynomialSplits", 1);
+    this->PolynomialSplits = splits ? static_cast<int>(*splits) : 1;
+    const vtkIdType pieces = tiles * this->PolynomialSplits * this->PolynomialSplits;
     if (!coefficients || coefficients->GetNumberOfComponents() != 30 ||
-        coefficients->GetNumberOfTuples() != tiles)
+        coefficients->GetNumberOfTuples() != pieces || this->PolynomialSplits < 1)
     {
       vtkErrorWithObjectMacro(mapper,
                               "Cannot warp the atoms: PolynomialCoefficients should hold "
                               "30 values for each of the "
-                                << tiles << " tiles");
+                                << pieces << " pieces of the " << tiles << " tiles");
       return false;
     }
-    this->WarpTexels.assign(static_cast<std::size_t>(40 * tiles), 0.0f);
-    for (vtkIdType tile = 0; tile < tiles; ++tile)
+    this->WarpTexels.assign(static_cast<std::size_t>(40 * pieces), 0.0f);
+    for (vtkIdType piece = 0; piece < pieces; ++piece)
     {
       for (int term = 0; term < 10; ++term)
       {
         for (int d = 0; d < 3; ++d)
         {
-          this->WarpTexels[std::size_t(40 * tile + 4 * term + d)] =
-            static_cast<float>(coefficients->GetComponent(tile, 10 * d + term));
+          this->WarpTexels[std::size_t(40 * piece + 4 * term + d)] =
+            static_cast<float>(coefficients->GetComponent(piece, 10 * d + term));
         }
       }
     }

@@ -2,7 +2,7 @@
 #include "mesolens/geodesic_disk.h"
 
 #include "mesolens/errors.h"
-#include "mesh_subdivision.h"
+#include "local_surface.h"
 
 #include <algorithm>
 #include <cmath>
@@ -29,26 +29,44 @@ std::string format_length(double value)
   return text.str();
 }
 
-/// The part of `mesh` where distance <= radius, cut along the isoline; triangles carry the
-/// index of the mesh triangle they come from.
+/// The part of a local surface where distance <= radius, cut along the isoline; each triangle
+/// keeps the local triangle it comes from and its place in the input triangle.
 struct Clipped
 {
   TriangleMesh mesh;
   std::vector<double> distance;
-  std::vector<std::int64_t> origin;          // per vertex: mesh vertex or -1
-  std::vector<std::int64_t> source_triangle; // per triangle
+  std::vector<double> normals;            // 3 per vertex
+  std::vector<std::int64_t> origin;       // per vertex: input vertex or -1
+  std::vector<std::int64_t> parent;       // per triangle: local triangle, -1 for a hole's fan
+  std::vector<std::int64_t> source;       // per triangle: input triangle, -1 for a hole's fan
+  std::vector<double> source_barycentric; // 9 per triangle
+
+  std::int64_t add_vertex(const std::array<double, 3>& p, const std::array<double, 3>& n, double d,
+                          std::int64_t from)
+  {
+    this->mesh.points.insert(this->mesh.points.end(), p.begin(), p.end());
+    this->normals.insert(this->normals.end(), n.begin(), n.end());
+    this->distance.push_back(d);
+    this->origin.push_back(from);
+    return std::int64_t(this->distance.size() - 1);
+  }
+  std::array<double, 3> normal(std::int64_t v) const
+  {
+    const auto i = std::size_t(3 * v);
+    return { this->normals[i], this->normals[i + 1], this->normals[i + 2] };
+  }
 };
 
-Clipped clip_below(const TriangleMesh& mesh, const std::vector<double>& distance, double radius)
+Clipped clip_below(const detail::LocalSurface& local, const std::vector<double>& distance,
+                   double radius)
 {
+  const TriangleMesh& mesh = local.mesh;
   Clipped out;
   std::unordered_map<std::int64_t, std::int64_t> vertex_of;
   std::unordered_map<std::uint64_t, std::int64_t> cut_of;
-  auto add_vertex = [&out](const std::array<double, 3>& p, double d, std::int64_t origin) {
-    out.mesh.points.insert(out.mesh.points.end(), { p[0], p[1], p[2] });
-    out.distance.push_back(d);
-    out.origin.push_back(origin);
-    return std::int64_t(out.distance.size() - 1);
+  auto normal_of = [&local](std::int64_t v) {
+    const auto i = std::size_t(3 * v);
+    return std::array<double, 3>{ local.normals[i], local.normals[i + 1], local.normals[i + 2] };
   };
   auto inside_vertex = [&](std::int64_t v) {
     const auto found = vertex_of.find(v);
@@ -56,14 +74,19 @@ Clipped clip_below(const TriangleMesh& mesh, const std::vector<double>& distance
     {
       return found->second;
     }
-    return vertex_of[v] = add_vertex(mesh.point(v), distance[std::size_t(v)], v);
+    return vertex_of[v] = out.add_vertex(mesh.point(v), normal_of(v), distance[std::size_t(v)],
+                                         local.original_vertex[std::size_t(v)]);
   };
-  auto cut = [&](std::int64_t inside, std::int64_t outside) {
+  // Where the isoline crosses edge (inside, outside), from the inside end; 0: at that end.
+  auto fraction = [&](std::int64_t inside, std::int64_t outside) {
     const double t = (radius - distance[std::size_t(inside)]) /
       (distance[std::size_t(outside)] - distance[std::size_t(inside)]);
-    if (t < 1e-6)
+    return t < 1e-6 ? 0.0 : t;
+  };
+  auto cut = [&](std::int64_t inside, std::int64_t outside, double t) {
+    if (t == 0)
     {
-      return inside_vertex(inside); // the isoline passes through the inside vertex
+      return inside_vertex(inside);
     }
     const std::uint64_t key = edge_key(inside, outside);
     const auto found = cut_of.find(key);
@@ -71,11 +94,20 @@ Clipped clip_below(const TriangleMesh& mesh, const std::vector<double>& distance
     {
       return found->second;
     }
-    const auto a = mesh.point(inside);
-    const auto b = mesh.point(outside);
-    const std::array<double, 3> p{ a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]),
-                                   a[2] + t * (b[2] - a[2]) };
-    return cut_of[key] = add_vertex(p, radius, -1);
+    const auto a = mesh.point(inside), b = mesh.point(outside);
+    const auto na = normal_of(inside), nb = normal_of(outside);
+    std::array<double, 3> p{}, n{};
+    for (std::size_t d = 0; d < 3; ++d)
+    {
+      p[d] = a[d] + t * (b[d] - a[d]);
+      n[d] = na[d] + t * (nb[d] - na[d]);
+    }
+    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (double& c : n)
+    {
+      c /= length > 0 ? length : 1.0;
+    }
+    return cut_of[key] = out.add_vertex(p, n, radius, -1);
   };
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
   {
@@ -88,29 +120,48 @@ Clipped clip_below(const TriangleMesh& mesh, const std::vector<double>& distance
     {
       continue;
     }
-    std::vector<std::int64_t> polygon;
+    const double* corner_bary = &local.source_barycentric[9 * t];
+    std::vector<std::pair<std::int64_t, std::array<double, 3>>> polygon;
+    auto push = [&polygon](std::int64_t id, const std::array<double, 3>& bary) {
+      if (polygon.empty() || polygon.back().first != id)
+      {
+        polygon.emplace_back(id, bary);
+      }
+    };
     for (int k = 0; k < 3; ++k)
     {
       const int next = (k + 1) % 3;
       if (in[k])
       {
-        polygon.push_back(inside_vertex(v[k]));
+        const double* bk = corner_bary + 3 * k;
+        push(inside_vertex(v[k]), { bk[0], bk[1], bk[2] });
       }
       if (in[k] != in[next])
       {
-        polygon.push_back(in[k] ? cut(v[k], v[next]) : cut(v[next], v[k]));
+        const int inside = in[k] ? k : next;
+        const int outside = in[k] ? next : k;
+        const double f = fraction(v[inside], v[outside]);
+        const double* bi = corner_bary + 3 * inside;
+        const double* bo = corner_bary + 3 * outside;
+        push(cut(v[inside], v[outside], f),
+             { bi[0] + f * (bo[0] - bi[0]), bi[1] + f * (bo[1] - bi[1]),
+               bi[2] + f * (bo[2] - bi[2]) });
       }
     }
-    polygon.erase(std::unique(polygon.begin(), polygon.end()), polygon.end());
-    if (polygon.size() > 1 && polygon.front() == polygon.back())
+    if (polygon.size() > 1 && polygon.front().first == polygon.back().first)
     {
       polygon.pop_back();
     }
     for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
     {
-      out.mesh.triangles.insert(out.mesh.triangles.end(),
-                                { polygon[0], polygon[k], polygon[k + 1] });
-      out.source_triangle.push_back(std::int64_t(t));
+      for (const std::size_t corner : { std::size_t(0), k, k + 1 })
+      {
+        out.mesh.triangles.push_back(polygon[corner].first);
+        out.source_barycentric.insert(out.source_barycentric.end(), polygon[corner].second.begin(),
+                                      polygon[corner].second.end());
+      }
+      out.parent.push_back(std::int64_t(t));
+      out.source.push_back(local.source_triangle[t]);
     }
   }
   return out;
@@ -122,7 +173,7 @@ Clipped component_of(const Clipped& in, std::int64_t keep_triangle)
   const std::size_t n = in.mesh.triangle_count();
   std::vector<std::size_t> parent(n);
   std::iota(parent.begin(), parent.end(), std::size_t(0));
-  std::function<std::size_t(std::size_t)> root = [&](std::size_t x) {
+  auto root = [&parent](std::size_t x) {
     while (parent[x] != x)
     {
       x = parent[x] = parent[parent[x]];
@@ -157,15 +208,16 @@ Clipped component_of(const Clipped& in, std::int64_t keep_triangle)
       const std::int64_t v = in.mesh.triangles[3 * t + std::size_t(k)];
       if (new_index[std::size_t(v)] < 0)
       {
-        new_index[std::size_t(v)] = std::int64_t(out.distance.size());
-        const auto p = in.mesh.point(v);
-        out.mesh.points.insert(out.mesh.points.end(), { p[0], p[1], p[2] });
-        out.distance.push_back(in.distance[std::size_t(v)]);
-        out.origin.push_back(in.origin[std::size_t(v)]);
+        new_index[std::size_t(v)] = out.add_vertex(
+          in.mesh.point(v), in.normal(v), in.distance[std::size_t(v)], in.origin[std::size_t(v)]);
       }
       out.mesh.triangles.push_back(new_index[std::size_t(v)]);
     }
-    out.source_triangle.push_back(in.source_triangle[t]);
+    out.parent.push_back(in.parent[t]);
+    out.source.push_back(in.source[t]);
+    out.source_barycentric.insert(out.source_barycentric.end(),
+                                  in.source_barycentric.begin() + long(9 * t),
+                                  in.source_barycentric.begin() + long(9 * t + 9));
   }
   return out;
 }
@@ -210,40 +262,48 @@ std::size_t close_inner_holes(Clipped& disk)
       continue;
     }
     std::array<double, 3> centre{ 0, 0, 0 };
+    std::array<double, 3> normal{ 0, 0, 0 };
     double distance = 0;
     for (const std::int64_t v : loops[i])
     {
       const auto p = disk.mesh.point(v);
-      for (int d = 0; d < 3; ++d)
+      const auto n = disk.normal(v);
+      for (std::size_t d = 0; d < 3; ++d)
       {
-        centre[std::size_t(d)] += p[std::size_t(d)] / double(loops[i].size());
+        centre[d] += p[d] / double(loops[i].size());
+        normal[d] += n[d];
       }
       distance += disk.distance[std::size_t(v)] / double(loops[i].size());
     }
-    disk.mesh.points.insert(disk.mesh.points.end(), { centre[0], centre[1], centre[2] });
-    disk.distance.push_back(distance);
-    disk.origin.push_back(-1);
-    const std::int64_t c = std::int64_t(disk.distance.size() - 1);
+    const double length =
+      std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
+    for (double& c : normal)
+    {
+      c /= length > 0 ? length : 1.0;
+    }
+    const std::int64_t c = disk.add_vertex(centre, normal, distance, -1);
     for (std::size_t k = 0; k < loops[i].size(); ++k)
     {
       // The loop runs along the hole in the triangles' orientation; the fan goes the other way.
       disk.mesh.triangles.insert(disk.mesh.triangles.end(),
                                  { loops[i][(k + 1) % loops[i].size()], loops[i][k], c });
-      disk.source_triangle.push_back(-1);
+      disk.parent.push_back(-1);
+      disk.source.push_back(-1);
+      disk.source_barycentric.insert(disk.source_barycentric.end(), 9, 0.0);
     }
     ++closed;
   }
   return closed;
 }
 
-/// Where the seed (inside mesh triangle `seed_triangle`) lies on the disk.
+/// Where the seed (a point of local triangle seed.triangle) lies on the disk.
 SurfacePoint locate_seed(const Clipped& disk, const SurfacePoint& seed)
 {
   SurfacePoint best;
   double best_outside = std::numeric_limits<double>::max();
   for (std::size_t t = 0; t < disk.mesh.triangle_count(); ++t)
   {
-    if (disk.source_triangle[t] != seed.triangle)
+    if (disk.parent[t] != seed.triangle)
     {
       continue;
     }
@@ -280,33 +340,34 @@ SurfacePoint locate_seed(const Clipped& disk, const SurfacePoint& seed)
   return best;
 }
 
-/// One attempt: the clipped disk on `solver`'s mesh, with its topology checked.
-Clipped grow(const GeodesicSolver& solver, const SurfacePoint& seed, double radius,
-             std::size_t& holes_closed)
+/// The clipped disk on the local surface, with its topology checked.
+Clipped grow(const detail::LocalSurface& local, double radius, std::size_t& holes_closed)
 {
-  const TriangleMesh& mesh = solver.mesh();
+  const GeodesicSolver solver(local.mesh);
   // Every vertex of a triangle crossing the isoline is within one edge of it.
-  const GeodesicField field = solver.distances(seed, radius + solver.longest_edge());
+  const GeodesicField field = solver.distances(local.seed, radius + solver.longest_edge());
   for (std::size_t i = 0; i < field.vertices.size() && field.distances[i] <= radius; ++i)
   {
+    // The local surface's own border lies beyond the radius, so this is the input's boundary.
     if (solver.on_boundary(field.vertices[i]))
     {
-      throw TopologyError("the geodesic disk of radius " + format_length(radius) +
-                          " reaches the mesh boundary at vertex " +
-                          std::to_string(field.vertices[i]) + " (distance " +
-                          format_length(field.distances[i]) +
-                          "); pick a point farther from "
-                          "the boundary or a smaller radius");
+      const std::int64_t original = local.original_vertex[field.vertices[i]];
+      throw TopologyError(
+        "the geodesic disk of radius " + format_length(radius) + " reaches the mesh boundary" +
+        (original >= 0 ? " at vertex " + std::to_string(original) : std::string()) + " (distance " +
+        format_length(field.distances[i]) +
+        "); pick a point farther from the boundary or a smaller radius");
     }
   }
-  const Clipped clipped = clip_below(mesh, field.dense(mesh.vertex_count()), radius);
-  Clipped disk = clipped;
-  const SurfacePoint seed_on_clip = locate_seed(clipped, seed);
+  const Clipped clipped = clip_below(local, field.dense(local.mesh.vertex_count()), radius);
+  const SurfacePoint seed_on_clip = locate_seed(clipped, local.seed);
   if (seed_on_clip.triangle < 0)
   {
-    throw TopologyError("the seed's triangle was lost while cutting the geodesic disk");
+    throw TopologyError("the geodesic disk of radius " + format_length(radius) +
+                        " lost the seed's triangle while it was cut (the surface around the "
+                        "seed is degenerate)");
   }
-  disk = component_of(clipped, seed_on_clip.triangle);
+  Clipped disk = component_of(clipped, seed_on_clip.triangle);
   if (boundary_loops(disk.mesh).empty())
   {
     throw TopologyError("the geodesic disk of radius " + format_length(radius) +
@@ -330,44 +391,9 @@ Clipped grow(const GeodesicSolver& solver, const SurfacePoint& seed, double radi
   }
   return disk;
 }
-
-/// The triangles of `mesh` that come within `reach` of the seed (by geodesic distance), as a
-/// separate mesh; `origin` maps its vertices to the input's origin ids.
-TriangleMesh region_around(const GeodesicSolver& solver, const SurfacePoint& seed, double reach,
-                           const std::vector<std::int64_t>& origin_in,
-                           std::vector<std::int64_t>& origin_out)
-{
-  const TriangleMesh& mesh = solver.mesh();
-  const std::vector<double> d =
-    solver.distances(seed, reach + solver.longest_edge()).dense(mesh.vertex_count());
-  TriangleMesh region;
-  std::vector<std::int64_t> new_index(mesh.vertex_count(), -1);
-  origin_out.clear();
-  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
-  {
-    const std::int64_t* v = &mesh.triangles[3 * t];
-    if (std::min({ d[std::size_t(v[0])], d[std::size_t(v[1])], d[std::size_t(v[2])] }) > reach)
-    {
-      continue;
-    }
-    for (int k = 0; k < 3; ++k)
-    {
-      std::int64_t& id = new_index[std::size_t(v[k])];
-      if (id < 0)
-      {
-        id = std::int64_t(origin_out.size());
-        const auto p = mesh.point(v[k]);
-        region.points.insert(region.points.end(), { p[0], p[1], p[2] });
-        origin_out.push_back(origin_in[std::size_t(v[k])]);
-      }
-      region.triangles.push_back(id);
-    }
-  }
-  return region;
-}
 } // namespace
 
-GeodesicDisk geodesic_disk(const GeodesicSolver& solver, const SurfacePoint& seed,
+GeodesicDisk geodesic_disk(const CellSurface& surface, const SurfacePoint& seed,
                            const GeodesicDiskParams& params)
 {
   if (!(params.radius > 0) || !std::isfinite(params.radius))
@@ -375,46 +401,66 @@ GeodesicDisk geodesic_disk(const GeodesicSolver& solver, const SurfacePoint& see
     throw InvalidInput("the geodesic radius must be positive and finite, got " +
                        format_length(params.radius));
   }
-  if (params.max_refinement_levels < 0 || params.max_refinement_levels > 8)
+  detail::LocalSurfaceParams local_params;
+  // Straight-line distance never exceeds the geodesic one; the margin covers the march's error.
+  local_params.reach = 1.02 * params.radius;
+  if (params.min_triangles > 0)
   {
-    throw InvalidInput("max_refinement_levels must lie in [0, 8]");
+    constexpr double pi = 3.14159265358979323846;
+    // Longest-edge bisection leaves triangles of h^2 / 8 to h^2 / 4 (h their longest edge), so
+    // this edge gives n to 2 n triangles in a flat disk.
+    local_params.target_edge = params.radius * std::sqrt(4 * pi / double(params.min_triangles));
   }
-  const GeodesicSolver* current = &solver;
-  std::unique_ptr<GeodesicSolver> refined;
-  SurfacePoint current_seed = seed;
-  std::vector<std::int64_t> origin(solver.mesh().vertex_count());
-  std::iota(origin.begin(), origin.end(), std::int64_t(0));
+  const detail::LocalSurface local = detail::local_surface(surface, seed, local_params);
+  if (local.seed.triangle < 0)
+  {
+    throw InvalidInput("the seed does not lie on the surface around it");
+  }
+  std::size_t holes = 0;
+  Clipped disk = grow(local, params.radius, holes);
   GeodesicDisk result;
-  for (int level = 0;; ++level)
+  result.seed = locate_seed(disk, local.seed);
+  result.mesh = std::move(disk.mesh);
+  result.distance = std::move(disk.distance);
+  result.normals = std::move(disk.normals);
+  result.original_vertex = std::move(disk.origin);
+  result.source_triangle = std::move(disk.source);
+  result.source_barycentric = std::move(disk.source_barycentric);
+  result.refinement_levels = local.bisection_depth;
+  result.holes_closed = holes;
+  return result;
+}
+
+SurfacePlacement smooth_placement(const GeodesicDisk& disk, const CellSurface& surface)
+{
+  struct Sources
   {
-    std::size_t holes = 0;
-    Clipped disk = grow(*current, current_seed, params.radius, holes);
-    const bool enough =
-      params.min_triangles == 0 || disk.mesh.triangle_count() >= params.min_triangles;
-    if (enough || level >= params.max_refinement_levels)
+    std::vector<std::int64_t> triangle;
+    std::vector<double> barycentric;
+  };
+  auto sources =
+    std::make_shared<const Sources>(Sources{ disk.source_triangle, disk.source_barycentric });
+  std::shared_ptr<const SmoothSurface> smooth = surface.shared_smooth();
+  return [sources, smooth](std::int64_t triangle, const std::array<double, 3>& barycentric,
+                           SurfaceFrame& frame) {
+    const std::int64_t source = sources->triangle[std::size_t(triangle)];
+    if (source < 0)
     {
-      result.seed = locate_seed(disk, current_seed);
-      result.mesh = std::move(disk.mesh);
-      result.distance = std::move(disk.distance);
-      result.original_vertex.resize(disk.origin.size());
-      for (std::size_t v = 0; v < disk.origin.size(); ++v)
-      {
-        result.original_vertex[v] = disk.origin[v] < 0 ? -1 : origin[std::size_t(disk.origin[v])];
-      }
-      result.refinement_levels = level;
-      result.holes_closed = holes;
-      return result;
+      return; // a filled hole: no surface to follow there
     }
-    // Too coarse for a faithful parameterization: Loop-subdivide the surroundings, grow again.
-    std::vector<std::int64_t> region_origin;
-    TriangleMesh region = region_around(
-      *current, current_seed, params.radius + 3 * current->longest_edge(), origin, region_origin);
-    TriangleMesh finer = detail::loop_subdivide(region, region_origin);
-    origin = std::move(region_origin);
-    refined = std::make_unique<GeodesicSolver>(std::move(finer));
-    current = refined.get();
-    current_seed = current->closest_point(seed.position);
-  }
+    const double* corners = &sources->barycentric[9 * std::size_t(triangle)];
+    std::array<double, 3> in_source{ 0, 0, 0 };
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+      for (std::size_t d = 0; d < 3; ++d)
+      {
+        in_source[d] += barycentric[k] * corners[3 * k + d];
+      }
+    }
+    const SmoothPoint point = smooth->evaluate(source, in_source);
+    frame.position = point.position;
+    frame.normal = point.normal;
+  };
 }
 
 } // namespace mesolens

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <map>
 #include <string>
 
@@ -96,6 +98,12 @@ void check_params(const MembranePatch& patch, const MappingParams& params)
     throw InvalidInput(
       "the polynomial fit needs a positive layer thickness and at least 3 samples per edge");
   }
+  const int m = params.max_polynomial_splits;
+  if (m < 1 || m > 8 || (m & (m - 1)) != 0 || std::isnan(params.max_polynomial_residual))
+  {
+    throw InvalidInput("max_polynomial_splits must be 1, 2, 4 or 8 and the residual bound a "
+                       "number");
+  }
   if (!std::isfinite(params.centre_uv[0]) || !std::isfinite(params.centre_uv[1]) ||
       !std::isfinite(patch.centre_height))
   {
@@ -114,7 +122,8 @@ void check_params(const MembranePatch& patch, const MappingParams& params)
   }
 }
 
-/// Atoms of each molecule, and their centres (mass-weighted when masses are given).
+/// Atoms of each molecule, and their centres (mass-weighted when masses are given). Without
+/// molecule ids every atom is its own molecule.
 struct Molecules
 {
   std::vector<int> ids;
@@ -124,16 +133,11 @@ struct Molecules
 
 Molecules group_molecules(const MembranePatch& patch)
 {
-  if (!patch.molecule_ids)
-  {
-    throw InvalidInput(
-      "molecule instancing needs molecule ids (the MoleculeId array of a MesoLens reader)");
-  }
   std::map<int, std::size_t> index_of;
   Molecules molecules;
   for (std::uint32_t i = 0; i < patch.atom_count; ++i)
   {
-    const int id = patch.molecule_ids[i];
+    const int id = patch.molecule_ids ? patch.molecule_ids[i] : int(i);
     if (id < 0)
     {
       throw InvalidInput("membrane atom " + std::to_string(i) + " has a negative molecule id");
@@ -167,6 +171,277 @@ Molecules group_molecules(const MembranePatch& patch)
   }
   return molecules;
 }
+
+constexpr double not_mapped = std::numeric_limits<double>::quiet_NaN();
+
+/// Maps the tiles one at a time; every tile writes only its own slots of the output.
+class TileMapper
+{
+public:
+  TileMapper(const SurfaceChart& chart, const MembranePatch& patch, const MappingParams& params,
+             MappedMembrane& out)
+    : Chart(chart)
+    , Patch(patch)
+    , Params(params)
+    , Layout(patch, params)
+    , Out(out)
+  {
+    this->Failures.resize(std::size_t(params.tiles) * std::size_t(params.tiles));
+    const bool need_molecules =
+      params.method == MappingMethod::MoleculeInstancing || params.cut_to_disk;
+    if (params.method == MappingMethod::MoleculeInstancing && !patch.molecule_ids)
+    {
+      throw InvalidInput(
+        "molecule instancing needs molecule ids (the MoleculeId array of a MesoLens reader)");
+    }
+    if (need_molecules)
+    {
+      this->Groups = group_molecules(patch);
+    }
+  }
+
+  bool MapAtoms = true;
+  std::vector<std::string> Failures;
+
+  void displacement(std::size_t tile)
+  {
+    const int i = int(tile % std::size_t(this->Params.tiles));
+    const int j = int(tile / std::size_t(this->Params.tiles));
+    const std::size_t n = this->Patch.atom_count;
+    double* out = this->Out.positions.data() + 3 * n * tile;
+    SurfaceFrame frame;
+    std::array<double, 3> x{};
+    for (std::size_t a = 0; a < n; ++a)
+    {
+      const float* p = this->Patch.positions + 3 * a;
+      const auto uv = this->Layout.uv(p[0], p[1], i, j);
+      if (!displaced(this->Chart, uv, this->Params.scale * (p[2] - this->Patch.centre_height), x,
+                     frame))
+      {
+        if (!this->Params.cut_to_disk)
+        {
+          this->Failures[tile] = outside_message(a, i, j, uv);
+          return;
+        }
+        x = { not_mapped, not_mapped, not_mapped };
+      }
+      std::copy(x.begin(), x.end(), out + 3 * a);
+    }
+    this->drop_partial_molecules(tile);
+  }
+
+  void instancing(std::size_t tile)
+  {
+    const int i = int(tile % std::size_t(this->Params.tiles));
+    const int j = int(tile / std::size_t(this->Params.tiles));
+    const std::size_t n = this->Patch.atom_count;
+    const double scale = this->Params.scale;
+    SurfaceFrame frame;
+    std::array<double, 3> x{};
+    for (std::size_t m = 0; m < this->Groups.ids.size(); ++m)
+    {
+      const auto& c = this->Groups.centres[m];
+      const auto uv = this->Layout.uv(c[0], c[1], i, j);
+      const std::size_t instance = tile * this->Groups.ids.size() + m;
+      double* matrix = this->Out.instance_matrices.data() + 16 * instance;
+      this->Out.instance_molecules[instance] = this->Groups.ids[m];
+      this->Out.instance_tiles[instance] = int(tile);
+      const bool inside =
+        displaced(this->Chart, uv, scale * (c[2] - this->Patch.centre_height), x, frame);
+      if (!inside && !this->Params.cut_to_disk)
+      {
+        this->Failures[tile] = outside_message(this->Groups.atoms[m].front(), i, j, uv);
+        return;
+      }
+      if (!inside)
+      {
+        std::fill(matrix, matrix + 16, not_mapped);
+      }
+      else
+      {
+        // Rows of R: patch x -> tangent_u, y -> tangent_v, z -> normal (columns of R).
+        const std::array<std::array<double, 3>, 3> axes{ frame.tangent_u, frame.tangent_v,
+                                                         frame.normal };
+        for (int r = 0; r < 3; ++r)
+        {
+          double translation = x[std::size_t(r)];
+          for (int col = 0; col < 3; ++col)
+          {
+            const double rotation = scale * axes[std::size_t(col)][std::size_t(r)];
+            matrix[4 * r + col] = rotation;
+            translation -= rotation * c[std::size_t(col)];
+          }
+          matrix[4 * r + 3] = translation;
+        }
+        matrix[12] = matrix[13] = matrix[14] = 0;
+        matrix[15] = 1;
+      }
+      if (!this->MapAtoms)
+      {
+        continue;
+      }
+      double* out = this->Out.positions.data() + 3 * n * tile;
+      for (const std::uint32_t a : this->Groups.atoms[m])
+      {
+        const float* p = this->Patch.positions + 3 * a;
+        for (int r = 0; r < 3; ++r)
+        {
+          out[3 * a + std::size_t(r)] = matrix[4 * r] * p[0] + matrix[4 * r + 1] * p[1] +
+            matrix[4 * r + 2] * p[2] + matrix[4 * r + 3];
+        }
+      }
+    }
+    this->drop_partial_molecules(tile);
+  }
+
+  /// Fits the m x m pieces of one tile; false (with the tile's failure set) when samples leave
+  /// the disk, unless the tile is cut to the disk.
+  void fit_polynomial(std::size_t tile, int m)
+  {
+    const int i = int(tile % std::size_t(this->Params.tiles));
+    const int j = int(tile / std::size_t(this->Params.tiles));
+    const int samples = this->Params.samples;
+    const double scale = this->Params.scale;
+    double rms = 0, worst = 0;
+    bool too_few = false;
+    std::vector<std::array<double, 3>> parameters, targets;
+    SurfaceFrame frame;
+    std::array<double, 3> x{};
+    for (int pj = 0; pj < m; ++pj)
+    {
+      for (int pi = 0; pi < m; ++pi)
+      {
+        parameters.clear();
+        targets.clear();
+        for (int layer = -1; layer <= 1; ++layer)
+        {
+          for (int sj = 0; sj < samples; ++sj)
+          {
+            for (int si = 0; si < samples; ++si)
+            {
+              // The piece's own (s, t) in [-1, 1], and where that is on the tile.
+              const double s = -1 + 2.0 * si / (samples - 1);
+              const double t = -1 + 2.0 * sj / (samples - 1);
+              const double tile_s = -1 + (2.0 * pi + s + 1) / m;
+              const double tile_t = -1 + (2.0 * pj + t + 1) / m;
+              const auto q = this->Layout.patch_point(tile_s, tile_t);
+              const auto uv = this->Layout.uv(q[0], q[1], i, j);
+              if (!displaced(this->Chart, uv, scale * layer * this->Params.layer_half_thickness, x,
+                             frame))
+              {
+                if (this->Params.cut_to_disk)
+                {
+                  continue;
+                }
+                this->Failures[tile] = "the polynomial samples of tile (" + std::to_string(i) +
+                  ", " + std::to_string(j) + ") leave the geodesic disk at (u, v) = (" +
+                  std::to_string(uv[0]) + ", " + std::to_string(uv[1]) + "); grow the disk";
+                return;
+              }
+              parameters.push_back({ s, t, double(layer) });
+              targets.push_back(x);
+            }
+          }
+        }
+        const std::size_t piece =
+          (tile * std::size_t(m) + std::size_t(pj)) * std::size_t(m) + std::size_t(pi);
+        double* coefficients =
+          this->Out.polynomial_coefficients.data() + 3 * quadratic_terms * piece;
+        if (parameters.size() < 2 * quadratic_terms)
+        {
+          too_few = true; // a piece mostly outside a cut disk
+          std::fill(coefficients, coefficients + 3 * quadratic_terms, not_mapped);
+          continue;
+        }
+        const QuadraticFit fit = fit_quadratic(parameters, targets);
+        std::copy(fit.warp.begin(), fit.warp.end(), coefficients);
+        rms = std::max(rms, fit.rms_residual);
+        worst = std::max(worst, fit.max_residual);
+      }
+    }
+    this->Out.polynomial_rms_residual[tile] = rms;
+    this->Out.polynomial_max_residual[tile] =
+      too_few ? std::numeric_limits<double>::infinity() : worst;
+  }
+
+  /// The atoms of a tile from its polynomial pieces (or by displacement when it fell back).
+  void polynomial_atoms(std::size_t tile)
+  {
+    if (this->Out.tile_fallback[tile])
+    {
+      this->displacement(tile);
+      return;
+    }
+    const int i = int(tile % std::size_t(this->Params.tiles));
+    const int j = int(tile / std::size_t(this->Params.tiles));
+    const int m = this->Out.polynomial_splits;
+    const std::size_t n = this->Patch.atom_count;
+    const double* coefficients = this->Out.polynomial_coefficients.data() +
+      3 * quadratic_terms * tile * std::size_t(m) * std::size_t(m);
+    double* out = this->Out.positions.data() + 3 * n * tile;
+    SurfacePoint located;
+    for (std::size_t a = 0; a < n; ++a)
+    {
+      const float* p = this->Patch.positions + 3 * a;
+      const auto y = evaluate_tile_polynomial(this->Patch, this->Params.layer_half_thickness, m,
+                                              coefficients, p);
+      std::copy(y.begin(), y.end(), out + 3 * a);
+      if (this->Params.cut_to_disk)
+      {
+        const auto uv = this->Layout.uv(p[0], p[1], i, j);
+        if (!this->Chart.locate(uv[0], uv[1], located))
+        {
+          std::fill(out + 3 * a, out + 3 * a + 3, not_mapped);
+        }
+      }
+    }
+    this->drop_partial_molecules(tile);
+  }
+
+private:
+  const SurfaceChart& Chart;
+  const MembranePatch& Patch;
+  const MappingParams& Params;
+  TileLayout Layout;
+  MappedMembrane& Out;
+  Molecules Groups;
+
+  /// Cut to the disk: a molecule with an atom outside is dropped whole.
+  void drop_partial_molecules(std::size_t tile)
+  {
+    if (!this->Params.cut_to_disk || !this->MapAtoms)
+    {
+      return;
+    }
+    const std::size_t n = this->Patch.atom_count;
+    double* out = this->Out.positions.data() + 3 * n * tile;
+    std::uint8_t* mapped = this->Out.atom_mapped.data() + n * tile;
+    for (const auto& atoms : this->Groups.atoms)
+    {
+      const bool whole = std::all_of(atoms.begin(), atoms.end(),
+                                     [out](std::uint32_t a) { return !std::isnan(out[3 * a]); });
+      for (const std::uint32_t a : atoms)
+      {
+        mapped[a] = whole ? 1 : 0;
+        if (!whole)
+        {
+          std::fill(out + 3 * a, out + 3 * a + 3, not_mapped);
+        }
+      }
+    }
+  }
+};
+
+void throw_first_failure(const std::vector<std::string>& failures)
+{
+  for (const std::string& failure : failures)
+  {
+    if (!failure.empty())
+    {
+      throw OutsideChart(failure);
+    }
+  }
+}
 } // namespace
 
 std::array<double, 3> polynomial_coordinates(const MembranePatch& patch,
@@ -180,160 +455,122 @@ std::array<double, 3> polynomial_coordinates(const MembranePatch& patch,
   return { 2 * fa - 1, 2 * fb - 1, (position[2] - patch.centre_height) / layer_half_thickness };
 }
 
+int polynomial_piece(int splits, double& s, double& t)
+{
+  const double fs = (s + 1) / 2 * splits;
+  const double ft = (t + 1) / 2 * splits;
+  const int i = std::clamp(int(std::floor(fs)), 0, splits - 1);
+  const int j = std::clamp(int(std::floor(ft)), 0, splits - 1);
+  s = 2 * (fs - i) - 1;
+  t = 2 * (ft - j) - 1;
+  return j * splits + i;
+}
+
+std::array<double, 3> evaluate_tile_polynomial(const MembranePatch& patch,
+                                               double layer_half_thickness, int splits,
+                                               const double* coefficients, const float* position)
+{
+  auto local = polynomial_coordinates(patch, layer_half_thickness, position);
+  const int piece = polynomial_piece(splits, local[0], local[1]);
+  QuadraticWarp warp;
+  std::copy(coefficients + 3 * quadratic_terms * std::size_t(piece),
+            coefficients + 3 * quadratic_terms * std::size_t(piece + 1), warp.begin());
+  return evaluate_quadratic(warp, local[0], local[1], local[2]);
+}
+
+double tiled_extent(const MembranePatch& patch, int tiles)
+{
+  // Fractional cell coordinates of the atoms; tiles shift them by whole cells.
+  double low[2] = { 0, 0 }, high[2] = { 1, 1 };
+  for (std::size_t a = 0; a < patch.atom_count; ++a)
+  {
+    const auto local = polynomial_coordinates(patch, 1.0, patch.positions + 3 * a);
+    for (int d = 0; d < 2; ++d)
+    {
+      low[d] = std::min(low[d], (local[std::size_t(d)] + 1) / 2);
+      high[d] = std::max(high[d], (local[std::size_t(d)] + 1) / 2);
+    }
+  }
+  // Tile i spans fractional [i - k/2 + low, i - k/2 + high], i in [0, k).
+  const double k = tiles;
+  double extent = 0;
+  for (const double fa : { low[0] - k / 2, high[0] + k / 2 - 1 })
+  {
+    for (const double fb : { low[1] - k / 2, high[1] + k / 2 - 1 })
+    {
+      extent = std::max(
+        extent, std::hypot(fa * patch.a[0] + fb * patch.b[0], fa * patch.a[1] + fb * patch.b[1]));
+    }
+  }
+  return extent;
+}
+
 MappedMembrane map_membrane(const SurfaceChart& chart, const MembranePatch& patch,
                             const MappingParams& params, const ParallelFor& parallel_for)
 {
   check_params(patch, params);
-  const TileLayout layout(patch, params);
-  const int k = params.tiles;
-  const std::size_t tile_count = std::size_t(k) * std::size_t(k);
+  const std::size_t tile_count = std::size_t(params.tiles) * std::size_t(params.tiles);
   const std::size_t n = patch.atom_count;
   MappedMembrane mapped;
-  const bool map_atoms = params.map_atoms || params.method == MappingMethod::Displacement;
-  if (map_atoms)
+  TileMapper mapper(chart, patch, params, mapped);
+  mapper.MapAtoms = params.map_atoms || params.method == MappingMethod::Displacement;
+  if (mapper.MapAtoms)
   {
     mapped.positions.resize(3 * n * tile_count);
-  }
-  std::vector<std::string> failures(tile_count);
-  const double scale = params.scale;
-
-  Molecules molecules;
-  if (params.method == MappingMethod::MoleculeInstancing)
-  {
-    molecules = group_molecules(patch);
-    mapped.instance_matrices.resize(16 * molecules.ids.size() * tile_count);
-    mapped.instance_molecules.resize(molecules.ids.size() * tile_count);
-    mapped.instance_tiles.resize(molecules.ids.size() * tile_count);
-  }
-  if (params.method == MappingMethod::Polynomial)
-  {
-    mapped.polynomial_coefficients.resize(3 * quadratic_terms * tile_count);
-    mapped.polynomial_rms_residual.resize(tile_count);
-    mapped.polynomial_max_residual.resize(tile_count);
-  }
-
-  const std::vector<std::uint32_t> no_atoms;
-  auto map_tile = [&](std::size_t tile) {
-    const int i = int(tile % std::size_t(k));
-    const int j = int(tile / std::size_t(k));
-    double* out = map_atoms ? mapped.positions.data() + 3 * n * tile : nullptr;
-    SurfaceFrame frame;
-    std::array<double, 3> x{};
-    switch (params.method)
+    if (params.cut_to_disk)
     {
-      case MappingMethod::Displacement:
-        for (std::size_t a = 0; a < n; ++a)
-        {
-          const float* p = patch.positions + 3 * a;
-          const auto uv = layout.uv(p[0], p[1], i, j);
-          if (!displaced(chart, uv, scale * (p[2] - patch.centre_height), x, frame))
-          {
-            failures[tile] = outside_message(a, i, j, uv);
-            return;
-          }
-          for (int d = 0; d < 3; ++d)
-          {
-            out[3 * a + std::size_t(d)] = x[std::size_t(d)];
-          }
-        }
-        break;
-      case MappingMethod::MoleculeInstancing:
-        for (std::size_t m = 0; m < molecules.ids.size(); ++m)
-        {
-          const auto& c = molecules.centres[m];
-          const auto uv = layout.uv(c[0], c[1], i, j);
-          if (!displaced(chart, uv, scale * (c[2] - patch.centre_height), x, frame))
-          {
-            failures[tile] = outside_message(molecules.atoms[m].front(), i, j, uv);
-            return;
-          }
-          // Rows of R: patch x -> tangent_u, y -> tangent_v, z -> normal (columns of R).
-          const std::array<std::array<double, 3>, 3> axes{ frame.tangent_u, frame.tangent_v,
-                                                           frame.normal };
-          const std::size_t instance = tile * molecules.ids.size() + m;
-          double* matrix = mapped.instance_matrices.data() + 16 * instance;
-          for (int r = 0; r < 3; ++r)
-          {
-            double translation = x[std::size_t(r)];
-            for (int col = 0; col < 3; ++col)
-            {
-              const double rotation = scale * axes[std::size_t(col)][std::size_t(r)];
-              matrix[4 * r + col] = rotation;
-              translation -= rotation * c[std::size_t(col)];
-            }
-            matrix[4 * r + 3] = translation;
-          }
-          matrix[12] = matrix[13] = matrix[14] = 0;
-          matrix[15] = 1;
-          mapped.instance_molecules[instance] = molecules.ids[m];
-          mapped.instance_tiles[instance] = int(tile);
-          for (const std::uint32_t a : map_atoms ? molecules.atoms[m] : no_atoms)
-          {
-            const float* p = patch.positions + 3 * a;
-            for (int r = 0; r < 3; ++r)
-            {
-              out[3 * a + std::size_t(r)] = matrix[4 * r] * p[0] + matrix[4 * r + 1] * p[1] +
-                matrix[4 * r + 2] * p[2] + matrix[4 * r + 3];
-            }
-          }
-        }
-        break;
-      case MappingMethod::Polynomial: {
-        std::vector<std::array<double, 3>> parameters;
-        std::vector<std::array<double, 3>> targets;
-        const int samples = params.samples;
-        for (int layer = -1; layer <= 1; ++layer)
-        {
-          for (int sj = 0; sj < samples; ++sj)
-          {
-            for (int si = 0; si < samples; ++si)
-            {
-              const double s = -1 + 2.0 * si / (samples - 1);
-              const double t = -1 + 2.0 * sj / (samples - 1);
-              const auto q = layout.patch_point(s, t);
-              const auto uv = layout.uv(q[0], q[1], i, j);
-              if (!displaced(chart, uv, scale * layer * params.layer_half_thickness, x, frame))
-              {
-                failures[tile] = "the polynomial samples of tile (" + std::to_string(i) + ", " +
-                  std::to_string(j) + ") leave the geodesic disk at (u, v) = (" +
-                  std::to_string(uv[0]) + ", " + std::to_string(uv[1]) + "); grow the disk";
-                return;
-              }
-              parameters.push_back({ s, t, double(layer) });
-              targets.push_back(x);
-            }
-          }
-        }
-        const QuadraticFit fit = fit_quadratic(parameters, targets);
-        std::copy(fit.warp.begin(), fit.warp.end(),
-                  mapped.polynomial_coefficients.begin() + long(3 * quadratic_terms * tile));
-        mapped.polynomial_rms_residual[tile] = fit.rms_residual;
-        mapped.polynomial_max_residual[tile] = fit.max_residual;
-        for (std::size_t a = 0; map_atoms && a < n; ++a)
-        {
-          const auto local =
-            polynomial_coordinates(patch, params.layer_half_thickness, patch.positions + 3 * a);
-          const auto y = evaluate_quadratic(fit.warp, local[0], local[1], local[2]);
-          for (int d = 0; d < 3; ++d)
-          {
-            out[3 * a + std::size_t(d)] = y[std::size_t(d)];
-          }
-        }
-        break;
+      mapped.atom_mapped.assign(n * tile_count, 1);
+    }
+  }
+  auto each_tile = [&](const std::function<void(std::size_t)>& work) {
+    run_parallel(parallel_for, tile_count, [&work](std::size_t begin, std::size_t end) {
+      for (std::size_t tile = begin; tile < end; ++tile)
+      {
+        work(tile);
       }
-    }
+    });
+    throw_first_failure(mapper.Failures);
   };
-  run_parallel(parallel_for, tile_count, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t tile = begin; tile < end; ++tile)
-    {
-      map_tile(tile);
-    }
-  });
-  for (const std::string& failure : failures)
+  switch (params.method)
   {
-    if (!failure.empty())
-    {
-      throw InvalidInput(failure);
+    case MappingMethod::Displacement:
+      each_tile([&mapper](std::size_t tile) { mapper.displacement(tile); });
+      break;
+    case MappingMethod::MoleculeInstancing: {
+      const std::size_t molecules = group_molecules(patch).ids.size();
+      mapped.instance_matrices.resize(16 * molecules * tile_count);
+      mapped.instance_molecules.resize(molecules * tile_count);
+      mapped.instance_tiles.resize(molecules * tile_count);
+      each_tile([&mapper](std::size_t tile) { mapper.instancing(tile); });
+      break;
+    }
+    case MappingMethod::Polynomial: {
+      mapped.polynomial_rms_residual.resize(tile_count);
+      mapped.polynomial_max_residual.resize(tile_count);
+      const double bound = params.max_polynomial_residual * params.scale;
+      for (int m = 1;; m *= 2)
+      {
+        mapped.polynomial_splits = m;
+        mapped.polynomial_coefficients.assign(
+          3 * quadratic_terms * tile_count * std::size_t(m) * std::size_t(m), 0.0);
+        each_tile([&mapper, m](std::size_t tile) { mapper.fit_polynomial(tile, m); });
+        const double worst = *std::max_element(mapped.polynomial_max_residual.begin(),
+                                               mapped.polynomial_max_residual.end());
+        if (bound <= 0 || worst <= bound || 2 * m > params.max_polynomial_splits)
+        {
+          break;
+        }
+      }
+      mapped.tile_fallback.resize(tile_count);
+      for (std::size_t tile = 0; tile < tile_count; ++tile)
+      {
+        mapped.tile_fallback[tile] = bound > 0 && mapped.polynomial_max_residual[tile] > bound;
+      }
+      if (mapper.MapAtoms)
+      {
+        each_tile([&mapper](std::size_t tile) { mapper.polynomial_atoms(tile); });
+      }
+      break;
     }
   }
   return mapped;

@@ -10,9 +10,12 @@
 
 namespace mesolens {
 
-SurfaceChart::SurfaceChart(TriangleMesh disk, std::vector<double> uv)
+SurfaceChart::SurfaceChart(TriangleMesh disk, std::vector<double> uv, std::vector<double> normals,
+                           SurfacePlacement placement)
   : Disk(std::move(disk))
   , Uv(std::move(uv))
+  , Normals(std::move(normals))
+  , Placement(std::move(placement))
 {
   if (this->Uv.size() != 2 * this->Disk.vertex_count() || this->Disk.triangle_count() == 0)
   {
@@ -22,7 +25,14 @@ SurfaceChart::SurfaceChart(TriangleMesh disk, std::vector<double> uv)
   {
     throw InvalidInput("the texture coordinates of the surface chart are not finite");
   }
-  this->Normals = vertex_normals(this->Disk);
+  if (this->Normals.empty())
+  {
+    this->Normals = vertex_normals(this->Disk);
+  }
+  if (this->Normals.size() != this->Disk.points.size())
+  {
+    throw InvalidInput("a surface chart needs one normal per vertex");
+  }
   double low_u = std::numeric_limits<double>::max(), low_v = low_u;
   double high_u = -low_u, high_v = -low_u;
   for (std::size_t i = 0; i < this->Uv.size(); i += 2)
@@ -184,6 +194,11 @@ bool SurfaceChart::frame(double u, double v, SurfaceFrame& frame) const
     x /= length;
   }
   frame.normal = normal;
+  if (this->Placement)
+  {
+    this->Placement(point.triangle, point.barycentric, frame);
+    normal = frame.normal;
+  }
   // d position / du of the triangle's affine map: E * inverse(UV), with E the 3D edge vectors
   // and UV the uv edge vectors.
   const auto p0 = this->Disk.point(std::int64_t(vertex[0]));

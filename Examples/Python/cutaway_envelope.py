@@ -50,11 +50,9 @@ def envelope(seeds):
     bilayer = mesolens.vtkMesoTrajectoryReader()
     bilayer.SetTopologyFileName(os.path.join(DATA, "membranes", "martini_dppc_chol_bilayer.gro"))
     bilayer.Update()
-    molecules_per_patch = int(bilayer.GetOutput().GetPointData().GetArray("MoleculeId")
-                              .GetRange()[1]) + 1
     append = vtkAppendPolyData()
     golden = math.pi * (3 - math.sqrt(5))
-    copies = 0
+    first_id = 0
     for s in range(seeds):
         z = 1 - 2 * (s + 0.5) / seeds
         r = math.sqrt(1 - z * z)
@@ -72,11 +70,12 @@ def envelope(seeds):
         if mapped.GetNumberOfPoints() == 0:
             continue
         data = mapped.GetPointData()
+        # The mapping numbers its tiles' molecules apart; the mappings are numbered apart here.
         ids = vtk_to_numpy(data.GetArray("MoleculeId")).astype(np.int64)
-        tiles = vtk_to_numpy(data.GetArray("TileId")).astype(np.int64)
-        unique = numpy_to_vtk((copies + tiles) * molecules_per_patch + ids, deep=1)
+        unique = numpy_to_vtk(first_id + ids, deep=1)
         unique.SetName("MoleculeId")
         data.AddArray(unique)
+        first_id += int(ids.max()) + 1
         names = data.GetAbstractArray("ResidueName")
         colour = numpy_to_vtk(np.array([names.GetValue(i) == "CHOL"
                                         for i in range(names.GetNumberOfValues())],
@@ -84,7 +83,6 @@ def envelope(seeds):
         colour.SetName("Colour")
         data.AddArray(colour)
         mapped.GetFieldData().Initialize()  # no periodic box: the vesicle is whole
-        copies += 9
         append.AddInputData(mapped)
     append.Update()
     return append.GetOutput()

@@ -1,21 +1,26 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Atom impostors, the membrane-mapping warp (Waltemate et al. 2014): one quadratic x(s, t, h)
-// per tile, the tile being the draw call's instance. Per tile the buffer holds 10 texels, one per
-// monomial (1, s, t, h, s², st, sh, t², th, h²) holding its (x, y, z) coefficients (mesh
-// coordinates). (s, t) = 2 f - 1 from the fractional cell coordinates f of the patch
-// atom, h = (z - centre) / e. C++ twins: mesolens::polynomial_coordinates and
-// mesolens::evaluate_quadratic.
+// per piece of a tile split m x m (m = polynomialSplits), the tile being the draw call's
+// instance. Per piece the buffer holds 10 texels, one per monomial (1, s, t, h, s², st, sh, t²,
+// th, h²) holding its (x, y, z) coefficients (mesh coordinates); tile t's piece (i, j) is piece
+// (t m + j) m + i. (s, t) = 2 f - 1 from the fractional coordinates f of the patch atom in its
+// piece, h = (z - centre) / e. C++ twins: mesolens::polynomial_coordinates,
+// mesolens::polynomial_piece and mesolens::evaluate_quadratic.
 uniform samplerBuffer warpCoefficients;
 uniform vec2 patchOrigin;
 uniform vec4 patchToFractional; // the 2 x 2 inverse of the cell (a, b), column-major
 uniform float patchCentreHeight;
 uniform float inverseLayerHalfThickness;
+uniform int polynomialSplits;
 
 vec3 warpedPosition(vec3 patchPosition, float moleculeSlot, int tile) // slot unused
 {
   vec2 st = 2.0 * (mat2(patchToFractional) * (patchPosition.xy - patchOrigin)) - 1.0;
   float h = (patchPosition.z - patchCentreHeight) * inverseLayerHalfThickness;
-  int base = 10 * tile;
+  vec2 f = 0.5 * (st + 1.0) * float(polynomialSplits);
+  ivec2 piece = clamp(ivec2(floor(f)), ivec2(0), ivec2(polynomialSplits - 1));
+  st = 2.0 * (f - vec2(piece)) - 1.0;
+  int base = 10 * ((tile * polynomialSplits + piece.y) * polynomialSplits + piece.x);
   vec3 position = texelFetch(warpCoefficients, base).xyz;
   position += st.x * texelFetch(warpCoefficients, base + 1).xyz;
   position += st.y * texelFetch(warpCoefficients, base + 2).xyz;

@@ -172,7 +172,7 @@ void real_data_report(const std::string& mesh_name, const std::string& mesh_path
                       const std::string& membrane_name, const Membrane& membrane)
 {
   const auto surface = read_obj(mesh_path, 0);
-  const mesolens::GeodesicSolver solver(to_mesh(surface));
+  const mesolens::CellSurface solver(to_mesh(surface));
   const auto seed = solver.closest_point(solver.mesh().point(1000));
   const double scale = 1e-4; // Å onto µm
   const int tiles = 3;
@@ -229,7 +229,7 @@ void trajectory_report(const std::string& mesh_path, const std::string& gro, con
   {
     membrane.bonds.push_back({ b.first, b.second });
   }
-  const mesolens::GeodesicSolver solver(to_mesh(read_obj(mesh_path, 0)));
+  const mesolens::CellSurface solver(to_mesh(read_obj(mesh_path, 0)));
   const auto seed = solver.closest_point(solver.mesh().point(1000));
   const double scale = 1e-4;
   const double radius = 2 * 3 * membrane.width() * scale;
@@ -281,9 +281,9 @@ int main()
     seconds_of([&] { surface = read_obj(data_file("meshes/mito5_outer_membrane.obj"), 4); });
   mesolens::TriangleMesh mesh = to_mesh(surface);
   const std::size_t triangles = mesh.triangle_count();
-  std::unique_ptr<mesolens::GeodesicSolver> solver;
+  std::unique_ptr<mesolens::CellSurface> solver;
   const double setup =
-    seconds_of([&] { solver = std::make_unique<mesolens::GeodesicSolver>(std::move(mesh)); });
+    seconds_of([&] { solver = std::make_unique<mesolens::CellSurface>(std::move(mesh)); });
   std::printf(
     "BENCH remap-setup input=mito5_outer_membrane Loop x4 = %zu triangles | subdivision %.2f s, "
     "solver set-up (once per mesh) %.2f s\n",
@@ -337,7 +337,7 @@ int main()
 
   // The interactive case: the organelle mesh as it comes (8340 triangles), the disk refined
   // locally (Loop subdivision) until it holds 2000 triangles.
-  const mesolens::GeodesicSolver coarse(
+  const mesolens::CellSurface coarse(
     to_mesh(read_obj(data_file("meshes/mito5_outer_membrane.obj"), 0)));
   const auto coarse_seed = coarse.closest_point(coarse.mesh().point(1000));
   for (const auto& [label, k, factor] :

@@ -64,12 +64,7 @@ vtkSmartPointer<vtkPolyData> hiv_sized_vesicle(int seeds)
   bilayer->Update();
   vtkNew<vtkAppendPolyData> append;
   const double golden = 3.14159265358979 * (3 - std::sqrt(5.0));
-  int copies = 0;
-  int molecules_per_patch = 0;
-  {
-    vtkDataArray* ids = bilayer->GetOutput()->GetPointData()->GetArray("MoleculeId");
-    molecules_per_patch = int(ids->GetRange()[1]) + 1;
-  }
+  int first_id = 0;
   for (int s = 0; s < seeds; ++s)
   {
     const double z = 1 - 2 * (s + 0.5) / seeds;
@@ -89,20 +84,18 @@ vtkSmartPointer<vtkPolyData> hiv_sized_vesicle(int seeds)
     {
       continue;
     }
-    // Unique molecules: each tile of each seed is a copy of the patch.
+    // The mapping numbers its tiles' molecules apart; the mappings are numbered apart here.
     vtkDataArray* ids = mapped->GetPointData()->GetArray("MoleculeId");
-    vtkDataArray* tiles = mapped->GetPointData()->GetArray("TileId");
     vtkNew<vtkIntArray> unique;
     unique->SetName("MoleculeId");
     unique->SetNumberOfValues(mapped->GetNumberOfPoints());
     for (vtkIdType a = 0; a < mapped->GetNumberOfPoints(); ++a)
     {
-      const int copy = copies + int(tiles->GetTuple1(a));
-      unique->SetValue(a, copy * molecules_per_patch + int(ids->GetTuple1(a)));
+      unique->SetValue(a, first_id + int(ids->GetTuple1(a)));
     }
+    first_id += int(ids->GetRange()[1]) + 1;
     mapped->GetPointData()->AddArray(unique);
     mapped->GetFieldData()->Initialize(); // no periodic box: the vesicle is whole
-    copies += 9;
     append->AddInputData(mapped);
   }
   append->Update();

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace {
@@ -37,10 +38,11 @@ double area(const mesolens::TriangleMesh& mesh)
 TEST(GeodesicDisk, PlaneDiskIsARoundDisk)
 {
   const auto mesh = mesolens_test::plane_grid(101, 10.0, 0.25, 3);
-  const mesolens::GeodesicSolver solver(mesh);
+  const mesolens::CellSurface solver(mesh);
   const auto seed = mesolens_test::surface_point(mesh, 10100, { 0.3, 0.3, 0.4 });
   mesolens::GeodesicDiskParams params;
   params.radius = 5.0;
+  params.min_triangles = 0; // the input's triangles as they are
   const auto disk = mesolens::geodesic_disk(solver, seed, params);
   const auto report = report_of(disk);
   EXPECT_EQ(report.boundary_loops, 1u);
@@ -72,7 +74,7 @@ TEST(GeodesicDisk, PlaneDiskIsARoundDisk)
 TEST(GeodesicDisk, SphereCapAndRefinementOfCoarseMeshes)
 {
   const auto coarse = mesolens_test::icosphere(10.0, 1); // 80 triangles
-  const mesolens::GeodesicSolver solver(coarse);
+  const mesolens::CellSurface solver(coarse);
   const auto seed = mesolens_test::surface_point(coarse, 5);
   mesolens::GeodesicDiskParams params;
   params.radius = 6.0;
@@ -97,7 +99,7 @@ TEST(GeodesicDisk, TopologyErrors)
 {
   // Radius beyond the plane's border.
   const auto plane = mesolens_test::plane_grid(41, 10.0);
-  const mesolens::GeodesicSolver plane_solver(plane);
+  const mesolens::CellSurface plane_solver(plane);
   mesolens::GeodesicDiskParams params;
   params.radius = 12.0;
   try
@@ -112,7 +114,7 @@ TEST(GeodesicDisk, TopologyErrors)
   }
   // A disk wider than half the circumference of a tube wraps around it.
   const auto tube = mesolens_test::cylinder(2.0, 20.0, 48, 200);
-  const mesolens::GeodesicSolver tube_solver(tube);
+  const mesolens::CellSurface tube_solver(tube);
   params.radius = 8.0;
   params.min_triangles = 0;
   try
@@ -130,7 +132,7 @@ TEST(GeodesicDisk, TopologyErrors)
   EXPECT_EQ(report_of(ok).euler_characteristic, 1);
   // A radius larger than the whole sphere.
   const auto sphere = mesolens_test::icosphere(1.0, 3);
-  const mesolens::GeodesicSolver sphere_solver(sphere);
+  const mesolens::CellSurface sphere_solver(sphere);
   params.radius = 10.0;
   try
   {

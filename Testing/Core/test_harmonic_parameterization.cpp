@@ -73,7 +73,7 @@ TEST(HarmonicParameterization, CurvedDisksHaveNoFlippedTriangles)
   for (const Case& c : cases)
   {
     SCOPED_TRACE(c.name);
-    const mesolens::GeodesicSolver solver(c.surface);
+    const mesolens::CellSurface solver(c.surface);
     mesolens::GeodesicDiskParams params;
     params.radius = c.radius;
     params.min_triangles = 0;

@@ -16,7 +16,7 @@ namespace {
 mesolens::SurfaceChart chart_of(const mesolens::TriangleMesh& surface, std::int64_t seed_triangle,
                                 double radius, std::array<double, 2>* seed_uv)
 {
-  const mesolens::GeodesicSolver solver(surface);
+  const mesolens::CellSurface solver(surface);
   mesolens::GeodesicDiskParams params;
   params.radius = radius;
   params.min_triangles = 0;

@@ -179,6 +179,37 @@ inline mesolens::TriangleMesh cylinder(double radius, double half_length, int ar
   return mesh;
 }
 
+/// A closed torus around the z axis: a tube of radius `minor` around the circle of radius
+/// `major`, `around` segments along that circle and `tube` around the tube; genus 1, oriented
+/// outwards.
+inline mesolens::TriangleMesh torus(double major, double minor, int around, int tube)
+{
+  mesolens::TriangleMesh mesh;
+  const double pi = 3.14159265358979323846;
+  for (int i = 0; i < around; ++i)
+  {
+    const double phi = 2 * pi * i / around;
+    for (int j = 0; j < tube; ++j)
+    {
+      const double theta = 2 * pi * j / tube;
+      const double ring = major + minor * std::cos(theta);
+      mesh.points.insert(mesh.points.end(),
+                         { ring * std::cos(phi), ring * std::sin(phi), minor * std::sin(theta) });
+    }
+  }
+  auto id = [around, tube](int i, int j) { return std::int64_t((i % around) * tube + (j % tube)); };
+  for (int i = 0; i < around; ++i)
+  {
+    for (int j = 0; j < tube; ++j)
+    {
+      mesh.triangles.insert(
+        mesh.triangles.end(),
+        { id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j), id(i + 1, j + 1), id(i, j + 1) });
+    }
+  }
+  return mesh;
+}
+
 /// A flat polar disk: a centre vertex and `rings` rings of `around` vertices, jittered inside,
 /// the outer ring exactly on the circle of radius `outer`.
 inline mesolens::TriangleMesh polar_disk(int rings, int around, double outer)

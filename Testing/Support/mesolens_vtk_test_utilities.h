@@ -42,6 +42,16 @@ public:
     }
     return all;
   }
+  /// All warning messages joined.
+  std::string AllWarnings() const
+  {
+    std::string all;
+    for (const std::string& w : this->Warnings)
+    {
+      all += w + "\n";
+    }
+    return all;
+  }
   void Clear()
   {
     this->Errors.clear();

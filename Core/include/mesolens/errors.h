@@ -29,6 +29,14 @@ public:
   using Error::Error;
 };
 
+/// A membrane patch does not fit the chart it is mapped onto: some of its atoms fall outside
+/// the geodesic disk (a larger disk or fewer tiles would fit).
+class OutsideChart : public InvalidInput
+{
+public:
+  using InvalidInput::InvalidInput;
+};
+
 /// A mesh or a molecular graph does not have the topology an algorithm needs.
 class TopologyError : public Error
 {

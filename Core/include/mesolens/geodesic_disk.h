@@ -3,7 +3,9 @@
 // distance r of a picked point, cut exactly on the isoline d = r.
 #pragma once
 
+#include "mesolens/cell_surface.h"
 #include "mesolens/geodesic_distance.h"
+#include "mesolens/surface_chart.h"
 #include "mesolens/triangle_mesh.h"
 
 #include <cstddef>
@@ -17,32 +19,45 @@ struct GeodesicDiskParams
 {
   /// Geodesic radius r, mesh units. Must be > 0 and finite.
   double radius = 0;
-  /// A disk with fewer triangles is refined: the surrounding region is Loop-subdivided (as the
-  /// paper's meshes were) and the disk grown again, until it holds at least this many triangles
-  /// or max_refinement_levels is reached. 0 disables refinement. Default 2000.
+  /// Resolution: triangles of the surface that come within r of the seed and are longer than
+  /// the edge giving about this many triangles in a flat disk of radius r (r sqrt(4 pi / n)) are
+  /// bisected, their new vertices placed on the smooth surface (SmoothSurface), so a disk on a
+  /// coarse mesh holds at least about this many triangles. Finer input is used as it is. 0: no
+  /// refinement. Default 2000.
   std::size_t min_triangles = 2000;
-  /// Most Loop subdivision levels applied to the region. Range [0, 8]; default 5.
-  int max_refinement_levels = 5;
 };
 
 /// A geodesic disk: a triangle mesh that is a topological disk (one boundary loop, Euler
-/// characteristic 1) whose boundary lies on the isoline d = radius.
+/// characteristic 1) whose boundary lies on the isoline d = radius. Its vertices lie on the
+/// surface's smooth interpolant, and each triangle knows the input triangle it lies in, so any
+/// point of it can be placed exactly on that smooth surface.
 struct GeodesicDisk
 {
   TriangleMesh mesh;
   std::vector<double> distance;              ///< per disk vertex: geodesic distance, mesh units
+  std::vector<double> normals;               ///< per disk vertex: 3 components, the smooth
+                                             ///< surface's unit normal
   std::vector<std::int64_t> original_vertex; ///< per disk vertex: input vertex id, -1 if new
+  std::vector<std::int64_t> source_triangle; ///< per disk triangle: input triangle it lies in,
+                                             ///< -1 for the fan closing a small hole
+  std::vector<double> source_barycentric;    ///< per disk triangle: 9, its corners' barycentric
+                                             ///< coordinates in that input triangle
   SurfacePoint seed;                         ///< the picked point, on the disk mesh
-  int refinement_levels = 0;                 ///< Loop subdivision levels applied
+  int refinement_levels = 0;                 ///< most times an input triangle was halved
   std::size_t holes_closed = 0;              ///< small holes left by the front and filled (loops
                                              ///< shorter than 1/4 of the outer boundary)
 };
 
-/// Grows the geodesic disk of `params.radius` around `seed` (a point on solver.mesh()).
-/// Throws InvalidInput for a bad radius or seed, and TopologyError (with a message saying where)
-/// when the disk reaches a boundary of the mesh, wraps a handle or covers a whole closed
-/// component (radius too large), or is not a manifold disk.
-GeodesicDisk geodesic_disk(const GeodesicSolver& solver, const SurfacePoint& seed,
+/// Grows the geodesic disk of `params.radius` around `seed` (a point on surface.mesh()) on the
+/// local surface around it (only triangles within the radius are visited). Throws InvalidInput
+/// for a bad radius or seed, and TopologyError (with a message saying where) when the disk
+/// reaches a boundary of the mesh, wraps a handle or covers a whole closed component (radius
+/// too large), or is not a manifold disk. Deterministic.
+GeodesicDisk geodesic_disk(const CellSurface& surface, const SurfacePoint& seed,
                            const GeodesicDiskParams& params);
+
+/// The placement (for SurfaceChart) that puts a point of `disk` on `surface`'s smooth
+/// interpolant, the surface the disk's vertices lie on. Keeps what it needs of both.
+SurfacePlacement smooth_placement(const GeodesicDisk& disk, const CellSurface& surface);
 
 } // namespace mesolens

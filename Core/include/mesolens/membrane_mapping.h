@@ -9,6 +9,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace mesolens {
@@ -57,6 +58,17 @@ struct MappingParams
   double layer_half_thickness = 25;
   /// Polynomial: samples per tile edge (samples x samples per layer). Range >= 3; default 6.
   int samples = 6;
+  /// Polynomial: the largest fit residual accepted in a tile, membrane units (Å for Å patches).
+  /// When a tile's largest sample residual exceeds it, every tile is split into 2 x 2 pieces,
+  /// each with its own polynomial, and so on up to max_polynomial_splits pieces per side; a
+  /// tile still above it then has its atoms mapped by displacement (tile_fallback). <= 0: no
+  /// bound. Default 1 Å.
+  double max_polynomial_residual = 1.0;
+  /// Polynomial: most pieces per tile side, a power of two in [1, 8]. Default 4.
+  int max_polynomial_splits = 4;
+  /// Atoms whose (u, v) falls outside the chart are dropped with their molecule (atom_mapped)
+  /// instead of failing the mapping: a tile cut to the disk. Default false.
+  bool cut_to_disk = false;
   /// Polynomial and MoleculeInstancing: also map every atom (false: only the coefficients or
   /// matrices, for a renderer that evaluates them itself; positions stay empty). Displacement
   /// always maps the atoms. Default true.
@@ -74,9 +86,18 @@ struct MappedMembrane
                                                ///< 4x4, patch coordinates to mesh coordinates)
   std::vector<int> instance_molecules;         ///< molecule id of each instance
   std::vector<int> instance_tiles;             ///< tile of each instance
-  std::vector<double> polynomial_coefficients; ///< Polynomial: 30 per tile (QuadraticWarp)
-  std::vector<double> polynomial_rms_residual; ///< Polynomial: per tile, mesh units
+  std::vector<double> polynomial_coefficients; ///< Polynomial: 30 (QuadraticWarp) per piece;
+                                               ///< tile t, piece (i, j) of m x m at index
+                                               ///< (t m + j) m + i
+  int polynomial_splits = 1;                   ///< Polynomial: m, pieces per tile side
+  std::vector<double> polynomial_rms_residual; ///< Polynomial: per tile (largest over its
+                                               ///< pieces), mesh units
   std::vector<double> polynomial_max_residual; ///< Polynomial: per tile, mesh units
+  std::vector<std::uint8_t> tile_fallback;     ///< Polynomial: per tile, 1 when no polynomial met
+                                               ///< the residual bound and atoms were displaced
+  std::vector<std::uint8_t> atom_mapped;       ///< cut_to_disk: per atom per tile, 0 where the
+                                               ///< atom was dropped (its position is NaN);
+                                               ///< empty otherwise
 };
 
 /// The polynomial's local coordinates of a patch point: (s, t) = 2 f - 1 where f are the
@@ -86,10 +107,26 @@ struct MappedMembrane
 std::array<double, 3> polynomial_coordinates(const MembranePatch& patch,
                                              double layer_half_thickness, const float* position);
 
+/// The piece of a tile split m x m that tile coordinates (s, t) fall in, and the piece's own
+/// (s, t) in [-1, 1] (points outside the tile go to the nearest piece, extrapolated). Returns
+/// the piece index j m + i.
+int polynomial_piece(int splits, double& s, double& t);
+
+/// Where a tile's polynomial takes patch point `position`: the piece's warp evaluated at the
+/// piece's coordinates (the CPU twin of the renderer's vertex shader). `coefficients` holds
+/// the tile's m x m pieces.
+std::array<double, 3> evaluate_tile_polynomial(const MembranePatch& patch,
+                                               double layer_half_thickness, int splits,
+                                               const double* coefficients, const float* position);
+
+/// The largest distance from the patch's cell centre (in x, y, membrane units) of any atom of
+/// k x k tiles: the geodesic radius below which some atoms cannot fit in the disk.
+double tiled_extent(const MembranePatch& patch, int tiles);
 /// Maps the patch onto the chart, k x k tiles centred at params.centre_uv. Throws InvalidInput
 /// for bad parameters, a degenerate cell, missing molecule ids (instancing), non-finite
 /// coordinates, or an atom whose (u, v) falls outside the chart (the geodesic disk is too
-/// small: its radius should be twice the tiled width). Runs through `parallel_for` per tile.
+/// small: its radius should be twice the tiled width; OutsideChart, unless cut_to_disk). Runs
+/// through `parallel_for` per tile; the result does not depend on the threads.
 MappedMembrane map_membrane(const SurfaceChart& chart, const MembranePatch& patch,
                             const MappingParams& params, const ParallelFor& parallel_for = {});
 

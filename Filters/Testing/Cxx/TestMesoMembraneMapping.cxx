@@ -17,6 +17,7 @@
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkSphereSource.h>
+#include <vtkStringArray.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <gtest/gtest.h>
@@ -222,14 +223,13 @@ TEST(vtkMesoMembraneMapping, BadInputsFailCleanly)
   };
   const Case cases[] = {
     { "seed far away", closed, { 100, 100, 100 }, 1, 1e-4, "away from the surface" },
-    { "no tiles", closed, { seed[0], seed[1], seed[2] }, 0, 1e-4, "Tiles must be at least 1" },
-    { "disk larger than the organelle",
+    { "no tiles",
       closed,
       { seed[0], seed[1], seed[2] },
-      40,
+      0,
       1e-4,
-      "geodesic disk" },
-    { "negative scale", closed, { seed[0], seed[1], seed[2] }, 1, -1, "MembraneToMeshScale" },
+      "tiles per side must be at least 1" },
+    { "negative scale", closed, { seed[0], seed[1], seed[2] }, 1, -1, "membrane-to-mesh scale" },
     { "disk meets the mesh boundary", open, { 0, 0, 0 }, 3, 1.0, "boundary" },
     { "degenerate triangles", degenerate, { 0, 0, 0 }, 1, 0.001, "degenerate" },
     { "inconsistent orientation", misoriented, { 0, 0, 0 }, 1, 0.001, "oriented" },
@@ -254,6 +254,42 @@ TEST(vtkMesoMembraneMapping, BadInputsFailCleanly)
     EXPECT_EQ(mapping->GetExecutive()->Update(), 0);
     EXPECT_EQ(mapping->GetOutput()->GetNumberOfPoints(), 0);
     EXPECT_NE(events.AllErrors().find(c.problem), std::string::npos) << events.AllErrors();
+  }
+  // A disk larger than the organelle: the largest k that fits, or with MapWhatFits off an error.
+  for (const bool fit : { true, false })
+  {
+    SCOPED_TRACE(fit ? "map what fits" : "fail");
+    vtkNew<vtkMesoMembraneMapping> mapping;
+    mesolens_test::EventRecorder events(mapping);
+    mapping->SetSurfaceConnection(closed->GetOutputPort());
+    mapping->SetMembraneConnection(membrane->GetOutputPort());
+    mapping->SetSeedPoint(seed);
+    mapping->SetTiles(40);
+    mapping->SetMembraneToMeshScale(1e-4);
+    mapping->SetMapWhatFits(fit);
+    EXPECT_EQ(mapping->GetExecutive()->Update(), fit ? 1 : 0);
+    if (fit)
+    {
+      vtkPolyData* out = mapping->GetOutput();
+      const double mapped = field(out, "TilesMapped");
+      EXPECT_EQ(field(out, "TilesRequested"), 40.0);
+      EXPECT_GE(mapped, 1.0);
+      EXPECT_LT(mapped, 40.0);
+      EXPECT_EQ(field(out, "Tiles"), mapped);
+      EXPECT_EQ(out->GetNumberOfPoints(),
+                vtkIdType(mapped * mapped) * membrane->GetOutput()->GetNumberOfPoints());
+      EXPECT_NE(events.AllWarnings().find("instead of 40 x 40"), std::string::npos)
+        << events.AllWarnings();
+      auto* note =
+        vtkStringArray::SafeDownCast(out->GetFieldData()->GetAbstractArray("MappingNote"));
+      ASSERT_NE(note, nullptr);
+      EXPECT_NE(note->GetValue(0).find("instead of 40 x 40"), std::string::npos);
+    }
+    else
+    {
+      EXPECT_EQ(mapping->GetOutput()->GetNumberOfPoints(), 0);
+      EXPECT_NE(events.AllErrors().find("geodesic disk"), std::string::npos) << events.AllErrors();
+    }
   }
   // Molecule instancing without molecule ids: a plain point set.
   vtkNew<vtkSphereSource> points;

@@ -53,7 +53,9 @@ inline void look_at(vtkRenderer* renderer, vtkPolyData* atoms, double distance)
 
 /// A 2 x 2 tiling of the DPPC patch on the mitochondrion's outer membrane (µm; atoms at 1e-4),
 /// POLYNOMIAL or MOLECULE_INSTANCING; with output_atoms off only the warp's field data.
-inline vtkSmartPointer<vtkMesoMembraneMapping> mapped_membrane(int method, bool output_atoms)
+/// `max_residual` (Å) is the polynomial's bound: a small one splits the tiles into pieces.
+inline vtkSmartPointer<vtkMesoMembraneMapping> mapped_membrane(int method, bool output_atoms,
+                                                               double max_residual = 1.0)
 {
   auto surface = vtkSmartPointer<vtkMesoMeshReader>::New();
   surface->SetFileName(
@@ -71,6 +73,7 @@ inline vtkSmartPointer<vtkMesoMembraneMapping> mapped_membrane(int method, bool 
   mapping->SetMembraneToMeshScale(1e-4);
   mapping->SetMappingMethod(method);
   mapping->SetOutputAtoms(output_atoms);
+  mapping->SetMaximumPolynomialResidual(max_residual);
   mapping->Update();
   return mapping;
 }

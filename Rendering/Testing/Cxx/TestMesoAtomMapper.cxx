@@ -791,3 +791,31 @@ TEST(MesoAtomMapper, InstancingWarpTakesSixteenBytesPerAtom)
     EXPECT_LT(drawn[2 * d + 1] - drawn[2 * d], 1.5 * (mapped[2 * d + 1] - mapped[2 * d]));
   }
 }
+
+TEST(MesoAtomMapper, SplitPolynomialWarpBoundsCoverTheMappedAtoms)
+{
+  // A bound of 0.2 Å splits every tile into pieces; the GPU's bounds follow the pieces.
+  auto mapping = mesolens_test::mapped_membrane(vtkMesoMembraneMapping::POLYNOMIAL, false, 0.2);
+  vtkDataArray* splits = mapping->GetOutput()->GetFieldData()->GetArray("PolynomialSplits");
+  ASSERT_NE(splits, nullptr);
+  EXPECT_GE(splits->GetTuple1(0), 2.0);
+  Scene scene = make_scene(mapping, vtkMesoAtomMapper::SPACE_FILLING, 64);
+  scene.Mapper->SetInputConnection(mapping->GetInputConnection(1, 0));
+  scene.Mapper->SetWarpConnection(mapping->GetOutputPort());
+  scene.Mapper->SetRadiusScale(1e-4);
+  mesolens_test::EventRecorder events(scene.Mapper);
+  scene.Renderer->ResetCamera();
+  scene.Window->Render();
+  EXPECT_TRUE(events.Errors.empty()) << events.AllErrors();
+  auto cpu = mesolens_test::mapped_membrane(vtkMesoMembraneMapping::POLYNOMIAL, true, 0.2);
+  double mapped[6];
+  cpu->GetOutput()->GetBounds(mapped);
+  double drawn[6];
+  scene.Mapper->GetBounds(drawn);
+  for (int d = 0; d < 3; ++d)
+  {
+    EXPECT_LE(drawn[2 * d], mapped[2 * d]);
+    EXPECT_GE(drawn[2 * d + 1], mapped[2 * d + 1]);
+    EXPECT_LT(drawn[2 * d + 1] - drawn[2 * d], 1.5 * (mapped[2 * d + 1] - mapped[2 * d]));
+  }
+}

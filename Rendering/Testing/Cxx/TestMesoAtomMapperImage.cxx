@@ -214,15 +214,15 @@ vtkSmartPointer<vtkRenderWindow> scalar_colors()
 
 /// The mapped membrane, balls and sticks, seen from outside the organelle: the atoms mapped on
 /// the CPU (gpu false) or the patch warped by the mapper (gpu true).
-vtkSmartPointer<vtkRenderWindow> warped(int method, bool gpu)
+vtkSmartPointer<vtkRenderWindow> warped(int method, bool gpu, double max_residual = 1.0)
 {
-  auto cpu_mapping = mesolens_test::mapped_membrane(method, true);
+  auto cpu_mapping = mesolens_test::mapped_membrane(method, true, max_residual);
   vtkPolyData* cpu_atoms = cpu_mapping->GetOutput();
   auto mapper = vtkSmartPointer<vtkMesoAtomMapper>::New();
   vtkSmartPointer<vtkMesoMembraneMapping> gpu_mapping;
   if (gpu)
   {
-    gpu_mapping = mesolens_test::mapped_membrane(method, false);
+    gpu_mapping = mesolens_test::mapped_membrane(method, false, max_residual);
     mapper->SetInputConnection(gpu_mapping->GetInputConnection(1, 0));
     mapper->SetWarpConnection(gpu_mapping->GetOutputPort());
   }
@@ -294,6 +294,11 @@ int main(int argc, char* argv[])
     { "scalar_colors", scalar_colors },
     { "warp_polynomial_cpu", [] { return warped(vtkMesoMembraneMapping::POLYNOMIAL, false); } },
     { "warp_polynomial_gpu", [] { return warped(vtkMesoMembraneMapping::POLYNOMIAL, true); } },
+    // Tiles split into pieces (a bound of 0.2 Å splits them 4 x 4).
+    { "warp_polynomial_split_cpu",
+      [] { return warped(vtkMesoMembraneMapping::POLYNOMIAL, false, 0.2); } },
+    { "warp_polynomial_split_gpu",
+      [] { return warped(vtkMesoMembraneMapping::POLYNOMIAL, true, 0.2); } },
     { "warp_instancing_cpu",
       [] { return warped(vtkMesoMembraneMapping::MOLECULE_INSTANCING, false); } },
     { "warp_instancing_gpu",

@@ -86,19 +86,16 @@ def _points(coordinates):
     return points
 
 
-class _MoleculesPerTile(VTKPythonAlgorithmBase):
-    """The mapped atoms with `MoleculeId` made unique over the tiles: the mapping repeats the
-    patch's ids in every tile, and the cutaway must see each tile's copy of a molecule as a
-    molecule of its own (not one molecule spread over k x k places).
-
-    While the ids stay the same (a new frame of the trajectory), the same `MoleculeId` and
-    `ResidueName` array objects are passed on: the cutaway then keeps its assignment over the
-    frames (it assigns again for new array objects), and the removal order stays stable."""
+class _StableMoleculeArrays(VTKPythonAlgorithmBase):
+    """The mapped atoms, passing on the same `MoleculeId` and `ResidueName` array objects while
+    the ids stay the same (a new frame of the trajectory): the cutaway then keeps its assignment
+    over the frames (it assigns again for new array objects), and the removal order stays
+    stable. The mapping already numbers each tile's molecules apart."""
 
     def __init__(self):
         super().__init__(nInputPorts=1, inputType="vtkPolyData", nOutputPorts=1,
                          outputType="vtkPolyData")
-        self._unique = None  # numpy ids of the last output, and the arrays passed on with them
+        self._ids = None  # numpy ids of the last output, and the arrays passed on with them
         self._arrays = ()
 
     def RequestData(self, _request, in_info, out_info):
@@ -107,18 +104,13 @@ class _MoleculesPerTile(VTKPythonAlgorithmBase):
         output.ShallowCopy(atoms)
         point_data = atoms.GetPointData()
         molecules = point_data.GetArray("MoleculeId")
-        tiles = point_data.GetArray("TileId")
-        if molecules is None or tiles is None or atoms.GetNumberOfPoints() == 0:
+        if molecules is None or atoms.GetNumberOfPoints() == 0:
             return 1
-        molecule = vtk_to_numpy(molecules).astype(np.int64)
-        molecule -= molecule.min()
-        unique = vtk_to_numpy(tiles).astype(np.int64) * (molecule.max() + 1) + molecule
-        if self._unique is None or not np.array_equal(unique, self._unique):
-            ids = numpy_to_vtk(unique, deep=1, array_type=VTK_ID_TYPE)
-            ids.SetName("MoleculeId")
+        ids = vtk_to_numpy(molecules)
+        if self._ids is None or not np.array_equal(ids, self._ids):
             names = point_data.GetAbstractArray("ResidueName")
-            self._unique = unique
-            self._arrays = (ids,) + ((names,) if names is not None else ())
+            self._ids = ids.copy()
+            self._arrays = (molecules,) + ((names,) if names is not None else ())
         for array in self._arrays:  # replace the input's arrays of these names in the output
             output.GetPointData().AddArray(array)
         return 1
@@ -331,7 +323,7 @@ class MembraneLens:
         self.renderer.AddActor(self.atom_actor)
         # The structured cutaway, off until set_cutaway(True): the mapped atoms (each tile's
         # molecules its own) against a lattice on the lens' disk; the mapper draws what stays.
-        self._molecules_per_tile = _MoleculesPerTile()
+        self._molecules_per_tile = _StableMoleculeArrays()
         self._molecules_per_tile.SetInputConnection(self.mapping.GetOutputPort(0))
         self.cutaway = vtkMesoStructuredCutaway()
         self.cutaway.SetInputConnection(self._molecules_per_tile.GetOutputPort())

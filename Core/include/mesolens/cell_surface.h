@@ -1,0 +1,66 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// A cell-component surface prepared once for any number of clicks: the membrane-mapping chain
+// (geodesic disk, parameterization, chart) reads it for every seed.
+#pragma once
+
+#include "mesolens/smooth_surface.h"
+#include "mesolens/triangle_mesh.h"
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace mesolens {
+
+/// Which triangles touch which: the triangle across each edge and the triangles around each
+/// vertex.
+struct MeshAdjacency
+{
+  /// 3 per triangle: the triangle across edge (corner k, corner k+1), -1 on a boundary.
+  std::vector<std::int64_t> across;
+  /// Triangles around vertex v: vertex_triangles[vertex_start[v] .. vertex_start[v + 1]).
+  std::vector<std::size_t> vertex_start;
+  std::vector<std::int64_t> vertex_triangles;
+};
+
+/// The edge adjacency of a manifold triangle mesh (each edge in at most two triangles).
+MeshAdjacency mesh_adjacency(const TriangleMesh& mesh);
+
+/// The surface a membrane is mapped onto: the input mesh (any genus, any triangle size, any
+/// unit; a consistently oriented 2-manifold, boundary allowed, without degenerate triangles),
+/// its smooth interpolant (SmoothSurface, which every mapped point lies on), its adjacency and
+/// a closest-point index. Building is O(F log F); the index is built on first use. Queries are
+/// const and thread-safe.
+class CellSurface
+{
+public:
+  /// Throws InvalidInput (no triangles, a non-finite point) or TopologyError (not a clean
+  /// 2-manifold: the defects mesh_report() finds, phrased as it phrases them).
+  explicit CellSurface(TriangleMesh mesh);
+  ~CellSurface();
+  CellSurface(const CellSurface&) = delete;
+  CellSurface& operator=(const CellSurface&) = delete;
+
+  const TriangleMesh& mesh() const;
+  const SmoothSurface& smooth() const;
+  /// The same smooth surface, shared with charts that outlive a mapping call.
+  std::shared_ptr<const SmoothSurface> shared_smooth() const;
+  const MeshAdjacency& adjacency() const;
+  /// Diagonal of the mesh's bounding box, mesh units.
+  double bounding_diagonal() const;
+  /// Length of the longest edge, mesh units.
+  double longest_edge() const;
+
+  /// The point of the mesh closest to `point`; `distance` gets how far it is (mesh units).
+  SurfacePoint closest_point(const std::array<double, 3>& point, double* distance = nullptr) const;
+  /// The same, searching from `hint` first (a nearby answer): faster, same result.
+  SurfacePoint closest_point(const std::array<double, 3>& point, const SurfacePoint* hint,
+                             double* distance) const;
+
+private:
+  struct Impl;
+  std::unique_ptr<Impl> Internal;
+};
+
+} // namespace mesolens

@@ -1,0 +1,159 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "mesolens/cell_surface.h"
+
+#include "mesolens/errors.h"
+#include "mesolens/surface_locator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+#include <numeric>
+
+namespace mesolens {
+
+MeshAdjacency mesh_adjacency(const TriangleMesh& mesh)
+{
+  const std::size_t triangles = mesh.triangle_count();
+  MeshAdjacency adjacency;
+  adjacency.across.assign(3 * triangles, -1);
+  // Directed edges sorted by their undirected key pair up the two triangles of each edge.
+  struct Side
+  {
+    std::uint64_t key;
+    std::int64_t slot; // 3 * triangle + corner
+  };
+  std::vector<Side> sides(3 * triangles);
+  for (std::size_t t = 0; t < triangles; ++t)
+  {
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+      const auto a = std::uint64_t(mesh.triangles[3 * t + k]);
+      const auto b = std::uint64_t(mesh.triangles[3 * t + (k + 1) % 3]);
+      sides[3 * t + k] = { (std::min(a, b) << 32) | std::max(a, b), std::int64_t(3 * t + k) };
+    }
+  }
+  std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
+    return x.key != y.key ? x.key < y.key : x.slot < y.slot;
+  });
+  for (std::size_t i = 0; i + 1 < sides.size(); ++i)
+  {
+    if (sides[i].key == sides[i + 1].key)
+    {
+      adjacency.across[std::size_t(sides[i].slot)] = sides[i + 1].slot / 3;
+      adjacency.across[std::size_t(sides[i + 1].slot)] = sides[i].slot / 3;
+      ++i;
+    }
+  }
+  const std::size_t vertices = mesh.vertex_count();
+  adjacency.vertex_start.assign(vertices + 1, 0);
+  for (const std::int64_t v : mesh.triangles)
+  {
+    ++adjacency.vertex_start[std::size_t(v) + 1];
+  }
+  std::partial_sum(adjacency.vertex_start.begin(), adjacency.vertex_start.end(),
+                   adjacency.vertex_start.begin());
+  adjacency.vertex_triangles.resize(mesh.triangles.size());
+  std::vector<std::size_t> fill(adjacency.vertex_start.begin(), adjacency.vertex_start.end() - 1);
+  for (std::size_t t = 0; t < triangles; ++t)
+  {
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+      adjacency.vertex_triangles[fill[std::size_t(mesh.triangles[3 * t + k])]++] = std::int64_t(t);
+    }
+  }
+  return adjacency;
+}
+
+struct CellSurface::Impl
+{
+  std::shared_ptr<const SmoothSurface> Smooth;
+  MeshAdjacency Adjacency;
+  double Diagonal = 0;
+  double LongestEdge = 0;
+  mutable std::once_flag LocatorBuilt;
+  mutable std::unique_ptr<SurfaceLocator> Locator;
+
+  const SurfaceLocator& locator() const
+  {
+    std::call_once(this->LocatorBuilt, [this] {
+      this->Locator = std::make_unique<SurfaceLocator>(this->Smooth->mesh());
+    });
+    return *this->Locator;
+  }
+};
+
+CellSurface::CellSurface(TriangleMesh mesh)
+  : Internal(std::make_unique<Impl>())
+{
+  require_manifold(mesh, "the surface mesh");
+  Impl& impl = *this->Internal;
+  std::array<double, 3> low{ mesh.points[0], mesh.points[1], mesh.points[2] };
+  std::array<double, 3> high = low;
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+  {
+    low[i % 3] = std::min(low[i % 3], mesh.points[i]);
+    high[i % 3] = std::max(high[i % 3], mesh.points[i]);
+  }
+  impl.Diagonal =
+    std::sqrt((high[0] - low[0]) * (high[0] - low[0]) + (high[1] - low[1]) * (high[1] - low[1]) +
+              (high[2] - low[2]) * (high[2] - low[2]));
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+  {
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+      const auto a = mesh.point(mesh.triangles[3 * t + k]);
+      const auto b = mesh.point(mesh.triangles[3 * t + (k + 1) % 3]);
+      impl.LongestEdge =
+        std::max(impl.LongestEdge,
+                 std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                           (a[2] - b[2]) * (a[2] - b[2])));
+    }
+  }
+  impl.Adjacency = mesh_adjacency(mesh);
+  impl.Smooth = std::make_shared<const SmoothSurface>(std::move(mesh));
+}
+
+CellSurface::~CellSurface() = default;
+
+const TriangleMesh& CellSurface::mesh() const
+{
+  return this->Internal->Smooth->mesh();
+}
+
+const SmoothSurface& CellSurface::smooth() const
+{
+  return *this->Internal->Smooth;
+}
+
+std::shared_ptr<const SmoothSurface> CellSurface::shared_smooth() const
+{
+  return this->Internal->Smooth;
+}
+
+const MeshAdjacency& CellSurface::adjacency() const
+{
+  return this->Internal->Adjacency;
+}
+
+double CellSurface::bounding_diagonal() const
+{
+  return this->Internal->Diagonal;
+}
+
+double CellSurface::longest_edge() const
+{
+  return this->Internal->LongestEdge;
+}
+
+SurfacePoint CellSurface::closest_point(const std::array<double, 3>& point, double* distance) const
+{
+  return this->Internal->locator().closest_point(point, distance);
+}
+
+SurfacePoint CellSurface::closest_point(const std::array<double, 3>& point,
+                                        const SurfacePoint* hint, double* distance) const
+{
+  return this->Internal->locator().closest_point(point, hint, distance);
+}
+
+} // namespace mesolens

@@ -54,6 +54,7 @@ struct Molecules
   std::vector<std::string> TypeNames;        ///< residue names, in order of first appearance
   std::vector<double> Centres;               ///< 3 per molecule, after the shifts
   std::vector<std::array<double, 3>> Shifts; ///< per molecule; empty: none
+  std::vector<std::size_t> AtomCounts;       ///< per molecule
   std::size_t Count = 0;
 
   /// Groups the atoms by `ids` (nullptr: one molecule per atom); types from `names`.
@@ -92,6 +93,35 @@ struct Molecules
       this->OfAtom[static_cast<std::size_t>(a)] = current;
     }
     this->Count = index.size();
+    this->AtomCounts.assign(this->Count, 0);
+    for (const std::uint32_t m : this->OfAtom)
+    {
+      ++this->AtomCounts[m];
+    }
+  }
+
+  /// The centres of the molecules a structure mesh is made from (no water, ions or proteins:
+  /// mesolens::structure_molecules()).
+  std::vector<double> StructureCentres() const
+  {
+    const std::vector<std::uint8_t> kept =
+      mesolens::structure_molecules(this->Types, this->TypeNames, this->AtomCounts);
+    std::vector<double> centres;
+    for (std::size_t m = 0; m < this->Count; ++m)
+    {
+      if (kept[m])
+      {
+        centres.insert(centres.end(), this->Centres.begin() + std::ptrdiff_t(3 * m),
+                       this->Centres.begin() + std::ptrdiff_t(3 * m + 3));
+      }
+    }
+    if (centres.size() < 3 * 4)
+    {
+      throw mesolens::InvalidInput(
+        "only " + std::to_string(centres.size() / 3) + " of the " + std::to_string(this->Count) +
+        " molecules are neither water nor ions: too few to make a structure mesh from; give one");
+    }
+    return centres;
   }
 
   /// The molecules' centres (mean of their atoms), moved by the box vectors that gather the
@@ -230,6 +260,20 @@ void ExtractAtoms(vtkPolyData* atoms, const vtkUnsignedCharArray* visible, vtkPo
       output->SetLines(cells);
     }
   }
+}
+
+/// The box of `vectors` (9 components: a, b, c), or a box that is not set.
+mesolens::PeriodicBox BoxOf(vtkDataArray* vectors)
+{
+  mesolens::PeriodicBox box;
+  if (vectors)
+  {
+    for (int k = 0; k < 9; ++k)
+    {
+      box.vectors[k / 3][k % 3] = vectors->GetComponent(0, k);
+    }
+  }
+  return box;
 }
 
 void AddFieldValue(vtkFieldData* field, const char* name, double value)
@@ -381,14 +425,7 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
         !(in.GroupsFrom[3] == groups_from[3]) || in.GroupsWhole != this->MakeAssemblyWhole)
     {
       in.GroupsFrom = {}; // stays invalid if Centre throws
-      mesolens::PeriodicBox box;
-      if (box_vectors)
-      {
-        for (int k = 0; k < 9; ++k)
-        {
-          box.vectors[k / 3][k % 3] = box_vectors->GetComponent(0, k);
-        }
-      }
+      const mesolens::PeriodicBox box = BoxOf(box_vectors);
       in.Groups.Centre(atoms->GetPoints(), this->MakeAssemblyWhole && box_vectors ? &box : nullptr);
       in.MovedAtoms = in.Groups.MovedAtoms(atoms->GetPoints());
       in.GroupsFrom = groups_from;
@@ -406,12 +443,13 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
       if (!same_molecules || in.StructureVertices != this->StructureVertices ||
           in.StructureRadius != this->StructureMidSurfaceRadius)
       {
+        mesolens::StructureMeshParams params;
+        params.vertices = static_cast<std::size_t>(this->StructureVertices);
+        params.mid_surface_radius = this->StructureMidSurfaceRadius;
+        params.box = BoxOf(box_vectors); // a flat periodic patch is meshed over its cell
         mesolens::MeshQuality quality;
-        const mesolens::TriangleMesh mesh =
-          mesolens::structure_mesh(molecules.Centres,
-                                   { static_cast<std::size_t>(this->StructureVertices), 0.0,
-                                     this->StructureMidSurfaceRadius },
-                                   &quality, vtkMesoParallelFor::Get());
+        const mesolens::TriangleMesh mesh = mesolens::structure_mesh(
+          molecules.StructureCentres(), params, &quality, vtkMesoParallelFor::Get());
         vtkNew<vtkPolyData> made;
         vtkMesoSurfaceConversion::FromTriangleMesh(mesh, made);
         AddFieldValue(made->GetFieldData(), "MinAngle", quality.min_angle);
@@ -419,6 +457,8 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
         AddFieldValue(made->GetFieldData(), "MeanEdge", quality.mean_edge);
         AddFieldValue(made->GetFieldData(), "EdgeSpread", quality.edge_spread);
         AddFieldValue(made->GetFieldData(), "BoundaryEdges", double(quality.boundary_edges));
+        AddFieldValue(made->GetFieldData(), "BoundaryLoops", double(quality.boundary_loops));
+        AddFieldValue(made->GetFieldData(), "Components", double(quality.components));
         in.Structure->ShallowCopy(made);
         in.Structure->Modified();
         in.StructureVertices = this->StructureVertices;

@@ -8,12 +8,15 @@
  * MesoLens reader's output or any polydata of points), grouped into molecules by the
  * `MoleculeId` point array (without it, every atom is a molecule). Input 1
  * (SetStructureConnection, optional): the structure's triangle mesh in the atoms' units. Without
- * it the structure is made from the molecules' centres (mesolens::structure_mesh: advancing-front
- * reconstruction, small holes closed, isotropic remeshing to about StructureVertices vertices);
- * it is output 1 either way, a made one with its quality in field data `MinAngle`, `MaxAngle`
- * (degrees), `MeanEdge`, `EdgeSpread` and `BoundaryEdges`. The made structure passes through
- * the middle of the molecules (both leaflets of a bilayer meet on one sheet; see
- * StructureMidSurfaceRadius), with stray molecules left out.
+ * it the structure is made from the centres of the membrane's molecules (mesolens::structure_mesh:
+ * one sheet through the middle of the bilayer, its leaflets paired along the local normal, of
+ * about StructureVertices vertices, every triangle's angles within 30-120°): water and ions (by
+ * residue name, or molecules of fewer than 4 atoms), proteins and nucleic acids, and strays far
+ * from the membrane are left out (mesolens::structure_molecules). A flat membrane spanning its
+ * periodic box (field data `PeriodicBoxVectors`) gives an open sheet over the box's cell, a
+ * vesicle a closed one. It is output 1 either way, a made one with its quality in field data
+ * `MinAngle`, `MaxAngle` (degrees), `MeanEdge`, `EdgeSpread`, `BoundaryEdges`, `BoundaryLoops`
+ * and `Components`.
  *
  * Every molecule is assigned once to its nearest triangle (exact closest point); its removal
  * priority comes from the smallest barycentric coordinate x of that point, (f(6 x - 1, K) + 1)
@@ -45,8 +48,9 @@
  * K, Inverted, RandomOrder, Seed and the centres stay. A new FractionHidden then costs O(atoms),
  * and the output keeps the same points object, so a mapper uploads nothing but the mask.
  *
- * Errors (a structure without triangles, molecules whose centres describe no surface, a
- * non-finite atom) are reported with vtkErrorMacro and give empty outputs.
+ * Errors (a structure without triangles, molecules whose centres describe no surface or no
+ * mesh within the angle bound, a non-finite atom) are reported with vtkErrorMacro and give empty
+ * outputs.
  */
 #ifndef vtkMesoStructuredCutaway_h
 #define vtkMesoStructuredCutaway_h
@@ -137,9 +141,10 @@ public:
   ///@}
 
   ///@{
-  /// Radius (atom units, e.g. Å) over which molecule centres are averaged onto the middle sheet
-  /// of the made structure: more than half the structure's thickness (a bilayer's lipid
-  /// centres: about 25-30 Å). 0 (default): 4 times the centres' median spacing.
+  /// How far (atom units, e.g. Å) along the local normal the made structure looks for a
+  /// bilayer's other leaflet when it pairs the leaflets onto their middle sheet: more than the
+  /// distance between the two leaflets' molecule centres (lipid centres about 20 Å apart, head
+  /// groups alone about 40 Å). 0 (default): up to 8 times the centres' median spacing.
   vtkSetClampMacro(StructureMidSurfaceRadius, double, 0.0, 1e6);
   vtkGetMacro(StructureMidSurfaceRadius, double);
   ///@}

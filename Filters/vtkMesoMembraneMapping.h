@@ -165,7 +165,7 @@ public:
 
   ///@{
   /// POLYNOMIAL: the largest fit residual accepted in a tile, membrane units (Å); beyond it
-  /// tiles are split, then displaced. <= 0: no bound. Default 1.
+  /// tiles are split, then displaced. <= 0: no bound. Default 2.
   vtkSetMacro(MaximumPolynomialResidual, double);
   vtkGetMacro(MaximumPolynomialResidual, double);
   ///@}
@@ -201,7 +201,7 @@ protected:
   double RadiusFactor = 2;
   double LayerHalfThickness = 25;
   int PolynomialSamples = 6;
-  double MaximumPolynomialResidual = 1;
+  double MaximumPolynomialResidual = 2;
   int MinimumDiskTriangles = 2000;
   bool MapWhatFits = true;
   bool OutputAtoms = true;

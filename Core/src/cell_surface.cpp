@@ -3,6 +3,7 @@
 
 #include "mesolens/errors.h"
 #include "mesolens/surface_locator.h"
+#include "surface_levels.h"
 
 #include <algorithm>
 #include <cmath>
@@ -67,18 +68,12 @@ MeshAdjacency mesh_adjacency(const TriangleMesh& mesh)
 struct CellSurface::Impl
 {
   std::shared_ptr<const SmoothSurface> Smooth;
-  MeshAdjacency Adjacency;
+  std::vector<std::unique_ptr<detail::SurfaceLevel>> Levels; // [0]: the input
   double Diagonal = 0;
   double LongestEdge = 0;
-  mutable std::once_flag LocatorBuilt;
-  mutable std::unique_ptr<SurfaceLocator> Locator;
-
   const SurfaceLocator& locator() const
   {
-    std::call_once(this->LocatorBuilt, [this] {
-      this->Locator = std::make_unique<SurfaceLocator>(this->Smooth->mesh());
-    });
-    return *this->Locator;
+    return this->Levels.front()->locator();
   }
 };
 
@@ -109,8 +104,37 @@ CellSurface::CellSurface(TriangleMesh mesh)
                            (a[2] - b[2]) * (a[2] - b[2])));
     }
   }
-  impl.Adjacency = mesh_adjacency(mesh);
-  impl.Smooth = std::make_shared<const SmoothSurface>(std::move(mesh));
+  auto input = std::make_unique<detail::SurfaceLevel>();
+  input->adjacency = mesh_adjacency(mesh);
+  input->input_vertex.resize(mesh.vertex_count());
+  std::iota(input->input_vertex.begin(), input->input_vertex.end(), std::int64_t(0));
+  input->anchor_triangle.resize(mesh.vertex_count());
+  for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
+  {
+    input->anchor_triangle[v] = input->adjacency.vertex_triangles[input->adjacency.vertex_start[v]];
+  }
+  input->smooth = std::make_shared<const SmoothSurface>(std::move(mesh));
+  input->measure();
+  impl.Smooth = input->smooth;
+  impl.Levels.push_back(std::move(input));
+  if (impl.Smooth->mesh().triangle_count() > coarse_copies_above)
+  {
+    // Copies down to a few thousand vertices: every disk then has a copy within reach.
+    for (auto& level : detail::coarser_levels(*impl.Levels.front(), coarse_copies_above / 8))
+    {
+      impl.Levels.push_back(std::move(level));
+    }
+  }
+}
+
+std::size_t CellSurface::level_count() const
+{
+  return this->Internal->Levels.size();
+}
+
+const detail::SurfaceLevel& CellSurface::level(std::size_t index) const
+{
+  return *this->Internal->Levels.at(index);
 }
 
 CellSurface::~CellSurface() = default;
@@ -132,7 +156,7 @@ std::shared_ptr<const SmoothSurface> CellSurface::shared_smooth() const
 
 const MeshAdjacency& CellSurface::adjacency() const
 {
-  return this->Internal->Adjacency;
+  return this->Internal->Levels.front()->adjacency;
 }
 
 double CellSurface::bounding_diagonal() const

@@ -3,6 +3,7 @@
 
 #include "mesolens/errors.h"
 #include "local_surface.h"
+#include "surface_levels.h"
 
 #include <algorithm>
 #include <cmath>
@@ -411,7 +412,29 @@ GeodesicDisk geodesic_disk(const CellSurface& surface, const SurfacePoint& seed,
     // this edge gives n to 2 n triangles in a flat disk.
     local_params.target_edge = params.radius * std::sqrt(4 * pi / double(params.min_triangles));
   }
-  const detail::LocalSurface local = detail::local_surface(surface, seed, local_params);
+  // The finest copy of the surface with few enough triangles within reach: predicted from the
+  // copies' mean triangle areas, then counted on the copy chosen (a coarser one if too many).
+  std::size_t level = 0;
+  if (params.max_triangles > 0 && surface.level_count() > 1)
+  {
+    constexpr double pi = 3.14159265358979323846;
+    const double area = pi * local_params.reach * local_params.reach;
+    while (level + 1 < surface.level_count() &&
+           area / surface.level(level).mean_triangle_area > 0.5 * double(params.max_triangles))
+    {
+      ++level;
+    }
+  }
+  SurfacePoint level_seed = level == 0 ? seed : surface.level(level).closest_point(seed.position);
+  while (params.max_triangles > 0 && level + 1 < surface.level_count() &&
+         detail::triangles_within(surface.level(level), level_seed, local_params.reach,
+                                  params.max_triangles + 1) > params.max_triangles)
+  {
+    ++level;
+    level_seed = surface.level(level).closest_point(seed.position);
+  }
+  const detail::SurfaceLevel& copy = surface.level(level);
+  const detail::LocalSurface local = detail::local_surface(copy, level_seed, local_params);
   if (local.seed.triangle < 0)
   {
     throw InvalidInput("the seed does not lie on the surface around it");
@@ -423,8 +446,21 @@ GeodesicDisk geodesic_disk(const CellSurface& surface, const SurfacePoint& seed,
   result.mesh = std::move(disk.mesh);
   result.distance = std::move(disk.distance);
   result.normals = std::move(disk.normals);
-  result.original_vertex = std::move(disk.origin);
+  // The disk's vertex origins are vertices of the copy it was grown on.
+  result.original_vertex.resize(disk.origin.size(), -1);
+  result.nearby_triangle.resize(disk.origin.size(), -1);
+  for (std::size_t i = 0; i < disk.origin.size(); ++i)
+  {
+    const std::int64_t v = disk.origin[i];
+    if (v >= 0)
+    {
+      result.original_vertex[i] =
+        copy.input_vertex.empty() ? -1 : copy.input_vertex[std::size_t(v)];
+      result.nearby_triangle[i] = copy.anchor_triangle[std::size_t(v)];
+    }
+  }
   result.source_triangle = std::move(disk.source);
+  result.surface_level = level;
   result.source_barycentric = std::move(disk.source_barycentric);
   result.refinement_levels = local.bisection_depth;
   result.holes_closed = holes;
@@ -437,27 +473,91 @@ SurfacePlacement smooth_placement(const GeodesicDisk& disk, const CellSurface& s
   {
     std::vector<std::int64_t> triangle;
     std::vector<double> barycentric;
+    std::vector<std::int64_t> corners;         // the disk's triangles
+    std::vector<std::int64_t> nearby_triangle; // per disk vertex
+    std::size_t level = 0;
   };
-  auto sources =
-    std::make_shared<const Sources>(Sources{ disk.source_triangle, disk.source_barycentric });
-  std::shared_ptr<const SmoothSurface> smooth = surface.shared_smooth();
-  return [sources, smooth](std::int64_t triangle, const std::array<double, 3>& barycentric,
-                           SurfaceFrame& frame) {
-    const std::int64_t source = sources->triangle[std::size_t(triangle)];
-    if (source < 0)
+  Sources copy{ disk.source_triangle, disk.source_barycentric, disk.mesh.triangles,
+                disk.nearby_triangle, disk.surface_level };
+  if (disk.surface_level > 0)
+  {
+    // Each vertex's own closest input triangle: lookups then start a step or two away.
+    for (std::size_t v = 0; v < copy.nearby_triangle.size(); ++v)
     {
-      return; // a filled hole: no surface to follow there
-    }
-    const double* corners = &sources->barycentric[9 * std::size_t(triangle)];
-    std::array<double, 3> in_source{ 0, 0, 0 };
-    for (std::size_t k = 0; k < 3; ++k)
-    {
-      for (std::size_t d = 0; d < 3; ++d)
+      if (copy.nearby_triangle[v] >= 0)
       {
-        in_source[d] += barycentric[k] * corners[3 * k + d];
+        const SurfacePoint found =
+          detail::walk_to_closest(surface.mesh(), surface.adjacency(), copy.nearby_triangle[v],
+                                  disk.mesh.point(std::int64_t(v)));
+        copy.nearby_triangle[v] = found.triangle >= 0 ? found.triangle : copy.nearby_triangle[v];
       }
     }
-    const SmoothPoint point = smooth->evaluate(source, in_source);
+  }
+  auto sources = std::make_shared<const Sources>(std::move(copy));
+  const CellSurface* cell = &surface;
+  return [sources, cell](std::int64_t triangle, const std::array<double, 3>& barycentric,
+                         SurfaceFrame& frame) {
+    const auto t = std::size_t(triangle);
+    const std::int64_t source = sources->triangle[t];
+    std::array<double, 3> in_source{ 0, 0, 0 };
+    if (source >= 0)
+    {
+      const double* corners = &sources->barycentric[9 * t];
+      for (std::size_t k = 0; k < 3; ++k)
+      {
+        for (std::size_t d = 0; d < 3; ++d)
+        {
+          in_source[d] += barycentric[k] * corners[3 * k + d];
+        }
+      }
+    }
+    if (sources->level == 0)
+    {
+      if (source >= 0) // else a filled hole: no surface to follow there
+      {
+        const SmoothPoint point = cell->smooth().evaluate(source, in_source);
+        frame.position = point.position;
+        frame.normal = point.normal;
+      }
+      return;
+    }
+    // Grown on a coarser copy: its smooth point, then the input's closest to it, found by
+    // walking the input from the corner nearest in the disk.
+    const detail::SurfaceLevel& copy = cell->level(sources->level);
+    SmoothPoint coarse{ frame.position, frame.normal };
+    if (source >= 0)
+    {
+      coarse = copy.smooth->evaluate(source, in_source);
+    }
+    const std::array<double, 3>& near = coarse.position;
+    std::int64_t start = -1;
+    double weight = -1;
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+      const std::int64_t near_corner =
+        sources->nearby_triangle[std::size_t(sources->corners[3 * t + k])];
+      if (near_corner >= 0 && barycentric[k] > weight)
+      {
+        weight = barycentric[k];
+        start = near_corner;
+      }
+    }
+    // Along the copy's normal onto the input: continuous, unlike the closest point.
+    SurfacePoint on_input;
+    if (start >= 0)
+    {
+      on_input =
+        detail::walk_along_line(cell->mesh(), cell->adjacency(), start, near, coarse.normal);
+    }
+    if (on_input.triangle < 0 && start >= 0)
+    {
+      on_input = detail::walk_to_closest(cell->mesh(), cell->adjacency(), start, near);
+    }
+    if (on_input.triangle < 0)
+    {
+      on_input = cell->closest_point(near);
+    }
+    const SmoothPoint point = cell->smooth().evaluate(on_input.triangle, on_input.barycentric);
     frame.position = point.position;
     frame.normal = point.normal;
   };

@@ -2,6 +2,7 @@
 #include "local_surface.h"
 
 #include "mesolens/errors.h"
+#include "triangle_closest_point.h"
 
 #include <algorithm>
 #include <cmath>
@@ -24,54 +25,9 @@ double dot(const Vec3& a, const Vec3& b)
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
 
-/// Distance from p to triangle abc (Ericson, Real-Time Collision Detection, 5.1.5).
 double point_triangle_distance(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c)
 {
-  const Vec3 ab = minus(b, a), ac = minus(c, a), ap = minus(p, a);
-  auto distance_to = [&p](const Vec3& q) {
-    const Vec3 d = minus(p, q);
-    return std::sqrt(dot(d, d));
-  };
-  auto along = [](const Vec3& origin, const Vec3& direction, double t) {
-    return Vec3{ origin[0] + t * direction[0], origin[1] + t * direction[1],
-                 origin[2] + t * direction[2] };
-  };
-  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0)
-  {
-    return distance_to(a);
-  }
-  const Vec3 bp = minus(p, b);
-  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3)
-  {
-    return distance_to(b);
-  }
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0)
-  {
-    return distance_to(along(a, ab, d1 / (d1 - d3)));
-  }
-  const Vec3 cp = minus(p, c);
-  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6)
-  {
-    return distance_to(c);
-  }
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0)
-  {
-    return distance_to(along(a, ac, d2 / (d2 - d6)));
-  }
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0)
-  {
-    return distance_to(along(b, minus(c, b), (d4 - d3) / ((d4 - d3) + (d5 - d6))));
-  }
-  const double denominator = 1 / (va + vb + vc);
-  const double v = vb * denominator, w = vc * denominator;
-  return distance_to(
-    { a[0] + ab[0] * v + ac[0] * w, a[1] + ab[1] * v + ac[1] * w, a[2] + ab[2] * v + ac[2] * w });
+  return std::sqrt(closest_on_triangle(p, a, b, c).distance2);
 }
 
 /// How far the smooth patch over corners p (normals n) can stray from the flat triangle: every
@@ -93,11 +49,11 @@ double patch_bulge(const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& n)
 }
 
 /// Whether input triangle t (with its smooth patch) comes within `reach` of `centre`.
-bool input_triangle_within(const CellSurface& surface, std::int64_t t, const Vec3& centre,
+bool input_triangle_within(const SurfaceLevel& surface, std::int64_t t, const Vec3& centre,
                            double reach)
 {
   const TriangleMesh& mesh = surface.mesh();
-  const std::vector<double>& normals = surface.smooth().vertex_normals();
+  const std::vector<double>& normals = surface.smooth->vertex_normals();
   std::array<Vec3, 3> p, n;
   for (std::size_t k = 0; k < 3; ++k)
   {
@@ -110,10 +66,11 @@ bool input_triangle_within(const CellSurface& surface, std::int64_t t, const Vec
 
 /// Input triangles within reach, edge-connected to the seed's, in the order a breadth-first
 /// walk meets them; stops after `limit` triangles.
-std::vector<std::int64_t> gather(const CellSurface& surface, const SurfacePoint& seed, double reach,
-                                 std::size_t limit, std::unordered_map<std::int64_t, bool>& seen)
+std::vector<std::int64_t> gather(const SurfaceLevel& surface, const SurfacePoint& seed,
+                                 double reach, std::size_t limit,
+                                 std::unordered_map<std::int64_t, bool>& seen)
 {
-  const MeshAdjacency& adjacency = surface.adjacency();
+  const MeshAdjacency& adjacency = surface.adjacency;
   std::vector<std::int64_t> region{ seed.triangle };
   seen[seed.triangle] = true;
   for (std::size_t i = 0; i < region.size() && region.size() < limit; ++i)
@@ -137,11 +94,11 @@ std::vector<std::int64_t> gather(const CellSurface& surface, const SurfacePoint&
 
 /// Adds every triangle around the region's vertices whose region triangles form more than one
 /// fan (they would make the region non-manifold there), until there are none.
-void complete_fans(const CellSurface& surface, std::vector<std::int64_t>& region,
+void complete_fans(const SurfaceLevel& surface, std::vector<std::int64_t>& region,
                    std::unordered_map<std::int64_t, bool>& seen)
 {
   const TriangleMesh& mesh = surface.mesh();
-  const MeshAdjacency& adjacency = surface.adjacency();
+  const MeshAdjacency& adjacency = surface.adjacency;
   auto in_region = [&seen](std::int64_t t) {
     const auto found = seen.find(t);
     return found != seen.end() && found->second;
@@ -198,7 +155,7 @@ std::uint64_t edge_key(std::int64_t a, std::int64_t b)
 class Refinement
 {
 public:
-  Refinement(const CellSurface& surface, const Vec3& centre, double reach, double target_edge,
+  Refinement(const SurfaceLevel& surface, const Vec3& centre, double reach, double target_edge,
              std::size_t max_triangles)
     : Surface(surface)
     , Centre(centre)
@@ -216,7 +173,7 @@ public:
   void add_input_triangles(const std::vector<std::int64_t>& triangles)
   {
     const TriangleMesh& mesh = this->Surface.mesh();
-    const std::vector<double>& normals = this->Surface.smooth().vertex_normals();
+    const std::vector<double>& normals = this->Surface.smooth->vertex_normals();
     std::unordered_map<std::int64_t, std::int64_t> local_of;
     for (const std::int64_t t : triangles)
     {
@@ -266,7 +223,7 @@ public:
   }
 
 private:
-  const CellSurface& Surface;
+  const SurfaceLevel& Surface;
   Vec3 Centre;
   double Reach;
   double TargetEdge2;
@@ -417,7 +374,7 @@ private:
     {
       middle[d] = 0.5 * (this->Bary[t][k][d] + this->Bary[t][(k + 1) % 3][d]);
     }
-    const SmoothPoint on_surface = this->Surface.smooth().evaluate(this->Source[t], middle);
+    const SmoothPoint on_surface = this->Surface.smooth->evaluate(this->Source[t], middle);
     const auto m = std::int64_t(this->Out.original_vertex.size());
     this->Out.mesh.points.insert(this->Out.mesh.points.end(), on_surface.position.begin(),
                                  on_surface.position.end());
@@ -534,7 +491,7 @@ SurfacePoint locate_seed(const LocalSurface& local, const SurfacePoint& seed)
 }
 } // namespace
 
-LocalSurface local_surface(const CellSurface& surface, const SurfacePoint& seed,
+LocalSurface local_surface(const SurfaceLevel& surface, const SurfacePoint& seed,
                            const LocalSurfaceParams& params)
 {
   if (seed.triangle < 0 || std::size_t(seed.triangle) >= surface.mesh().triangle_count())
@@ -559,7 +516,7 @@ LocalSurface local_surface(const CellSurface& surface, const SurfacePoint& seed,
   return local;
 }
 
-std::size_t triangles_within(const CellSurface& surface, const SurfacePoint& seed, double reach,
+std::size_t triangles_within(const SurfaceLevel& surface, const SurfacePoint& seed, double reach,
                              std::size_t limit)
 {
   std::unordered_map<std::int64_t, bool> seen;

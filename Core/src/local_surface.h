@@ -2,7 +2,7 @@
 // The part of a cell surface around a seed, as a mesh fine enough for a geodesic disk (private).
 #pragma once
 
-#include "mesolens/cell_surface.h"
+#include "surface_levels.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -38,15 +38,16 @@ struct LocalSurfaceParams
   std::size_t max_triangles = 2000000;
 };
 
-/// The local surface around `seed` (a point of surface.mesh()). The region is edge-connected
-/// to the seed's triangle and a manifold: a vertex whose triangles would form several fans gets
+/// The local surface around `seed` (a point of surface.mesh()), with new vertices on its smooth
+/// interpolant; "input" above means this copy of the surface. The region is edge-connected to
+/// the seed's triangle and a manifold: a vertex whose triangles would form several fans gets
 /// all of them. Deterministic.
-LocalSurface local_surface(const CellSurface& surface, const SurfacePoint& seed,
+LocalSurface local_surface(const SurfaceLevel& surface, const SurfacePoint& seed,
                            const LocalSurfaceParams& params);
 
-/// How many input triangles lie within `reach` of `seed` (edge-connected to the seed's
+/// How many triangles of `surface` lie within `reach` of `seed` (edge-connected to the seed's
 /// triangle), counting no further than `limit`.
-std::size_t triangles_within(const CellSurface& surface, const SurfacePoint& seed, double reach,
+std::size_t triangles_within(const SurfaceLevel& surface, const SurfacePoint& seed, double reach,
                              std::size_t limit);
 
 } // namespace detail

@@ -98,6 +98,7 @@ struct MembraneMapper::Impl
     std::array<double, 3> barycentric{};
     double radius = 0;
     std::size_t min_triangles = 0;
+    std::size_t max_triangles = 0;
     std::shared_ptr<const MappingChart> chart;
     ChartFailure failure;
     std::uint64_t used = 0;
@@ -107,11 +108,13 @@ struct MembraneMapper::Impl
   mutable std::uint64_t Clock = 0;
 
   std::shared_ptr<const MappingChart> build(const SurfacePoint& seed, double radius,
-                                            std::size_t min_triangles) const
+                                            std::size_t min_triangles,
+                                            std::size_t max_triangles) const
   {
     GeodesicDiskParams params;
     params.radius = radius;
     params.min_triangles = min_triangles;
+    params.max_triangles = max_triangles;
     GeodesicDisk disk = geodesic_disk(this->Surface, seed, params);
     DiskParameterization map = harmonic_parameterization(disk.mesh, radius);
     align_u_axis(disk, map);
@@ -156,7 +159,8 @@ SurfacePoint MembraneMapper::seed_near(const std::array<double, 3>& point, doubl
 }
 
 std::shared_ptr<const MappingChart> MembraneMapper::chart(const SurfacePoint& seed, double radius,
-                                                          std::size_t min_disk_triangles) const
+                                                          std::size_t min_disk_triangles,
+                                                          std::size_t max_disk_triangles) const
 {
   Impl& impl = *this->Internal;
   {
@@ -164,7 +168,8 @@ std::shared_ptr<const MappingChart> MembraneMapper::chart(const SurfacePoint& se
     for (Impl::Entry& entry : impl.Cache)
     {
       if (entry.triangle == seed.triangle && entry.barycentric == seed.barycentric &&
-          entry.radius == radius && entry.min_triangles == min_disk_triangles)
+          entry.radius == radius && entry.min_triangles == min_disk_triangles &&
+          entry.max_triangles == max_disk_triangles)
       {
         entry.used = ++impl.Clock;
         if (entry.chart)
@@ -184,9 +189,10 @@ std::shared_ptr<const MappingChart> MembraneMapper::chart(const SurfacePoint& se
   entry.barycentric = seed.barycentric;
   entry.radius = radius;
   entry.min_triangles = min_disk_triangles;
+  entry.max_triangles = max_disk_triangles;
   try
   {
-    entry.chart = impl.build(seed, radius, min_disk_triangles);
+    entry.chart = impl.build(seed, radius, min_disk_triangles, max_disk_triangles);
   }
   catch (const TopologyError& e)
   {
@@ -217,6 +223,12 @@ std::shared_ptr<const MappingChart> MembraneMapper::chart(const SurfacePoint& se
     throw SolverFailure(entry.failure.message);
   }
   return entry.chart;
+}
+
+void MembraneMapper::forget_charts() const
+{
+  std::lock_guard<std::mutex> lock(this->Internal->Lock);
+  this->Internal->Cache.clear();
 }
 
 MapResult MembraneMapper::map(const SurfacePoint& seed, const MembranePatch& patch,
@@ -251,7 +263,7 @@ MapResult MembraneMapper::map(const SurfacePoint& seed, const MembranePatch& pat
     std::shared_ptr<const MappingChart> chart;
     try
     {
-      chart = this->chart(seed, r, request.min_disk_triangles);
+      chart = this->chart(seed, r, request.min_disk_triangles, request.max_disk_triangles);
     }
     catch (const TopologyError& e)
     {
@@ -347,7 +359,7 @@ MapResult MembraneMapper::map(const SurfacePoint& seed, const MembranePatch& pat
     std::string ignored;
     try
     {
-      this->chart(seed, r, request.min_disk_triangles);
+      this->chart(seed, r, request.min_disk_triangles, request.max_disk_triangles);
       inside = r;
     }
     catch (const TopologyError&)

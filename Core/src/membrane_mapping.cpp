@@ -187,6 +187,7 @@ public:
     , Out(out)
   {
     this->Failures.resize(std::size_t(params.tiles) * std::size_t(params.tiles));
+    this->Samples.resize(this->Failures.size());
     const bool need_molecules =
       params.method == MappingMethod::MoleculeInstancing || params.cut_to_disk;
     if (params.method == MappingMethod::MoleculeInstancing && !patch.molecule_ids)
@@ -294,52 +295,45 @@ public:
     this->drop_partial_molecules(tile);
   }
 
-  /// Fits the m x m pieces of one tile; false (with the tile's failure set) when samples leave
-  /// the disk, unless the tile is cut to the disk.
+  /// Fits the m x m pieces of one tile; sets the tile's failure when samples leave the disk,
+  /// unless the tile is cut to the disk.
   void fit_polynomial(std::size_t tile, int m)
   {
-    const int i = int(tile % std::size_t(this->Params.tiles));
-    const int j = int(tile / std::size_t(this->Params.tiles));
     const int samples = this->Params.samples;
-    const double scale = this->Params.scale;
+    const int stride = this->Params.max_polynomial_splits / m; // on the finest sample grid
     double rms = 0, worst = 0;
     bool too_few = false;
     std::vector<std::array<double, 3>> parameters, targets;
-    SurfaceFrame frame;
-    std::array<double, 3> x{};
     for (int pj = 0; pj < m; ++pj)
     {
       for (int pi = 0; pi < m; ++pi)
       {
         parameters.clear();
         targets.clear();
-        for (int layer = -1; layer <= 1; ++layer)
+        for (int sj = 0; sj < samples; ++sj)
         {
-          for (int sj = 0; sj < samples; ++sj)
+          for (int si = 0; si < samples; ++si)
           {
-            for (int si = 0; si < samples; ++si)
+            const TileSample* sample = this->sample(tile, (pi * (samples - 1) + si) * stride,
+                                                    (pj * (samples - 1) + sj) * stride);
+            if (!sample)
             {
-              // The piece's own (s, t) in [-1, 1], and where that is on the tile.
-              const double s = -1 + 2.0 * si / (samples - 1);
-              const double t = -1 + 2.0 * sj / (samples - 1);
-              const double tile_s = -1 + (2.0 * pi + s + 1) / m;
-              const double tile_t = -1 + (2.0 * pj + t + 1) / m;
-              const auto q = this->Layout.patch_point(tile_s, tile_t);
-              const auto uv = this->Layout.uv(q[0], q[1], i, j);
-              if (!displaced(this->Chart, uv, scale * layer * this->Params.layer_half_thickness, x,
-                             frame))
+              if (this->Params.cut_to_disk)
               {
-                if (this->Params.cut_to_disk)
-                {
-                  continue;
-                }
-                this->Failures[tile] = "the polynomial samples of tile (" + std::to_string(i) +
-                  ", " + std::to_string(j) + ") leave the geodesic disk at (u, v) = (" +
-                  std::to_string(uv[0]) + ", " + std::to_string(uv[1]) + "); grow the disk";
-                return;
+                continue;
               }
+              return;
+            }
+            // The piece's own (s, t) in [-1, 1]; the layers h = -1, 0, +1 along the normal.
+            const double s = -1 + 2.0 * si / (samples - 1);
+            const double t = -1 + 2.0 * sj / (samples - 1);
+            const double offset = this->Params.scale * this->Params.layer_half_thickness;
+            for (int layer = -1; layer <= 1; ++layer)
+            {
               parameters.push_back({ s, t, double(layer) });
-              targets.push_back(x);
+              targets.push_back({ sample->position[0] + layer * offset * sample->normal[0],
+                                  sample->position[1] + layer * offset * sample->normal[1],
+                                  sample->position[2] + layer * offset * sample->normal[2] });
             }
           }
         }
@@ -405,6 +399,49 @@ private:
   TileLayout Layout;
   MappedMembrane& Out;
   Molecules Groups;
+
+  /// The surface under one point of a tile's finest sample grid: (samples - 1) m_max + 1
+  /// points a side, so the grids of every split nest in it and each point is located once.
+  struct TileSample
+  {
+    std::array<double, 3> position{};
+    std::array<double, 3> normal{};
+    std::int8_t state = 0; // 0 not yet located, 1 on the disk, -1 off it
+  };
+  std::vector<std::vector<TileSample>> Samples; // per tile
+
+  /// The sample at finest-grid point (a, b) of a tile, located on first use; nullptr (with the
+  /// tile's failure set unless cut to the disk) when it is off the disk.
+  const TileSample* sample(std::size_t tile, int a, int b)
+  {
+    const int side = (this->Params.samples - 1) * this->Params.max_polynomial_splits + 1;
+    std::vector<TileSample>& grid = this->Samples[tile];
+    if (grid.empty())
+    {
+      grid.resize(std::size_t(side) * std::size_t(side));
+    }
+    TileSample& sample = grid[std::size_t(b) * std::size_t(side) + std::size_t(a)];
+    if (sample.state == 0)
+    {
+      const int i = int(tile % std::size_t(this->Params.tiles));
+      const int j = int(tile / std::size_t(this->Params.tiles));
+      const double tile_s = -1 + 2.0 * a / (side - 1);
+      const double tile_t = -1 + 2.0 * b / (side - 1);
+      const auto q = this->Layout.patch_point(tile_s, tile_t);
+      const auto uv = this->Layout.uv(q[0], q[1], i, j);
+      SurfaceFrame frame;
+      sample.state = this->Chart.frame(uv[0], uv[1], frame) ? 1 : -1;
+      sample.position = frame.position;
+      sample.normal = frame.normal;
+      if (sample.state < 0 && !this->Params.cut_to_disk)
+      {
+        this->Failures[tile] = "the polynomial samples of tile (" + std::to_string(i) + ", " +
+          std::to_string(j) + ") leave the geodesic disk at (u, v) = (" + std::to_string(uv[0]) +
+          ", " + std::to_string(uv[1]) + "); grow the disk";
+      }
+    }
+    return sample.state > 0 ? &sample : nullptr;
+  }
 
   /// Cut to the disk: a molecule with an atom outside is dropped whole.
   void drop_partial_molecules(std::size_t tile)
@@ -472,10 +509,17 @@ std::array<double, 3> evaluate_tile_polynomial(const MembranePatch& patch,
 {
   auto local = polynomial_coordinates(patch, layer_half_thickness, position);
   const int piece = polynomial_piece(splits, local[0], local[1]);
-  QuadraticWarp warp;
-  std::copy(coefficients + 3 * quadratic_terms * std::size_t(piece),
-            coefficients + 3 * quadratic_terms * std::size_t(piece + 1), warp.begin());
-  return evaluate_quadratic(warp, local[0], local[1], local[2]);
+  const double* warp = coefficients + 3 * quadratic_terms * std::size_t(piece);
+  const auto monomials = quadratic_monomials(local[0], local[1], local[2]);
+  std::array<double, 3> x{ 0, 0, 0 };
+  for (std::size_t d = 0; d < 3; ++d)
+  {
+    for (std::size_t k = 0; k < quadratic_terms; ++k)
+    {
+      x[d] += warp[quadratic_terms * d + k] * monomials[k];
+    }
+  }
+  return x;
 }
 
 double tiled_extent(const MembranePatch& patch, int tiles)

@@ -1,17 +1,23 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Membrane-mapping benchmark and real-data report.
 //  1. The full re-map on a ~2 M-triangle cell mesh (the mitochondrion's outer membrane, Loop-
-//     subdivided 4 times): geodesic disk + parameterization + 225 polynomial fits for 15 x 15
-//     tiles, step by step, with the ratio to CGAL's mean-value parameterization
-//     (Surface_mesh_parameterization) of the same disk in the same run; then the CPU evaluation
-//     of all mapped atoms for the paper's largest case (15 x 15 tiles of the 43 480-atom YiiP
-//     patch, 9.8 M atoms). The goal is a re-map within 100 ms.
+//     subdivided 4 times) through mesolens::MembraneMapper, as a click does: geodesic disk +
+//     parameterization + chart + 225 polynomial fits for 15 x 15 tiles of YiiP, on 2 threads,
+//     the median of several clicks with nothing cached, and step by step; the ratio to CGAL's
+//     mean-value parameterization (Surface_mesh_parameterization) of the same disk in the same
+//     run; and what growing the disk on a coarser copy of the mesh changes against the
+//     full-resolution solve (angle and area distortion, bond-length change). Then the CPU
+//     evaluation of all mapped atoms for the paper's largest case (9.8 M atoms). Goal: a re-map
+//     within 100 ms.
 //  2. Real data: the DPPC and YiiP bilayers mapped onto the mitochondrion meshes at true scale
 //     (Å onto µm), 3 x 3 tiles: median and 95th percentile bond-length change per method, and
 //     the polynomial's fit residual per tile.
+//
+//   BenchmarkMembraneMapping [--smoke]   (--smoke: the re-map only, without the comparisons)
 #include "mesolens/geodesic_disk.h"
 #include "mesolens/gro_topology.h"
 #include "mesolens/harmonic_parameterization.h"
+#include "mesolens/membrane_mapper.h"
 #include "mesolens/membrane_mapping.h"
 #include "mesolens/molecule_pbc.h"
 #include "mesolens/trajectory_file.h"
@@ -38,6 +44,8 @@
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <string>
+#include <thread>
 #include <tuple>
 #include <vector>
 
@@ -171,17 +179,14 @@ Membrane read_membrane(const std::string& gro)
 void real_data_report(const std::string& mesh_name, const std::string& mesh_path,
                       const std::string& membrane_name, const Membrane& membrane)
 {
-  const auto surface = read_obj(mesh_path, 0);
-  const mesolens::CellSurface solver(to_mesh(surface));
-  const auto seed = solver.closest_point(solver.mesh().point(1000));
+  const mesolens::MembraneMapper mapper(to_mesh(read_obj(mesh_path, 0)));
+  const auto seed = mapper.seed_near(mapper.surface().mesh().point(1000));
   const double scale = 1e-4; // Å onto µm
   const int tiles = 3;
   const double radius = 2 * tiles * membrane.width() * scale;
-  mesolens::GeodesicDiskParams disk_params;
-  disk_params.radius = radius;
-  const auto disk = mesolens::geodesic_disk(solver, seed, disk_params);
-  const auto map = mesolens::harmonic_parameterization(disk.mesh, radius);
-  const mesolens::SurfaceChart chart(disk.mesh, map.uv);
+  const auto mapping_chart = mapper.chart(seed, radius);
+  const mesolens::GeodesicDisk& disk = mapping_chart->disk;
+  const mesolens::SurfaceChart& chart = mapping_chart->chart;
   for (const auto method :
        { mesolens::MappingMethod::Displacement, mesolens::MappingMethod::MoleculeInstancing,
          mesolens::MappingMethod::Polynomial })
@@ -190,7 +195,7 @@ void real_data_report(const std::string& mesh_name, const std::string& mesh_path
     params.method = method;
     params.tiles = tiles;
     params.scale = scale;
-    params.centre_uv = chart.uv_of(disk.seed);
+    params.centre_uv = mapping_chart->seed_uv;
     const auto patch = membrane.patch();
     const auto mapped = mesolens::map_membrane(chart, patch, params);
     auto changes = mesolens::bond_length_changes(patch, mapped, membrane.bonds, scale);
@@ -229,15 +234,12 @@ void trajectory_report(const std::string& mesh_path, const std::string& gro, con
   {
     membrane.bonds.push_back({ b.first, b.second });
   }
-  const mesolens::CellSurface solver(to_mesh(read_obj(mesh_path, 0)));
-  const auto seed = solver.closest_point(solver.mesh().point(1000));
+  const mesolens::MembraneMapper mapper(to_mesh(read_obj(mesh_path, 0)));
+  const auto seed = mapper.seed_near(mapper.surface().mesh().point(1000));
   const double scale = 1e-4;
   const double radius = 2 * 3 * membrane.width() * scale;
-  mesolens::GeodesicDiskParams disk_params;
-  disk_params.radius = radius;
-  const auto disk = mesolens::geodesic_disk(solver, seed, disk_params);
-  const mesolens::SurfaceChart chart(disk.mesh,
-                                     mesolens::harmonic_parameterization(disk.mesh, radius).uv);
+  const auto mapping_chart = mapper.chart(seed, radius);
+  const mesolens::SurfaceChart& chart = mapping_chart->chart;
   mesolens::TrajectoryFile frames(xtc);
   for (std::size_t f = 0; f < frames.frame_count(); ++f)
   {
@@ -249,7 +251,7 @@ void trajectory_report(const std::string& mesh_path, const std::string& gro, con
     mesolens::MappingParams params;
     params.tiles = 3;
     params.scale = scale;
-    params.centre_uv = chart.uv_of(disk.seed);
+    params.centre_uv = mapping_chart->seed_uv;
     const auto patch = membrane.patch();
     const double seconds = seconds_of([&] { mesolens::map_membrane(chart, patch, params); });
     const auto mapped = mesolens::map_membrane(chart, patch, params);
@@ -267,109 +269,247 @@ void trajectory_report(const std::string& mesh_path, const std::string& gro, con
       changes[changes.size() * 95 / 100]);
   }
 }
-} // namespace
+/// Percentiles of a sample (sorted copy): p in [0, 1].
+double percentile(std::vector<double> values, double p)
+{
+  if (values.empty())
+  {
+    return std::nan("");
+  }
+  std::sort(values.begin(), values.end());
+  return values[std::min(values.size() - 1, std::size_t(p * double(values.size())))];
+}
 
-int main()
+std::vector<double> absolute(std::vector<double> values)
+{
+  for (double& v : values)
+  {
+    v = std::abs(v);
+  }
+  return values;
+}
+
+/// |log| of each area distortion: 0 where areas are kept, symmetric in shrinking and growing.
+std::vector<double> log_area(const std::vector<double>& values)
+{
+  std::vector<double> out;
+  for (const double v : values)
+  {
+    out.push_back(std::abs(std::log(v)));
+  }
+  return out;
+}
+
+mesolens::ParallelFor two_threads()
+{
+  return [](std::size_t count, const mesolens::RangeKernel& kernel) {
+    std::thread other([&] { kernel(0, count / 2); });
+    kernel(count / 2, count);
+    other.join();
+  };
+}
+
+/// The re-map on ~2 M triangles.
+void remap_on_two_million(const Membrane& yiip, bool smoke)
 {
   using mesolens_test::data_file;
-  const Membrane yiip = read_membrane(data_file("membranes/yiip_popepopg.gro"));
-  const Membrane dppc = read_membrane(data_file("membranes/dppc128_slipids_323K.gro"));
-
-  // 1. The re-map on ~2 M triangles.
   vtkSmartPointer<vtkPolyData> surface;
   const double subdivide =
     seconds_of([&] { surface = read_obj(data_file("meshes/mito5_outer_membrane.obj"), 4); });
   mesolens::TriangleMesh mesh = to_mesh(surface);
   const std::size_t triangles = mesh.triangle_count();
-  std::unique_ptr<mesolens::CellSurface> solver;
+  std::unique_ptr<mesolens::MembraneMapper> mapper;
   const double setup =
-    seconds_of([&] { solver = std::make_unique<mesolens::CellSurface>(std::move(mesh)); });
+    seconds_of([&] { mapper = std::make_unique<mesolens::MembraneMapper>(std::move(mesh)); });
   std::printf(
     "BENCH remap-setup input=mito5_outer_membrane Loop x4 = %zu triangles | subdivision %.2f s, "
-    "solver set-up (once per mesh) %.2f s\n",
-    triangles, subdivide, setup);
+    "mapper set-up (once per mesh: checks, adjacency, %zu coarser copies) %.2f s\n",
+    triangles, subdivide, mapper->surface().level_count() - 1, setup);
   const int tiles = 15;
   // The 15 x 15 YiiP tiling (1545 Å wide) does not fit this 0.6 µm organelle at true scale:
   // shrink it so the disk (r = 2 d) has a radius of 0.12 µm.
   const double radius = 0.12;
   const double scale = radius / (2 * tiles * yiip.width());
-  const auto seed = solver->closest_point(solver->mesh().point(1000));
+  const auto patch = yiip.patch();
+  mesolens::MapRequest request;
+  request.mapping.method = mesolens::MappingMethod::Polynomial;
+  request.mapping.tiles = tiles;
+  request.mapping.scale = scale;
+  request.mapping.map_atoms = false;
+  const auto parallel = two_threads();
+  // Clicks at several places, nothing kept between them.
+  std::vector<double> clicks;
+  std::size_t disk_triangles = 0, level = 0;
+  for (const std::int64_t vertex : { 1000, 250000, 500000, 750000, 1000000 })
+  {
+    const auto seed = mapper->seed_near(mapper->surface().mesh().point(vertex));
+    mapper->forget_charts();
+    mesolens::MapResult result;
+    clicks.push_back(seconds_of([&] { result = mapper->map(seed, patch, request, parallel); }));
+    std::printf(
+      "REPORT remap-click vertex %lld: %.1f ms, disk of %zu triangles on copy %zu, %d x %d "
+      "pieces, k = %d%s%s\n",
+      static_cast<long long>(vertex), 1e3 * clicks.back(), result.chart->disk.mesh.triangle_count(),
+      result.chart->disk.surface_level, result.mapped.polynomial_splits,
+      result.mapped.polynomial_splits, result.tiles_mapped, result.note.empty() ? "" : ": ",
+      result.note.c_str());
+    if (vertex == 1000)
+    {
+      disk_triangles = result.chart->disk.mesh.triangle_count();
+      level = result.chart->disk.surface_level;
+    }
+  }
+  // The steps of the first click.
+  const auto seed = mapper->seed_near(mapper->surface().mesh().point(1000));
   mesolens::GeodesicDiskParams disk_params;
   disk_params.radius = radius;
-  disk_params.min_triangles = 0;
   mesolens::GeodesicDisk disk;
-  const double geodesic =
-    median_seconds(3, [&] { disk = mesolens::geodesic_disk(*solver, seed, disk_params); });
+  const double geodesic = median_seconds(
+    3, [&] { disk = mesolens::geodesic_disk(mapper->surface(), seed, disk_params); });
   mesolens::DiskParameterization map;
   const double parameterization =
     median_seconds(3, [&] { map = mesolens::harmonic_parameterization(disk.mesh, radius); });
   std::unique_ptr<mesolens::SurfaceChart> chart;
-  const double chart_build =
-    median_seconds(3, [&] { chart = std::make_unique<mesolens::SurfaceChart>(disk.mesh, map.uv); });
-  mesolens::MappingParams params;
-  params.method = mesolens::MappingMethod::Polynomial;
-  params.tiles = tiles;
-  params.scale = scale;
+  const double chart_build = median_seconds(3, [&] {
+    chart = std::make_unique<mesolens::SurfaceChart>(
+      disk.mesh, map.uv, disk.normals, mesolens::smooth_placement(disk, mapper->surface()));
+  });
+  mesolens::MappingParams params = request.mapping;
   params.centre_uv = chart->uv_of(disk.seed);
-  auto one_atom = yiip.patch();
-  one_atom.atom_count = 1;
-  const double fits = median_seconds(3, [&] { mesolens::map_membrane(*chart, one_atom, params); });
-  const double remap = geodesic + parameterization + chart_build + fits;
+  mesolens::MappedMembrane fitted;
+  const double fits =
+    median_seconds(3, [&] { fitted = mesolens::map_membrane(*chart, patch, params, parallel); });
   const double cgal = cgal_parameterization_seconds(disk.mesh);
-  std::printf("BENCH remap input=%zu-triangle mesh, disk of %zu triangles, 15x15 tiles of YiiP "
-              "(scale %.2e µm/Å) | "
-              "geodesic disk %.1f ms + parameterization %.1f ms + chart %.1f ms + 225 polynomial "
-              "fits %.1f ms = "
-              "re-map %.1f ms (goal 100 ms) | CGAL mean-value parameterization %.1f ms | ratio "
-              "ours/CGAL %.2f\n",
-              triangles, disk.mesh.triangle_count(), scale, 1e3 * geodesic, 1e3 * parameterization,
-              1e3 * chart_build, 1e3 * fits, 1e3 * remap, 1e3 * cgal, parameterization / cgal);
-  const auto patch = yiip.patch();
-  mesolens::MappedMembrane mapped;
-  const double evaluation =
-    median_seconds(1, [&] { mapped = mesolens::map_membrane(*chart, patch, params); }) - fits;
-  const double atoms = double(mapped.positions.size() / 3);
-  std::printf("BENCH cpu-evaluation input=15x15 tiles x %zu atoms = %.0f atoms (polynomial) | %.0f "
-              "ms, %.1f Matoms/s "
-              "(single thread)\n",
-              patch.atom_count, atoms, 1e3 * evaluation, atoms / evaluation / 1e6);
-  solver.reset();
-
-  // The interactive case: the organelle mesh as it comes (8340 triangles), the disk refined
-  // locally (Loop subdivision) until it holds 2000 triangles.
-  const mesolens::CellSurface coarse(
-    to_mesh(read_obj(data_file("meshes/mito5_outer_membrane.obj"), 0)));
-  const auto coarse_seed = coarse.closest_point(coarse.mesh().point(1000));
-  for (const auto& [label, k, factor] :
-       { std::make_tuple("15x15 tiles (scale as above)", 15, scale),
-         std::make_tuple("3x3 tiles at true scale (1e-4 µm/Å)", 3, 1e-4) })
+  std::printf(
+    "BENCH remap input=%zu-triangle mesh, 15x15 tiles of YiiP (scale %.2e µm/Å, disk radius "
+    "%.2f µm), 5 clicks on 2 threads | re-map median %.1f ms, max %.1f ms (goal 100 ms, ratio "
+    "%.2f) | first click: disk of %zu triangles on coarser copy %zu: geodesic disk %.1f ms + "
+    "parameterization %.1f ms + chart %.1f ms + 225 polynomial fits (%d x %d pieces) %.1f ms | "
+    "CGAL mean-value parameterization of the same disk %.1f ms, ratio ours/CGAL %.2f\n",
+    triangles, scale, radius, 1e3 * percentile(clicks, 0.5),
+    1e3 * *std::max_element(clicks.begin(), clicks.end()), percentile(clicks, 0.5) / 0.1,
+    disk_triangles, level, 1e3 * geodesic, 1e3 * parameterization, 1e3 * chart_build,
+    fitted.polynomial_splits, fitted.polynomial_splits, 1e3 * fits, 1e3 * cgal,
+    parameterization / cgal);
+  if (smoke)
   {
-    mesolens::GeodesicDiskParams local;
-    local.radius = 2 * k * yiip.width() * factor;
-    mesolens::GeodesicDisk small;
-    const double grow =
-      median_seconds(5, [&] { small = mesolens::geodesic_disk(coarse, coarse_seed, local); });
-    mesolens::DiskParameterization small_map;
-    const double flatten = median_seconds(
-      5, [&] { small_map = mesolens::harmonic_parameterization(small.mesh, local.radius); });
-    std::unique_ptr<mesolens::SurfaceChart> small_chart;
-    const double index = median_seconds(
-      5, [&] { small_chart = std::make_unique<mesolens::SurfaceChart>(small.mesh, small_map.uv); });
-    mesolens::MappingParams fit_params = params;
-    fit_params.tiles = k;
-    fit_params.scale = factor;
-    fit_params.centre_uv = small_chart->uv_of(small.seed);
-    const double fit =
-      median_seconds(5, [&] { mesolens::map_membrane(*small_chart, one_atom, fit_params); });
-    std::printf(
-      "BENCH remap-interactive input=mito5_outer_membrane (8340 triangles), YiiP %s, disk of %zu "
-      "triangles after %d Loop levels | geodesic disk %.1f ms + parameterization %.1f ms + chart "
-      "%.1f ms "
-      "+ %d polynomial fits %.1f ms = re-map %.1f ms (goal 100 ms)\n",
-      label, small.mesh.triangle_count(), small.refinement_levels, 1e3 * grow, 1e3 * flatten,
-      1e3 * index, k * k, 1e3 * fit, 1e3 * (grow + flatten + index + fit));
+    return;
   }
 
+  // What the coarser copy changes: the same disk solved at the input's full resolution, both
+  // charts turned alike (as the mapper turns them: u along the mesh's x axis).
+  mesolens::GeodesicDiskParams full_params = disk_params;
+  full_params.max_triangles = 0;
+  mesolens::GeodesicDisk full;
+  const double full_geodesic =
+    seconds_of([&] { full = mesolens::geodesic_disk(mapper->surface(), seed, full_params); });
+  mesolens::DiskParameterization full_map;
+  const double full_parameterization =
+    seconds_of([&] { full_map = mesolens::harmonic_parameterization(full.mesh, radius); });
+  const double full_cgal = cgal_parameterization_seconds(full.mesh);
+  mapper->forget_charts();
+  const auto coarse_chart = mapper->chart(seed, radius);
+  const auto full_chart = mapper->chart(seed, radius, 2000, 0);
+  std::printf("BENCH remap-full-resolution input=the same disk on all %zu triangles of its "
+              "region | geodesic disk %.0f ms + parameterization %.0f ms | CGAL %.0f ms, ratio "
+              "ours/CGAL %.2f\n",
+              full.mesh.triangle_count(), 1e3 * full_geodesic, 1e3 * full_parameterization,
+              1e3 * full_cgal, full_parameterization / full_cgal);
+  std::printf("REPORT remap-distortion coarse copy %zu (%zu triangles) vs full resolution (%zu) "
+              "| angle distortion median %.4f vs %.4f, 95th percentile %.4f vs %.4f | "
+              "|log area distortion| median %.4f vs %.4f, 95th percentile %.4f vs %.4f\n",
+              disk.surface_level, disk.mesh.triangle_count(), full.mesh.triangle_count(),
+              percentile(map.angle_distortion, 0.5), percentile(full_map.angle_distortion, 0.5),
+              percentile(map.angle_distortion, 0.95), percentile(full_map.angle_distortion, 0.95),
+              percentile(log_area(map.area_distortion), 0.5),
+              percentile(log_area(full_map.area_distortion), 0.5),
+              percentile(log_area(map.area_distortion), 0.95),
+              percentile(log_area(full_map.area_distortion), 0.95));
+  // Bond lengths of the YiiP tiles displaced on both charts, and how far the atoms move.
+  mesolens::MappingParams displace = params;
+  displace.method = mesolens::MappingMethod::Displacement;
+  displace.max_polynomial_residual = 0;
+  displace.centre_uv = coarse_chart->seed_uv;
+  const auto coarse_atoms = mesolens::map_membrane(coarse_chart->chart, patch, displace, parallel);
+  displace.centre_uv = full_chart->seed_uv;
+  const auto full_atoms = mesolens::map_membrane(full_chart->chart, patch, displace, parallel);
+  const auto coarse_bonds =
+    absolute(mesolens::bond_length_changes(patch, coarse_atoms, yiip.bonds, scale));
+  const auto full_bonds =
+    absolute(mesolens::bond_length_changes(patch, full_atoms, yiip.bonds, scale));
+  std::vector<double> moved;
+  for (std::size_t i = 0; i < coarse_atoms.positions.size(); i += 3 * 97)
+  {
+    moved.push_back(
+      std::sqrt(std::pow(coarse_atoms.positions[i] - full_atoms.positions[i], 2) +
+                std::pow(coarse_atoms.positions[i + 1] - full_atoms.positions[i + 1], 2) +
+                std::pow(coarse_atoms.positions[i + 2] - full_atoms.positions[i + 2], 2)) /
+      scale);
+  }
+  std::printf("REPORT remap-bonds 15x15 YiiP displaced, coarse copy vs full resolution | "
+              "|bond length change| median %.2e vs %.2e, 95th percentile %.2e vs %.2e, max %.2e "
+              "vs %.2e | atoms placed apart by median %.1f Å, 95th percentile %.1f Å (of a %.0f Å "
+              "wide tiling)\n",
+              percentile(coarse_bonds, 0.5), percentile(full_bonds, 0.5),
+              percentile(coarse_bonds, 0.95), percentile(full_bonds, 0.95),
+              percentile(coarse_bonds, 1.0), percentile(full_bonds, 1.0), percentile(moved, 0.5),
+              percentile(moved, 0.95), tiles * yiip.width());
+  // The paper's largest case evaluated on the CPU: every atom of every tile by its polynomial.
+  mesolens::MappingParams evaluate = params;
+  evaluate.map_atoms = true;
+  mesolens::MappedMembrane mapped;
+  const double evaluation =
+    seconds_of([&] { mapped = mesolens::map_membrane(*chart, patch, evaluate); }) - fits;
+  const double atoms = double(mapped.positions.size() / 3);
+  std::printf("BENCH cpu-evaluation input=15x15 tiles x %zu atoms = %.0f atoms (polynomial, %d x "
+              "%d pieces per tile) | %.0f ms, %.1f Matoms/s (single thread)\n",
+              patch.atom_count, atoms, mapped.polynomial_splits, mapped.polynomial_splits,
+              1e3 * evaluation, atoms / evaluation / 1e6);
+}
+
+/// The interactive case: the organelle mesh as it comes (8340 triangles), refined locally.
+void remap_interactive(const Membrane& yiip)
+{
+  const mesolens::MembraneMapper mapper(
+    to_mesh(read_obj(mesolens_test::data_file("meshes/mito5_outer_membrane.obj"), 0)));
+  const auto seed = mapper.seed_near(mapper.surface().mesh().point(1000));
+  const auto patch = yiip.patch();
+  for (const auto& [label, k, factor] :
+       { std::make_tuple("15x15 tiles (disk radius 0.12 µm)", 15, 0.12 / (30 * yiip.width())),
+         std::make_tuple("3x3 tiles at true scale (1e-4 µm/Å)", 3, 1e-4) })
+  {
+    mesolens::MapRequest request;
+    request.mapping.method = mesolens::MappingMethod::Polynomial;
+    request.mapping.tiles = k;
+    request.mapping.scale = factor;
+    request.mapping.map_atoms = false;
+    mesolens::MapResult result;
+    const double remap = median_seconds(5, [&] {
+      mapper.forget_charts();
+      result = mapper.map(seed, patch, request, two_threads());
+    });
+    std::printf("BENCH remap-interactive input=mito5_outer_membrane (8340 triangles), YiiP %s, "
+                "disk of %zu triangles (input triangles halved up to %d times) | re-map %.1f ms "
+                "on 2 threads (goal 100 ms), %d x %d polynomial pieces per tile\n",
+                label, result.chart->disk.mesh.triangle_count(),
+                result.chart->disk.refinement_levels, 1e3 * remap, result.mapped.polynomial_splits,
+                result.mapped.polynomial_splits);
+  }
+}
+} // namespace
+
+int main(int argc, char* argv[])
+{
+  using mesolens_test::data_file;
+  const bool smoke = argc > 1 && std::string(argv[1]) == "--smoke";
+  const Membrane yiip = read_membrane(data_file("membranes/yiip_popepopg.gro"));
+  remap_on_two_million(yiip, smoke);
+  remap_interactive(yiip);
+  if (smoke)
+  {
+    return 0;
+  }
+  const Membrane dppc = read_membrane(data_file("membranes/dppc128_slipids_323K.gro"));
   // 2. Real data at true scale.
   real_data_report("mito5_outer_membrane", data_file("meshes/mito5_outer_membrane.obj"),
                    "DPPC (Slipids)", dppc);

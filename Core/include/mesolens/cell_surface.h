@@ -13,6 +13,10 @@
 
 namespace mesolens {
 
+namespace detail {
+struct SurfaceLevel;
+}
+
 /// Which triangles touch which: the triangle across each edge and the triangles around each
 /// vertex.
 struct MeshAdjacency
@@ -30,8 +34,10 @@ MeshAdjacency mesh_adjacency(const TriangleMesh& mesh);
 /// The surface a membrane is mapped onto: the input mesh (any genus, any triangle size, any
 /// unit; a consistently oriented 2-manifold, boundary allowed, without degenerate triangles),
 /// its smooth interpolant (SmoothSurface, which every mapped point lies on), its adjacency and
-/// a closest-point index. Building is O(F log F); the index is built on first use. Queries are
-/// const and thread-safe.
+/// a closest-point index; for meshes of more than coarse_copies_above triangles also coarser
+/// copies of it, on which disks too large for the input's resolution are grown. Building is
+/// O(F log F) (the coarser copies, by quadric simplification, cost about a second per million
+/// triangles); the index is built on first use. Queries are const and thread-safe.
 class CellSurface
 {
 public:
@@ -57,6 +63,13 @@ public:
   /// The same, searching from `hint` first (a nearby answer): faster, same result.
   SurfacePoint closest_point(const std::array<double, 3>& point, const SurfacePoint* hint,
                              double* distance) const;
+
+  /// Meshes with more triangles than this get coarser copies.
+  static constexpr std::size_t coarse_copies_above = 16000;
+  /// The input (0) and its coarser copies (1, 2, ...: a quarter of the vertices each), for
+  /// Core's own algorithms.
+  std::size_t level_count() const;
+  const detail::SurfaceLevel& level(std::size_t index) const;
 
 private:
   struct Impl;

@@ -25,6 +25,11 @@ struct GeodesicDiskParams
   /// coarse mesh holds at least about this many triangles. Finer input is used as it is. 0: no
   /// refinement. Default 2000.
   std::size_t min_triangles = 2000;
+  /// Speed on fine meshes: when more than this many of the input's triangles lie within r of
+  /// the seed, the disk is grown on the finest coarser copy of the surface (CellSurface) where
+  /// fewer do, and its points are placed on the input surface. 0: always the input's
+  /// triangles. Default 16000.
+  std::size_t max_triangles = 16000;
 };
 
 /// A geodesic disk: a triangle mesh that is a topological disk (one boundary loop, Euler
@@ -38,12 +43,18 @@ struct GeodesicDisk
   std::vector<double> normals;               ///< per disk vertex: 3 components, the smooth
                                              ///< surface's unit normal
   std::vector<std::int64_t> original_vertex; ///< per disk vertex: input vertex id, -1 if new
-  std::vector<std::int64_t> source_triangle; ///< per disk triangle: input triangle it lies in,
-                                             ///< -1 for the fan closing a small hole
+  std::vector<std::int64_t> nearby_triangle; ///< per disk vertex: an input triangle at or near
+                                             ///< it, where lookups on the input start; -1 for
+                                             ///< points made by the cut
+  std::vector<std::int64_t> source_triangle; ///< per disk triangle: the triangle of the surface
+                                             ///< copy it was grown on that it lies in, -1 for
+                                             ///< the fan closing a small hole
   std::vector<double> source_barycentric;    ///< per disk triangle: 9, its corners' barycentric
                                              ///< coordinates in that input triangle
   SurfacePoint seed;                         ///< the picked point, on the disk mesh
-  int refinement_levels = 0;                 ///< most times an input triangle was halved
+  int refinement_levels = 0;                 ///< most times a surface triangle was halved
+  std::size_t surface_level = 0;             ///< the copy of the surface it was grown on: 0 the
+                                             ///< input, k its k-th coarser copy
   std::size_t holes_closed = 0;              ///< small holes left by the front and filled (loops
                                              ///< shorter than 1/4 of the outer boundary)
 };
@@ -57,7 +68,9 @@ GeodesicDisk geodesic_disk(const CellSurface& surface, const SurfacePoint& seed,
                            const GeodesicDiskParams& params);
 
 /// The placement (for SurfaceChart) that puts a point of `disk` on `surface`'s smooth
-/// interpolant, the surface the disk's vertices lie on. Keeps what it needs of both.
+/// interpolant: directly for a disk grown on the input's triangles, through the point of the
+/// input closest to it for one grown on a coarser copy. Keeps a copy of what it needs of the
+/// disk; `surface` must outlive it.
 SurfacePlacement smooth_placement(const GeodesicDisk& disk, const CellSurface& surface);
 
 } // namespace mesolens

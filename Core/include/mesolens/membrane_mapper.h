@@ -38,6 +38,9 @@ struct MapRequest
   double radius_factor = 2;
   /// Resolution of the disk (GeodesicDiskParams::min_triangles). Default 2000.
   std::size_t min_disk_triangles = 2000;
+  /// Disks over more triangles than this grow on a coarser copy of the surface
+  /// (GeodesicDiskParams::max_triangles). Default 16000.
+  std::size_t max_disk_triangles = 16000;
   /// When the asked k x k tiles do not fit (their disk wraps a handle, meets the mesh's
   /// boundary, covers the whole component, or the tiles leave it), map the largest k that fits,
   /// then a single tile cut to the largest disk that fits. false: fail instead. Default true.
@@ -76,11 +79,17 @@ public:
   /// than `tolerance` (<= 0: 2 % of the surface's bounding-box diagonal) or not finite.
   SurfacePoint seed_near(const std::array<double, 3>& point, double tolerance = 0) const;
 
-  /// The chart of the geodesic disk of `radius` around `seed` (cached). Throws TopologyError
+  /// The chart of the geodesic disk of `radius` around `seed` (cached), its u axis along the
+  /// mesh's x axis seen in the tangent plane at the seed (y where the surface faces x), so a
+  /// patch's orientation depends on the click, not on the disk's triangles. Throws TopologyError
   /// when that disk is not a disk (see geodesic_disk()), SolverFailure when it cannot be
   /// parameterized.
   std::shared_ptr<const MappingChart> chart(const SurfacePoint& seed, double radius,
-                                            std::size_t min_disk_triangles = 2000) const;
+                                            std::size_t min_disk_triangles = 2000,
+                                            std::size_t max_disk_triangles = 16000) const;
+
+  /// Drops the kept charts (the next map() grows its disk again: for timings).
+  void forget_charts() const;
 
   /// Maps `patch` around `seed` as `request` asks, or what fits of it (MapRequest::fit_what_fits).
   /// Throws InvalidInput for bad parameters or patches, TopologyError when not even one lipid's

@@ -62,8 +62,8 @@ struct MappingParams
   /// When a tile's largest sample residual exceeds it, every tile is split into 2 x 2 pieces,
   /// each with its own polynomial, and so on up to max_polynomial_splits pieces per side; a
   /// tile still above it then has its atoms mapped by displacement (tile_fallback). <= 0: no
-  /// bound. Default 1 Å.
-  double max_polynomial_residual = 1.0;
+  /// bound. Default 2 Å.
+  double max_polynomial_residual = 2.0;
   /// Polynomial: most pieces per tile side, a power of two in [1, 8]. Default 4.
   int max_polynomial_splits = 4;
   /// Atoms whose (u, v) falls outside the chart are dropped with their molecule (atom_mapped)

@@ -17,6 +17,8 @@ MESH = os.path.join(DATA, "meshes", "mito5_outer_membrane.obj")
 PATCH = os.path.join(DATA, "membranes", "dppc128_slipids_323K.gro")
 YIIP = os.path.join(DATA, "membranes", "yiip_popepopg.gro")
 YIIP_XTC = os.path.join(DATA, "membranes", "yiip_popepopg.xtc")
+# A stem cell's membrane whose triangles (up to 8 µm) dwarf a patch.
+COARSE_CELL = os.path.join(DATA, "meshes", "hipsc_cell_membrane_1.obj")
 
 
 def run(*arguments, environment=None):
@@ -64,7 +66,7 @@ class MesolensCommand(unittest.TestCase):
         camera = os.path.join(self.folder.name, "camera.txt")
         with open(camera, "w", encoding="ascii") as file:
             file.write("# a view of vertex 1000 from outside\nposition 4.0 0.8 0.7\n"
-                       "focal 1.97 0.77 0.71\nup 0 0 1\nangle 20\n")
+                       "focal 1.97 0.77 0.71\nup 0 0 1\nangle 1\n")
         status, errors = run(*self.render("--vertex", "1000", "--camera", camera))
         self.assertEqual(status, 0, errors)
         os.remove(self.output)
@@ -75,6 +77,43 @@ class MesolensCommand(unittest.TestCase):
         with open(camera, "w", encoding="ascii") as file:
             file.write("position nan 0 0\n")
         self.refused(1, "line 1: not a finite number",
+                     *self.render("--vertex", "1000", "--camera", camera))
+
+    def test_coarse_cell_shows_the_mapped_atoms(self):
+        # On a mesh whose triangles are far larger than the patch, the atoms lie on its smooth
+        # surface and the picture shows them (and says how many were mapped).
+        arguments = [a for a in self.render("--vertex", "1000", "--tiles", "3")
+                     if a != "--quiet"]
+        arguments[arguments.index(MESH)] = COARSE_CELL
+        arguments[arguments.index("64x48")] = "160x120"
+        status, errors = run(*arguments)
+        self.assertEqual(status, 0, errors)
+        self.assertIn("3 x 3 tiles", errors)
+        self.assertRegex(errors, r"wrote .*: [0-9,]+ atoms")
+        from vtkmodules.vtkIOImage import vtkPNGReader
+        from vtkmodules.util.numpy_support import vtk_to_numpy
+        reader = vtkPNGReader()
+        reader.SetFileName(self.output)
+        reader.Update()
+        pixels = vtk_to_numpy(reader.GetOutput().GetPointData().GetScalars())[:, :3]
+        # Atoms are coloured by element: red oxygens and blue nitrogens are not on the grey cell.
+        colourful = ((pixels.max(axis=1).astype(int) - pixels.min(axis=1)) > 60).sum()
+        self.assertGreater(colourful, 100)
+
+    def test_progress_times_count_from_the_start(self):
+        arguments = [a for a in self.render("--vertex", "1000", "--tiles", "1") if a != "--quiet"]
+        status, errors = run(*arguments)
+        self.assertEqual(status, 0, errors)
+        times = [float(line.split("[")[1].split("s]")[0]) for line in errors.splitlines()
+                 if line.startswith("mesolens: [")]
+        self.assertGreaterEqual(len(times), 4)
+        self.assertEqual(times, sorted(times))
+
+    def test_a_camera_that_misses_the_patch_is_refused(self):
+        camera = os.path.join(self.folder.name, "away.txt")
+        with open(camera, "w", encoding="ascii") as file:
+            file.write("position 4.0 0.8 0.7\nfocal 6.0 0.8 0.7\nup 0 0 1\nangle 20\n")
+        self.refused(1, "does not show in the camera file's view",
                      *self.render("--vertex", "1000", "--camera", camera))
 
     def test_writes_a_frame_per_time_step(self):

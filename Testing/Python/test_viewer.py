@@ -2,7 +2,8 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The interactive magnifier driven without a person: a scripted click through the interactor
 places the membrane where the click was; keys change the tiles, method, style and play the
-trajectory; a click off the surface and a failing mapping say why in the status line. The
+trajectory; a click off the surface and a failing mapping say why in the status line, tiles
+that do not fit say how many did. The
 structured cutaway: its key, the fraction (API and slider), inversion and random order change
 what is drawn without a new assignment of the molecules; bad fractions are refused."""
 import math
@@ -74,6 +75,23 @@ class Viewer(unittest.TestCase):
             self.assertLessEqual(bounds[2 * d], self.lens.centre[d])
             self.assertGreaterEqual(bounds[2 * d + 1], self.lens.centre[d])
         self.assertIn("atoms", self.viewer.status.GetInput())
+
+    def test_tiles_that_do_not_fit_map_fewer_and_the_status_says_so(self):
+        # The organelle read in units of 0.1 µm: 5 x 5 DPPC tiles then need a disk of radius
+        # 0.63 units, more than this 0.17 x 0.3 x 0.6 organelle offers.
+        self.lens = MembraneLens(MESH, PATCH, mesh_unit_angstrom=1e3)
+        self.lens.set_tiles(5)
+        self.viewer = LensViewer(self.lens, (400, 300), offscreen=True)
+        self.lens.place(self.target)
+        self.assertIsNotNone(self.lens.centre, self.viewer.message)
+        mapped = self.lens.tiles_mapped()
+        self.assertGreaterEqual(mapped, 1)
+        self.assertLess(mapped, 5)
+        self.assertIn("instead of 5 x 5", self.lens.mapping_note())
+        self.viewer.window.Render()
+        self.assertIn(f"{mapped} x {mapped} tiles of 5 x 5", self.viewer.status.GetInput())
+        atoms = self.lens.membrane.GetOutput().GetNumberOfPoints()
+        self.assertEqual(self.lens.atom_count(), atoms * mapped * mapped)
 
     def test_a_drag_turns_the_camera_and_places_nothing(self):
         x, y = display_point(self.lens.renderer, self.target)

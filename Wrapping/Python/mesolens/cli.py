@@ -21,8 +21,11 @@ at the patch from outside the surface. ``demo`` renders the embedded data (the o
 a mitochondrion from electron tomography and the all-atom DPPC patch) the same way, the whole
 organelle beside the close-up, then opens the magnifier on it where a display exists.
 
-Errors (a missing or unreadable file, a centre off the surface, a mapping that fails, with the
-mapping's reason) are one line on stderr and exit status 1; wrong arguments exit with 2.
+Where the asked tiles do not fit the surface there, the largest k x k that fits is mapped (or
+one tile cut to the disk) and a progress line says so. Errors (a missing or unreadable file, a
+centre off the surface, a mapping that fails, with the mapping's reason, a picture that would
+not show the mapped atoms) are one line on stderr and exit status 1; wrong arguments exit with
+2. The progress lines' times count from the command's start.
 """
 import argparse
 import os
@@ -92,10 +95,10 @@ def _progress(quiet):
     return report
 
 
-def _lens(args):
+def _lens(args, report):
     """The lens of the arguments, placed at --center or --vertex when one is given."""
     lens = MembraneLens(args.mesh, args.membrane, args.trajectory,
-                        mesh_unit_angstrom=args.mesh_unit, progress=_progress(args.quiet))
+                        mesh_unit_angstrom=args.mesh_unit, progress=report)
     lens.set_tiles(args.tiles)
     lens.set_method(args.method)
     lens.set_style(args.style)
@@ -123,23 +126,40 @@ def view(args):
         raise LensError("view needs a display (an X server): run it on a desktop, or draw "
                         "pictures with 'mesolens render'")
     from .viewer import LensViewer
-    lens = _lens(args)
+    lens = _lens(args, _progress(args.quiet))
     LensViewer(lens, args.size).start()
     return 0
 
 
-def render(args):
+def _check_patch_visible(lens, window, camera_given):
+    """Makes sure the picture shows the mapped atoms: re-frames the default camera once, and
+    otherwise raises LensError (a user's camera that misses the patch, atoms hidden)."""
+    if lens.patch_pixels(window) > 0:
+        return
+    if not camera_given:
+        lens.look_at_patch(distance_factor=2.0, elevation=0.0)
+        if lens.patch_pixels(window) > 0:
+            return
+    where = "the camera file's view" if camera_given else "the view from outside the surface"
+    raise LensError(f"the mapped patch ({lens.atom_count():,} atoms) does not show in {where}: "
+                    "it is out of view or hidden behind the surface")
+
+
+def render(args, report=None):
     """Builds the lens from the arguments and writes the PNG(s)."""
+    report = report or _progress(args.quiet)
     if args.frames and not args.trajectory:
         raise LensError("--frames needs a trajectory (--trajectory) with time steps")
-    lens = _lens(args)
+    lens = _lens(args, report)
     if args.camera:
         read_camera_file(args.camera, lens.renderer.GetActiveCamera())
         lens.renderer.ResetCameraClippingRange()
     else:
         lens.look_at_patch()
     window = _window(lens, args.size, args.ssao, args.shadows, args.view)
-    report = _progress(args.quiet)
+    if lens.atom_count() == 0:
+        raise LensError("no atoms were mapped")
+    _check_patch_visible(lens, window, bool(args.camera))
     if args.frames:
         steps = lens.time_steps() if args.trajectory else []
         if not steps:
@@ -153,8 +173,11 @@ def render(args):
     else:
         window.Render()
         write_png(window, args.output)
-        report(f"wrote {args.output}: {lens.atom_count()} atoms, {args.tiles} x {args.tiles} "
-               f"tiles, {args.method}, {args.style}")
+        mapped = lens.tiles_mapped()
+        tiles = ("one tile cut to the disk" if lens.cut_to_disk() else f"{mapped} x {mapped} tiles"
+                 + (f" (of {args.tiles} x {args.tiles} asked)" if mapped != args.tiles else ""))
+        report(f"wrote {args.output}: {lens.atom_count()} atoms, {tiles}, {args.method}, "
+               f"{args.style}")
     return 0
 
 
@@ -211,6 +234,7 @@ def _parser():
 
 def main(argv=None):
     args = _parser().parse_args(argv)
+    report = _progress(getattr(args, "quiet", False))  # one clock for the whole command
     try:
         if args.command == "demo":
             data = _data_dir()
@@ -223,16 +247,15 @@ def main(argv=None):
             args.center = None
             args.camera = None
             args.frames = 0
-            status = render(args)
+            status = render(args, report)
             if os.environ.get("DISPLAY") and not args.no_window:
                 from .viewer import LensViewer
                 args.view = "close"
-                args.quiet = True
-                LensViewer(_lens(args), args.size).start()
+                LensViewer(_lens(args, _progress(True)), args.size).start()
             return status
         if args.command == "view":
             return view(args)
-        return render(args)
+        return render(args, report)
     except LensError as error:
         print(f"mesolens: error: {error}", file=sys.stderr)
         return 1

@@ -319,6 +319,9 @@ class MembraneLens:
         surface_property.SetSpecularPower(30)
         self.renderer = vtkRenderer()
         self.renderer.SetBackground(0.09, 0.10, 0.13)
+        # A patch of a few nm on a cell of tens of µm: the near plane may sit at 1e-4 of the
+        # far one (VTK's default, 1e-3, would clip a close-up of a large cell away).
+        self.renderer.SetNearClippingPlaneTolerance(1e-4)
         self.renderer.AddActor(self.surface_actor)
         self.renderer.AddActor(self.atom_actor)
         # The structured cutaway, off until set_cutaway(True): the mapped atoms (each tile's
@@ -425,6 +428,14 @@ class MembraneLens:
         moved = self.centre is None or tuple(centre) != self.centre
         self.centre = tuple(centre)
         self.atom_actor.VisibilityOn()
+        if self.mapping_note():
+            self._progress(self.mapping_note())
+        if on_gpu and self.cut_to_disk():
+            # One tile cut to the disk: its molecules that leave the disk are dropped, which
+            # only the mapped atoms show (the GPU warp would draw the whole patch).
+            on_gpu = False
+            self.mapping.SetOutputAtoms(True)
+            self.mapping.Update()
         if self.cutaway_on:
             if moved or self.cut_normal is None:
                 self.set_cut_plane(self.centre, self._outward(self.centre))
@@ -614,25 +625,88 @@ class MembraneLens:
             extent *= 0.05
         return extent, centre, [v / length for v in outward]
 
+    def _mapping_field(self, name):
+        array = self.mapping.GetOutput().GetFieldData().GetAbstractArray(name)
+        return array.GetValue(0) if array is not None and array.GetNumberOfValues() else None
+
+    def tiles_mapped(self):
+        """k of the k x k tiles mapped (fewer than asked where they do not fit), 0 before
+        place()."""
+        value = self._mapping_field("TilesMapped") if self.centre is not None else None
+        return int(value) if value is not None else 0
+
+    def cut_to_disk(self):
+        """Whether the mapping cut its one tile to the disk (not even one tile fitted)."""
+        value = self._mapping_field("CutToDisk") if self.centre is not None else None
+        return bool(value)
+
+    def mapping_note(self):
+        """What was mapped instead of what was asked, and why; '' when the request was met."""
+        value = self._mapping_field("MappingNote") if self.centre is not None else None
+        return value or ""
+
     def atom_count(self):
-        """Atoms drawn: the patch's atoms times the tiles, or those the cutaway leaves."""
-        if self.cutaway_on and self.centre is not None:
+        """Atoms drawn: the mapped atoms (the patch's times the tiles mapped on the GPU), or
+        those the cutaway leaves."""
+        if self.centre is None:
+            return 0
+        if self.cutaway_on:
             self.cutaway.Update()
             self._cutaway_errors.take()
             visible = self.cutaway.GetOutput().GetPointData().GetArray("Visible")
             if visible is None:
                 return 0
             return int(np.count_nonzero(vtk_to_numpy(visible)))
-        return self.membrane.GetOutput().GetNumberOfPoints() * self.tiles * self.tiles
+        mapped = self.mapping.GetOutput().GetNumberOfPoints()
+        if mapped:
+            return mapped
+        return self.membrane.GetOutput().GetNumberOfPoints() * self.tiles_mapped() ** 2
+
+    def _seed_normal(self):
+        """The surface's outward normal under the mapped patch (the disk's mean normal), or None."""
+        normals = self.mapping.GetOutput(1).GetPointData().GetNormals()
+        if normals is None or normals.GetNumberOfTuples() == 0:
+            return None
+        mean = vtk_to_numpy(normals).mean(axis=0)
+        length = float(np.linalg.norm(mean))
+        return [float(v) / length for v in mean] if length > 0 else None
+
+    def patch_pixels(self, window):
+        """How many pixels of the close-up the mapped atoms change: rendered once without them
+        and once with them (0 when they are out of view or hidden behind the surface)."""
+        from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
+
+        def grab():
+            window.Render()
+            grabber = vtkWindowToImageFilter()
+            grabber.SetInput(window)
+            grabber.ReadFrontBufferOff()
+            grabber.Update()
+            image = grabber.GetOutput()
+            width, height, _ = image.GetDimensions()
+            pixels = vtk_to_numpy(image.GetPointData().GetScalars()).reshape(height, width, -1)
+            x0, y0, x1, y1 = self.renderer.GetViewport()
+            return pixels[int(y0 * height):int(y1 * height), int(x0 * width):int(x1 * width)]
+
+        shown = self.atom_actor.GetVisibility()
+        self.atom_actor.VisibilityOff()
+        without = grab()
+        self.atom_actor.VisibilityOn()
+        with_atoms = grab()
+        self.atom_actor.SetVisibility(shown)
+        return int(np.count_nonzero(np.any(without != with_atoms, axis=-1)))
 
     def look_at_patch(self, renderer=None, distance_factor=3.0, elevation=25.0):
         """Points the camera of `renderer` (default: the lens's) at the mapped patch from
-        outside the surface, the patch filling about 1/distance_factor of the view."""
+        outside the surface (along its normal there), the patch filling about 1/distance_factor
+        of the view."""
         renderer = renderer or self.renderer
         bounds = self.atoms.GetBounds()
         centre = [(bounds[2 * d] + bounds[2 * d + 1]) / 2 for d in range(3)]
-        organelle = self.surface.GetOutput().GetCenter()
-        outward = [centre[d] - organelle[d] for d in range(3)]
+        outward = self._seed_normal()
+        if outward is None:  # before place(): away from the organelle's centre
+            organelle = self.surface.GetOutput().GetCenter()
+            outward = [centre[d] - organelle[d] for d in range(3)]
         length = sum(v * v for v in outward) ** 0.5 or 1.0
         extent = max(bounds[2 * d + 1] - bounds[2 * d] for d in range(3))
         camera = renderer.GetActiveCamera()

@@ -359,8 +359,13 @@ class LensViewer:
             steps = lens.time_steps()
             when = (f", t = {steps[self.time_index]:.0f} ps, refinement {lens.refinement_level} (l)"
                     if steps else "")
-            text = (f"{lens.atom_count():,} atoms, {frame * 1000:.0f} ms | {lens.tiles} x "
-                    f"{lens.tiles} tiles (+/-), {lens.method} (m), {lens.style} (s), SSAO "
+            mapped = lens.tiles_mapped()
+            tiles = (f"one tile cut to the disk (of {lens.tiles} x {lens.tiles}, +/-)"
+                     if lens.cut_to_disk() else
+                     f"{mapped} x {mapped} tiles" + (f" of {lens.tiles} x {lens.tiles}"
+                                                       if mapped != lens.tiles else "") + " (+/-)")
+            text = (f"{lens.atom_count():,} atoms, {frame * 1000:.0f} ms | {tiles}, "
+                    f"{lens.method} (m), {lens.style} (s), SSAO "
                     f"{'on' if lens.ssao else 'off'} (a), shadows {'on' if lens.shadows else 'off'} (h){when}"
                     f"{' playing' if self.playing else ''} (space) | c: screenshot")
             counts = lens.cut_counts()

@@ -311,3 +311,48 @@ TEST(vtkMesoMembraneMapping, BadInputsFailCleanly)
   EXPECT_EQ(disk->GetExecutive()->Update(), 0);
   EXPECT_NE(disk_events.AllErrors().find("radius"), std::string::npos) << disk_events.AllErrors();
 }
+
+TEST(vtkMesoMembraneMapping, RefusesASurfaceOnlyForTheDefectsTheMeshReportFinds)
+{
+  using mesolens_test::data_file;
+  vtkNew<vtkMesoTrajectoryReader> membrane;
+  membrane->SetTopologyFileName(data_file("membranes/martini_dppc_chol_bilayer.gro").c_str());
+  for (const char* name :
+       { "meshes/mito5_outer_membrane.obj", "meshes/hipsc_cell_membrane_1.obj",
+         "meshes/celegans_embryo_cell10_T10.ply", "meshes/cgal_mesh_with_border.off",
+         "meshes/bad/cgal_cube-ouvert.off", "meshes/bad/cgal_tet-shuffled.off",
+         "meshes/bad/cgal_tetra_intersected_by_triangle.off", "meshes/bad/cgal_degtri_sliding.off",
+         "meshes/bad/cgal_triangular_hole.off" })
+  {
+    SCOPED_TRACE(name);
+    vtkNew<vtkMesoMeshReader> surface;
+    surface->SetFileName(data_file(name).c_str());
+    surface->Update();
+    vtkNew<vtkMesoMeshReport> report;
+    report->SetInputConnection(surface->GetOutputPort());
+    report->Update();
+    vtkNew<vtkMesoMembraneMapping> mapping;
+    mesolens_test::EventRecorder events(mapping);
+    mapping->SetSurfaceConnection(surface->GetOutputPort());
+    mapping->SetMembraneConnection(membrane->GetOutputPort());
+    mapping->SetSeedPoint(surface->GetOutput()->GetPoint(0));
+    mapping->SetMembraneToMeshScale(1e-4);
+    mapping->SetOutputAtoms(false);
+    mapping->GetExecutive()->Update();
+    const std::string errors = events.AllErrors();
+    const bool usable =
+      report->GetIsManifold() && report->GetNumberOfInconsistentlyOrientedEdges() == 0;
+    if (usable)
+    {
+      // Whatever else may go wrong at this point, the surface itself is not refused.
+      EXPECT_EQ(errors.find("2-manifold"), std::string::npos) << errors;
+    }
+    else
+    {
+      // The reason names the very defects the report lists, in its words.
+      EXPECT_NE(errors.find("not a clean 2-manifold"), std::string::npos) << errors;
+      EXPECT_NE(errors.find(report->GetDefectsDescription()), std::string::npos)
+        << errors << "\nreport: " << report->GetDefectsDescription();
+    }
+  }
+}

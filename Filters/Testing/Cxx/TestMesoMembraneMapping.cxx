@@ -17,6 +17,7 @@
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkSphereSource.h>
+#include <vtkStaticCellLocator.h>
 #include <vtkStringArray.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
@@ -353,6 +354,73 @@ TEST(vtkMesoMembraneMapping, RefusesASurfaceOnlyForTheDefectsTheMeshReportFinds)
       EXPECT_NE(errors.find("not a clean 2-manifold"), std::string::npos) << errors;
       EXPECT_NE(errors.find(report->GetDefectsDescription()), std::string::npos)
         << errors << "\nreport: " << report->GetDefectsDescription();
+    }
+  }
+}
+
+TEST(vtkMesoMembraneMapping, CoarseCellMapsOnTheSmoothSurfaceThroughItsVertices)
+{
+  // A stem cell's membrane whose triangles (edges up to 8 µm) dwarf a 6 nm DPPC patch: the disk
+  // is refined on the smooth surface through the mesh's vertices, which stay where they are,
+  // and the atoms lie in the shell around that surface.
+  using mesolens_test::data_file;
+  vtkNew<vtkMesoMeshReader> surface;
+  surface->SetFileName(data_file("meshes/hipsc_cell_membrane_1.obj").c_str());
+  surface->Update();
+  vtkNew<vtkMesoTrajectoryReader> membrane;
+  membrane->SetTopologyFileName(data_file("membranes/dppc128_slipids_323K.gro").c_str());
+  membrane->RemoveWatersOn();
+  membrane->Update();
+  for (const vtkIdType vertex : { 0, 500, 1000 })
+  {
+    for (const int tiles : { 1, 3 })
+    {
+      SCOPED_TRACE(std::to_string(vertex) + " " + std::to_string(tiles));
+      vtkNew<vtkMesoMembraneMapping> mapping;
+      mesolens_test::EventRecorder events(mapping);
+      mapping->SetSurfaceConnection(surface->GetOutputPort());
+      mapping->SetMembraneConnection(membrane->GetOutputPort());
+      mapping->SetSeedPoint(surface->GetOutput()->GetPoint(vertex));
+      mapping->SetTiles(tiles);
+      mapping->SetMembraneToMeshScale(1e-4);
+      ASSERT_EQ(mapping->GetExecutive()->Update(), 1) << events.AllErrors();
+      vtkPolyData* out = mapping->GetOutput();
+      EXPECT_EQ(field(out, "TilesMapped"), double(tiles));
+      EXPECT_GE(field(out, "RefinementLevels"), 8.0);
+      EXPECT_EQ(out->GetNumberOfPoints(),
+                vtkIdType(tiles * tiles) * membrane->GetOutput()->GetNumberOfPoints());
+      vtkPolyData* disk = mapping->GetOutput(1);
+      vtkDataArray* original = disk->GetPointData()->GetArray("OriginalPointId");
+      ASSERT_NE(original, nullptr);
+      for (vtkIdType p = 0; p < disk->GetNumberOfPoints(); ++p)
+      {
+        const vtkIdType input = static_cast<vtkIdType>(original->GetTuple1(p));
+        if (input >= 0)
+        {
+          double a[3], b[3];
+          disk->GetPoint(p, a);
+          surface->GetOutput()->GetPoint(input, b);
+          EXPECT_EQ(a[0], b[0]);
+          EXPECT_EQ(a[1], b[1]);
+          EXPECT_EQ(a[2], b[2]);
+        }
+      }
+      // Every atom within the bilayer's half thickness (about 30 Å here) of the disk.
+      vtkNew<vtkStaticCellLocator> locator;
+      locator->SetDataSet(disk);
+      locator->BuildLocator();
+      double worst = 0;
+      for (vtkIdType a = 0; a < out->GetNumberOfPoints(); a += 37)
+      {
+        double x[3], closest[3], distance2 = 0;
+        vtkIdType cell = 0;
+        int sub = 0;
+        out->GetPoint(a, x);
+        locator->FindClosestPoint(x, closest, cell, sub, distance2);
+        worst = std::max(worst, std::sqrt(distance2));
+      }
+      EXPECT_LT(worst, 35e-4); // µm: 35 Å
+      EXPECT_GT(worst, 15e-4); // the head groups do stand off the surface
     }
   }
 }

@@ -231,8 +231,8 @@ void MembraneMapper::forget_charts() const
   this->Internal->Cache.clear();
 }
 
-MapResult MembraneMapper::map(const SurfacePoint& seed, const MembranePatch& patch,
-                              const MapRequest& request, const ParallelFor& parallel_for) const
+namespace {
+void check_request(const MembranePatch& patch, const MapRequest& request)
 {
   const MappingParams& asked = request.mapping;
   if (asked.tiles < 1)
@@ -253,65 +253,114 @@ MapResult MembraneMapper::map(const SurfacePoint& seed, const MembranePatch& pat
   {
     throw InvalidInput("the membrane patch has no atoms");
   }
-  const double width = patch_width(patch);
-  const double scale = asked.scale;
+}
+} // namespace
 
-  MapResult result;
-  result.tiles_asked = asked.tiles;
-  // Maps k x k tiles on the disk of radius r; false (with `why`) when they do not fit.
-  auto attempt = [&](int k, double r, bool cut, std::string& why) {
+/// The search for what fits around one seed: charts come from the mapper's cache, so asking
+/// twice costs nothing; nothing is mapped until the search is over.
+struct MembraneMapper::FitSearch
+{
+  const MembraneMapper& Mapper;
+  const SurfacePoint& Seed;
+  const MembranePatch& Patch;
+  const MapRequest& Request;
+
+  /// The chart of radius r when k x k tiles fit in it (cut: only that it is a disk), else null
+  /// with `why`.
+  std::shared_ptr<const MappingChart> holds(int k, double r, bool cut, std::string& why) const
+  {
     std::shared_ptr<const MappingChart> chart;
     try
     {
-      chart = this->chart(seed, r, request.min_disk_triangles, request.max_disk_triangles);
+      chart = this->Mapper.chart(this->Seed, r, this->Request.min_disk_triangles,
+                                 this->Request.max_disk_triangles);
     }
     catch (const TopologyError& e)
     {
       why = e.what();
-      return false;
+      return nullptr;
     }
-    MappingParams params = asked;
-    params.tiles = k;
-    params.centre_uv = chart->seed_uv;
-    params.cut_to_disk = cut;
     // The uv disk has the radius r; tiles reaching beyond it, or nearly, leave the chart.
-    const double reach =
-      std::hypot(chart->seed_uv[0], chart->seed_uv[1]) + scale * tiled_extent(patch, k);
+    const double reach = std::hypot(chart->seed_uv[0], chart->seed_uv[1]) +
+      this->Request.mapping.scale * tiled_extent(this->Patch, k);
     if (!cut && reach > 0.98 * r)
     {
       why = "its " + std::to_string(k) + " x " + std::to_string(k) +
         " tiles reach beyond the geodesic disk of radius " + format_number(r);
-      return false;
+      return nullptr;
     }
-    try
+    return chart;
+  }
+
+  /// The chart for k x k tiles: on the disk asked (radius factor x tiled width), else on the
+  /// smallest that holds the tiles.
+  std::shared_ptr<const MappingChart> fitting(int k, std::string& why) const
+  {
+    const double scale = this->Request.mapping.scale;
+    const double asked = this->Request.radius_factor * k * patch_width(this->Patch) * scale;
+    const double smallest = 1.1 * scale * tiled_extent(this->Patch, k);
+    auto chart = this->holds(k, asked, false, why);
+    std::string smaller_why;
+    if (!chart && smallest < asked)
     {
-      result.mapped = map_membrane(chart->chart, patch, params, parallel_for);
+      chart = this->holds(k, smallest, false, smaller_why);
     }
-    catch (const OutsideChart& e)
+    return chart;
+  }
+
+  /// The largest disk up to one tile's that is one, by bisection on its radius from a
+  /// molecule's footprint; null (with `why`) when not even the footprint's is.
+  std::shared_ptr<const MappingChart> cut_disk(std::string& why) const
+  {
+    const double scale = this->Request.mapping.scale;
+    const double footprint = scale * molecule_footprint(this->Patch);
+    auto best = this->holds(1, footprint, true, why);
+    if (!best)
     {
-      why = e.what();
-      return false;
+      return nullptr;
     }
+    double inside = footprint;
+    double outside = std::max(footprint, 1.1 * scale * tiled_extent(this->Patch, 1));
+    for (int step = 0; step < 8 && outside > 1.01 * inside; ++step)
+    {
+      const double r = 0.5 * (inside + outside);
+      std::string ignored;
+      if (auto chart = this->holds(1, r, true, ignored))
+      {
+        best = chart;
+        inside = r;
+      }
+      else
+      {
+        outside = r;
+      }
+    }
+    return best;
+  }
+};
+
+MapResult MembraneMapper::map(const SurfacePoint& seed, const MembranePatch& patch,
+                              const MapRequest& request, const ParallelFor& parallel_for) const
+{
+  check_request(patch, request);
+  const int asked = request.mapping.tiles;
+  const FitSearch search{ *this, seed, patch, request };
+  MapResult result;
+  result.tiles_asked = asked;
+  auto map_on = [&](const std::shared_ptr<const MappingChart>& chart, int k, bool cut) {
+    MappingParams params = request.mapping;
+    params.tiles = k;
+    params.centre_uv = chart->seed_uv;
+    params.cut_to_disk = cut;
+    result.mapped = map_membrane(chart->chart, patch, params, parallel_for);
     result.chart = chart;
     result.tiles_mapped = k;
     result.cut_to_disk = cut;
-    return true;
   };
-  // The radii worth trying for k tiles: the one asked, then the smallest that holds them.
-  auto fits = [&](int k, std::string& why) {
-    const double asked_radius = request.radius_factor * k * width * scale;
-    const double smallest = 1.1 * scale * tiled_extent(patch, k);
-    if (attempt(k, asked_radius, false, why))
-    {
-      return true;
-    }
-    std::string smaller_why;
-    return smallest < asked_radius && attempt(k, smallest, false, smaller_why);
-  };
-
   std::string why_not_asked;
-  if (fits(asked.tiles, why_not_asked))
+  if (auto chart = search.fitting(asked, why_not_asked))
   {
+    map_on(chart, asked, false); // throws OutsideChart if the tiles still leave it
     return result;
   }
   if (!request.fit_what_fits)
@@ -319,14 +368,16 @@ MapResult MembraneMapper::map(const SurfacePoint& seed, const MembranePatch& pat
     throw TopologyError(why_not_asked);
   }
   // The largest k that fits, by bisection over [1, asked - 1] (fewer tiles need a smaller disk).
-  int low = 1, high = asked.tiles - 1, best = 0;
+  int low = 1, high = asked - 1, best = 0;
+  std::shared_ptr<const MappingChart> best_chart;
   while (low <= high)
   {
     const int k = (low + high) / 2;
     std::string why;
-    if (fits(k, why))
+    if (auto chart = search.fitting(k, why))
     {
       best = k;
+      best_chart = chart;
       low = k + 1;
     }
     else
@@ -334,43 +385,26 @@ MapResult MembraneMapper::map(const SurfacePoint& seed, const MembranePatch& pat
       high = k - 1;
     }
   }
+  const std::string asked_tiles = std::to_string(asked) + " x " + std::to_string(asked);
   if (best > 0)
   {
-    std::string why;
-    fits(best, why); // the chart is cached: this only maps again
+    map_on(best_chart, best, false);
     result.note = "mapped " + std::to_string(best) + " x " + std::to_string(best) +
-      " tiles instead of " + std::to_string(asked.tiles) + " x " + std::to_string(asked.tiles) +
-      ": " + why_not_asked;
+      " tiles instead of " + asked_tiles + ": " + why_not_asked;
     return result;
   }
   // Not even one tile fits: one tile cut to the largest disk that is one.
-  const double footprint = scale * molecule_footprint(patch);
   std::string why;
-  if (!attempt(1, footprint, true, why))
+  const auto cut = search.cut_disk(why);
+  if (!cut)
   {
-    throw TopologyError("not even one molecule's footprint (radius " + format_number(footprint) +
+    throw TopologyError("not even one molecule's footprint (radius " +
+                        format_number(request.mapping.scale * molecule_footprint(patch)) +
                         ") around the picked point is a disk of the surface: " + why);
   }
-  double inside = footprint;
-  double outside = std::max(footprint, 1.1 * scale * tiled_extent(patch, 1));
-  for (int step = 0; step < 8 && outside > 1.01 * inside; ++step)
-  {
-    const double r = 0.5 * (inside + outside);
-    std::string ignored;
-    try
-    {
-      this->chart(seed, r, request.min_disk_triangles, request.max_disk_triangles);
-      inside = r;
-    }
-    catch (const TopologyError&)
-    {
-      outside = r;
-    }
-  }
-  attempt(1, inside, true, why);
-  result.note = "mapped one tile cut to a geodesic disk of radius " + format_number(inside) +
-    " instead of " + std::to_string(asked.tiles) + " x " + std::to_string(asked.tiles) +
-    " tiles: " + why_not_asked;
+  map_on(cut, 1, true);
+  result.note = "mapped one tile cut to a geodesic disk of radius " + format_number(cut->radius) +
+    " instead of " + asked_tiles + " tiles: " + why_not_asked;
   return result;
 }
 

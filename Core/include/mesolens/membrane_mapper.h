@@ -100,6 +100,7 @@ public:
 
 private:
   struct Impl;
+  struct FitSearch;
   std::unique_ptr<Impl> Internal;
 };
 

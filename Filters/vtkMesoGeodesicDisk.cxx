@@ -39,6 +39,7 @@ int vtkMesoGeodesicDisk::RequestData(vtkInformation*, vtkInformationVector** inp
     mesolens::GeodesicDiskParams params;
     params.radius = this->Radius;
     params.min_triangles = static_cast<std::size_t>(this->MinimumTriangles);
+    params.max_triangles = static_cast<std::size_t>(this->MaximumTriangles);
     const mesolens::GeodesicDisk disk = mesolens::geodesic_disk(
       mapper.surface(),
       mapper.seed_near({ this->SeedPoint[0], this->SeedPoint[1], this->SeedPoint[2] },
@@ -65,4 +66,5 @@ void vtkMesoGeodesicDisk::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SeedTolerance: " << this->SeedTolerance << "\n";
   os << indent << "Radius: " << this->Radius << "\n";
   os << indent << "MinimumTriangles: " << this->MinimumTriangles << "\n";
+  os << indent << "MaximumTriangles: " << this->MaximumTriangles << "\n";
 }

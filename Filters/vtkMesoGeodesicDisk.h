@@ -67,6 +67,14 @@ public:
   vtkGetMacro(MinimumTriangles, int);
   ///@}
 
+  ///@{
+  /// On meshes of more than 16 000 triangles, a disk over more than this many of them is grown
+  /// on a coarser copy of the mesh (its vertices are input vertices; OriginalPointId says
+  /// which); 0: always on the input's triangles. Default 16000.
+  vtkSetClampMacro(MaximumTriangles, int, 0, VTK_INT_MAX);
+  vtkGetMacro(MaximumTriangles, int);
+  ///@}
+
 protected:
   vtkMesoGeodesicDisk();
   ~vtkMesoGeodesicDisk() override;
@@ -77,6 +85,7 @@ protected:
   double SeedTolerance = 0;
   double Radius = 1;
   int MinimumTriangles = 2000;
+  int MaximumTriangles = 16000;
 
 private:
   vtkMesoGeodesicDisk(const vtkMesoGeodesicDisk&) = delete;

@@ -324,6 +324,7 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
     request.mapping.map_atoms = this->OutputAtoms;
     request.radius_factor = this->RadiusFactor;
     request.min_disk_triangles = static_cast<std::size_t>(this->MinimumDiskTriangles);
+    request.max_disk_triangles = static_cast<std::size_t>(this->MaximumDiskTriangles);
     request.fit_what_fits = this->MapWhatFits;
     const mesolens::SurfacePoint seed = mapper.seed_near(
       { this->SeedPoint[0], this->SeedPoint[1], this->SeedPoint[2] }, this->SeedTolerance);
@@ -412,6 +413,7 @@ void vtkMesoMembraneMapping::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "PolynomialSamples: " << this->PolynomialSamples << "\n";
   os << indent << "MaximumPolynomialResidual: " << this->MaximumPolynomialResidual << "\n";
   os << indent << "MinimumDiskTriangles: " << this->MinimumDiskTriangles << "\n";
+  os << indent << "MaximumDiskTriangles: " << this->MaximumDiskTriangles << "\n";
   os << indent << "MapWhatFits: " << (this->MapWhatFits ? "on" : "off") << "\n";
   os << indent << "OutputAtoms: " << (this->OutputAtoms ? "on" : "off") << "\n";
 }

@@ -178,6 +178,14 @@ public:
   ///@}
 
   ///@{
+  /// On meshes of more than 16 000 triangles, a disk over more than this many of them is grown
+  /// on a coarser copy of the mesh and its points are placed on the input (fast re-maps on fine
+  /// meshes); 0: always on the input's triangles. Default 16000.
+  vtkSetClampMacro(MaximumDiskTriangles, int, 0, VTK_INT_MAX);
+  vtkGetMacro(MaximumDiskTriangles, int);
+  ///@}
+
+  ///@{
   /// Map the largest k x k (or one tile cut to a disk) that fits when the asked tiles do not
   /// (on), or fail (off). Default on.
   vtkSetMacro(MapWhatFits, bool);
@@ -203,6 +211,7 @@ protected:
   int PolynomialSamples = 6;
   double MaximumPolynomialResidual = 2;
   int MinimumDiskTriangles = 2000;
+  int MaximumDiskTriangles = 16000;
   bool MapWhatFits = true;
   bool OutputAtoms = true;
 

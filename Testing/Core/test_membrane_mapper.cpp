@@ -3,6 +3,7 @@
 
 #include "mesolens/errors.h"
 #include "mesolens_test_meshes.h"
+#include "mesolens_test_patch.h"
 #include "mesolens_test_threads.h"
 
 #include <gtest/gtest.h>
@@ -13,43 +14,6 @@
 #include <thread>
 
 namespace {
-/// A synthetic bilayer patch: `molecules` molecules of 5 atoms in a 20 x 20 cell centred on the
-/// origin, heights +-15 around z = 0; half of them in each leaflet.
-struct SyntheticPatch
-{
-  std::vector<float> positions;
-  std::vector<int> molecule_ids;
-  mesolens::MembranePatch view() const
-  {
-    mesolens::MembranePatch patch;
-    patch.positions = positions.data();
-    patch.atom_count = molecule_ids.size();
-    patch.molecule_ids = molecule_ids.data();
-    patch.origin = { -10, -10 };
-    patch.a = { 20, 0 };
-    patch.b = { 0, 20 };
-    return patch;
-  }
-};
-
-SyntheticPatch synthetic_patch(int molecules)
-{
-  std::mt19937 random(5);
-  std::uniform_real_distribution<float> position(-9.0f, 9.0f);
-  SyntheticPatch patch;
-  for (int m = 0; m < molecules; ++m)
-  {
-    const float x = position(random), y = position(random);
-    const float sign = (m % 2) ? 1.0f : -1.0f;
-    for (int a = 0; a < 5; ++a)
-    {
-      patch.positions.insert(patch.positions.end(),
-                             { x, y + 0.3f * float(a), sign * (15.0f - 3.0f * float(a)) });
-      patch.molecule_ids.push_back(m);
-    }
-  }
-  return patch;
-}
 
 mesolens::MapRequest request(mesolens::MappingMethod method, int tiles, double scale = 1)
 {
@@ -94,7 +58,7 @@ TEST(MembraneMapper, CoarseMeshesAreRefinedOnTheSmoothSurfaceWhoseVerticesStayPu
   // triangle, far smaller than it.
   const auto icosahedron = mesolens_test::icosphere(47553.0, 0);
   const mesolens::MembraneMapper mapper(icosahedron);
-  const auto patch = synthetic_patch(30);
+  const auto patch = mesolens_test::synthetic_patch(30);
   // Seeded exactly at a vertex: the smooth surface passes through it.
   const auto seed = mesolens_test::surface_point(icosahedron, 0, { 1, 0, 0 });
   const auto result =
@@ -145,7 +109,7 @@ TEST(MembraneMapper, FlatCoarseMeshKeepsTheMidSheetOnIt)
   square.points = { -1e6, -1e6, 0, 1e6, -1e6, 0, 1e6, 1e6, 0, -1e6, 1e6, 0 };
   square.triangles = { 0, 1, 2, 0, 2, 3 };
   const mesolens::MembraneMapper mapper(square);
-  SyntheticPatch mid;
+  mesolens_test::SyntheticPatch mid;
   mid.positions = { 0, 0, 0, 5, -3, 0, -7, 8, 0 };
   mid.molecule_ids = { 0, 1, 2 };
   const auto seed = mapper.seed_near({ 10.0, 20.0, 0.0 });
@@ -170,7 +134,7 @@ TEST(MembraneMapper, FlatCoarseMeshKeepsTheMidSheetOnIt)
 
 TEST(MembraneMapper, WhatDoesNotFitMapsTheLargestPatchThatDoes)
 {
-  const auto patch = synthetic_patch(30);
+  const auto patch = mesolens_test::synthetic_patch(30);
   // A tube of radius 10 (half way round: 31): 3 x 3 tiles of 20 wrap it, one tile fits.
   {
     const auto ring = mesolens_test::torus(300, 10, 360, 24);
@@ -254,7 +218,7 @@ TEST(MembraneMapper, WhatDoesNotFitMapsTheLargestPatchThatDoes)
 TEST(MembraneMapper, BitwiseIdenticalRunToRunAndOnAnyThreads)
 {
   const auto surface = mesolens_test::torus(120, 40, 90, 36);
-  const auto patch = synthetic_patch(40);
+  const auto patch = mesolens_test::synthetic_patch(40);
   std::vector<std::vector<double>> results;
   for (const int thread_count : { 0, 1, 2, 8 })
   {
@@ -294,7 +258,7 @@ TEST(MembraneMapper, PoorPolynomialFitsAreSplit)
   // Tiles of 20 on a sphere of radius 40 bend too much for one quadratic within 0.05.
   const auto sphere = mesolens_test::icosphere(40, 4);
   const mesolens::MembraneMapper mapper(sphere);
-  const auto patch = synthetic_patch(30);
+  const auto patch = mesolens_test::synthetic_patch(30);
   const auto seed = mapper.seed_near({ 0, 0, 40 });
   auto r = request(mesolens::MappingMethod::Polynomial, 2);
   r.mapping.max_polynomial_residual = 0; // no bound: one polynomial per tile
@@ -364,7 +328,7 @@ TEST(MembraneMapper, BadRequests)
 {
   const auto sphere = mesolens_test::icosphere(100, 3);
   const mesolens::MembraneMapper mapper(sphere);
-  const auto patch = synthetic_patch(10);
+  const auto patch = mesolens_test::synthetic_patch(10);
   const auto seed = mapper.seed_near({ 0, 0, 100 });
   auto r = request(mesolens::MappingMethod::Displacement, 0);
   EXPECT_THROW(mapper.map(seed, patch.view(), r), mesolens::InvalidInput);
@@ -375,7 +339,7 @@ TEST(MembraneMapper, BadRequests)
   EXPECT_THROW(mapper.map(seed, patch.view(), r), mesolens::InvalidInput);
   r.radius_factor = std::nan("");
   EXPECT_THROW(mapper.map(seed, patch.view(), r), mesolens::InvalidInput);
-  SyntheticPatch empty;
+  mesolens_test::SyntheticPatch empty;
   EXPECT_THROW(mapper.map(seed, empty.view(), request(mesolens::MappingMethod::Displacement, 1)),
                mesolens::InvalidInput);
   EXPECT_THROW(mapper.seed_near({ 0, 0, 1000 }), mesolens::InvalidInput);

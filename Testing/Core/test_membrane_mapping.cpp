@@ -5,6 +5,7 @@
 #include "mesolens/geodesic_disk.h"
 #include "mesolens/harmonic_parameterization.h"
 #include "mesolens_test_meshes.h"
+#include "mesolens_test_patch.h"
 
 #include <gtest/gtest.h>
 
@@ -26,48 +27,6 @@ mesolens::SurfaceChart chart_of(const mesolens::TriangleMesh& surface, std::int6
   mesolens::SurfaceChart chart(disk.mesh, map.uv);
   *seed_uv = chart.uv_of(disk.seed);
   return chart;
-}
-
-/// A synthetic bilayer patch: `molecules` molecules of 5 atoms, in a 20 x 20 cell, heights
-/// +-15 around z = 4.
-struct SyntheticPatch
-{
-  std::vector<float> positions;
-  std::vector<int> molecule_ids;
-  mesolens::MembranePatch view() const
-  {
-    mesolens::MembranePatch patch;
-    patch.positions = positions.data();
-    patch.atom_count = molecule_ids.size();
-    patch.molecule_ids = molecule_ids.data();
-    patch.origin = { -10, -10 };
-    patch.a = { 20, 0 };
-    patch.b = { 0, 20 };
-    patch.centre_height = 4;
-    return patch;
-  }
-};
-
-SyntheticPatch synthetic_patch(int molecules)
-{
-  std::mt19937 random(11);
-  std::uniform_real_distribution<float> position(-9.0f, 9.0f);
-  std::uniform_real_distribution<float> jitter(-1.5f, 1.5f);
-  SyntheticPatch patch;
-  for (int m = 0; m < molecules; ++m)
-  {
-    const float x = position(random);
-    const float y = position(random);
-    const float top = (m % 2) ? 19.0f : -11.0f; // upper or lower leaflet
-    for (int a = 0; a < 5; ++a)
-    {
-      patch.positions.insert(
-        patch.positions.end(),
-        { x + jitter(random), y + jitter(random), top - (m % 2 ? 3.0f : -3.0f) * float(a) });
-      patch.molecule_ids.push_back(m);
-    }
-  }
-  return patch;
 }
 
 template<typename P, typename Q>
@@ -122,7 +81,7 @@ TEST(MembraneMapping, FlatSurfaceMethodsAgree)
   const auto map = mesolens::harmonic_parameterization(flat, 40.0);
   const mesolens::SurfaceChart chart(flat, map.uv);
   const std::array<double, 2> seed_uv{ 0, 0 };
-  const auto patch = synthetic_patch(30);
+  const auto patch = mesolens_test::synthetic_patch(30, 4.0f);
   mesolens::MappingParams params;
   params.tiles = 2;
   params.scale = 0.5;
@@ -162,7 +121,7 @@ TEST(MembraneMapping, InstancingKeepsMoleculesRigidOnCurvedSurfaces)
   const auto sphere = mesolens_test::icosphere(60.0, 6);
   std::array<double, 2> seed_uv{};
   const auto chart = chart_of(sphere, 200, 80.0, &seed_uv);
-  const auto patch = synthetic_patch(40);
+  const auto patch = mesolens_test::synthetic_patch(40, 4.0f);
   mesolens::MappingParams params;
   params.method = mesolens::MappingMethod::MoleculeInstancing;
   params.tiles = 3;
@@ -215,7 +174,7 @@ TEST(MembraneMapping, BadInputs)
   const auto plane = mesolens_test::plane_grid(41, 20.0);
   std::array<double, 2> seed_uv{};
   const auto chart = chart_of(plane, 1640, 15.0, &seed_uv);
-  auto patch = synthetic_patch(4);
+  auto patch = mesolens_test::synthetic_patch(4, 4.0f);
   mesolens::MappingParams params;
   params.centre_uv = seed_uv;
   params.tiles = 0;

@@ -362,7 +362,9 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
     if (!mapped.polynomial_coefficients.empty())
     {
       add_field(output, "PolynomialCoefficients", mapped.polynomial_coefficients, 30);
-      add_field(output, "PolynomialSplits", { double(mapped.polynomial_splits) });
+      add_field(
+        output, "PolynomialSplits",
+        std::vector<double>(mapped.polynomial_splits.begin(), mapped.polynomial_splits.end()));
       add_field(output, "PolynomialResidualRMS", mapped.polynomial_rms_residual);
       add_field(output, "PolynomialResidualMax", mapped.polynomial_max_residual);
       add_field(output, "PolynomialFallbackTiles",

@@ -22,9 +22,9 @@
  *   its x, y, z axes taken to the u tangent, v tangent and normal;
  * - POLYNOMIAL: one quadratic x(s, t, h) per tile, fitted by least squares (Cholesky) to the
  *   displacement map on PolynomialSamples^2 samples in 3 layers (h = -e, 0, +e with e =
- *   LayerHalfThickness). When a tile's largest residual exceeds MaximumPolynomialResidual, every
- *   tile is split into 2 x 2 (then 4 x 4) pieces with a polynomial each; a tile still above it
- *   has its atoms mapped by displacement (`PolynomialFallbackTiles`).
+ *   LayerHalfThickness). A tile whose largest residual exceeds MaximumPolynomialResidual is
+ *   split into 2 x 2 (then 4 x 4) pieces with a polynomial each; a tile still above it has its
+ *   atoms mapped by displacement (`PolynomialFallbackTiles`).
  *
  * Every click maps what fits (MapWhatFits, on by default): when the asked k x k tiles do not fit
  * (their disk wraps a handle, meets the mesh's boundary or covers the whole component, or the
@@ -165,7 +165,7 @@ public:
 
   ///@{
   /// POLYNOMIAL: the largest fit residual accepted in a tile, membrane units (Å); beyond it
-  /// tiles are split, then displaced. <= 0: no bound. Default 2.
+  /// the tile is split, then displaced. <= 0: no bound. Default 1.
   vtkSetMacro(MaximumPolynomialResidual, double);
   vtkGetMacro(MaximumPolynomialResidual, double);
   ///@}
@@ -209,7 +209,7 @@ protected:
   double RadiusFactor = 2;
   double LayerHalfThickness = 25;
   int PolynomialSamples = 6;
-  double MaximumPolynomialResidual = 2;
+  double MaximumPolynomialResidual = 1;
   int MinimumDiskTriangles = 2000;
   int MaximumDiskTriangles = 16000;
   bool MapWhatFits = true;

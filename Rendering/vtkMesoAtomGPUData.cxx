@@ -66,6 +66,34 @@ const double* field(vtkPolyData* data, const char* name, int components)
   return array->GetTuple(0);
 }
 
+/// The polynomial's pieces per side of each of `tiles` tiles (field data PolynomialSplits, one
+/// per tile; absent: one piece each) and the first piece of each; false when they do not add up
+/// to the coefficients given.
+bool polynomial_pieces(vtkPolyData* warp, vtkIdType tiles, std::vector<int>& splits,
+                       std::vector<vtkIdType>& first)
+{
+  vtkDataArray* coefficients = warp->GetFieldData()->GetArray("PolynomialCoefficients");
+  vtkDataArray* split_array = warp->GetFieldData()->GetArray("PolynomialSplits");
+  if (!coefficients || coefficients->GetNumberOfComponents() != 30 ||
+      (split_array && split_array->GetNumberOfTuples() != tiles))
+  {
+    return false;
+  }
+  splits.assign(static_cast<std::size_t>(tiles), 1);
+  first.assign(static_cast<std::size_t>(tiles) + 1, 0);
+  for (vtkIdType t = 0; t < tiles; ++t)
+  {
+    const int m = split_array ? static_cast<int>(split_array->GetTuple1(t)) : 1;
+    if (m < 1 || m > 64)
+    {
+      return false;
+    }
+    splits[std::size_t(t)] = m;
+    first[std::size_t(t) + 1] = first[std::size_t(t)] + m * m;
+  }
+  return first.back() == coefficients->GetNumberOfTuples();
+}
+
 /// Corners of a box: x from bounds[0..1], y [2..3], z [4..5].
 std::array<double, 3> corner(const double bounds[6], int index)
 {
@@ -141,33 +169,43 @@ bool polynomial_bounds(vtkPolyData* atoms, vtkPolyData* warp, const PatchFrame& 
     const auto q = mesolens::polynomial_coordinates(patch, *frame.half_thickness, pf);
     grow(local, q.data());
   }
-  const double* split_field = field(warp, "PolynomialSplits", 1);
-  const int splits = split_field ? std::max(1, static_cast<int>(*split_field)) : 1;
+  std::vector<int> splits;
+  std::vector<vtkIdType> first;
+  const vtkIdType tiles =
+    static_cast<vtkIdType>(*frame.tiles) * static_cast<vtkIdType>(*frame.tiles);
+  if (!polynomial_pieces(warp, tiles, splits, first))
+  {
+    return false;
+  }
   // Each piece over its own part of the tile's (s, t) box; the edge pieces also reach the
   // atoms beyond the cell.
-  auto piece_range = [splits](int piece, double low, double high, double range[2]) {
-    const double from = piece == 0 ? std::min(low, -1.0) : -1 + 2.0 * piece / splits;
-    const double to = piece == splits - 1 ? std::max(high, 1.0) : -1 + 2.0 * (piece + 1) / splits;
-    range[0] = (from + 1) * splits - 2 * piece - 1; // the piece's own coordinate
-    range[1] = (to + 1) * splits - 2 * piece - 1;
+  auto piece_range = [](int piece, int m, double low, double high, double range[2]) {
+    const double from = piece == 0 ? std::min(low, -1.0) : -1 + 2.0 * piece / m;
+    const double to = piece == m - 1 ? std::max(high, 1.0) : -1 + 2.0 * (piece + 1) / m;
+    range[0] = (from + 1) * m - 2 * piece - 1; // the piece's own coordinate
+    range[1] = (to + 1) * m - 2 * piece - 1;
   };
   constexpr int steps = 5;
-  for (vtkIdType index = 0; index < coefficients->GetNumberOfTuples(); ++index)
+  for (std::size_t tile = 0; tile < splits.size(); ++tile)
   {
-    mesolens::QuadraticWarp polynomial{};
-    coefficients->GetTuple(index, polynomial.data());
-    double s_range[2], t_range[2];
-    piece_range(int(index % splits), local[0], local[1], s_range);
-    piece_range(int(index / splits % splits), local[2], local[3], t_range);
-    for (int i = 0; i < steps * steps * steps; ++i)
+    const int m = splits[tile];
+    for (int piece = 0; piece < m * m; ++piece)
     {
-      const double f[3] = { double(i % steps) / (steps - 1),
-                            double(i / steps % steps) / (steps - 1),
-                            double(i / (steps * steps)) / (steps - 1) };
-      const auto x = mesolens::evaluate_quadratic(
-        polynomial, s_range[0] + f[0] * (s_range[1] - s_range[0]),
-        t_range[0] + f[1] * (t_range[1] - t_range[0]), local[4] + f[2] * (local[5] - local[4]));
-      grow(bounds, x.data());
+      mesolens::QuadraticWarp polynomial{};
+      coefficients->GetTuple(first[tile] + piece, polynomial.data());
+      double s_range[2], t_range[2];
+      piece_range(piece % m, m, local[0], local[1], s_range);
+      piece_range(piece / m, m, local[2], local[3], t_range);
+      for (int i = 0; i < steps * steps * steps; ++i)
+      {
+        const double f[3] = { double(i % steps) / (steps - 1),
+                              double(i / steps % steps) / (steps - 1),
+                              double(i / (steps * steps)) / (steps - 1) };
+        const auto x = mesolens::evaluate_quadratic(
+          polynomial, s_range[0] + f[0] * (s_range[1] - s_range[0]),
+          t_range[0] + f[1] * (t_range[1] - t_range[0]), local[4] + f[2] * (local[5] - local[4]));
+        grow(bounds, x.data());
+      }
     }
   }
   return true;
@@ -602,26 +640,32 @@ bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp, vtkMapp
   if (method == POLYNOMIAL)
   {
     vtkDataArray* coefficients = warp->GetFieldData()->GetArray("PolynomialCoefficients");
-    const double* splits = field(warp, "PolynomialSplits", 1);
-    this->PolynomialSplits = splits ? static_cast<int>(*splits) : 1;
-    const vtkIdType pieces = tiles * this->PolynomialSplits * this->PolynomialSplits;
-    if (!coefficients || coefficients->GetNumberOfComponents() != 30 ||
-        coefficients->GetNumberOfTuples() != pieces || this->PolynomialSplits < 1)
+    std::vector<int> splits;
+    std::vector<vtkIdType> first;
+    if (!polynomial_pieces(warp, tiles, splits, first))
     {
       vtkErrorWithObjectMacro(mapper,
-                              "Cannot warp the atoms: PolynomialCoefficients should hold "
-                              "30 values for each of the "
-                                << pieces << " pieces of the " << tiles << " tiles");
+                              "Cannot warp the atoms: PolynomialCoefficients should hold 30 "
+                              "values for each piece of the "
+                                << tiles << " tiles (PolynomialSplits: the pieces per side)");
       return false;
     }
-    this->WarpTexels.assign(static_cast<std::size_t>(40 * pieces), 0.0f);
+    // A header texel per tile (its first piece, its pieces per side), then 10 per piece.
+    const vtkIdType pieces = first.back();
+    this->TileCountForHeader = static_cast<int>(tiles);
+    this->WarpTexels.assign(static_cast<std::size_t>(4 * (tiles + 10 * pieces)), 0.0f);
+    for (vtkIdType tile = 0; tile < tiles; ++tile)
+    {
+      this->WarpTexels[std::size_t(4 * tile)] = static_cast<float>(first[std::size_t(tile)]);
+      this->WarpTexels[std::size_t(4 * tile + 1)] = static_cast<float>(splits[std::size_t(tile)]);
+    }
     for (vtkIdType piece = 0; piece < pieces; ++piece)
     {
       for (int term = 0; term < 10; ++term)
       {
         for (int d = 0; d < 3; ++d)
         {
-          this->WarpTexels[std::size_t(40 * piece + 4 * term + d)] =
+          this->WarpTexels[std::size_t(4 * tiles + 40 * piece + 4 * term + d)] =
             static_cast<float>(coefficients->GetComponent(piece, 10 * d + term));
         }
       }

@@ -99,7 +99,7 @@ public:
   float PatchToFractional[4] = { 1, 0, 0, 1 }; ///< column-major 2 x 2
   float PatchCentreHeight = 0;
   float InverseLayerHalfThickness = 1;
-  int PolynomialSplits = 1; ///< polynomial pieces per tile side
+  int TileCountForHeader = 0; ///< polynomial: header texels (one per tile) before the pieces
   int MoleculesPerTile = 0;
 
 private:

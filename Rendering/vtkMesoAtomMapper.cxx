@@ -575,7 +575,7 @@ void vtkMesoAtomMapper::SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRe
     set_uniform_float(program, "patchCentreHeight", data.PatchCentreHeight);
     set_uniform_float(program, "inverseLayerHalfThickness", data.InverseLayerHalfThickness);
     set_uniform_int(program, "moleculesPerTile", data.MoleculesPerTile);
-    set_uniform_int(program, "polynomialSplits", data.PolynomialSplits);
+    set_uniform_int(program, "polynomialTiles", data.TileCountForHeader);
   }
   this->Superclass::SetMapperShaderParameters(cellBO, ren, act);
   cellBO.AttributeUpdateTime.Modified();

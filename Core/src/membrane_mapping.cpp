@@ -188,6 +188,7 @@ public:
   {
     this->Failures.resize(std::size_t(params.tiles) * std::size_t(params.tiles));
     this->Samples.resize(this->Failures.size());
+    this->TilePieces.resize(this->Failures.size());
     const bool need_molecules =
       params.method == MappingMethod::MoleculeInstancing || params.cut_to_disk;
     if (params.method == MappingMethod::MoleculeInstancing && !patch.molecule_ids)
@@ -295,10 +296,51 @@ public:
     this->drop_partial_molecules(tile);
   }
 
+  /// Fits one tile's polynomial, split into 2 x 2, then 4 x 4 ... pieces while its largest
+  /// residual exceeds `bound` (mesh units; <= 0: never); falls back to displacement when even
+  /// the finest split does not meet it.
+  void fit_tile(std::size_t tile, double bound)
+  {
+    for (int m = 1;; m *= 2)
+    {
+      this->fit_pieces(tile, m);
+      const double worst = this->Out.polynomial_max_residual[tile];
+      if (!this->Failures[tile].empty() || bound <= 0 || worst <= bound ||
+          2 * m > this->Params.max_polynomial_splits)
+      {
+        this->Out.polynomial_splits[tile] = m;
+        this->Out.tile_fallback[tile] = bound > 0 && worst > bound;
+        return;
+      }
+    }
+  }
+
+  /// The tiles' pieces, in tile order, in Out.polynomial_coefficients.
+  void gather_pieces()
+  {
+    std::size_t first = 0;
+    auto& offsets = this->Out.polynomial_first_piece;
+    offsets.assign(this->TilePieces.size() + 1, 0);
+    for (std::size_t tile = 0; tile < this->TilePieces.size(); ++tile)
+    {
+      offsets[tile] = first;
+      first += this->TilePieces[tile].size() / (3 * quadratic_terms);
+    }
+    offsets.back() = first;
+    this->Out.polynomial_coefficients.clear();
+    this->Out.polynomial_coefficients.reserve(3 * quadratic_terms * first);
+    for (const auto& pieces : this->TilePieces)
+    {
+      this->Out.polynomial_coefficients.insert(this->Out.polynomial_coefficients.end(),
+                                               pieces.begin(), pieces.end());
+    }
+  }
+
   /// Fits the m x m pieces of one tile; sets the tile's failure when samples leave the disk,
   /// unless the tile is cut to the disk.
-  void fit_polynomial(std::size_t tile, int m)
+  void fit_pieces(std::size_t tile, int m)
   {
+    this->TilePieces[tile].assign(3 * quadratic_terms * std::size_t(m) * std::size_t(m), 0.0);
     const int samples = this->Params.samples;
     const int stride = this->Params.max_polynomial_splits / m; // on the finest sample grid
     double rms = 0, worst = 0;
@@ -337,10 +379,8 @@ public:
             }
           }
         }
-        const std::size_t piece =
-          (tile * std::size_t(m) + std::size_t(pj)) * std::size_t(m) + std::size_t(pi);
-        double* coefficients =
-          this->Out.polynomial_coefficients.data() + 3 * quadratic_terms * piece;
+        const std::size_t piece = std::size_t(pj) * std::size_t(m) + std::size_t(pi);
+        double* coefficients = this->TilePieces[tile].data() + 3 * quadratic_terms * piece;
         if (parameters.size() < 2 * quadratic_terms)
         {
           too_few = true; // a piece mostly outside a cut disk
@@ -368,10 +408,10 @@ public:
     }
     const int i = int(tile % std::size_t(this->Params.tiles));
     const int j = int(tile / std::size_t(this->Params.tiles));
-    const int m = this->Out.polynomial_splits;
+    const int m = this->Out.polynomial_splits[tile];
     const std::size_t n = this->Patch.atom_count;
     const double* coefficients = this->Out.polynomial_coefficients.data() +
-      3 * quadratic_terms * tile * std::size_t(m) * std::size_t(m);
+      3 * quadratic_terms * this->Out.polynomial_first_piece[tile];
     double* out = this->Out.positions.data() + 3 * n * tile;
     SurfacePoint located;
     for (std::size_t a = 0; a < n; ++a)
@@ -409,6 +449,7 @@ private:
     std::int8_t state = 0; // 0 not yet located, 1 on the disk, -1 off it
   };
   std::vector<std::vector<TileSample>> Samples; // per tile
+  std::vector<std::vector<double>> TilePieces;  // per tile: its pieces' coefficients
 
   /// The sample at finest-grid point (a, b) of a tile, located on first use; nullptr (with the
   /// tile's failure set unless cut to the disk) when it is off the disk.
@@ -591,25 +632,11 @@ MappedMembrane map_membrane(const SurfaceChart& chart, const MembranePatch& patc
     case MappingMethod::Polynomial: {
       mapped.polynomial_rms_residual.resize(tile_count);
       mapped.polynomial_max_residual.resize(tile_count);
-      const double bound = params.max_polynomial_residual * params.scale;
-      for (int m = 1;; m *= 2)
-      {
-        mapped.polynomial_splits = m;
-        mapped.polynomial_coefficients.assign(
-          3 * quadratic_terms * tile_count * std::size_t(m) * std::size_t(m), 0.0);
-        each_tile([&mapper, m](std::size_t tile) { mapper.fit_polynomial(tile, m); });
-        const double worst = *std::max_element(mapped.polynomial_max_residual.begin(),
-                                               mapped.polynomial_max_residual.end());
-        if (bound <= 0 || worst <= bound || 2 * m > params.max_polynomial_splits)
-        {
-          break;
-        }
-      }
+      mapped.polynomial_splits.resize(tile_count);
       mapped.tile_fallback.resize(tile_count);
-      for (std::size_t tile = 0; tile < tile_count; ++tile)
-      {
-        mapped.tile_fallback[tile] = bound > 0 && mapped.polynomial_max_residual[tile] > bound;
-      }
+      const double bound = params.max_polynomial_residual * params.scale;
+      each_tile([&mapper, bound](std::size_t tile) { mapper.fit_tile(tile, bound); });
+      mapper.gather_pieces();
       if (mapper.MapAtoms)
       {
         each_tile([&mapper](std::size_t tile) { mapper.polynomial_atoms(tile); });

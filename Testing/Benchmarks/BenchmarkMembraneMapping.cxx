@@ -269,6 +269,26 @@ void trajectory_report(const std::string& mesh_path, const std::string& gro, con
       changes[changes.size() * 95 / 100]);
   }
 }
+/// How the polynomial's tiles were split: "1 x 1" or, say, "1-4 x 1-4 (3 of 225 tiles split)".
+std::string pieces_of(const mesolens::MappedMembrane& mapped)
+{
+  const auto& m = mapped.polynomial_splits;
+  if (m.empty())
+  {
+    return "no";
+  }
+  const int low = *std::min_element(m.begin(), m.end());
+  const int high = *std::max_element(m.begin(), m.end());
+  const auto split = std::count_if(m.begin(), m.end(), [](int s) { return s > 1; });
+  if (low == high)
+  {
+    return std::to_string(low) + " x " + std::to_string(low);
+  }
+  return std::to_string(low) + "-" + std::to_string(high) + " x " + std::to_string(low) + "-" +
+    std::to_string(high) + " (" + std::to_string(split) + " of " + std::to_string(m.size()) +
+    " tiles split)";
+}
+
 /// Percentiles of a sample (sorted copy): p in [0, 1].
 double percentile(std::vector<double> values, double p)
 {
@@ -346,13 +366,12 @@ void remap_on_two_million(const Membrane& yiip, bool smoke)
     mapper->forget_charts();
     mesolens::MapResult result;
     clicks.push_back(seconds_of([&] { result = mapper->map(seed, patch, request, parallel); }));
-    std::printf(
-      "REPORT remap-click vertex %lld: %.1f ms, disk of %zu triangles on copy %zu, %d x %d "
-      "pieces, k = %d%s%s\n",
-      static_cast<long long>(vertex), 1e3 * clicks.back(), result.chart->disk.mesh.triangle_count(),
-      result.chart->disk.surface_level, result.mapped.polynomial_splits,
-      result.mapped.polynomial_splits, result.tiles_mapped, result.note.empty() ? "" : ": ",
-      result.note.c_str());
+    std::printf("REPORT remap-click vertex %lld: %.1f ms, disk of %zu triangles on copy %zu, %s "
+                "pieces, k = %d%s%s\n",
+                static_cast<long long>(vertex), 1e3 * clicks.back(),
+                result.chart->disk.mesh.triangle_count(), result.chart->disk.surface_level,
+                pieces_of(result.mapped).c_str(), result.tiles_mapped,
+                result.note.empty() ? "" : ": ", result.note.c_str());
     if (vertex == 1000)
     {
       disk_triangles = result.chart->disk.mesh.triangle_count();
@@ -384,13 +403,12 @@ void remap_on_two_million(const Membrane& yiip, bool smoke)
     "BENCH remap input=%zu-triangle mesh, 15x15 tiles of YiiP (scale %.2e µm/Å, disk radius "
     "%.2f µm), 5 clicks on 2 threads | re-map median %.1f ms, max %.1f ms (goal 100 ms, ratio "
     "%.2f) | first click: disk of %zu triangles on coarser copy %zu: geodesic disk %.1f ms + "
-    "parameterization %.1f ms + chart %.1f ms + 225 polynomial fits (%d x %d pieces) %.1f ms | "
+    "parameterization %.1f ms + chart %.1f ms + 225 polynomial fits (%s pieces) %.1f ms | "
     "CGAL mean-value parameterization of the same disk %.1f ms, ratio ours/CGAL %.2f\n",
     triangles, scale, radius, 1e3 * percentile(clicks, 0.5),
     1e3 * *std::max_element(clicks.begin(), clicks.end()), percentile(clicks, 0.5) / 0.1,
     disk_triangles, level, 1e3 * geodesic, 1e3 * parameterization, 1e3 * chart_build,
-    fitted.polynomial_splits, fitted.polynomial_splits, 1e3 * fits, 1e3 * cgal,
-    parameterization / cgal);
+    pieces_of(fitted).c_str(), 1e3 * fits, 1e3 * cgal, parameterization / cgal);
   if (smoke)
   {
     return;
@@ -461,10 +479,10 @@ void remap_on_two_million(const Membrane& yiip, bool smoke)
   const double evaluation =
     seconds_of([&] { mapped = mesolens::map_membrane(*chart, patch, evaluate); }) - fits;
   const double atoms = double(mapped.positions.size() / 3);
-  std::printf("BENCH cpu-evaluation input=15x15 tiles x %zu atoms = %.0f atoms (polynomial, %d x "
-              "%d pieces per tile) | %.0f ms, %.1f Matoms/s (single thread)\n",
-              patch.atom_count, atoms, mapped.polynomial_splits, mapped.polynomial_splits,
-              1e3 * evaluation, atoms / evaluation / 1e6);
+  std::printf("BENCH cpu-evaluation input=15x15 tiles x %zu atoms = %.0f atoms (polynomial, %s "
+              "pieces per tile) | %.0f ms, %.1f Matoms/s (single thread)\n",
+              patch.atom_count, atoms, pieces_of(mapped).c_str(), 1e3 * evaluation,
+              atoms / evaluation / 1e6);
 }
 
 /// The interactive case: the organelle mesh as it comes (8340 triangles), refined locally.
@@ -490,10 +508,10 @@ void remap_interactive(const Membrane& yiip)
     });
     std::printf("BENCH remap-interactive input=mito5_outer_membrane (8340 triangles), YiiP %s, "
                 "disk of %zu triangles (input triangles halved up to %d times) | re-map %.1f ms "
-                "on 2 threads (goal 100 ms), %d x %d polynomial pieces per tile\n",
+                "on 2 threads (goal 100 ms), %s polynomial pieces per tile\n",
                 label, result.chart->disk.mesh.triangle_count(),
-                result.chart->disk.refinement_levels, 1e3 * remap, result.mapped.polynomial_splits,
-                result.mapped.polynomial_splits);
+                result.chart->disk.refinement_levels, 1e3 * remap,
+                pieces_of(result.mapped).c_str());
   }
 }
 } // namespace

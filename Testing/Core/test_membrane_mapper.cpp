@@ -263,21 +263,28 @@ TEST(MembraneMapper, PoorPolynomialFitsAreSplit)
   auto r = request(mesolens::MappingMethod::Polynomial, 2);
   r.mapping.max_polynomial_residual = 0; // no bound: one polynomial per tile
   const auto single = mapper.map(seed, patch.view(), r);
-  EXPECT_EQ(single.mapped.polynomial_splits, 1);
+  EXPECT_EQ(single.mapped.polynomial_splits, std::vector<int>(4, 1));
   const double single_worst = *std::max_element(single.mapped.polynomial_max_residual.begin(),
                                                 single.mapped.polynomial_max_residual.end());
   r.mapping.max_polynomial_residual = 0.05;
   const auto split = mapper.map(seed, patch.view(), r);
-  EXPECT_GE(split.mapped.polynomial_splits, 2);
-  EXPECT_EQ(split.mapped.polynomial_coefficients.size(),
-            30u * 4u *
-              std::size_t(split.mapped.polynomial_splits * split.mapped.polynomial_splits));
+  const auto& m = split.mapped.polynomial_splits;
+  EXPECT_GE(*std::max_element(m.begin(), m.end()), 2);
+  ASSERT_EQ(split.mapped.polynomial_first_piece.size(), 5u);
+  std::size_t pieces = 0;
+  for (std::size_t tile = 0; tile < 4; ++tile)
+  {
+    EXPECT_EQ(split.mapped.polynomial_first_piece[tile], pieces);
+    pieces += std::size_t(m[tile] * m[tile]);
+    // Split only as far as needed: the bound is met, or the finest split was reached.
+    EXPECT_TRUE(split.mapped.polynomial_max_residual[tile] <= 0.05 || m[tile] == 4) << tile;
+  }
+  EXPECT_EQ(split.mapped.polynomial_coefficients.size(), 30 * pieces);
   const double split_worst = *std::max_element(split.mapped.polynomial_max_residual.begin(),
                                                split.mapped.polynomial_max_residual.end());
   EXPECT_LT(split_worst, 0.5 * single_worst);
   // The atoms come from the piece their (s, t) falls in: the same as the GPU evaluates.
   const auto view = patch.view();
-  const int m = split.mapped.polynomial_splits;
   for (std::size_t tile = 0; tile < 4; ++tile)
   {
     if (split.mapped.tile_fallback[tile])
@@ -286,9 +293,11 @@ TEST(MembraneMapper, PoorPolynomialFitsAreSplit)
     }
     for (std::size_t a = 0; a < view.atom_count; a += 7)
     {
-      const auto x = mesolens::evaluate_tile_polynomial(
-        view, 15, m, split.mapped.polynomial_coefficients.data() + 30 * tile * std::size_t(m * m),
-        view.positions + 3 * a);
+      const auto x =
+        mesolens::evaluate_tile_polynomial(view, 15, m[tile],
+                                           split.mapped.polynomial_coefficients.data() +
+                                             30 * split.mapped.polynomial_first_piece[tile],
+                                           view.positions + 3 * a);
       for (std::size_t d = 0; d < 3; ++d)
       {
         EXPECT_DOUBLE_EQ(split.mapped.positions[3 * (tile * view.atom_count + a) + d], x[d]);

@@ -59,11 +59,11 @@ struct MappingParams
   /// Polynomial: samples per tile edge (samples x samples per layer). Range >= 3; default 6.
   int samples = 6;
   /// Polynomial: the largest fit residual accepted in a tile, membrane units (Å for Å patches).
-  /// When a tile's largest sample residual exceeds it, every tile is split into 2 x 2 pieces,
-  /// each with its own polynomial, and so on up to max_polynomial_splits pieces per side; a
-  /// tile still above it then has its atoms mapped by displacement (tile_fallback). <= 0: no
-  /// bound. Default 2 Å.
-  double max_polynomial_residual = 2.0;
+  /// A tile whose largest sample residual exceeds it is split into 2 x 2 pieces, each with its
+  /// own polynomial, then 4 x 4 ... up to max_polynomial_splits pieces per side; a tile still
+  /// above it has its atoms mapped by displacement (tile_fallback). <= 0: no bound. Default
+  /// 1 Å, which keeps the polynomial's mid-sheet within 1 Å of the surface.
+  double max_polynomial_residual = 1.0;
   /// Polynomial: most pieces per tile side, a power of two in [1, 8]. Default 4.
   int max_polynomial_splits = 4;
   /// Atoms whose (u, v) falls outside the chart are dropped with their molecule (atom_mapped)
@@ -87,17 +87,19 @@ struct MappedMembrane
   std::vector<int> instance_molecules;         ///< molecule id of each instance
   std::vector<int> instance_tiles;             ///< tile of each instance
   std::vector<double> polynomial_coefficients; ///< Polynomial: 30 (QuadraticWarp) per piece;
-                                               ///< tile t, piece (i, j) of m x m at index
-                                               ///< (t m + j) m + i
-  int polynomial_splits = 1;                   ///< Polynomial: m, pieces per tile side
-  std::vector<double> polynomial_rms_residual; ///< Polynomial: per tile (largest over its
-                                               ///< pieces), mesh units
-  std::vector<double> polynomial_max_residual; ///< Polynomial: per tile, mesh units
-  std::vector<std::uint8_t> tile_fallback;     ///< Polynomial: per tile, 1 when no polynomial met
-                                               ///< the residual bound and atoms were displaced
-  std::vector<std::uint8_t> atom_mapped;       ///< cut_to_disk: per atom per tile, 0 where the
-                                               ///< atom was dropped (its position is NaN);
-                                               ///< empty otherwise
+                                               ///< tile t's m_t x m_t pieces from piece
+                                               ///< polynomial_first_piece[t], its piece (i, j)
+                                               ///< at j m_t + i
+  std::vector<int> polynomial_splits;          ///< Polynomial: per tile, m_t, its pieces per side
+  std::vector<std::size_t> polynomial_first_piece; ///< Polynomial: per tile, and the total
+  std::vector<double> polynomial_rms_residual;     ///< Polynomial: per tile (largest over its
+                                                   ///< pieces), mesh units
+  std::vector<double> polynomial_max_residual;     ///< Polynomial: per tile, mesh units
+  std::vector<std::uint8_t> tile_fallback; ///< Polynomial: per tile, 1 when no polynomial met
+                                           ///< the residual bound and atoms were displaced
+  std::vector<std::uint8_t> atom_mapped;   ///< cut_to_disk: per atom per tile, 0 where the
+                                           ///< atom was dropped (its position is NaN);
+                                           ///< empty otherwise
 };
 
 /// The polynomial's local coordinates of a patch point: (s, t) = 2 f - 1 where f are the
@@ -114,7 +116,7 @@ int polynomial_piece(int splits, double& s, double& t);
 
 /// Where a tile's polynomial takes patch point `position`: the piece's warp evaluated at the
 /// piece's coordinates (the CPU twin of the renderer's vertex shader). `coefficients` holds
-/// the tile's m x m pieces.
+/// the tile's `splits` x `splits` pieces.
 std::array<double, 3> evaluate_tile_polynomial(const MembranePatch& patch,
                                                double layer_half_thickness, int splits,
                                                const double* coefficients, const float* position);

@@ -30,8 +30,9 @@ std::string format_length(double value)
   return text.str();
 }
 
-/// The part of a local surface where distance <= radius, cut along the isoline; each triangle
-/// keeps the local triangle it comes from and its place in the input triangle.
+/// The part of a local surface the disk takes (`taken` vertices: within the radius or enclosed),
+/// cut along the isoline; each triangle keeps the local triangle it comes from and its place in
+/// the input triangle.
 struct Clipped
 {
   TriangleMesh mesh;
@@ -59,7 +60,7 @@ struct Clipped
 };
 
 Clipped clip_below(const detail::LocalSurface& local, const std::vector<double>& distance,
-                   double radius)
+                   const std::vector<std::uint8_t>& taken, double radius)
 {
   const TriangleMesh& mesh = local.mesh;
   Clipped out;
@@ -114,9 +115,8 @@ Clipped clip_below(const detail::LocalSurface& local, const std::vector<double>&
   {
     const std::int64_t v[3] = { mesh.triangles[3 * t], mesh.triangles[3 * t + 1],
                                 mesh.triangles[3 * t + 2] };
-    const bool in[3] = { distance[std::size_t(v[0])] <= radius,
-                         distance[std::size_t(v[1])] <= radius,
-                         distance[std::size_t(v[2])] <= radius };
+    const bool in[3] = { taken[std::size_t(v[0])] != 0, taken[std::size_t(v[1])] != 0,
+                         taken[std::size_t(v[2])] != 0 };
     if (!in[0] && !in[1] && !in[2])
     {
       continue;
@@ -223,78 +223,80 @@ Clipped component_of(const Clipped& in, std::int64_t keep_triangle)
   return out;
 }
 
-double loop_length(const TriangleMesh& mesh, const std::vector<std::int64_t>& loop)
+/// Which vertices the disk takes: those within the radius, and those of every region farther
+/// away that the disk encloses (the top of a bump the front went round; its own triangles, not a
+/// patch over it). A region farther away that reaches the local surface's border or the
+/// march's end lies outside; without such a region, the largest lies outside. Returns how many
+/// regions were enclosed.
+std::size_t disk_vertices(const detail::LocalSurface& local, const GeodesicSolver& solver,
+                          const std::vector<double>& distance, double radius,
+                          std::vector<std::uint8_t>& inside)
 {
-  double length = 0;
-  for (std::size_t i = 0; i < loop.size(); ++i)
-  {
-    const auto a = mesh.point(loop[i]);
-    const auto b = mesh.point(loop[(i + 1) % loop.size()]);
-    length += std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-                        (a[2] - b[2]) * (a[2] - b[2]));
-  }
-  return length;
-}
-
-/// Closes the small boundary loops (shorter than a quarter of the longest one), left where the
-/// front passed on both sides of a bump, with a fan around their centroid. Longer loops are a
-/// sign that the disk wraps a handle and are left for the topology check to report.
-std::size_t close_inner_holes(Clipped& disk)
-{
-  std::vector<std::vector<std::int64_t>> loops = boundary_loops(disk.mesh);
-  if (loops.size() <= 1)
-  {
-    return 0;
-  }
-  std::size_t outer = 0;
-  for (std::size_t i = 1; i < loops.size(); ++i)
-  {
-    if (loop_length(disk.mesh, loops[i]) > loop_length(disk.mesh, loops[outer]))
+  const std::size_t n = distance.size();
+  inside.assign(n, 0);
+  std::vector<std::size_t> parent(n);
+  std::iota(parent.begin(), parent.end(), std::size_t(0));
+  auto root = [&parent](std::size_t x) {
+    while (parent[x] != x)
     {
-      outer = i;
+      x = parent[x] = parent[parent[x]];
     }
-  }
-  const double outer_length = loop_length(disk.mesh, loops[outer]);
-  std::size_t closed = 0;
-  for (std::size_t i = 0; i < loops.size(); ++i)
+    return x;
+  };
+  for (std::size_t v = 0; v < n; ++v)
   {
-    if (i == outer || loop_length(disk.mesh, loops[i]) > 0.25 * outer_length)
+    inside[v] = distance[v] <= radius;
+  }
+  const TriangleMesh& mesh = local.mesh;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+  {
+    for (std::size_t k = 0; k < 3; ++k)
     {
-      continue;
-    }
-    std::array<double, 3> centre{ 0, 0, 0 };
-    std::array<double, 3> normal{ 0, 0, 0 };
-    double distance = 0;
-    for (const std::int64_t v : loops[i])
-    {
-      const auto p = disk.mesh.point(v);
-      const auto n = disk.normal(v);
-      for (std::size_t d = 0; d < 3; ++d)
+      const auto a = std::size_t(mesh.triangles[3 * t + k]);
+      const auto b = std::size_t(mesh.triangles[3 * t + (k + 1) % 3]);
+      if (!inside[a] && !inside[b])
       {
-        centre[d] += p[d] / double(loops[i].size());
-        normal[d] += n[d];
+        parent[root(a)] = root(b);
       }
-      distance += disk.distance[std::size_t(v)] / double(loops[i].size());
     }
-    const double length =
-      std::sqrt(normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]);
-    for (double& c : normal)
-    {
-      c /= length > 0 ? length : 1.0;
-    }
-    const std::int64_t c = disk.add_vertex(centre, normal, distance, -1);
-    for (std::size_t k = 0; k < loops[i].size(); ++k)
-    {
-      // The loop runs along the hole in the triangles' orientation; the fan goes the other way.
-      disk.mesh.triangles.insert(disk.mesh.triangles.end(),
-                                 { loops[i][(k + 1) % loops[i].size()], loops[i][k], c });
-      disk.parent.push_back(-1);
-      disk.source.push_back(-1);
-      disk.source_barycentric.insert(disk.source_barycentric.end(), 9, 0.0);
-    }
-    ++closed;
   }
-  return closed;
+  // Per region farther away (by root): its size and whether it reaches out.
+  std::vector<std::size_t> size(n, 0);
+  std::vector<std::uint8_t> reaches_out(n, 0);
+  for (std::size_t v = 0; v < n; ++v)
+  {
+    if (!inside[v])
+    {
+      const std::size_t r = root(v);
+      ++size[r];
+      reaches_out[r] |= !std::isfinite(distance[v]) || solver.on_boundary(std::uint32_t(v));
+    }
+  }
+  bool any_out = false;
+  std::size_t largest = n;
+  for (std::size_t v = 0; v < n; ++v)
+  {
+    any_out = any_out || (size[v] > 0 && reaches_out[v]);
+    if (size[v] > 0 && (largest == n || size[v] > size[largest]))
+    {
+      largest = v;
+    }
+  }
+  std::vector<std::uint8_t> enclosed(n, 0);
+  std::size_t regions = 0;
+  for (std::size_t v = 0; v < n; ++v)
+  {
+    if (size[v] > 0 && !(any_out ? reaches_out[v] : v == largest))
+    {
+      enclosed[v] = 1;
+      ++regions;
+    }
+  }
+  for (std::size_t v = 0; v < n; ++v)
+  {
+    inside[v] = inside[v] || enclosed[root(v)];
+  }
+  return regions;
 }
 
 /// Where the seed (a point of local triangle seed.triangle) lies on the disk.
@@ -360,7 +362,10 @@ Clipped grow(const detail::LocalSurface& local, double radius, std::size_t& hole
         "); pick a point farther from the boundary or a smaller radius");
     }
   }
-  const Clipped clipped = clip_below(local, field.dense(local.mesh.vertex_count()), radius);
+  const std::vector<double> distance = field.dense(local.mesh.vertex_count());
+  std::vector<std::uint8_t> taken;
+  holes_closed = disk_vertices(local, solver, distance, radius, taken);
+  const Clipped clipped = clip_below(local, distance, taken, radius);
   const SurfacePoint seed_on_clip = locate_seed(clipped, local.seed);
   if (seed_on_clip.triangle < 0)
   {
@@ -375,7 +380,6 @@ Clipped grow(const detail::LocalSurface& local, double radius, std::size_t& hole
                         " covers the whole closed surface component (its farthest point is " +
                         format_length(field.distances.back()) + " away); use a smaller radius");
   }
-  holes_closed = close_inner_holes(disk);
   const MeshReport report = mesh_report(disk.mesh.view());
   if (!report.is_manifold())
   {

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <set>
 #include <sstream>
@@ -83,6 +84,49 @@ void align_u_axis(const GeodesicDisk& disk, DiskParameterization& map)
   }
 }
 
+/// Each triangle's linear stretch, ordered by the distance of its (u, v) centroid from the
+/// seed's, as MappingChart keeps them.
+void measure_stretch(MappingChart& chart)
+{
+  const TriangleMesh& mesh = chart.disk.mesh;
+  const std::vector<double>& uv = chart.parameterization.uv;
+  std::vector<std::pair<double, double>> by_radius;
+  by_radius.reserve(mesh.triangle_count());
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
+  {
+    const auto a = std::size_t(mesh.triangles[3 * t]), b = std::size_t(mesh.triangles[3 * t + 1]),
+               c = std::size_t(mesh.triangles[3 * t + 2]);
+    const auto pa = mesh.point(std::int64_t(a)), pb = mesh.point(std::int64_t(b)),
+               pc = mesh.point(std::int64_t(c));
+    const std::array<double, 3> e1{ pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2] };
+    const std::array<double, 3> e2{ pc[0] - pa[0], pc[1] - pa[1], pc[2] - pa[2] };
+    const std::array<double, 3> n{ e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                                   e1[0] * e2[1] - e1[1] * e2[0] };
+    const double area_3d = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double area_uv = 0.5 *
+      std::abs((uv[2 * b] - uv[2 * a]) * (uv[2 * c + 1] - uv[2 * a + 1]) -
+               (uv[2 * c] - uv[2 * a]) * (uv[2 * b + 1] - uv[2 * a + 1]));
+    // Singular values from their product (the area ratio) and ratio (the angle distortion).
+    const double product = area_3d > 0 ? area_uv / area_3d : 0.0;
+    const double ratio = chart.parameterization.angle_distortion[t];
+    const double largest = std::sqrt(product * ratio), smallest = std::sqrt(product / ratio);
+    const double stretch = smallest > 0 && std::isfinite(largest)
+      ? std::max(largest, 1 / smallest)
+      : std::numeric_limits<double>::infinity();
+    const double du = (uv[2 * a] + uv[2 * b] + uv[2 * c]) / 3 - chart.seed_uv[0];
+    const double dv = (uv[2 * a + 1] + uv[2 * b + 1] + uv[2 * c + 1]) / 3 - chart.seed_uv[1];
+    by_radius.emplace_back(std::hypot(du, dv), stretch);
+  }
+  std::sort(by_radius.begin(), by_radius.end());
+  double worst = 1;
+  for (const auto& [radius, stretch] : by_radius)
+  {
+    worst = std::max(worst, stretch);
+    chart.stretch_radius.push_back(radius);
+    chart.stretch_prefix_max.push_back(worst);
+  }
+}
+
 struct MembraneMapper::Impl
 {
   explicit Impl(TriangleMesh mesh)
@@ -121,8 +165,10 @@ struct MembraneMapper::Impl
     SurfacePlacement placement = smooth_placement(disk, this->Surface);
     SurfaceChart chart(disk.mesh, map.uv, disk.normals, std::move(placement));
     const std::array<double, 2> seed_uv = chart.uv_of(disk.seed);
-    return std::make_shared<const MappingChart>(
-      MappingChart{ std::move(disk), std::move(map), std::move(chart), seed_uv, radius });
+    auto result = std::make_shared<MappingChart>(
+      MappingChart{ std::move(disk), std::move(map), std::move(chart), seed_uv, radius, {}, {} });
+    measure_stretch(*result);
+    return result;
   }
 };
 
@@ -249,6 +295,11 @@ void check_request(const MembranePatch& patch, const MapRequest& request)
   {
     throw InvalidInput("the membrane-to-mesh scale must be positive and finite");
   }
+  if (!(request.max_stretch > 1))
+  {
+    throw InvalidInput("the largest stretch accepted must exceed 1, got " +
+                       format_number(request.max_stretch));
+  }
   if (patch.atom_count == 0)
   {
     throw InvalidInput("the membrane patch has no atoms");
@@ -287,6 +338,14 @@ struct MembraneMapper::FitSearch
     {
       why = "its " + std::to_string(k) + " x " + std::to_string(k) +
         " tiles reach beyond the geodesic disk of radius " + format_number(r);
+      return nullptr;
+    }
+    const double stretch = chart->largest_stretch_within(reach);
+    if (!cut && stretch > this->Request.max_stretch)
+    {
+      why = "the geodesic disk of radius " + format_number(r) + " would stretch the " +
+        std::to_string(k) + " x " + std::to_string(k) + " tiles " + format_number(stretch) +
+        "-fold (the surface there cannot be flattened that far)";
       return nullptr;
     }
     return chart;
@@ -406,6 +465,15 @@ MapResult MembraneMapper::map(const SurfacePoint& seed, const MembranePatch& pat
   result.note = "mapped one tile cut to a geodesic disk of radius " + format_number(cut->radius) +
     " instead of " + asked_tiles + " tiles: " + why_not_asked;
   return result;
+}
+
+double MappingChart::largest_stretch_within(double uv_radius) const
+{
+  const auto end =
+    std::upper_bound(this->stretch_radius.begin(), this->stretch_radius.end(), uv_radius);
+  return end == this->stretch_radius.begin()
+    ? 1.0
+    : this->stretch_prefix_max[std::size_t(end - this->stretch_radius.begin()) - 1];
 }
 
 double patch_width(const MembranePatch& patch)

@@ -152,3 +152,38 @@ TEST(GeodesicDisk, TopologyErrors)
     mesolens::geodesic_disk(sphere_solver, mesolens_test::surface_point(sphere, 0), params),
     mesolens::InvalidInput);
 }
+
+TEST(GeodesicDisk, TheTopOfABumpTheFrontWentRoundIsTakenWithItsOwnTriangles)
+{
+  // A tall, narrow bump 2 from the seed: its top is farther than 4 along the surface, the
+  // ground behind it is not. The disk of radius 4 takes the top with the surface's own
+  // triangles (no patch over it) and stays a disk.
+  const auto bumpy = mesolens_test::lifted_grid(161, 8.0, [](double u, double v) {
+    const double r2 = (u - 2) * (u - 2) + v * v;
+    return std::array<double, 3>{ u, v, 3.0 * std::exp(-r2 / 0.25) };
+  });
+  const mesolens::CellSurface surface(bumpy);
+  const auto seed = surface.closest_point({ 0.0, 0.0, 0.0 });
+  mesolens::GeodesicDiskParams params;
+  params.radius = 4.0;
+  params.min_triangles = 0;
+  const auto disk = mesolens::geodesic_disk(surface, seed, params);
+  EXPECT_EQ(disk.holes_closed, 1u);
+  const auto report = report_of(disk);
+  EXPECT_EQ(report.euler_characteristic, 1);
+  EXPECT_EQ(report.boundary_loops, 1u);
+  double top = 0, farthest = 0;
+  for (std::size_t v = 0; v < disk.mesh.vertex_count(); ++v)
+  {
+    top = std::max(top, disk.mesh.point(std::int64_t(v))[2]);
+    farthest = std::max(farthest, disk.distance[v]);
+    EXPECT_GE(disk.original_vertex[v] >= 0 ? 1 : 0, disk.distance[v] > 4.0 ? 1 : 0)
+      << "only input vertices lie beyond the radius";
+  }
+  EXPECT_GT(top, 2.9);     // the bump's summit is in
+  EXPECT_GT(farthest, 4.0); // and it lies beyond the radius
+  for (const std::int64_t source : disk.source_triangle)
+  {
+    EXPECT_GE(source, 0); // every triangle is the surface's
+  }
+}

@@ -55,8 +55,9 @@ struct GeodesicDisk
   int refinement_levels = 0;                 ///< most times a surface triangle was halved
   std::size_t surface_level = 0;             ///< the copy of the surface it was grown on: 0 the
                                              ///< input, k its k-th coarser copy
-  std::size_t holes_closed = 0;              ///< small holes left by the front and filled (loops
-                                             ///< shorter than 1/4 of the outer boundary)
+  std::size_t holes_closed = 0;              ///< regions farther than the radius that the disk
+                                             ///< encloses (a bump's top), taken with their own
+                                             ///< triangles
 };
 
 /// Grows the geodesic disk of `params.radius` around `seed` (a point on surface.mesh()) on the

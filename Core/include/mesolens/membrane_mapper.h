@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace mesolens {
 
@@ -26,6 +27,15 @@ struct MappingChart
   SurfaceChart chart;
   std::array<double, 2> seed_uv{}; ///< where the picked point lies in (u, v)
   double radius = 0;               ///< geodesic radius, mesh units
+  /// The disk's triangles by the distance of their (u, v) centroid from seed_uv, and the
+  /// largest linear stretch among those up to each (see largest_stretch_within).
+  std::vector<double> stretch_radius;
+  std::vector<double> stretch_prefix_max;
+
+  /// The largest factor by which the parameterization stretches or shrinks a length (its
+  /// Jacobian's singular values s1 >= s2: max(s1, 1 / s2)) over the triangles whose (u, v)
+  /// centroid lies within `uv_radius` of seed_uv; 1 for an isometry.
+  double largest_stretch_within(double uv_radius) const;
 };
 
 /// What a click asks for.
@@ -36,6 +46,10 @@ struct MapRequest
   MappingParams mapping;
   /// The disk's radius over the tiled width d (the paper's r = 2 d). Range [0.8, 10]; default 2.
   double radius_factor = 2;
+  /// The largest linear stretch (MappingChart::largest_stretch_within) accepted where the tiles
+  /// lie: a disk that distorts them more (say, one that covers most of a small organelle and
+  /// squeezes its far side into the rim) does not fit. > 1; default 1.5.
+  double max_stretch = 1.5;
   /// Resolution of the disk (GeodesicDiskParams::min_triangles). Default 2000.
   std::size_t min_disk_triangles = 2000;
   /// Disks over more triangles than this grow on a coarser copy of the surface

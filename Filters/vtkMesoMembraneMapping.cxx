@@ -323,6 +323,7 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
     request.mapping.max_polynomial_residual = this->MaximumPolynomialResidual;
     request.mapping.map_atoms = this->OutputAtoms;
     request.radius_factor = this->RadiusFactor;
+    request.max_stretch = this->MaximumStretch;
     request.min_disk_triangles = static_cast<std::size_t>(this->MinimumDiskTriangles);
     request.max_disk_triangles = static_cast<std::size_t>(this->MaximumDiskTriangles);
     request.fit_what_fits = this->MapWhatFits;
@@ -416,6 +417,7 @@ void vtkMesoMembraneMapping::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumPolynomialResidual: " << this->MaximumPolynomialResidual << "\n";
   os << indent << "MinimumDiskTriangles: " << this->MinimumDiskTriangles << "\n";
   os << indent << "MaximumDiskTriangles: " << this->MaximumDiskTriangles << "\n";
+  os << indent << "MaximumStretch: " << this->MaximumStretch << "\n";
   os << indent << "MapWhatFits: " << (this->MapWhatFits ? "on" : "off") << "\n";
   os << indent << "OutputAtoms: " << (this->OutputAtoms ? "on" : "off") << "\n";
 }

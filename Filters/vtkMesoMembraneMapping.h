@@ -27,8 +27,9 @@
  *   atoms mapped by displacement (`PolynomialFallbackTiles`).
  *
  * Every click maps what fits (MapWhatFits, on by default): when the asked k x k tiles do not fit
- * (their disk wraps a handle, meets the mesh's boundary or covers the whole component, or the
- * tiles leave it), the largest k that fits is mapped, and if not even one tile fits, one tile
+ * (their disk wraps a handle, meets the mesh's boundary or covers the whole component, the
+ * tiles leave it, or flattening it would stretch them more than MaximumStretch), the largest k
+ * that fits is mapped, and if not even one tile fits, one tile
  * cut to the largest disk there is (molecules leaving it are dropped). A warning, field data
  * `TilesRequested`, `TilesMapped`, `CutToDisk` and the text `MappingNote` say what was mapped.
  *
@@ -186,6 +187,14 @@ public:
   ///@}
 
   ///@{
+  /// The largest factor by which the flattened disk may stretch or shrink lengths where the
+  /// tiles lie; a disk that distorts them more does not fit (fewer tiles are mapped). Range
+  /// [1.01, 100]; default 1.5.
+  vtkSetClampMacro(MaximumStretch, double, 1.01, 100.0);
+  vtkGetMacro(MaximumStretch, double);
+  ///@}
+
+  ///@{
   /// Map the largest k x k (or one tile cut to a disk) that fits when the asked tiles do not
   /// (on), or fail (off). Default on.
   vtkSetMacro(MapWhatFits, bool);
@@ -212,6 +221,7 @@ protected:
   double MaximumPolynomialResidual = 1;
   int MinimumDiskTriangles = 2000;
   int MaximumDiskTriangles = 16000;
+  double MaximumStretch = 1.5;
   bool MapWhatFits = true;
   bool OutputAtoms = true;
 

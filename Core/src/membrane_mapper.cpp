@@ -359,10 +359,10 @@ struct MembraneMapper::FitSearch
     const double asked = this->Request.radius_factor * k * patch_width(this->Patch) * scale;
     const double smallest = 1.1 * scale * tiled_extent(this->Patch, k);
     auto chart = this->holds(k, asked, false, why);
-    std::string smaller_why;
     if (!chart && smallest < asked)
     {
-      chart = this->holds(k, smallest, false, smaller_why);
+      // The smallest disk that could hold the tiles says best why they do not fit.
+      chart = this->holds(k, smallest, false, why);
     }
     return chart;
   }

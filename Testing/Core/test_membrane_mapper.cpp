@@ -215,6 +215,33 @@ TEST(MembraneMapper, WhatDoesNotFitMapsTheLargestPatchThatDoes)
   }
 }
 
+TEST(MembraneMapper, DisksThatWouldStretchTheTilesDoNotFit)
+{
+  // 3 x 3 tiles of 20 (corners 43 from the centre) need a disk of radius 47 or more on a
+  // sphere of radius 25: a disk, but more than a hemisphere, squeezed into the plane near its
+  // rim; 2 x 2 tiles fit on a smaller cap.
+  const auto sphere = mesolens_test::icosphere(25, 4);
+  const mesolens::MembraneMapper mapper(sphere);
+  const auto patch = mesolens_test::synthetic_patch(30);
+  const auto seed = mapper.seed_near({ 0, 0, 25 });
+  auto r = request(mesolens::MappingMethod::Displacement, 3);
+  const auto result = mapper.map(seed, patch.view(), r);
+  EXPECT_LT(result.tiles_mapped, 3);
+  EXPECT_NE(result.note.find("stretch"), std::string::npos) << result.note;
+  const double reach = std::hypot(result.chart->seed_uv[0], result.chart->seed_uv[1]) +
+    mesolens::tiled_extent(patch.view(), result.tiles_mapped);
+  EXPECT_LE(result.chart->largest_stretch_within(reach), 1.5);
+  // The same chart stretches more further out, and not at all at its centre.
+  EXPECT_GE(result.chart->largest_stretch_within(result.chart->radius),
+            result.chart->largest_stretch_within(reach));
+  EXPECT_EQ(result.chart->largest_stretch_within(0.0), 1.0);
+  // A looser bound lets all 9 tiles in; a bound of 1 or less is refused.
+  r.max_stretch = 1000;
+  EXPECT_EQ(mapper.map(seed, patch.view(), r).tiles_mapped, 3);
+  r.max_stretch = 1;
+  EXPECT_THROW(mapper.map(seed, patch.view(), r), mesolens::InvalidInput);
+}
+
 TEST(MembraneMapper, BitwiseIdenticalRunToRunAndOnAnyThreads)
 {
   const auto surface = mesolens_test::torus(120, 40, 90, 36);

@@ -113,9 +113,18 @@ void measure_stretch(MappingChart& chart)
     const double stretch = smallest > 0 && std::isfinite(largest)
       ? std::max(largest, 1 / smallest)
       : std::numeric_limits<double>::infinity();
-    const double du = (uv[2 * a] + uv[2 * b] + uv[2 * c]) / 3 - chart.seed_uv[0];
-    const double dv = (uv[2 * a + 1] + uv[2 * b + 1] + uv[2 * c + 1]) / 3 - chart.seed_uv[1];
-    by_radius.emplace_back(std::hypot(du, dv), stretch);
+    // The nearest the triangle comes to the seed in (u, v), near enough: its centroid's distance
+    // less its corners' largest distance from the centroid.
+    const double cu = (uv[2 * a] + uv[2 * b] + uv[2 * c]) / 3;
+    const double cv = (uv[2 * a + 1] + uv[2 * b + 1] + uv[2 * c + 1]) / 3;
+    double spread = 0;
+    for (const std::size_t corner : { a, b, c })
+    {
+      spread = std::max(spread, std::hypot(uv[2 * corner] - cu, uv[2 * corner + 1] - cv));
+    }
+    const double nearest =
+      std::max(0.0, std::hypot(cu - chart.seed_uv[0], cv - chart.seed_uv[1]) - spread);
+    by_radius.emplace_back(nearest, stretch);
   }
   std::sort(by_radius.begin(), by_radius.end());
   double worst = 1;

@@ -27,14 +27,14 @@ struct MappingChart
   SurfaceChart chart;
   std::array<double, 2> seed_uv{}; ///< where the picked point lies in (u, v)
   double radius = 0;               ///< geodesic radius, mesh units
-  /// The disk's triangles by the distance of their (u, v) centroid from seed_uv, and the
-  /// largest linear stretch among those up to each (see largest_stretch_within).
+  /// The disk's triangles by how near they come to seed_uv in (u, v), and the largest linear
+  /// stretch among those up to each (see largest_stretch_within).
   std::vector<double> stretch_radius;
   std::vector<double> stretch_prefix_max;
 
   /// The largest factor by which the parameterization stretches or shrinks a length (its
-  /// Jacobian's singular values s1 >= s2: max(s1, 1 / s2)) over the triangles whose (u, v)
-  /// centroid lies within `uv_radius` of seed_uv; 1 for an isometry.
+  /// Jacobian's singular values s1 >= s2: max(s1, 1 / s2)) over the triangles that come within
+  /// `uv_radius` of seed_uv in (u, v); 1 for an isometry.
   double largest_stretch_within(double uv_radius) const;
 };
 

@@ -3,11 +3,11 @@
 
 #include "mesolens/errors.h"
 #include "mesolens/surface_locator.h"
+#include "edge_key.h"
 #include "surface_levels.h"
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
 #include <numeric>
 
 namespace mesolens {
@@ -28,9 +28,9 @@ MeshAdjacency mesh_adjacency(const TriangleMesh& mesh)
   {
     for (std::size_t k = 0; k < 3; ++k)
     {
-      const auto a = std::uint64_t(mesh.triangles[3 * t + k]);
-      const auto b = std::uint64_t(mesh.triangles[3 * t + (k + 1) % 3]);
-      sides[3 * t + k] = { (std::min(a, b) << 32) | std::max(a, b), std::int64_t(3 * t + k) };
+      sides[3 * t + k] = { detail::edge_key(mesh.triangles[3 * t + k],
+                                            mesh.triangles[3 * t + (k + 1) % 3]),
+                           std::int64_t(3 * t + k) };
     }
   }
   std::sort(sides.begin(), sides.end(), [](const Side& x, const Side& y) {
@@ -67,14 +67,8 @@ MeshAdjacency mesh_adjacency(const TriangleMesh& mesh)
 
 struct CellSurface::Impl
 {
-  std::shared_ptr<const SmoothSurface> Smooth;
   std::vector<std::unique_ptr<detail::SurfaceLevel>> Levels; // [0]: the input
   double Diagonal = 0;
-  double LongestEdge = 0;
-  const SurfaceLocator& locator() const
-  {
-    return this->Levels.front()->locator();
-  }
 };
 
 CellSurface::CellSurface(TriangleMesh mesh)
@@ -92,18 +86,6 @@ CellSurface::CellSurface(TriangleMesh mesh)
   impl.Diagonal =
     std::sqrt((high[0] - low[0]) * (high[0] - low[0]) + (high[1] - low[1]) * (high[1] - low[1]) +
               (high[2] - low[2]) * (high[2] - low[2]));
-  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
-  {
-    for (std::size_t k = 0; k < 3; ++k)
-    {
-      const auto a = mesh.point(mesh.triangles[3 * t + k]);
-      const auto b = mesh.point(mesh.triangles[3 * t + (k + 1) % 3]);
-      impl.LongestEdge =
-        std::max(impl.LongestEdge,
-                 std::sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
-                           (a[2] - b[2]) * (a[2] - b[2])));
-    }
-  }
   auto input = std::make_unique<detail::SurfaceLevel>();
   input->adjacency = mesh_adjacency(mesh);
   input->input_vertex.resize(mesh.vertex_count());
@@ -115,9 +97,8 @@ CellSurface::CellSurface(TriangleMesh mesh)
   }
   input->smooth = std::make_shared<const SmoothSurface>(std::move(mesh));
   input->measure();
-  impl.Smooth = input->smooth;
   impl.Levels.push_back(std::move(input));
-  if (impl.Smooth->mesh().triangle_count() > coarse_copies_above)
+  if (this->mesh().triangle_count() > coarse_copies_above)
   {
     // Copies down to a few thousand vertices: every disk then has a copy within reach.
     for (auto& level : detail::coarser_levels(*impl.Levels.front(), coarse_copies_above / 8))
@@ -141,17 +122,12 @@ CellSurface::~CellSurface() = default;
 
 const TriangleMesh& CellSurface::mesh() const
 {
-  return this->Internal->Smooth->mesh();
+  return this->smooth().mesh();
 }
 
 const SmoothSurface& CellSurface::smooth() const
 {
-  return *this->Internal->Smooth;
-}
-
-std::shared_ptr<const SmoothSurface> CellSurface::shared_smooth() const
-{
-  return this->Internal->Smooth;
+  return *this->Internal->Levels.front()->smooth;
 }
 
 const MeshAdjacency& CellSurface::adjacency() const
@@ -164,20 +140,9 @@ double CellSurface::bounding_diagonal() const
   return this->Internal->Diagonal;
 }
 
-double CellSurface::longest_edge() const
-{
-  return this->Internal->LongestEdge;
-}
-
 SurfacePoint CellSurface::closest_point(const std::array<double, 3>& point, double* distance) const
 {
-  return this->Internal->locator().closest_point(point, distance);
-}
-
-SurfacePoint CellSurface::closest_point(const std::array<double, 3>& point,
-                                        const SurfacePoint* hint, double* distance) const
-{
-  return this->Internal->locator().closest_point(point, hint, distance);
+  return this->Internal->Levels.front()->locator().closest_point(point, distance);
 }
 
 } // namespace mesolens

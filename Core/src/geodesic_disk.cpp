@@ -2,26 +2,22 @@
 #include "mesolens/geodesic_disk.h"
 
 #include "mesolens/errors.h"
+#include "disjoint_sets.h"
+#include "edge_key.h"
 #include "local_surface.h"
 #include "surface_levels.h"
 
 #include <algorithm>
 #include <cmath>
-#include <functional>
 #include <limits>
-#include <map>
 #include <memory>
-#include <numeric>
 #include <sstream>
 #include <unordered_map>
 
 namespace mesolens {
 
 namespace {
-std::uint64_t edge_key(std::int64_t a, std::int64_t b)
-{
-  return (std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b));
-}
+using detail::edge_key;
 
 std::string format_length(double value)
 {
@@ -39,8 +35,8 @@ struct Clipped
   std::vector<double> distance;
   std::vector<double> normals;            // 3 per vertex
   std::vector<std::int64_t> origin;       // per vertex: input vertex or -1
-  std::vector<std::int64_t> parent;       // per triangle: local triangle, -1 for a hole's fan
-  std::vector<std::int64_t> source;       // per triangle: input triangle, -1 for a hole's fan
+  std::vector<std::int64_t> parent;       // per triangle: local triangle
+  std::vector<std::int64_t> source;       // per triangle: input triangle
   std::vector<double> source_barycentric; // 9 per triangle
 
   std::int64_t add_vertex(const std::array<double, 3>& p, const std::array<double, 3>& n, double d,
@@ -172,15 +168,7 @@ Clipped clip_below(const detail::LocalSurface& local, const std::vector<double>&
 Clipped component_of(const Clipped& in, std::int64_t keep_triangle)
 {
   const std::size_t n = in.mesh.triangle_count();
-  std::vector<std::size_t> parent(n);
-  std::iota(parent.begin(), parent.end(), std::size_t(0));
-  auto root = [&parent](std::size_t x) {
-    while (parent[x] != x)
-    {
-      x = parent[x] = parent[parent[x]];
-    }
-    return x;
-  };
+  detail::DisjointSets components(n);
   std::unordered_map<std::uint64_t, std::size_t> first_triangle;
   for (std::size_t t = 0; t < n; ++t)
   {
@@ -191,16 +179,16 @@ Clipped component_of(const Clipped& in, std::int64_t keep_triangle)
       const auto found = first_triangle.emplace(key, t);
       if (!found.second)
       {
-        parent[root(t)] = root(found.first->second);
+        components.join(t, found.first->second);
       }
     }
   }
   Clipped out;
   std::vector<std::int64_t> new_index(in.distance.size(), -1);
-  const std::size_t keep = root(std::size_t(keep_triangle));
+  const std::size_t keep = components.root(std::size_t(keep_triangle));
   for (std::size_t t = 0; t < n; ++t)
   {
-    if (root(t) != keep)
+    if (components.root(t) != keep)
     {
       continue;
     }
@@ -234,15 +222,7 @@ std::size_t disk_vertices(const detail::LocalSurface& local, const GeodesicSolve
 {
   const std::size_t n = distance.size();
   inside.assign(n, 0);
-  std::vector<std::size_t> parent(n);
-  std::iota(parent.begin(), parent.end(), std::size_t(0));
-  auto root = [&parent](std::size_t x) {
-    while (parent[x] != x)
-    {
-      x = parent[x] = parent[parent[x]];
-    }
-    return x;
-  };
+  detail::DisjointSets farther(n);
   for (std::size_t v = 0; v < n; ++v)
   {
     inside[v] = distance[v] <= radius;
@@ -256,7 +236,7 @@ std::size_t disk_vertices(const detail::LocalSurface& local, const GeodesicSolve
       const auto b = std::size_t(mesh.triangles[3 * t + (k + 1) % 3]);
       if (!inside[a] && !inside[b])
       {
-        parent[root(a)] = root(b);
+        farther.join(a, b);
       }
     }
   }
@@ -267,7 +247,7 @@ std::size_t disk_vertices(const detail::LocalSurface& local, const GeodesicSolve
   {
     if (!inside[v])
     {
-      const std::size_t r = root(v);
+      const std::size_t r = farther.root(v);
       ++size[r];
       reaches_out[r] |= !std::isfinite(distance[v]) || solver.on_boundary(std::uint32_t(v));
     }
@@ -294,7 +274,7 @@ std::size_t disk_vertices(const detail::LocalSurface& local, const GeodesicSolve
   }
   for (std::size_t v = 0; v < n; ++v)
   {
-    inside[v] = inside[v] || enclosed[root(v)];
+    inside[v] = inside[v] || enclosed[farther.root(v)];
   }
   return regions;
 }
@@ -417,7 +397,8 @@ GeodesicDisk geodesic_disk(const CellSurface& surface, const SurfacePoint& seed,
     local_params.target_edge = params.radius * std::sqrt(4 * pi / double(params.min_triangles));
   }
   // The finest copy of the surface with few enough triangles within reach: predicted from the
-  // copies' mean triangle areas, then counted on the copy chosen (a coarser one if too many).
+  // copies' mean triangle areas, then counted while the local surface is gathered (a coarser
+  // copy if too many; the coarsest takes any number).
   std::size_t level = 0;
   if (params.max_triangles > 0 && surface.level_count() > 1)
   {
@@ -429,16 +410,19 @@ GeodesicDisk geodesic_disk(const CellSurface& surface, const SurfacePoint& seed,
       ++level;
     }
   }
-  SurfacePoint level_seed = level == 0 ? seed : surface.level(level).closest_point(seed.position);
-  while (params.max_triangles > 0 && level + 1 < surface.level_count() &&
-         detail::triangles_within(surface.level(level), level_seed, local_params.reach,
-                                  params.max_triangles + 1) > params.max_triangles)
+  detail::LocalSurface local;
+  for (;; ++level)
   {
-    ++level;
-    level_seed = surface.level(level).closest_point(seed.position);
+    const SurfacePoint level_seed =
+      level == 0 ? seed : surface.level(level).closest_point(seed.position);
+    local_params.max_region = level + 1 < surface.level_count() ? params.max_triangles : 0;
+    local = detail::local_surface(surface.level(level), level_seed, local_params);
+    if (!local.region_too_large)
+    {
+      break;
+    }
   }
   const detail::SurfaceLevel& copy = surface.level(level);
-  const detail::LocalSurface local = detail::local_surface(copy, level_seed, local_params);
   if (local.seed.triangle < 0)
   {
     throw InvalidInput("the seed does not lie on the surface around it");
@@ -458,8 +442,7 @@ GeodesicDisk geodesic_disk(const CellSurface& surface, const SurfacePoint& seed,
     const std::int64_t v = disk.origin[i];
     if (v >= 0)
     {
-      result.original_vertex[i] =
-        copy.input_vertex.empty() ? -1 : copy.input_vertex[std::size_t(v)];
+      result.original_vertex[i] = copy.input_vertex[std::size_t(v)];
       result.nearby_triangle[i] = copy.anchor_triangle[std::size_t(v)];
     }
   }
@@ -504,35 +487,24 @@ SurfacePlacement smooth_placement(const GeodesicDisk& disk, const CellSurface& s
     const auto t = std::size_t(triangle);
     const std::int64_t source = sources->triangle[t];
     std::array<double, 3> in_source{ 0, 0, 0 };
-    if (source >= 0)
+    const double* corners = &sources->barycentric[9 * t];
+    for (std::size_t k = 0; k < 3; ++k)
     {
-      const double* corners = &sources->barycentric[9 * t];
-      for (std::size_t k = 0; k < 3; ++k)
+      for (std::size_t d = 0; d < 3; ++d)
       {
-        for (std::size_t d = 0; d < 3; ++d)
-        {
-          in_source[d] += barycentric[k] * corners[3 * k + d];
-        }
+        in_source[d] += barycentric[k] * corners[3 * k + d];
       }
     }
     if (sources->level == 0)
     {
-      if (source >= 0) // else a filled hole: no surface to follow there
-      {
-        const SmoothPoint point = cell->smooth().evaluate(source, in_source);
-        frame.position = point.position;
-        frame.normal = point.normal;
-      }
+      const SmoothPoint point = cell->smooth().evaluate(source, in_source);
+      frame.position = point.position;
+      frame.normal = point.normal;
       return;
     }
-    // Grown on a coarser copy: its smooth point, then the input's closest to it, found by
-    // walking the input from the corner nearest in the disk.
-    const detail::SurfaceLevel& copy = cell->level(sources->level);
-    SmoothPoint coarse{ frame.position, frame.normal };
-    if (source >= 0)
-    {
-      coarse = copy.smooth->evaluate(source, in_source);
-    }
+    // Grown on a coarser copy: its smooth point, then the input's point along the copy's normal
+    // from it, found by walking the input from the corner nearest in the disk.
+    const SmoothPoint coarse = cell->level(sources->level).smooth->evaluate(source, in_source);
     const std::array<double, 3>& near = coarse.position;
     std::int64_t start = -1;
     double weight = -1;

@@ -4,6 +4,7 @@
 #include "mesolens/errors.h"
 
 #include "mesolens/surface_locator.h"
+#include "edge_key.h"
 
 #include <algorithm>
 #include <cmath>
@@ -119,7 +120,7 @@ struct GeodesicSolver::Impl
   std::int64_t across(const std::vector<std::pair<std::uint64_t, std::uint32_t>>& edges,
                       std::uint32_t a, std::uint32_t b, std::uint32_t triangle) const
   {
-    const std::uint64_t key = (std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b));
+    const std::uint64_t key = detail::edge_key(a, b);
     auto it = std::lower_bound(edges.begin(), edges.end(), std::make_pair(key, std::uint32_t(0)));
     for (; it != edges.end() && it->first == key; ++it)
     {
@@ -229,8 +230,7 @@ struct GeodesicSolver::Impl
       {
         const auto a = std::uint32_t(this->Mesh.triangles[3 * t + std::size_t(k)]);
         const auto b = std::uint32_t(this->Mesh.triangles[3 * t + std::size_t((k + 1) % 3)]);
-        edges.emplace_back((std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b)),
-                           t);
+        edges.emplace_back(detail::edge_key(a, b), t);
         this->LongestEdge = std::max(this->LongestEdge, distance3(this->point(a), this->point(b)));
       }
     }

@@ -168,6 +168,7 @@ DiskParameterization harmonic_parameterization(const TriangleMesh& disk, double 
   const std::size_t triangles = disk.triangle_count();
   result.angle_distortion.resize(triangles);
   result.area_distortion.resize(triangles);
+  result.stretch.resize(triangles);
   std::vector<double> ratio(triangles);
   double total_uv = 0;
   double total_3d = 0;
@@ -205,6 +206,9 @@ DiskParameterization harmonic_parameterization(const TriangleMesh& disk, double 
     const double s_min = std::abs(q - r);
     result.angle_distortion[t] =
       s_min > 0 ? s_max / s_min : std::numeric_limits<double>::infinity();
+    result.stretch[t] = s_min > 0 && std::isfinite(s_max)
+      ? std::max(s_max, 1 / s_min)
+      : std::numeric_limits<double>::infinity();
     ratio[t] = std::abs(area_uv) / area_3d;
     total_uv += std::abs(area_uv);
     total_3d += area_3d;

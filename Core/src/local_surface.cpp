@@ -2,6 +2,7 @@
 #include "local_surface.h"
 
 #include "mesolens/errors.h"
+#include "edge_key.h"
 #include "triangle_closest_point.h"
 
 #include <algorithm>
@@ -48,6 +49,15 @@ double patch_bulge(const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& n)
   return 0.5 * largest;
 }
 
+/// Whether the smooth patch over corners p (normals n) may come within `reach` of `centre`:
+/// the flat triangle does, within `bulge_factor` times the patch's bulge bound.
+bool patch_within(const std::array<Vec3, 3>& p, const std::array<Vec3, 3>& n, const Vec3& centre,
+                  double reach, double bulge_factor)
+{
+  return point_triangle_distance(centre, p[0], p[1], p[2]) <=
+    reach + bulge_factor * patch_bulge(p, n);
+}
+
 /// Whether input triangle t (with its smooth patch) comes within `reach` of `centre`.
 bool input_triangle_within(const SurfaceLevel& surface, std::int64_t t, const Vec3& centre,
                            double reach)
@@ -61,11 +71,11 @@ bool input_triangle_within(const SurfaceLevel& surface, std::int64_t t, const Ve
     p[k] = mesh.point(std::int64_t(v));
     n[k] = { normals[3 * v], normals[3 * v + 1], normals[3 * v + 2] };
   }
-  return point_triangle_distance(centre, p[0], p[1], p[2]) <= reach + patch_bulge(p, n);
+  return patch_within(p, n, centre, reach, 1.0);
 }
 
 /// Input triangles within reach, edge-connected to the seed's, in the order a breadth-first
-/// walk meets them; stops after `limit` triangles.
+/// walk meets them; stops once it has more than `limit`.
 std::vector<std::int64_t> gather(const SurfaceLevel& surface, const SurfacePoint& seed,
                                  double reach, std::size_t limit,
                                  std::unordered_map<std::int64_t, bool>& seen)
@@ -73,7 +83,7 @@ std::vector<std::int64_t> gather(const SurfaceLevel& surface, const SurfacePoint
   const MeshAdjacency& adjacency = surface.adjacency;
   std::vector<std::int64_t> region{ seed.triangle };
   seen[seed.triangle] = true;
-  for (std::size_t i = 0; i < region.size() && region.size() < limit; ++i)
+  for (std::size_t i = 0; i < region.size() && region.size() <= limit; ++i)
   {
     for (std::size_t k = 0; k < 3; ++k)
     {
@@ -143,11 +153,6 @@ void complete_fans(const SurfaceLevel& surface, std::vector<std::int64_t>& regio
       }
     }
   }
-}
-
-std::uint64_t edge_key(std::int64_t a, std::int64_t b)
-{
-  return (std::uint64_t(std::min(a, b)) << 32) | std::uint64_t(std::max(a, b));
 }
 
 /// The local mesh while it is refined: triangles live in slots; a bisected triangle keeps its
@@ -320,8 +325,7 @@ private:
     }
     // 1.5 times the bulge bound: a piece of a patch bulges less than the bound its corners give,
     // but not by a known factor.
-    return point_triangle_distance(this->Centre, p[0], p[1], p[2]) <=
-      this->Reach + 1.5 * patch_bulge(p, n);
+    return patch_within(p, n, this->Centre, this->Reach, 1.5);
   }
 
   std::int64_t other_triangle(std::uint64_t key, std::size_t t) const
@@ -502,9 +506,22 @@ LocalSurface local_surface(const SurfaceLevel& surface, const SurfacePoint& seed
   {
     throw InvalidInput("the reach around the seed must be positive and finite");
   }
+  const bool region_limited = params.max_region > 0 && params.max_region < params.max_triangles;
+  const std::size_t limit = region_limited ? params.max_region : params.max_triangles;
   std::unordered_map<std::int64_t, bool> seen;
-  std::vector<std::int64_t> region =
-    gather(surface, seed, params.reach, params.max_triangles, seen);
+  std::vector<std::int64_t> region = gather(surface, seed, params.reach, limit, seen);
+  if (region.size() > limit)
+  {
+    if (region_limited)
+    {
+      LocalSurface too_large;
+      too_large.region_too_large = true;
+      return too_large;
+    }
+    throw SolverFailure("more than " + std::to_string(params.max_triangles) +
+                        " triangles of the surface lie within " + std::to_string(params.reach) +
+                        " of the seed");
+  }
   complete_fans(surface, region, seen);
   Refinement refinement(surface, seed.position, params.reach, params.target_edge,
                         params.max_triangles);
@@ -514,13 +531,6 @@ LocalSurface local_surface(const SurfaceLevel& surface, const SurfacePoint& seed
   LocalSurface local = std::move(refinement.Out);
   local.seed = locate_seed(local, seed);
   return local;
-}
-
-std::size_t triangles_within(const SurfaceLevel& surface, const SurfacePoint& seed, double reach,
-                             std::size_t limit)
-{
-  std::unordered_map<std::int64_t, bool> seen;
-  return gather(surface, seed, reach, limit, seen).size();
 }
 
 } // namespace detail

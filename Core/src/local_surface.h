@@ -24,6 +24,9 @@ struct LocalSurface
   std::vector<double> source_barycentric;    ///< 9 per triangle: its corners in that triangle
   SurfacePoint seed;                         ///< the seed, on `mesh`
   int bisection_depth = 0;                   ///< most halvings any triangle went through
+  /// More than LocalSurfaceParams::max_region input triangles lie within reach: nothing else
+  /// is set.
+  bool region_too_large = false;
 };
 
 /// Sizes of local_surface(), mesh units.
@@ -34,7 +37,10 @@ struct LocalSurfaceParams
   double reach = 0;
   /// Triangles within reach whose longest edge exceeds this are bisected; <= 0: none.
   double target_edge = 0;
-  /// Refinement stops with SolverFailure beyond this many triangles (a safeguard).
+  /// With more input triangles than this within reach (> 0), local_surface() stops there
+  /// and reports region_too_large; 0: no such limit.
+  std::size_t max_region = 0;
+  /// Gathering and refinement stop with SolverFailure beyond this many triangles (a safeguard).
   std::size_t max_triangles = 2000000;
 };
 
@@ -44,11 +50,6 @@ struct LocalSurfaceParams
 /// all of them. Deterministic.
 LocalSurface local_surface(const SurfaceLevel& surface, const SurfacePoint& seed,
                            const LocalSurfaceParams& params);
-
-/// How many triangles of `surface` lie within `reach` of `seed` (edge-connected to the seed's
-/// triangle), counting no further than `limit`.
-std::size_t triangles_within(const SurfaceLevel& surface, const SurfacePoint& seed, double reach,
-                             std::size_t limit);
 
 } // namespace detail
 } // namespace mesolens

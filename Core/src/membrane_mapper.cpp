@@ -47,7 +47,6 @@ double molecule_footprint(const MembranePatch& patch)
   const double footprint = patch.molecule_ids ? area / per_leaflet : std::min(area, 60.0);
   return std::sqrt(footprint / pi);
 }
-} // namespace
 
 /// Turns the parameterization about the disk's centre so that +u at the seed points along the
 /// mesh's +x axis as seen in the tangent plane there (+y where the surface faces along x): the
@@ -96,23 +95,7 @@ void measure_stretch(MappingChart& chart)
   {
     const auto a = std::size_t(mesh.triangles[3 * t]), b = std::size_t(mesh.triangles[3 * t + 1]),
                c = std::size_t(mesh.triangles[3 * t + 2]);
-    const auto pa = mesh.point(std::int64_t(a)), pb = mesh.point(std::int64_t(b)),
-               pc = mesh.point(std::int64_t(c));
-    const std::array<double, 3> e1{ pb[0] - pa[0], pb[1] - pa[1], pb[2] - pa[2] };
-    const std::array<double, 3> e2{ pc[0] - pa[0], pc[1] - pa[1], pc[2] - pa[2] };
-    const std::array<double, 3> n{ e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                                   e1[0] * e2[1] - e1[1] * e2[0] };
-    const double area_3d = 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    const double area_uv = 0.5 *
-      std::abs((uv[2 * b] - uv[2 * a]) * (uv[2 * c + 1] - uv[2 * a + 1]) -
-               (uv[2 * c] - uv[2 * a]) * (uv[2 * b + 1] - uv[2 * a + 1]));
-    // Singular values from their product (the area ratio) and ratio (the angle distortion).
-    const double product = area_3d > 0 ? area_uv / area_3d : 0.0;
-    const double ratio = chart.parameterization.angle_distortion[t];
-    const double largest = std::sqrt(product * ratio), smallest = std::sqrt(product / ratio);
-    const double stretch = smallest > 0 && std::isfinite(largest)
-      ? std::max(largest, 1 / smallest)
-      : std::numeric_limits<double>::infinity();
+    const double stretch = chart.parameterization.stretch[t];
     // The nearest the triangle comes to the seed in (u, v), near enough: its centroid's distance
     // less its corners' largest distance from the centroid.
     const double cu = (uv[2 * a] + uv[2 * b] + uv[2 * c]) / 3;
@@ -135,6 +118,8 @@ void measure_stretch(MappingChart& chart)
     chart.stretch_prefix_max.push_back(worst);
   }
 }
+
+} // namespace
 
 struct MembraneMapper::Impl
 {

@@ -205,6 +205,12 @@ public:
   bool MapAtoms = true;
   std::vector<std::string> Failures;
 
+  /// Molecules of the patch (0 unless instancing or cutting to a disk grouped them).
+  std::size_t molecule_count() const
+  {
+    return this->Groups.ids.size();
+  }
+
   void displacement(std::size_t tile)
   {
     const int i = int(tile % std::size_t(this->Params.tiles));
@@ -622,7 +628,7 @@ MappedMembrane map_membrane(const SurfaceChart& chart, const MembranePatch& patc
       each_tile([&mapper](std::size_t tile) { mapper.displacement(tile); });
       break;
     case MappingMethod::MoleculeInstancing: {
-      const std::size_t molecules = group_molecules(patch).ids.size();
+      const std::size_t molecules = mapper.molecule_count();
       mapped.instance_matrices.resize(16 * molecules * tile_count);
       mapped.instance_molecules.resize(molecules * tile_count);
       mapped.instance_tiles.resize(molecules * tile_count);

@@ -167,24 +167,20 @@ bool SurfaceChart::locate(double u, double v, SurfacePoint& point) const
   return found;
 }
 
-bool SurfaceChart::frame(double u, double v, SurfaceFrame& frame) const
+namespace {
+/// The vertex normals interpolated at `point` (a point of `disk`), unit length.
+std::array<double, 3> interpolated_normal(const TriangleMesh& disk,
+                                          const std::vector<double>& normals,
+                                          const SurfacePoint& point)
 {
-  SurfacePoint point;
-  if (!this->locate(u, v, point))
-  {
-    return false;
-  }
-  frame.position = point.position;
-  const std::size_t t = std::size_t(point.triangle);
+  const auto t = std::size_t(point.triangle);
   std::array<double, 3> normal{ 0, 0, 0 };
-  std::array<std::size_t, 3> vertex{};
-  for (int k = 0; k < 3; ++k)
+  for (std::size_t k = 0; k < 3; ++k)
   {
-    vertex[std::size_t(k)] = std::size_t(this->Disk.triangles[3 * t + std::size_t(k)]);
-    for (int d = 0; d < 3; ++d)
+    const auto vertex = std::size_t(disk.triangles[3 * t + k]);
+    for (std::size_t d = 0; d < 3; ++d)
     {
-      normal[std::size_t(d)] += point.barycentric[std::size_t(k)] *
-        this->Normals[3 * vertex[std::size_t(k)] + std::size_t(d)];
+      normal[d] += point.barycentric[k] * normals[3 * vertex + d];
     }
   }
   const double length =
@@ -193,44 +189,67 @@ bool SurfaceChart::frame(double u, double v, SurfaceFrame& frame) const
   {
     x /= length;
   }
-  frame.normal = normal;
-  if (this->Placement)
+  return normal;
+}
+
+/// Sets frame.tangent_u (d position / du of the triangle's affine map, made orthogonal to
+/// frame.normal) and frame.tangent_v.
+void set_tangents(const TriangleMesh& disk, const std::vector<double>& uv, std::int64_t triangle,
+                  SurfaceFrame& frame)
+{
+  const auto t = std::size_t(triangle);
+  std::array<std::size_t, 3> vertex{};
+  for (std::size_t k = 0; k < 3; ++k)
   {
-    this->Placement(point.triangle, point.barycentric, frame);
-    normal = frame.normal;
+    vertex[k] = std::size_t(disk.triangles[3 * t + k]);
   }
-  // d position / du of the triangle's affine map: E * inverse(UV), with E the 3D edge vectors
-  // and UV the uv edge vectors.
-  const auto p0 = this->Disk.point(std::int64_t(vertex[0]));
-  const auto p1 = this->Disk.point(std::int64_t(vertex[1]));
-  const auto p2 = this->Disk.point(std::int64_t(vertex[2]));
-  const double du1 = this->Uv[2 * vertex[1]] - this->Uv[2 * vertex[0]];
-  const double dv1 = this->Uv[2 * vertex[1] + 1] - this->Uv[2 * vertex[0] + 1];
-  const double du2 = this->Uv[2 * vertex[2]] - this->Uv[2 * vertex[0]];
-  const double dv2 = this->Uv[2 * vertex[2] + 1] - this->Uv[2 * vertex[0] + 1];
+  // d position / du: E * inverse(UV), with E the 3D edge vectors and UV the uv edge vectors.
+  const auto p0 = disk.point(std::int64_t(vertex[0]));
+  const auto p1 = disk.point(std::int64_t(vertex[1]));
+  const auto p2 = disk.point(std::int64_t(vertex[2]));
+  const double du1 = uv[2 * vertex[1]] - uv[2 * vertex[0]];
+  const double dv1 = uv[2 * vertex[1] + 1] - uv[2 * vertex[0] + 1];
+  const double du2 = uv[2 * vertex[2]] - uv[2 * vertex[0]];
+  const double dv2 = uv[2 * vertex[2] + 1] - uv[2 * vertex[0] + 1];
   const double determinant = du1 * dv2 - du2 * dv1;
+  const std::array<double, 3>& normal = frame.normal;
   std::array<double, 3> along_u{};
-  for (int d = 0; d < 3; ++d)
+  for (std::size_t d = 0; d < 3; ++d)
   {
-    along_u[std::size_t(d)] = ((p1[std::size_t(d)] - p0[std::size_t(d)]) * dv2 -
-                               (p2[std::size_t(d)] - p0[std::size_t(d)]) * dv1) /
-      determinant;
+    along_u[d] = ((p1[d] - p0[d]) * dv2 - (p2[d] - p0[d]) * dv1) / determinant;
   }
   const double along_normal =
     along_u[0] * normal[0] + along_u[1] * normal[1] + along_u[2] * normal[2];
-  for (int d = 0; d < 3; ++d)
+  for (std::size_t d = 0; d < 3; ++d)
   {
-    along_u[std::size_t(d)] -= along_normal * normal[std::size_t(d)];
+    along_u[d] -= along_normal * normal[d];
   }
   const double tangent_length =
     std::sqrt(along_u[0] * along_u[0] + along_u[1] * along_u[1] + along_u[2] * along_u[2]);
-  for (int d = 0; d < 3; ++d)
+  for (std::size_t d = 0; d < 3; ++d)
   {
-    frame.tangent_u[std::size_t(d)] = along_u[std::size_t(d)] / tangent_length;
+    frame.tangent_u[d] = along_u[d] / tangent_length;
   }
   frame.tangent_v = { normal[1] * frame.tangent_u[2] - normal[2] * frame.tangent_u[1],
                       normal[2] * frame.tangent_u[0] - normal[0] * frame.tangent_u[2],
                       normal[0] * frame.tangent_u[1] - normal[1] * frame.tangent_u[0] };
+}
+} // namespace
+
+bool SurfaceChart::frame(double u, double v, SurfaceFrame& frame) const
+{
+  SurfacePoint point;
+  if (!this->locate(u, v, point))
+  {
+    return false;
+  }
+  frame.position = point.position;
+  frame.normal = interpolated_normal(this->Disk, this->Normals, point);
+  if (this->Placement)
+  {
+    this->Placement(point.triangle, point.barycentric, frame);
+  }
+  set_tangents(this->Disk, this->Uv, point.triangle, frame);
   return true;
 }
 

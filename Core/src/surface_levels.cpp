@@ -39,6 +39,7 @@ constexpr double smallest_normal_cosine = 0.5;
 class RoundDecimation
 {
 public:
+  /// `mesh` and `input_vertex` must outlive the decimation (its vertices never move).
   RoundDecimation(const TriangleMesh& mesh, const std::vector<std::int64_t>& input_vertex)
     : Points(mesh.points)
     , InputVertex(input_vertex)
@@ -94,8 +95,8 @@ public:
   }
 
 private:
-  std::vector<double> Points;
-  std::vector<std::int64_t> InputVertex;
+  const std::vector<double>& Points;
+  const std::vector<std::int64_t>& InputVertex;
   std::vector<std::array<std::int64_t, 3>> Triangles; // [0] = -1: removed
   // Per round: triangles around each vertex (CSR) and what is locked.
   std::vector<std::size_t> Start;
@@ -160,34 +161,30 @@ private:
     }
   }
 
-  /// Whether moving a and b to `middle` (a's place) keeps every other triangle around them
-  /// turned by at most 60 degrees and not degenerate.
-  bool keeps_orientation(std::int64_t a, std::int64_t b, const Vec3& middle) const
+  /// Whether moving b onto a (collapsing b into a) keeps every other triangle around b turned
+  /// by at most 60 degrees and not degenerate; a's other triangles do not change.
+  bool keeps_orientation(std::int64_t a, std::int64_t b) const
   {
-    for (const std::int64_t end : { a, b })
+    const Vec3 target = this->point(a);
+    for (std::size_t i = this->Start[std::size_t(b)]; i < this->Start[std::size_t(b) + 1]; ++i)
     {
-      for (std::size_t i = this->Start[std::size_t(end)]; i < this->Start[std::size_t(end) + 1];
-           ++i)
+      const auto& triangle = this->Triangles[std::size_t(this->Around[i])];
+      if (std::find(triangle.begin(), triangle.end(), a) != triangle.end())
       {
-        const auto& triangle = this->Triangles[std::size_t(this->Around[i])];
-        if (std::find(triangle.begin(), triangle.end(), a) != triangle.end() &&
-            std::find(triangle.begin(), triangle.end(), b) != triangle.end())
-        {
-          continue; // removed by the collapse
-        }
-        std::array<Vec3, 3> before, after;
-        for (std::size_t k = 0; k < 3; ++k)
-        {
-          before[k] = this->point(triangle[k]);
-          after[k] = triangle[k] == end ? middle : before[k];
-        }
-        const Vec3 n0 = cross(minus(before[1], before[0]), minus(before[2], before[0]));
-        const Vec3 n1 = cross(minus(after[1], after[0]), minus(after[2], after[0]));
-        const double l0 = std::sqrt(dot(n0, n0)), l1 = std::sqrt(dot(n1, n1));
-        if (!(l1 > 1e-6 * l0) || dot(n0, n1) < smallest_normal_cosine * l0 * l1)
-        {
-          return false;
-        }
+        continue; // removed by the collapse
+      }
+      std::array<Vec3, 3> before, after;
+      for (std::size_t k = 0; k < 3; ++k)
+      {
+        before[k] = this->point(triangle[k]);
+        after[k] = triangle[k] == b ? target : before[k];
+      }
+      const Vec3 n0 = cross(minus(before[1], before[0]), minus(before[2], before[0]));
+      const Vec3 n1 = cross(minus(after[1], after[0]), minus(after[2], after[0]));
+      const double l0 = std::sqrt(dot(n0, n0)), l1 = std::sqrt(dot(n1, n1));
+      if (!(l1 > 1e-6 * l0) || dot(n0, n1) < smallest_normal_cosine * l0 * l1)
+      {
+        return false;
       }
     }
     return true;
@@ -220,7 +217,6 @@ private:
       }
       std::sort(candidates.begin(), candidates.end());
       std::int64_t b = -1;
-      Vec3 middle{};
       for (const auto& candidate : candidates)
       {
         this->neighbours(candidate.second, ring_b);
@@ -235,11 +231,9 @@ private:
               this->Start[std::size_t(w) + 1] - this->Start[std::size_t(w)] > 3;
           }
         }
-        const Vec3 pa = this->point(std::int64_t(a)), pb = this->point(candidate.second);
-        (void)pb;
-        middle = pa; // a stays where it is: every vertex of a copy is one of the input's
+        // a stays where it is: every vertex of a copy is one of the input's.
         if (shared == 2 && opposite_keep_three && ring_a.size() + ring_b.size() >= 7 &&
-            this->keeps_orientation(std::int64_t(a), candidate.second, middle))
+            this->keeps_orientation(std::int64_t(a), candidate.second))
         {
           b = candidate.second;
           break;

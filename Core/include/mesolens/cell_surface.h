@@ -50,19 +50,12 @@ public:
 
   const TriangleMesh& mesh() const;
   const SmoothSurface& smooth() const;
-  /// The same smooth surface, shared with charts that outlive a mapping call.
-  std::shared_ptr<const SmoothSurface> shared_smooth() const;
   const MeshAdjacency& adjacency() const;
   /// Diagonal of the mesh's bounding box, mesh units.
   double bounding_diagonal() const;
-  /// Length of the longest edge, mesh units.
-  double longest_edge() const;
 
   /// The point of the mesh closest to `point`; `distance` gets how far it is (mesh units).
   SurfacePoint closest_point(const std::array<double, 3>& point, double* distance = nullptr) const;
-  /// The same, searching from `hint` first (a nearby answer): faster, same result.
-  SurfacePoint closest_point(const std::array<double, 3>& point, const SurfacePoint* hint,
-                             double* distance) const;
 
   /// Meshes with more triangles than this get coarser copies.
   static constexpr std::size_t coarse_copies_above = 16000;

@@ -47,8 +47,7 @@ struct GeodesicDisk
                                              ///< it, where lookups on the input start; -1 for
                                              ///< points made by the cut
   std::vector<std::int64_t> source_triangle; ///< per disk triangle: the triangle of the surface
-                                             ///< copy it was grown on that it lies in, -1 for
-                                             ///< the fan closing a small hole
+                                             ///< copy it was grown on that it lies in
   std::vector<double> source_barycentric;    ///< per disk triangle: 9, its corners' barycentric
                                              ///< coordinates in that input triangle
   SurfacePoint seed;                         ///< the picked point, on the disk mesh
@@ -69,8 +68,8 @@ GeodesicDisk geodesic_disk(const CellSurface& surface, const SurfacePoint& seed,
                            const GeodesicDiskParams& params);
 
 /// The placement (for SurfaceChart) that puts a point of `disk` on `surface`'s smooth
-/// interpolant: directly for a disk grown on the input's triangles, through the point of the
-/// input closest to it for one grown on a coarser copy. Keeps a copy of what it needs of the
+/// interpolant: directly for a disk grown on the input's triangles; for one grown on a coarser
+/// copy, the copy's smooth point moved along the copy's normal onto the input. Keeps a copy of what it needs of the
 /// disk; `surface` must outlive it.
 SurfacePlacement smooth_placement(const GeodesicDisk& disk, const CellSurface& surface);
 

@@ -18,6 +18,9 @@ struct DiskParameterization
                                         ///< the map's Jacobian (1 = angles preserved)
   std::vector<double> area_distortion;  ///< per triangle: (uv area / 3D area), divided by the same
                                         ///< ratio for the whole disk (1 = areas preserved)
+  std::vector<double> stretch;          ///< per triangle: the largest factor by which the map
+                                        ///< lengthens or shortens a length, max(s_max, 1 / s_min)
+                                        ///< (1 = isometric, infinity for a degenerate triangle)
   std::size_t flipped_triangles = 0;    ///< triangles whose uv orientation is reversed or zero
   bool bijective() const
   {

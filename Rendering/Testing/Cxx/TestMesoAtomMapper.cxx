@@ -764,6 +764,23 @@ TEST(MesoAtomMapper, WarpNeedsThePatchNotTheMappedAtoms)
     << events.AllErrors();
 }
 
+namespace {
+/// The GPU-warped bounds hold the atoms mapped on the CPU, and not much more.
+void expect_bounds_cover(vtkMesoAtomMapper* mapper, vtkPolyData* mapped_atoms)
+{
+  double mapped[6];
+  mapped_atoms->GetBounds(mapped);
+  double drawn[6];
+  mapper->GetBounds(drawn);
+  for (int d = 0; d < 3; ++d)
+  {
+    EXPECT_LE(drawn[2 * d], mapped[2 * d]);
+    EXPECT_GE(drawn[2 * d + 1], mapped[2 * d + 1]);
+    EXPECT_LT(drawn[2 * d + 1] - drawn[2 * d], 1.5 * (mapped[2 * d + 1] - mapped[2 * d]));
+  }
+}
+} // namespace
+
 TEST(MesoAtomMapper, InstancingWarpTakesSixteenBytesPerAtom)
 {
   auto mapping = mesolens_test::mapped_membrane(vtkMesoMembraneMapping::MOLECULE_INSTANCING, false);
@@ -780,16 +797,7 @@ TEST(MesoAtomMapper, InstancingWarpTakesSixteenBytesPerAtom)
   EXPECT_TRUE(drew_something(scene.Window));
   // The warped bounds cover the 2 x 2 tiles mapped on the CPU.
   auto cpu = mesolens_test::mapped_membrane(vtkMesoMembraneMapping::MOLECULE_INSTANCING, true);
-  double mapped[6];
-  cpu->GetOutput()->GetBounds(mapped);
-  double drawn[6];
-  scene.Mapper->GetBounds(drawn);
-  for (int d = 0; d < 3; ++d)
-  {
-    EXPECT_LE(drawn[2 * d], mapped[2 * d]);
-    EXPECT_GE(drawn[2 * d + 1], mapped[2 * d + 1]);
-    EXPECT_LT(drawn[2 * d + 1] - drawn[2 * d], 1.5 * (mapped[2 * d + 1] - mapped[2 * d]));
-  }
+  expect_bounds_cover(scene.Mapper, cpu->GetOutput());
 }
 
 TEST(MesoAtomMapper, SplitPolynomialWarpBoundsCoverTheMappedAtoms)
@@ -809,14 +817,5 @@ TEST(MesoAtomMapper, SplitPolynomialWarpBoundsCoverTheMappedAtoms)
   scene.Window->Render();
   EXPECT_TRUE(events.Errors.empty()) << events.AllErrors();
   auto cpu = mesolens_test::mapped_membrane(vtkMesoMembraneMapping::POLYNOMIAL, true, 0.2);
-  double mapped[6];
-  cpu->GetOutput()->GetBounds(mapped);
-  double drawn[6];
-  scene.Mapper->GetBounds(drawn);
-  for (int d = 0; d < 3; ++d)
-  {
-    EXPECT_LE(drawn[2 * d], mapped[2 * d]);
-    EXPECT_GE(drawn[2 * d + 1], mapped[2 * d + 1]);
-    EXPECT_LT(drawn[2 * d + 1] - drawn[2 * d], 1.5 * (mapped[2 * d + 1] - mapped[2 * d]));
-  }
+  expect_bounds_cover(scene.Mapper, cpu->GetOutput());
 }

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoAtomProperties.h"
 
-#include "mesolens/elements.h"
+#include "mesolens/molecules/elements.h"
 
 #include <vtkDataArray.h>
 #include <vtkFloatArray.h>

@@ -4,7 +4,7 @@
 #ifndef vtkMesoAtomReaderParameters_h
 #define vtkMesoAtomReaderParameters_h
 
-#include "mesolens/structure_file.h"
+#include "mesolens/io/structure_file.h"
 
 class vtkMesoAtomReader;
 

@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoAtomTableConversion.h"
 
-#include "mesolens/atom_table.h"
-#include "mesolens/elements.h"
+#include "mesolens/molecules/atom_table.h"
+#include "mesolens/molecules/elements.h"
 
 #include <vtkCellArray.h>
 #include <vtkDoubleArray.h>

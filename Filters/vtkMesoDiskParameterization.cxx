@@ -3,8 +3,8 @@
 
 #include "vtkMesoSurfaceConversion.h"
 
-#include "mesolens/errors.h"
-#include "mesolens/harmonic_parameterization.h"
+#include "mesolens/common/errors.h"
+#include "mesolens/mapping/harmonic_parameterization.h"
 
 #include <vtkFieldData.h>
 #include <vtkInformation.h>

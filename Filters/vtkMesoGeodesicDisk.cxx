@@ -3,9 +3,9 @@
 
 #include "vtkMesoSurfaceConversion.h"
 
-#include "mesolens/errors.h"
-#include "mesolens/geodesic_disk.h"
-#include "mesolens/membrane_mapper.h"
+#include "mesolens/common/errors.h"
+#include "mesolens/mapping/geodesic_disk.h"
+#include "mesolens/mapping/membrane_mapper.h"
 
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>

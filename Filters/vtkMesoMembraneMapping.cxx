@@ -6,9 +6,9 @@
 #include "vtkMesoParallelFor.h"
 #include "vtkMesoSurfaceConversion.h"
 
-#include "mesolens/elements.h"
-#include "mesolens/errors.h"
-#include "mesolens/membrane_mapper.h"
+#include "mesolens/molecules/elements.h"
+#include "mesolens/common/errors.h"
+#include "mesolens/mapping/membrane_mapper.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>

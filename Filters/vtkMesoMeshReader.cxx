@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoMeshReader.h"
 
-#include "mesolens/errors.h"
-#include "mesolens/file_names.h"
-#include "mesolens/off_file.h"
+#include "mesolens/common/errors.h"
+#include "mesolens/io/file_names.h"
+#include "mesolens/io/off_file.h"
 
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoMeshReport.h"
 
-#include "mesolens/mesh_report.h"
+#include "mesolens/mesh/mesh_report.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>

@@ -5,8 +5,8 @@
 #include "vtkMesoSurfaceConversion.h"
 #include "vtkMesoParallelFor.h"
 
-#include "mesolens/errors.h"
-#include "mesolens/molecular_surface.h"
+#include "mesolens/common/errors.h"
+#include "mesolens/surface/molecular_surface.h"
 
 #include <vtkDataArray.h>
 #include <vtkFloatArray.h>

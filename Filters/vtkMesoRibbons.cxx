@@ -6,11 +6,11 @@
 #include "vtkMesoParallelFor.h"
 #include "vtkMesoStamp.h"
 
-#include "mesolens/dssp.h"
-#include "mesolens/errors.h"
-#include "mesolens/molecule_assignment.h"
-#include "mesolens/protein_backbone.h"
-#include "mesolens/ribbon_geometry.h"
+#include "mesolens/protein/dssp.h"
+#include "mesolens/common/errors.h"
+#include "mesolens/molecules/molecule_assignment.h"
+#include "mesolens/protein/protein_backbone.h"
+#include "mesolens/protein/ribbon_geometry.h"
 
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>

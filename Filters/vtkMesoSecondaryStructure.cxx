@@ -5,8 +5,8 @@
 #include "vtkMesoParallelFor.h"
 #include "vtkMesoStamp.h"
 
-#include "mesolens/dssp.h"
-#include "mesolens/errors.h"
+#include "mesolens/protein/dssp.h"
+#include "mesolens/common/errors.h"
 
 #include <vtkDataArray.h>
 #include <vtkDataObject.h>

@@ -4,9 +4,9 @@
 #include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoAtomReaderParameters.h"
 
-#include "mesolens/errors.h"
-#include "mesolens/file_names.h"
-#include "mesolens/structure_file.h"
+#include "mesolens/common/errors.h"
+#include "mesolens/io/file_names.h"
+#include "mesolens/io/structure_file.h"
 
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>

@@ -5,10 +5,10 @@
 #include "vtkMesoStamp.h"
 #include "vtkMesoSurfaceConversion.h"
 
-#include "mesolens/errors.h"
-#include "mesolens/molecule_pbc.h"
-#include "mesolens/structure_mesh.h"
-#include "mesolens/structured_cutaway.h"
+#include "mesolens/common/errors.h"
+#include "mesolens/molecules/molecule_pbc.h"
+#include "mesolens/cutaway/structure_mesh.h"
+#include "mesolens/cutaway/structured_cutaway.h"
 
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>

@@ -4,8 +4,8 @@
 #include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoParallelFor.h"
 
-#include "mesolens/errors.h"
-#include "mesolens/sphere_union_area.h"
+#include "mesolens/common/errors.h"
+#include "mesolens/surface/sphere_union_area.h"
 
 #include <vtkFloatArray.h>
 #include <vtkInformation.h>

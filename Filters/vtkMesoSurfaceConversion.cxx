@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoSurfaceConversion.h"
 
-#include "mesolens/errors.h"
+#include "mesolens/common/errors.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>

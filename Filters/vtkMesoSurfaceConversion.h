@@ -4,10 +4,10 @@
 #ifndef vtkMesoSurfaceConversion_h
 #define vtkMesoSurfaceConversion_h
 
-#include "mesolens/geodesic_disk.h"
-#include "mesolens/harmonic_parameterization.h"
-#include "mesolens/membrane_mapper.h"
-#include "mesolens/triangle_mesh.h"
+#include "mesolens/mapping/geodesic_disk.h"
+#include "mesolens/mapping/harmonic_parameterization.h"
+#include "mesolens/mapping/membrane_mapper.h"
+#include "mesolens/mesh/triangle_mesh.h"
 
 #include <vtkType.h>
 

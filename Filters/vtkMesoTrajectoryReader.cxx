@@ -4,13 +4,13 @@
 #include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoAtomReaderParameters.h"
 
-#include "mesolens/errors.h"
-#include "mesolens/file_names.h"
-#include "mesolens/gro_topology.h"
-#include "mesolens/molecule_assignment.h"
-#include "mesolens/molecule_pbc.h"
-#include "mesolens/structure_file.h"
-#include "mesolens/trajectory_file.h"
+#include "mesolens/common/errors.h"
+#include "mesolens/io/file_names.h"
+#include "mesolens/io/gro_topology.h"
+#include "mesolens/molecules/molecule_assignment.h"
+#include "mesolens/molecules/molecule_pbc.h"
+#include "mesolens/io/structure_file.h"
+#include "mesolens/io/trajectory_file.h"
 
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>

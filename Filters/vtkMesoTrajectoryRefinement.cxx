@@ -3,9 +3,9 @@
 
 #include "vtkMesoParallelFor.h"
 
-#include "mesolens/errors.h"
-#include "mesolens/periodic_box.h"
-#include "mesolens/temporal_subdivision.h"
+#include "mesolens/common/errors.h"
+#include "mesolens/molecules/periodic_box.h"
+#include "mesolens/mapping/temporal_subdivision.h"
 
 #include <vtkAlgorithmOutput.h>
 #include <vtkDataArray.h>

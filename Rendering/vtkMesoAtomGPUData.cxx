@@ -4,9 +4,9 @@
 #include "vtkMesoElementLookupTable.h"
 #include "vtkMesoParallelFor.h"
 
-#include "mesolens/elements.h"
-#include "mesolens/membrane_mapping.h"
-#include "mesolens/polynomial_warp.h"
+#include "mesolens/molecules/elements.h"
+#include "mesolens/mapping/membrane_mapping.h"
+#include "mesolens/mapping/polynomial_warp.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>

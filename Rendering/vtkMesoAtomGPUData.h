@@ -20,7 +20,7 @@
 #ifndef vtkMesoAtomGPUData_h
 #define vtkMesoAtomGPUData_h
 
-#include "mesolens/atom_cells.h"
+#include "mesolens/render/atom_cells.h"
 
 #include <vtkType.h>
 

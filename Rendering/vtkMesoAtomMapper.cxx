@@ -15,8 +15,8 @@
 #include "vtkMesoMoleculeInstancingVS.h"
 #include "vtkMesoPolynomialWarpVS.h"
 
-#include "mesolens/atom_cells.h"
-#include "mesolens/depth_pyramid.h"
+#include "mesolens/render/atom_cells.h"
+#include "mesolens/render/depth_pyramid.h"
 
 #include <vtkOpenGLActor.h>
 #include <vtkOpenGLState.h>

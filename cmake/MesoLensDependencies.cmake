@@ -22,7 +22,7 @@ target_compile_definitions(mesolens_gromacs INTERFACE GMX_DOUBLE=0)
 target_link_libraries(mesolens_gromacs INTERFACE "${GROMACS_LIBRARY}")
 
 # Core declares a few functions that libgromacs exports without installing their headers
-# (Core/src/gromacs_support.h); make sure this GROMACS still has them.
+# (Core/io/detail/gromacs_support.h); make sure this GROMACS still has them.
 include(CheckCXXSourceCompiles)
 set(CMAKE_REQUIRED_INCLUDES ${GROMACS_INCLUDE_DIRS})
 set(CMAKE_REQUIRED_LIBRARIES "${GROMACS_LIBRARY}")

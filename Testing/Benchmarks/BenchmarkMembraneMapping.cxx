@@ -14,14 +14,14 @@
 //     the polynomial's fit residual per tile.
 //
 //   BenchmarkMembraneMapping [--smoke]   (--smoke: the re-map only, without the comparisons)
-#include "mesolens/geodesic_disk.h"
-#include "mesolens/gro_topology.h"
-#include "mesolens/harmonic_parameterization.h"
-#include "mesolens/membrane_mapper.h"
-#include "mesolens/membrane_mapping.h"
-#include "mesolens/molecule_pbc.h"
-#include "mesolens/trajectory_file.h"
-#include "mesolens/structure_file.h"
+#include "mesolens/mapping/geodesic_disk.h"
+#include "mesolens/io/gro_topology.h"
+#include "mesolens/mapping/harmonic_parameterization.h"
+#include "mesolens/mapping/membrane_mapper.h"
+#include "mesolens/mapping/membrane_mapping.h"
+#include "mesolens/molecules/molecule_pbc.h"
+#include "mesolens/io/trajectory_file.h"
+#include "mesolens/io/structure_file.h"
 #include "mesolens_benchmark_timing.h"
 #include "mesolens_test_data.h"
 

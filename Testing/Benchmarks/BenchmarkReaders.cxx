@@ -13,9 +13,9 @@
 #include "vtkMesoStructureReader.h"
 #include "vtkMesoTrajectoryReader.h"
 
-#include "mesolens/elements.h"
-#include "mesolens/structure_file.h"
-#include "mesolens/trajectory_file.h"
+#include "mesolens/molecules/elements.h"
+#include "mesolens/io/structure_file.h"
+#include "mesolens/io/trajectory_file.h"
 #include "mesolens_benchmark_timing.h"
 #include "mesolens_test_data.h"
 

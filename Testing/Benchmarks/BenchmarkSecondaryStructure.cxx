@@ -11,10 +11,10 @@
 #include "vtkMesoStructureReader.h"
 #include "vtkMesoTrajectoryReader.h"
 
-#include "mesolens/dssp.h"
-#include "mesolens/gro_topology.h"
-#include "mesolens/molecule_assignment.h"
-#include "mesolens/structure_file.h"
+#include "mesolens/protein/dssp.h"
+#include "mesolens/io/gro_topology.h"
+#include "mesolens/molecules/molecule_assignment.h"
+#include "mesolens/io/structure_file.h"
 
 #include <vtkNew.h>
 #include <vtkPolyData.h>

@@ -17,7 +17,7 @@
 #include "vtkMesoStructuredCutaway.h"
 #include "vtkMesoTrajectoryReader.h"
 
-#include "mesolens/triangle_mesh.h"
+#include "mesolens/mesh/triangle_mesh.h"
 
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>

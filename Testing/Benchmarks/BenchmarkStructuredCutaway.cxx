@@ -16,9 +16,9 @@
 #include "vtkMesoStructuredCutaway.h"
 #include "vtkMesoTrajectoryReader.h"
 
-#include "mesolens/structure_mesh.h"
-#include "mesolens/surface_sampling.h"
-#include "mesolens/structured_cutaway.h"
+#include "mesolens/cutaway/structure_mesh.h"
+#include "mesolens/cutaway/surface_sampling.h"
+#include "mesolens/cutaway/structured_cutaway.h"
 
 #include <vtkAppendPolyData.h>
 #include <vtkFieldData.h>

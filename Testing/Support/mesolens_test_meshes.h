@@ -2,7 +2,7 @@
 // Analytic test surfaces: spheres, planes, cylinders, saddles, as mesolens::TriangleMesh.
 #pragma once
 
-#include "mesolens/triangle_mesh.h"
+#include "mesolens/mesh/triangle_mesh.h"
 
 #include <array>
 #include <cmath>

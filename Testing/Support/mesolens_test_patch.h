@@ -2,7 +2,7 @@
 // A synthetic bilayer patch for membrane-mapping tests.
 #pragma once
 
-#include "mesolens/membrane_mapping.h"
+#include "mesolens/mapping/membrane_mapping.h"
 
 #include <random>
 #include <vector>

@@ -2,7 +2,7 @@
 // A ParallelFor on two threads, for tests that results do not depend on the threading.
 #pragma once
 
-#include "mesolens/parallel_for.h"
+#include "mesolens/common/parallel_for.h"
 
 #include <thread>
 

@@ -4,8 +4,8 @@
 #include "MesoAtomScenes.h"
 #include "mesolens_vtk_test_utilities.h"
 
-#include "mesolens/elements.h"
-#include "mesolens/impostor_geometry.h"
+#include "mesolens/molecules/elements.h"
+#include "mesolens/render/impostor_geometry.h"
 
 #include "vtkMesoAtomTableConversion.h"
 

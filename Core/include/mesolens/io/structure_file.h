@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Reading PDB and PDBx/mmCIF files (plain or gzipped) with gemmi, losing no atom.
+#pragma once
+
+#include "mesolens/molecules/atom_table.h"
+#include "mesolens/molecules/bond_perception.h"
+#include "mesolens/common/parallel_for.h"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace mesolens {
+
+/// How alternate locations (altlocs) are resolved.
+enum class AltLocPolicy
+{
+  /// Per residue, keep the conformer with the highest summed occupancy (ties: first letter);
+  /// atoms without an altloc are always kept.
+  HighestOccupancy,
+  /// Keep every alternate atom (the `AltLoc` array tells them apart).
+  KeepAll,
+};
+
+/// Parameters of read_structure().
+struct StructureReadParams
+{
+  AltLocPolicy alt_locs = AltLocPolicy::HighestOccupancy;
+  /// Drop water residues (is_water_residue()), as the membrane-mapping paper does on import.
+  bool remove_waters = false;
+  /// Drop hydrogen and deuterium atoms.
+  bool remove_hydrogens = false;
+  /// Perceive covalent bonds from distances (explicit CONECT/LINK/SSBOND/struct_conn bonds are
+  /// always added).
+  bool perceive_bonds = true;
+  /// Bond perception; coarse_grained is decided per file by looks_coarse_grained() unless
+  /// force_coarse_grained is set.
+  BondPerceptionParams bonds;
+  bool force_coarse_grained = false;
+  /// Runs the data-parallel loops (bond perception); empty: the calling thread only.
+  ParallelFor parallel_for;
+};
+
+/// A structure file: one AtomTable per model (NMR ensembles have several).
+struct StructureFile
+{
+  std::vector<AtomTable> models;
+  std::string title;                 ///< TITLE / _struct.title, may be empty
+  bool coarse_grained = false;       ///< bonds were perceived with the bead cutoff
+  std::vector<std::string> warnings; ///< things a user should know (ignored CONECT serials...)
+};
+
+/// Progress callback: fraction in [0, 1]. Return false to abort (read_structure then throws
+/// FileError("aborted")).
+using ProgressCallback = std::function<bool(double)>;
+
+/// Reads a PDB or mmCIF file (format from the extension, else from the content; `.gz` is
+/// decompressed). Every atom of every model is kept (hydrogens included) unless the params
+/// drop some; HELIX/SHEET records become per-atom secondary structure; CONECT records (which
+/// gemmi does not read) and LINK/SSBOND/struct_conn covalent and disulfide links become bonds.
+///
+/// PDB files written by MD programs keep their true serials and residue numbers past 99999 and
+/// 9999: hybrid-36 (A0000 = 100000, A000 = 10000; also in CONECT), numbers written in full that
+/// push the rest of the record right (Open Babel; found from where the "%8.3f" coordinates
+/// are), CHARMM's five-digit residue numbers in columns 23-27, and numbers written modulo
+/// 100000 and 10000, as GROMACS writes them, continued where they restart (a drop by more than
+/// half the modulus; for residue numbers inside one chain with no TER between). Four-letter
+/// residue names in columns 18-21 ("DPPC") are kept whole unless the file uses two-letter chain
+/// ids there. StructureFile::warnings says when any of this was needed. VMD's hexadecimal
+/// numbers past 99999 and 9999 are not recognized.
+///
+/// Throws FileError for a missing, empty, truncated or unparsable file (an ATOM/HETATM record
+/// without coordinates in the standard or a consistently shifted place names its line), or one
+/// without atoms; InvalidInput for non-finite coordinates.
+StructureFile read_structure(const std::string& path, const StructureReadParams& params = {},
+                             const ProgressCallback& progress = {});
+
+/// Bonds and molecules for a table that has names and positions (used by every reader):
+/// assigns residues and molecules, perceives bonds and merges `explicit_bonds`. When the file
+/// named no elements (`elements_given` false: GRO, PDB without columns 77-78) and
+/// looks_coarse_grained() says so, the particles are beads: their atomic numbers are set to 0,
+/// the bead cutoff is used and the bonds are made consistent per molecule type
+/// (consensus_bonds()). Returns true when the particles were treated as beads.
+bool build_connectivity(AtomTable& table, const std::vector<Bond>& explicit_bonds,
+                        const StructureReadParams& params, bool elements_given);
+
+} // namespace mesolens

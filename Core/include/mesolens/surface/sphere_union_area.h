@@ -1,0 +1,35 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// The exact area of the surface of a union of spheres, per sphere: the van der Waals surface of
+// atoms, or (the atoms inflated by a probe) their solvent-accessible surface.
+#pragma once
+
+#include "mesolens/common/parallel_for.h"
+
+#include <array>
+#include <vector>
+
+namespace mesolens {
+
+/// Per sphere, the area of its part of the union's surface (length units squared), the total,
+/// and the union's volume (length units cubed).
+struct SphereUnionArea
+{
+  std::vector<double> per_sphere;
+  double total = 0;
+  double volume = 0;
+};
+
+/// The exact exposed area of each sphere of a union (centres and radii in one length unit;
+/// radii > 0): each sphere's surface less the caps its neighbours cover, from the arcs that
+/// bound what stays exposed, by the Gauss-Bonnet theorem (no sampling, no slices); and the
+/// exact volume of the union by the divergence theorem over the same patches (their normal
+/// integrals from the same arcs). For the
+/// solvent-accessible surface pass the atoms' radii plus the probe radius. Spheres inside
+/// another have no exposed area; coincident equal spheres count once (the first). Throws
+/// InvalidInput for lists of different lengths, a non-finite centre or radius, or a radius <= 0.
+/// Deterministic whatever `parallel_for`; time about O(n k^2) for k neighbours per sphere.
+SphereUnionArea sphere_union_area(const std::vector<std::array<double, 3>>& centres,
+                                  const std::vector<double>& radii,
+                                  const ParallelFor& parallel_for = {});
+
+} // namespace mesolens

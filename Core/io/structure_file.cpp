@@ -1,0 +1,556 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "mesolens/io/structure_file.h"
+
+#include "io/detail/file_checks.h"
+#include "io/detail/pdb_text_scan.h"
+#include "mesolens/molecules/bond_consensus.h"
+#include "mesolens/common/errors.h"
+#include "mesolens/molecules/molecule_assignment.h"
+
+#include <gemmi/cif.hpp>
+#include <gemmi/gz.hpp>
+#include <gemmi/mmcif.hpp>
+#include <gemmi/mmread.hpp>
+#include <gemmi/pdb.hpp>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <map>
+#include <unordered_map>
+
+namespace mesolens {
+
+namespace {
+
+bool ends_with(const std::string& text, const std::string& suffix)
+{
+  return text.size() >= suffix.size() &&
+    std::equal(suffix.rbegin(), suffix.rend(), text.rbegin(),
+               [](char a, char b) { return std::tolower(a) == std::tolower(b); });
+}
+
+SecondaryStructure helix_kind(gemmi::Helix::HelixClass helix_class)
+{
+  switch (helix_class)
+  {
+    case gemmi::Helix::RAlpha:
+    case gemmi::Helix::UnknownHelix:
+      return SecondaryStructure::AlphaHelix;
+    case gemmi::Helix::RPi:
+      return SecondaryStructure::PiHelix;
+    case gemmi::Helix::R310:
+      return SecondaryStructure::Helix310;
+    default:
+      return SecondaryStructure::OtherHelix;
+  }
+}
+
+/// Where a residue's atoms start and end in the table, per chain in file order.
+struct ResidueRange
+{
+  const gemmi::Residue* residue;
+  std::size_t begin;
+  std::size_t end;
+};
+
+struct ChainResidues
+{
+  std::string name;
+  std::vector<ResidueRange> residues;
+};
+
+/// Finds the residues of HELIX/SHEET spans: per chain, the position of each residue number.
+class ResidueLocator
+{
+public:
+  explicit ResidueLocator(const std::vector<ChainResidues>& chains)
+    : Chains(chains)
+  {
+    for (std::size_t c = 0; c < chains.size(); ++c)
+    {
+      auto& positions = this->Positions[chains[c].name];
+      for (std::size_t r = 0; r < chains[c].residues.size(); ++r)
+      {
+        const gemmi::SeqId& id = chains[c].residues[r].residue->seqid;
+        // The first residue of a number wins (microheterogeneity repeats numbers).
+        positions.emplace(key(id), std::make_pair(c, r));
+      }
+    }
+  }
+
+  /// Marks residues from `start` to `end` (inclusive, in chain order).
+  void mark(AtomTable& table, const gemmi::AtomAddress& start, const gemmi::AtomAddress& end,
+            SecondaryStructure kind, int span_id) const
+  {
+    const auto chain = this->Positions.find(start.chain_name);
+    if (chain == this->Positions.end())
+    {
+      return;
+    }
+    const auto first = chain->second.find(key(start.res_id.seqid));
+    const auto last = chain->second.find(key(end.res_id.seqid));
+    if (first == chain->second.end() || last == chain->second.end() ||
+        first->second.first != last->second.first)
+    {
+      return;
+    }
+    const ChainResidues& residues = this->Chains[first->second.first];
+    for (std::size_t r = first->second.second; r <= last->second.second; ++r)
+    {
+      for (std::size_t i = residues.residues[r].begin; i < residues.residues[r].end; ++i)
+      {
+        table.secondary_structure[i] = static_cast<std::uint8_t>(kind);
+        table.secondary_structure_ids[i] = span_id;
+      }
+    }
+  }
+
+private:
+  static std::int64_t key(const gemmi::SeqId& id)
+  {
+    const int number = id.num.has_value() ? int(id.num) : 0;
+    return std::int64_t(number) * 256 + static_cast<unsigned char>(id.icode);
+  }
+  const std::vector<ChainResidues>& Chains;
+  std::unordered_map<std::string,
+                     std::unordered_map<std::int64_t, std::pair<std::size_t, std::size_t>>>
+    Positions;
+};
+
+/// Alternate-location mask: per residue the conformer with the highest summed occupancy; per
+/// atom name, that conformer's atom, or the best atom of the group when the conformer lacks it.
+void mark_alternate_locations(const AtomTable& table, const ResidueRange& range,
+                              std::vector<bool>& keep)
+{
+  if (std::all_of(table.alt_locs.begin() + long(range.begin),
+                  table.alt_locs.begin() + long(range.end), [](char c) { return c == ' '; }))
+  {
+    return;
+  }
+  std::map<char, double> occupancy_by_conformer;
+  for (std::size_t i = range.begin; i < range.end; ++i)
+  {
+    if (table.alt_locs[i] != ' ')
+    {
+      occupancy_by_conformer[table.alt_locs[i]] += table.occupancies[i];
+    }
+  }
+  if (occupancy_by_conformer.empty())
+  {
+    return;
+  }
+  char chosen = occupancy_by_conformer.begin()->first;
+  for (const auto& entry : occupancy_by_conformer)
+  {
+    if (entry.second > occupancy_by_conformer[chosen] + 1e-6)
+    {
+      chosen = entry.first;
+    }
+  }
+  std::map<std::string, std::vector<std::size_t>> groups;
+  for (std::size_t i = range.begin; i < range.end; ++i)
+  {
+    if (table.alt_locs[i] != ' ')
+    {
+      groups[table.atom_names[i]].push_back(i);
+    }
+  }
+  for (const auto& group : groups)
+  {
+    std::size_t best = group.second.front();
+    for (const std::size_t i : group.second)
+    {
+      keep[i] = false;
+      if (table.alt_locs[i] == chosen)
+      {
+        best = i;
+      }
+    }
+    if (table.alt_locs[best] != chosen)
+    {
+      for (const std::size_t i : group.second)
+      {
+        best = table.occupancies[i] > table.occupancies[best] ? i : best;
+      }
+    }
+    keep[best] = true;
+  }
+}
+
+/// Converts one gemmi model; fills `ranges` with the residue layout for secondary structure.
+/// `pdb_atoms` (empty for mmCIF) holds each PDB record's serial, residue number and residue
+/// name end, which gemmi reads wrongly from MD files; gemmi's serial indexes it.
+AtomTable convert_model(const gemmi::Model& model,
+                        const std::vector<detail::PdbAtomFields>& pdb_atoms,
+                        std::vector<ChainResidues>& chains)
+{
+  AtomTable table;
+  std::size_t atom_count = 0;
+  for (const gemmi::Chain& chain : model.chains)
+  {
+    for (const gemmi::Residue& residue : chain.residues)
+    {
+      atom_count += residue.atoms.size();
+    }
+  }
+  table.reserve(atom_count);
+  for (const gemmi::Chain& chain : model.chains)
+  {
+    chains.push_back({ chain.name, {} });
+    for (const gemmi::Residue& residue : chain.residues)
+    {
+      const std::size_t begin = table.size();
+      for (const gemmi::Atom& atom : residue.atoms)
+      {
+        table.append_atom(atom.name, float(atom.pos.x), float(atom.pos.y), float(atom.pos.z));
+        std::uint8_t z = static_cast<std::uint8_t>(atom.element.elem);
+        if (atom.element.elem == gemmi::El::D)
+        {
+          z = 1;
+        }
+        table.atomic_numbers.back() = z;
+        table.residue_names.back() = residue.name;
+        table.residue_numbers.back() = residue.seqid.num.has_value() ? int(residue.seqid.num) : 0;
+        table.insertion_codes.back() = residue.seqid.icode == '\0' ? ' ' : residue.seqid.icode;
+        table.chain_ids.back() = chain.name;
+        table.alt_locs.back() = atom.altloc == '\0' ? ' ' : atom.altloc;
+        table.occupancies.back() = atom.occ;
+        table.b_factors.back() = atom.b_iso;
+        table.is_hetero.back() = residue.het_flag == 'H' ? 1 : 0;
+        table.serials.back() = atom.serial;
+        table.formal_charges.back() = atom.charge;
+        if (atom.serial >= 1 && std::size_t(atom.serial) <= pdb_atoms.size())
+        {
+          const detail::PdbAtomFields& fields = pdb_atoms[std::size_t(atom.serial) - 1];
+          table.serials.back() = fields.serial;
+          if (fields.residue_number_read)
+          {
+            table.residue_numbers.back() = fields.residue_number;
+          }
+          if (fields.residue_name_end != ' ')
+          {
+            table.residue_names.back() += fields.residue_name_end;
+          }
+        }
+      }
+      chains.back().residues.push_back({ &residue, begin, table.size() });
+    }
+  }
+  return table;
+}
+
+std::vector<Bond> explicit_bonds(const gemmi::Structure& structure, const gemmi::Model& model,
+                                 const std::vector<ChainResidues>& chains, const AtomTable& table,
+                                 const detail::PdbTextScan& pdb, std::vector<std::string>& warnings)
+{
+  std::vector<Bond> bonds;
+  auto add = [&bonds](std::size_t a, std::size_t b) {
+    if (a != b)
+    {
+      bonds.push_back({ std::uint32_t(std::min(a, b)), std::uint32_t(std::max(a, b)) });
+    }
+  };
+  if (!pdb.conect_pairs.empty())
+  {
+    std::unordered_map<int, std::size_t> by_serial;
+    for (std::size_t i = 0; i < table.size(); ++i)
+    {
+      by_serial.emplace(table.serials[i], i);
+    }
+    std::size_t unresolved = 0;
+    for (const auto& pair : pdb.conect_pairs)
+    {
+      const auto a = by_serial.find(pair.first);
+      const auto b = by_serial.find(pair.second);
+      if (a == by_serial.end() || b == by_serial.end())
+      {
+        ++unresolved;
+        continue;
+      }
+      add(a->second, b->second);
+    }
+    if (unresolved > 0)
+    {
+      warnings.push_back(
+        std::to_string(unresolved) +
+        " CONECT entries name atom serials that are not in the file; they were ignored");
+    }
+  }
+  if (pdb.legacy_columns > 0)
+  {
+    warnings.push_back(
+      std::to_string(pdb.legacy_columns) +
+      " atom records carry non-standard text in columns 77-80 (pre-remediation PDB format); "
+      "their elements were inferred from the atom names");
+  }
+  if (pdb.unreadable_conect_fields > 0)
+  {
+    warnings.push_back(std::to_string(pdb.unreadable_conect_fields) +
+                       " CONECT fields are not numbers (e.g. ***** serials); they were ignored");
+  }
+  if (pdb.run_together_conect_records > 0)
+  {
+    warnings.push_back(std::to_string(pdb.run_together_conect_records) +
+                       " CONECT records have serials over 99999 written in full, running into "
+                       "each other; they were ignored");
+  }
+  if (pdb.shifted_records > 0)
+  {
+    warnings.push_back(std::to_string(pdb.shifted_records) +
+                       " atom records have a serial over 99999 or a residue number over 9999 "
+                       "written in full, which pushes the later fields right; they were read from "
+                       "where their coordinates are");
+  }
+  if (pdb.continued_serials > 0)
+  {
+    warnings.push_back(
+      "atom serials restart after 99999 (written modulo 100000, as GROMACS does); " +
+      std::to_string(pdb.continued_serials) + " atom records were numbered on from 100000");
+  }
+  if (pdb.continued_residue_numbers > 0)
+  {
+    warnings.push_back(
+      "residue numbers restart after 9999 (written modulo 10000, as GROMACS does); " +
+      std::to_string(pdb.continued_residue_numbers) + " atom records were numbered on from 10000");
+  }
+  // Table index of each residue's first atom, to turn gemmi atom pointers into indices.
+  std::unordered_map<const gemmi::Residue*, std::size_t> first_atom_of;
+  if (!structure.connections.empty())
+  {
+    for (const ChainResidues& chain : chains)
+    {
+      for (const ResidueRange& range : chain.residues)
+      {
+        first_atom_of.emplace(range.residue, range.begin);
+      }
+    }
+  }
+  for (const gemmi::Connection& connection : structure.connections)
+  {
+    if (connection.type == gemmi::Connection::Hydrog ||
+        connection.type == gemmi::Connection::MetalC)
+    {
+      continue;
+    }
+    const gemmi::const_CRA a = model.find_cra(connection.partner1, true);
+    const gemmi::const_CRA b = model.find_cra(connection.partner2, true);
+    if (!a.atom || !b.atom)
+    {
+      continue;
+    }
+    const auto ia = first_atom_of.find(a.residue);
+    const auto ib = first_atom_of.find(b.residue);
+    if (ia != first_atom_of.end() && ib != first_atom_of.end())
+    {
+      add(ia->second + std::size_t(a.atom - a.residue->atoms.data()),
+          ib->second + std::size_t(b.atom - b.residue->atoms.data()));
+    }
+  }
+  std::sort(bonds.begin(), bonds.end());
+  bonds.erase(std::unique(bonds.begin(), bonds.end()), bonds.end());
+  return bonds;
+}
+
+void check_finite(const AtomTable& table, const std::string& path)
+{
+  for (std::size_t i = 0; i < table.size(); ++i)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      if (!std::isfinite(table.positions[3 * i + std::size_t(d)]))
+      {
+        throw InvalidInput(path + ": atom " + std::to_string(table.serials[i]) + " (" +
+                           table.atom_names[i] + " of " + table.residue_names[i] + " " +
+                           std::to_string(table.residue_numbers[i]) +
+                           ") has a non-finite coordinate");
+      }
+    }
+  }
+}
+
+gemmi::Structure parse_with_gemmi(const std::string& path, detail::PdbTextScan& pdb)
+{
+  detail::require_readable_file(path);
+  try
+  {
+    gemmi::MaybeGzipped input(path);
+    gemmi::CharArray buffer = gemmi::read_into_buffer(input);
+    if (buffer.size() == 0)
+    {
+      throw FileError(path + ": the file is empty");
+    }
+    const auto binary = std::find_if(buffer.data(), buffer.data() + buffer.size(), [](char c) {
+      const auto byte = static_cast<unsigned char>(c);
+      return byte < 0x09 || (byte > 0x0d && byte < 0x20 && byte != 0x1b);
+    });
+    if (binary != buffer.data() + buffer.size())
+    {
+      throw FileError(path + ": binary data at byte " + std::to_string(binary - buffer.data()) +
+                      "; not a PDB or mmCIF text file");
+    }
+    gemmi::CoorFormat format = gemmi::coor_format_from_ext(input.basepath());
+    if (format == gemmi::CoorFormat::Unknown)
+    {
+      format = gemmi::coor_format_from_content(buffer.data(), buffer.data() + buffer.size());
+    }
+    if (format == gemmi::CoorFormat::Pdb)
+    {
+      pdb = detail::scan_pdb_text(buffer.data(), buffer.size(), path);
+      return gemmi::read_pdb_from_memory(buffer.data(), buffer.size(), path);
+    }
+    if (format == gemmi::CoorFormat::Mmcif)
+    {
+      return gemmi::make_structure(
+        gemmi::cif::read_memory(buffer.data(), buffer.size(), path.c_str()));
+    }
+    throw FileError(path + ": neither a PDB nor an mmCIF file");
+  }
+  catch (const Error&)
+  {
+    throw;
+  }
+  catch (const std::exception& e)
+  {
+    throw FileError(path + ": " + e.what());
+  }
+}
+
+std::vector<bool> selection_mask(const AtomTable& table, const std::vector<ChainResidues>& chains,
+                                 const StructureReadParams& params)
+{
+  std::vector<bool> keep(table.size(), true);
+  if (params.alt_locs == AltLocPolicy::HighestOccupancy)
+  {
+    for (const ChainResidues& chain : chains)
+    {
+      for (const ResidueRange& range : chain.residues)
+      {
+        mark_alternate_locations(table, range, keep);
+      }
+    }
+  }
+  for (std::size_t i = 0; i < table.size(); ++i)
+  {
+    if ((params.remove_waters && is_water_residue(table.residue_names[i])) ||
+        (params.remove_hydrogens && table.atomic_numbers[i] == 1))
+    {
+      keep[i] = false;
+    }
+  }
+  return keep;
+}
+
+} // namespace
+
+bool build_connectivity(AtomTable& table, const std::vector<Bond>& explicit_bonds,
+                        const StructureReadParams& params, bool elements_given)
+{
+  assign_residues(table);
+  assign_molecules(table);
+  BondPerceptionInput input;
+  input.positions = table.positions.data();
+  input.atomic_numbers = table.atomic_numbers.data();
+  input.molecule_ids = table.molecule_ids.data();
+  input.alt_locs = table.alt_locs.data();
+  input.atom_count = table.size();
+  BondPerceptionParams bond_params = params.bonds;
+  bond_params.coarse_grained = params.force_coarse_grained;
+  std::vector<Bond> perceived;
+  if (!bond_params.coarse_grained && (params.perceive_bonds || !elements_given))
+  {
+    bond_params.coarse_grained = false;
+    perceived = perceive_bonds(input, bond_params, params.parallel_for);
+    bond_params.coarse_grained = !elements_given && looks_coarse_grained(input, perceived);
+  }
+  if (bond_params.coarse_grained)
+  {
+    std::fill(table.atomic_numbers.begin(), table.atomic_numbers.end(), std::uint8_t(0));
+    perceived.clear();
+    if (params.perceive_bonds)
+    {
+      perceived = consensus_bonds(table, perceive_bonds(input, bond_params, params.parallel_for));
+    }
+  }
+  if (!params.perceive_bonds)
+  {
+    perceived.clear();
+  }
+  table.bonds = merge_bonds(perceived, explicit_bonds);
+  return bond_params.coarse_grained;
+}
+
+StructureFile read_structure(const std::string& path, const StructureReadParams& params,
+                             const ProgressCallback& progress)
+{
+  auto report = [&progress](double fraction) {
+    if (progress && !progress(fraction))
+    {
+      throw FileError("reading was aborted");
+    }
+  };
+  detail::PdbTextScan pdb;
+  const gemmi::Structure structure = parse_with_gemmi(path, pdb);
+  // mmCIF always names elements (type_symbol); a PDB file does when most records fill 77-78.
+  const bool elements_given =
+    structure.input_format != gemmi::CoorFormat::Pdb || 2 * pdb.element_records > pdb.atoms.size();
+  report(0.5);
+
+  StructureFile file;
+  file.title = structure.get_info("_struct.title");
+  for (std::size_t m = 0; m < structure.models.size(); ++m)
+  {
+    const gemmi::Model& model = structure.models[m];
+    std::vector<ChainResidues> chains;
+    AtomTable table = convert_model(model, pdb.atoms, chains);
+    if (table.size() == 0)
+    {
+      continue;
+    }
+    check_finite(table, path);
+    int span_id = 0;
+    if (!structure.helices.empty() || !structure.sheets.empty())
+    {
+      const ResidueLocator locator(chains);
+      for (const gemmi::Helix& helix : structure.helices)
+      {
+        locator.mark(table, helix.start, helix.end, helix_kind(helix.pdb_helix_class), span_id++);
+      }
+      for (const gemmi::Sheet& sheet : structure.sheets)
+      {
+        for (const gemmi::Sheet::Strand& strand : sheet.strands)
+        {
+          locator.mark(table, strand.start, strand.end, SecondaryStructure::Strand, span_id++);
+        }
+      }
+    }
+    std::vector<std::string> warnings;
+    table.bonds = explicit_bonds(structure, model, chains, table, pdb, warnings);
+    if (m == 0)
+    {
+      file.warnings = warnings;
+    }
+    const std::vector<bool> keep = selection_mask(table, chains, params);
+    if (std::find(keep.begin(), keep.end(), false) != keep.end())
+    {
+      table.filter(keep);
+    }
+    const std::vector<Bond> kept_explicit = table.bonds;
+    file.coarse_grained = build_connectivity(table, kept_explicit, params, elements_given);
+    if (structure.cell.is_crystal())
+    {
+      table.box =
+        PeriodicBox::from_cell(structure.cell.a, structure.cell.b, structure.cell.c,
+                               structure.cell.alpha, structure.cell.beta, structure.cell.gamma);
+    }
+    file.models.push_back(std::move(table));
+    report(0.5 + 0.5 * double(m + 1) / double(structure.models.size()));
+  }
+  if (file.models.empty())
+  {
+    throw FileError(path + ": the file contains no atoms");
+  }
+  return file;
+}
+
+} // namespace mesolens

@@ -1,0 +1,305 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "mesolens/mesh/mesh_report.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+#include <unordered_map>
+
+namespace mesolens {
+
+namespace {
+class DisjointSets
+{
+public:
+  explicit DisjointSets(std::size_t count)
+    : Parent(count)
+  {
+    std::iota(this->Parent.begin(), this->Parent.end(), std::size_t(0));
+  }
+  std::size_t find(std::size_t x)
+  {
+    while (this->Parent[x] != x)
+    {
+      this->Parent[x] = this->Parent[this->Parent[x]];
+      x = this->Parent[x];
+    }
+    return x;
+  }
+  void unite(std::size_t a, std::size_t b)
+  {
+    this->Parent[this->find(a)] = this->find(b);
+  }
+
+private:
+  std::vector<std::size_t> Parent;
+};
+
+/// One directed use of an undirected edge by a triangle.
+struct EdgeUse
+{
+  std::int64_t low;
+  std::int64_t high;
+  std::size_t triangle;
+  bool forward; // the triangle walks low -> high
+};
+
+double triangle_area(const double* p, const double* q, const double* r)
+{
+  const std::array<double, 3> u{ q[0] - p[0], q[1] - p[1], q[2] - p[2] };
+  const std::array<double, 3> v{ r[0] - p[0], r[1] - p[1], r[2] - p[2] };
+  const std::array<double, 3> c{ u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                                 u[0] * v[1] - u[1] * v[0] };
+  return 0.5 * std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+}
+
+bool finite_point(const double* p)
+{
+  return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+}
+} // namespace
+
+bool MeshReport::is_manifold() const
+{
+  return this->triangles > 0 && this->non_manifold_edges == 0 && this->non_manifold_vertices == 0 &&
+    this->degenerate_triangles == 0 && this->invalid_triangles == 0;
+}
+
+bool MeshReport::is_closed_manifold() const
+{
+  return this->is_manifold() && this->boundary_edges == 0 &&
+    this->inconsistently_oriented_edges == 0;
+}
+
+std::string MeshReport::describe_defects() const
+{
+  std::ostringstream text;
+  auto line = [&text](std::size_t count, const char* what) {
+    if (count > 0)
+    {
+      text << count << ' ' << what << '\n';
+    }
+  };
+  if (this->triangles == 0)
+  {
+    text << "no triangles\n";
+  }
+  line(this->invalid_triangles, "invalid triangles (index out of range or non-finite vertex)");
+  line(this->degenerate_triangles, "degenerate (zero-area or repeated-vertex) triangles");
+  line(this->non_manifold_edges, "non-manifold edges (shared by more than two triangles)");
+  line(this->non_manifold_vertices, "non-manifold vertices");
+  line(this->inconsistently_oriented_edges, "inconsistently oriented edges");
+  if (this->boundary_edges > 0)
+  {
+    text << this->boundary_edges << " boundary edges in " << this->boundary_loops << " loops\n";
+  }
+  line(this->unreferenced_vertices, "unreferenced vertices");
+  if (this->components > 1)
+  {
+    text << this->components << " separate components\n";
+  }
+  return text.str();
+}
+
+MeshReport mesh_report(const TriangleMeshView& mesh, double area_epsilon)
+{
+  MeshReport report;
+  report.vertices = mesh.point_count;
+  report.triangles = mesh.triangle_count;
+  report.triangle_is_degenerate.assign(mesh.triangle_count, 0);
+  report.vertex_is_non_manifold.assign(mesh.point_count, 0);
+
+  // Validity and a length scale for the relative area test.
+  std::vector<bool> valid(mesh.triangle_count, true);
+  double edge_length_sum = 0;
+  std::size_t edge_length_count = 0;
+  for (std::size_t t = 0; t < mesh.triangle_count; ++t)
+  {
+    const std::int64_t* tri = mesh.triangles + 3 * t;
+    for (int k = 0; k < 3; ++k)
+    {
+      if (tri[k] < 0 || std::size_t(tri[k]) >= mesh.point_count ||
+          !finite_point(mesh.points + 3 * tri[k]))
+      {
+        valid[t] = false;
+      }
+    }
+    if (!valid[t])
+    {
+      ++report.invalid_triangles;
+      report.triangle_is_degenerate[t] = 1;
+      continue;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      const double* p = mesh.points + 3 * tri[k];
+      const double* q = mesh.points + 3 * tri[(k + 1) % 3];
+      edge_length_sum += std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
+                                   (p[2] - q[2]) * (p[2] - q[2]));
+      ++edge_length_count;
+    }
+  }
+  const double mean_edge = edge_length_count ? edge_length_sum / double(edge_length_count) : 0;
+  const double area_threshold = area_epsilon * mean_edge * mean_edge;
+
+  std::vector<EdgeUse> uses;
+  uses.reserve(3 * mesh.triangle_count);
+  std::vector<bool> referenced(mesh.point_count, false);
+  std::size_t valid_triangles = 0;
+  for (std::size_t t = 0; t < mesh.triangle_count; ++t)
+  {
+    if (!valid[t])
+    {
+      continue;
+    }
+    ++valid_triangles;
+    const std::int64_t* tri = mesh.triangles + 3 * t;
+    const bool repeated = tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2];
+    if (repeated ||
+        triangle_area(mesh.points + 3 * tri[0], mesh.points + 3 * tri[1],
+                      mesh.points + 3 * tri[2]) <= area_threshold)
+    {
+      ++report.degenerate_triangles;
+      report.triangle_is_degenerate[t] = 1;
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      referenced[std::size_t(tri[k])] = true;
+      const std::int64_t a = tri[k];
+      const std::int64_t b = tri[(k + 1) % 3];
+      if (a != b)
+      {
+        uses.push_back({ std::min(a, b), std::max(a, b), t, a < b });
+      }
+    }
+  }
+  // Counting sort by the lower vertex, then the few uses of each vertex by (high, triangle).
+  {
+    std::vector<std::size_t> start(mesh.point_count + 1, 0);
+    for (const EdgeUse& use : uses)
+    {
+      ++start[std::size_t(use.low) + 1];
+    }
+    std::partial_sum(start.begin(), start.end(), start.begin());
+    std::vector<EdgeUse> sorted(uses.size());
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (const EdgeUse& use : uses)
+    {
+      sorted[fill[std::size_t(use.low)]++] = use;
+    }
+    for (std::size_t v = 0; v < mesh.point_count; ++v)
+    {
+      std::sort(sorted.begin() + long(start[v]), sorted.begin() + long(start[v + 1]),
+                [](const EdgeUse& x, const EdgeUse& y) {
+                  return x.high != y.high ? x.high < y.high : x.triangle < y.triangle;
+                });
+    }
+    uses = std::move(sorted);
+  }
+
+  DisjointSets triangle_sets(mesh.triangle_count);
+  // Corners (a vertex in a triangle) are numbered 3 t + k; those of one vertex joined across
+  // manifold edges form its fans.
+  auto corner = [&mesh](std::int64_t v, std::size_t t) {
+    const std::int64_t* tri = mesh.triangles + 3 * t;
+    return 3 * t + (tri[0] == v ? 0 : (tri[1] == v ? 1 : 2));
+  };
+  DisjointSets corner_sets(3 * mesh.triangle_count);
+  std::vector<std::pair<std::int64_t, std::int64_t>> boundary;
+  for (std::size_t i = 0; i < uses.size();)
+  {
+    std::size_t j = i;
+    while (j < uses.size() && uses[j].low == uses[i].low && uses[j].high == uses[i].high)
+    {
+      ++j;
+    }
+    const std::size_t count = j - i;
+    ++report.edges;
+    if (count == 1)
+    {
+      ++report.boundary_edges;
+      boundary.emplace_back(uses[i].low, uses[i].high);
+    }
+    else if (count == 2)
+    {
+      if (uses[i].forward == uses[i + 1].forward)
+      {
+        ++report.inconsistently_oriented_edges;
+      }
+      triangle_sets.unite(uses[i].triangle, uses[i + 1].triangle);
+      corner_sets.unite(corner(uses[i].low, uses[i].triangle),
+                        corner(uses[i].low, uses[i + 1].triangle));
+      corner_sets.unite(corner(uses[i].high, uses[i].triangle),
+                        corner(uses[i].high, uses[i + 1].triangle));
+    }
+    else
+    {
+      ++report.non_manifold_edges;
+      report.vertex_is_non_manifold[std::size_t(uses[i].low)] = 1;
+      report.vertex_is_non_manifold[std::size_t(uses[i].high)] = 1;
+      for (std::size_t k = i + 1; k < j; ++k)
+      {
+        triangle_sets.unite(uses[i].triangle, uses[k].triangle);
+      }
+    }
+    i = j;
+  }
+  // A vertex whose corners fall into more than one fan is non-manifold (two cones touching).
+  std::vector<std::int64_t> fan_of_vertex(mesh.point_count, -1);
+  for (std::size_t t = 0; t < mesh.triangle_count; ++t)
+  {
+    if (!valid[t])
+    {
+      continue;
+    }
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+      const auto v = std::size_t(mesh.triangles[3 * t + k]);
+      const auto root = std::int64_t(corner_sets.find(3 * t + k));
+      if (fan_of_vertex[v] < 0)
+      {
+        fan_of_vertex[v] = root;
+      }
+      else if (fan_of_vertex[v] != root)
+      {
+        report.vertex_is_non_manifold[v] = 1;
+      }
+    }
+  }
+  report.non_manifold_vertices = std::size_t(std::count(
+    report.vertex_is_non_manifold.begin(), report.vertex_is_non_manifold.end(), std::uint8_t(1)));
+
+  // Boundary loops: connected components of the boundary-edge graph.
+  std::unordered_map<std::int64_t, std::size_t> boundary_vertex;
+  for (const auto& edge : boundary)
+  {
+    boundary_vertex.emplace(edge.first, boundary_vertex.size());
+    boundary_vertex.emplace(edge.second, boundary_vertex.size());
+  }
+  DisjointSets boundary_sets(boundary_vertex.size());
+  for (const auto& edge : boundary)
+  {
+    boundary_sets.unite(boundary_vertex[edge.first], boundary_vertex[edge.second]);
+  }
+  for (std::size_t v = 0; v < boundary_vertex.size(); ++v)
+  {
+    report.boundary_loops += boundary_sets.find(v) == v ? 1 : 0;
+  }
+
+  std::size_t referenced_count = 0;
+  for (std::size_t v = 0; v < mesh.point_count; ++v)
+  {
+    referenced_count += referenced[v] ? 1 : 0;
+  }
+  report.unreferenced_vertices = mesh.point_count - referenced_count;
+  for (std::size_t t = 0; t < mesh.triangle_count; ++t)
+  {
+    report.components += (valid[t] && triangle_sets.find(t) == t) ? 1 : 0;
+  }
+  report.euler_characteristic = long(referenced_count) - long(report.edges) + long(valid_triangles);
+  return report;
+}
+
+} // namespace mesolens

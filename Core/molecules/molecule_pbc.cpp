@@ -1,0 +1,265 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "mesolens/molecules/molecule_pbc.h"
+
+#include "mesolens/common/errors.h"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <unordered_map>
+
+namespace mesolens {
+
+namespace {
+Eigen::Matrix3d box_columns(const PeriodicBox& box)
+{
+  Eigen::Matrix3d m;
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      m(c, r) = box.vectors[std::size_t(r)][std::size_t(c)];
+    }
+  }
+  return m;
+}
+
+int molecule_count(const std::vector<int>& molecule_ids)
+{
+  int count = 0;
+  for (const int id : molecule_ids)
+  {
+    if (id < 0)
+    {
+      throw InvalidInput("molecule ids must be >= 0");
+    }
+    count = std::max(count, id + 1);
+  }
+  return count;
+}
+} // namespace
+
+void make_molecules_whole(float* positions, const int* molecule_ids, std::size_t atom_count,
+                          const PeriodicBox& box)
+{
+  if (!box.is_set() || atom_count == 0)
+  {
+    return;
+  }
+  const MinimumImage minimum_image(box);
+  std::unordered_map<int, std::size_t> previous_atom;
+  previous_atom.reserve(atom_count / 4 + 1);
+  for (std::size_t i = 0; i < atom_count; ++i)
+  {
+    const auto found = previous_atom.find(molecule_ids[i]);
+    if (found != previous_atom.end())
+    {
+      const std::size_t j = found->second;
+      float* p = positions + 3 * i;
+      const float* q = positions + 3 * j;
+      const std::array<double, 3> d =
+        minimum_image({ double(p[0]) - q[0], double(p[1]) - q[1], double(p[2]) - q[2] });
+      for (int k = 0; k < 3; ++k)
+      {
+        p[k] = float(double(q[k]) + d[std::size_t(k)]);
+      }
+      found->second = i;
+    }
+    else
+    {
+      previous_atom.emplace(molecule_ids[i], i);
+    }
+  }
+}
+
+MoleculeContinuity::MoleculeContinuity(std::vector<int> molecule_ids)
+  : MoleculeIds(std::move(molecule_ids))
+{
+  this->MoleculeCount = molecule_count(this->MoleculeIds);
+  this->CurrentShifts.assign(3 * std::size_t(this->MoleculeCount), 0);
+}
+
+std::vector<double> MoleculeContinuity::centroids(const float* positions) const
+{
+  std::vector<double> sums(3 * std::size_t(this->MoleculeCount), 0.0);
+  std::vector<double> counts(std::size_t(this->MoleculeCount), 0.0);
+  for (std::size_t i = 0; i < this->MoleculeIds.size(); ++i)
+  {
+    const std::size_t m = std::size_t(this->MoleculeIds[i]);
+    for (int k = 0; k < 3; ++k)
+    {
+      sums[3 * m + std::size_t(k)] += positions[3 * i + std::size_t(k)];
+    }
+    counts[m] += 1.0;
+  }
+  for (std::size_t m = 0; m < counts.size(); ++m)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      sums[3 * m + std::size_t(k)] /= std::max(counts[m], 1.0);
+    }
+  }
+  return sums;
+}
+
+void MoleculeContinuity::add_frame(std::size_t frame, float* positions, const PeriodicBox& box)
+{
+  if (frame != this->Changes.size())
+  {
+    throw InvalidInput("MoleculeContinuity::add_frame: frames must be added in order (expected " +
+                       std::to_string(this->Changes.size()) + ", got " + std::to_string(frame) +
+                       ")");
+  }
+  std::vector<Change> changes;
+  if (frame > 0 && box.is_set())
+  {
+    const std::vector<double> current = this->centroids(positions);
+    const Eigen::PartialPivLU<Eigen::Matrix3d> lu(box_columns(box));
+    for (std::size_t mol = 0; mol < std::size_t(this->MoleculeCount); ++mol)
+    {
+      const Eigen::Vector3d drift(this->PreviousCentroids[3 * mol] - current[3 * mol],
+                                  this->PreviousCentroids[3 * mol + 1] - current[3 * mol + 1],
+                                  this->PreviousCentroids[3 * mol + 2] - current[3 * mol + 2]);
+      const Eigen::Vector3d fractional = lu.solve(drift);
+      Change change{ std::int32_t(mol), {} };
+      bool changed = false;
+      for (int k = 0; k < 3; ++k)
+      {
+        change.shift[std::size_t(k)] = std::int32_t(std::lround(fractional[k]));
+        changed =
+          changed || change.shift[std::size_t(k)] != this->CurrentShifts[3 * mol + std::size_t(k)];
+      }
+      if (changed)
+      {
+        std::copy(change.shift.begin(), change.shift.end(),
+                  this->CurrentShifts.begin() + long(3 * mol));
+        changes.push_back(change);
+      }
+    }
+  }
+  this->Changes.push_back(std::move(changes));
+  if (frame % checkpoint_interval == 0)
+  {
+    this->Checkpoints.push_back(this->CurrentShifts);
+  }
+  this->shift_atoms(this->CurrentShifts, positions, box);
+  this->PreviousCentroids = this->centroids(positions);
+}
+
+std::vector<std::int32_t> MoleculeContinuity::shifts_of(std::size_t frame) const
+{
+  const std::size_t checkpoint = frame / checkpoint_interval;
+  std::vector<std::int32_t> shifts = this->Checkpoints[checkpoint];
+  for (std::size_t f = checkpoint * checkpoint_interval + 1; f <= frame; ++f)
+  {
+    for (const Change& change : this->Changes[f])
+    {
+      std::copy(change.shift.begin(), change.shift.end(),
+                shifts.begin() + long(3 * std::size_t(change.molecule)));
+    }
+  }
+  return shifts;
+}
+
+void MoleculeContinuity::apply(std::size_t frame, float* positions, const PeriodicBox& box) const
+{
+  if (frame >= this->Changes.size())
+  {
+    throw InvalidInput("MoleculeContinuity::apply: frame " + std::to_string(frame) +
+                       " has not been added");
+  }
+  this->shift_atoms(this->shifts_of(frame), positions, box);
+}
+
+void MoleculeContinuity::shift_atoms(const std::vector<std::int32_t>& shifts, float* positions,
+                                     const PeriodicBox& box) const
+{
+  if (!box.is_set())
+  {
+    return;
+  }
+  for (std::size_t i = 0; i < this->MoleculeIds.size(); ++i)
+  {
+    const std::size_t mol = std::size_t(this->MoleculeIds[i]);
+    for (int k = 0; k < 3; ++k)
+    {
+      double offset = 0;
+      for (int v = 0; v < 3; ++v)
+      {
+        offset +=
+          double(shifts[3 * mol + std::size_t(v)]) * box.vectors[std::size_t(v)][std::size_t(k)];
+      }
+      positions[3 * i + std::size_t(k)] = float(positions[3 * i + std::size_t(k)] + offset);
+    }
+  }
+}
+
+std::vector<std::array<double, 3>> assembly_shifts(const std::vector<double>& centres,
+                                                   const PeriodicBox& box)
+{
+  const std::size_t count = centres.size() / 3;
+  std::vector<std::array<double, 3>> shifts(count, { 0, 0, 0 });
+  if (!box.is_set() || count == 0)
+  {
+    return shifts;
+  }
+  // Cartesian = M^T f with the box vectors as the rows of M.
+  Eigen::Matrix3d cell;
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      cell(c, r) = box.vectors[r][c];
+    }
+  }
+  const Eigen::Matrix3d to_fractional = cell.inverse();
+  std::vector<Eigen::Vector3d> fractional(count);
+  double sines[3] = { 0, 0, 0 };
+  double cosines[3] = { 0, 0, 0 };
+  constexpr double turn = 2 * 3.14159265358979323846;
+  for (std::size_t m = 0; m < count; ++m)
+  {
+    fractional[m] =
+      to_fractional * Eigen::Vector3d(centres[3 * m], centres[3 * m + 1], centres[3 * m + 2]);
+    for (int d = 0; d < 3; ++d)
+    {
+      sines[d] += std::sin(turn * fractional[m][d]);
+      cosines[d] += std::cos(turn * fractional[m][d]);
+    }
+  }
+  for (int d = 0; d < 3; ++d)
+  {
+    // An assembly spread over (nearly) the whole period, such as a flat membrane that crosses
+    // the box, has no middle along that axis: it stays as it is.
+    const double resultant = std::hypot(sines[d], cosines[d]) / double(count);
+    if (resultant < 0.25)
+    {
+      continue;
+    }
+    const double middle = std::atan2(sines[d], cosines[d]) / turn;
+    std::vector<long> images(count);
+    std::map<long, std::size_t> votes;
+    for (std::size_t m = 0; m < count; ++m)
+    {
+      images[m] = std::lround(middle - fractional[m][d]);
+      ++votes[images[m]];
+    }
+    // The largest group stays where it is; the others join it.
+    const long staying =
+      std::max_element(votes.begin(), votes.end(), [](const auto& a, const auto& b) {
+        return a.second < b.second;
+      })->first;
+    for (std::size_t m = 0; m < count; ++m)
+    {
+      for (int c = 0; c < 3; ++c)
+      {
+        shifts[m][c] += double(images[m] - staying) * box.vectors[d][c];
+      }
+    }
+  }
+  return shifts;
+}
+
+} // namespace mesolens

@@ -1,0 +1,559 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include <Eigen/Dense>
+
+#include "mesolens/surface/molecular_surface.h"
+
+#include "mesolens/common/errors.h"
+
+#include "surface/detail/chord_refinement.h"
+#include "surface/detail/contour_tetrahedra.h"
+#include "surface/detail/probe_distance.h"
+#include "surface/detail/sas_boundary.h"
+#include "surface/detail/ses_patches.h"
+#include "surface/detail/ses_piece_projection.h"
+#include "surface/detail/surface_contour_fields.h"
+#include "surface/detail/surface_projections.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+
+namespace mesolens {
+
+namespace {
+using Vec = Eigen::Vector3d;
+constexpr double largest_radius = 20.0;        // Å: no atom, bead or probe is larger
+constexpr double largest_triangle_count = 2e7; // about 2 GB: a finer tolerance is refused
+/// The lattice's resolution, the farthest any point lies from a lattice point (its reach), is
+/// that of a cubic grid whose cells' diagonals have a chord error of the tolerance's times
+/// grid_tolerance_ratio, at most coarse_grid_tolerance (Å); the splits bring the mesh to the
+/// tolerance. Finer lattices cost more than the splits that refine a coarse mesh as far; and
+/// triangles at creases, which splits leave as the lattice made them, must shrink with the
+/// tolerance for the mesh's area to converge to the exact one. At the coarsest, a 1.4 Å probe's
+/// surface on atoms of 1.4 Å and more meets the cavity limit below. (Walls between cavities
+/// thinner than the lattice's spacing may be missed and their cavities merged: in 3wip cubic
+/// grids of 1.3 Å to 0.47 Å find 56 to 67 cavities, body-centred lattices of 1.6, 2.0, 2.24
+/// and 2.5 Å find 57, 48, 55 and 51.)
+constexpr double coarse_grid_tolerance = 0.56;
+constexpr double grid_tolerance_ratio = 6.0;
+/// The solvent-excluded surface's lattice reaches every point from at most this many probe
+/// radii, so each cavity and neck, which holds a probe's ball, holds a lattice point outside
+/// the surface.
+constexpr double cavity_reach_ratio = 0.9;
+/// A body-centred cubic lattice reaches every point from sqrt(5) / 4 of its spacing (the cubes'
+/// side): its spacing per Å of reach.
+constexpr double spacing_per_reach = 4.0 / 2.23606797749979;
+/// How far beyond the probe radius the solvent-excluded field labels lattice points with their
+/// nearest boundary piece, in spacings: the inner ends of most edges the surface crosses then
+/// carry the piece that places the vertex. (Labelling farther costs more than the searches it
+/// saves: on 3wip 0.5, 0.6, 0.7, 0.87 and 1.0 spacings took 6.17, 6.14, 6.15, 6.22 and 6.29
+/// billion instructions.)
+constexpr double hint_reach = 0.6;
+
+void check_input(const std::vector<std::array<double, 3>>& centres,
+                 const std::vector<double>& radii, const MolecularSurfaceOptions& options)
+{
+  if (radii.size() != centres.size())
+  {
+    throw InvalidInput(
+      "molecular_surface needs one radius per atom: " + std::to_string(centres.size()) +
+      " atoms, " + std::to_string(radii.size()) + " radii");
+  }
+  for (std::size_t i = 0; i < centres.size(); ++i)
+  {
+    if (!std::isfinite(centres[i][0]) || !std::isfinite(centres[i][1]) ||
+        !std::isfinite(centres[i][2]))
+    {
+      throw InvalidInput("atom " + std::to_string(i) + " has a non-finite position");
+    }
+    if (!(radii[i] > 0) || !(radii[i] <= largest_radius))
+    {
+      throw InvalidInput("atom " + std::to_string(i) + " has radius " + std::to_string(radii[i]) +
+                         " Å; radii must lie in (0, 20] Å");
+    }
+  }
+  if (options.kind != SurfaceKind::VanDerWaals &&
+      (!(options.probe_radius > 0) || !(options.probe_radius <= largest_radius)))
+  {
+    throw InvalidInput("probe radius " + std::to_string(options.probe_radius) +
+                       " Å is outside (0, 20] Å");
+  }
+  if (!(options.tolerance >= 0.005) || !(options.tolerance <= 1.0))
+  {
+    throw InvalidInput("surface tolerance " + std::to_string(options.tolerance) +
+                       " Å is outside [0.005, 1] Å");
+  }
+}
+
+/// Per vertex, its mesh component (triangles joined by vertices), numbered in the order of their
+/// lowest vertices; `count` gets their number. Concurrent union-find: a root is only ever linked
+/// to a lower root, so each component's root ends as its lowest vertex whatever the threads.
+std::vector<std::size_t> component_labels(const std::vector<std::int64_t>& triangles,
+                                          std::size_t vertex_count, std::size_t& count,
+                                          const ParallelFor& parallel_for)
+{
+  std::vector<std::atomic<std::size_t>> parent(vertex_count);
+  run_parallel(parallel_for, vertex_count, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v)
+    {
+      parent[v].store(v, std::memory_order_relaxed);
+    }
+  });
+  const auto find = [&](std::size_t x) {
+    for (;;)
+    {
+      std::size_t up = parent[x].load(std::memory_order_relaxed);
+      if (up == x)
+      {
+        return x;
+      }
+      const std::size_t next = parent[up].load(std::memory_order_relaxed);
+      if (next != up)
+      {
+        // Path halving: `next` is an ancestor of x too.
+        parent[x].compare_exchange_weak(up, next, std::memory_order_relaxed);
+      }
+      x = next;
+    }
+  };
+  const auto unite = [&](std::size_t a, std::size_t b) {
+    for (;;)
+    {
+      a = find(a);
+      b = find(b);
+      if (a == b)
+      {
+        return;
+      }
+      std::size_t higher = std::max(a, b);
+      if (parent[higher].compare_exchange_strong(higher, std::min(a, b), std::memory_order_relaxed))
+      {
+        return;
+      }
+    }
+  };
+  run_parallel(parallel_for, triangles.size() / 3, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t t = begin; t < end; ++t)
+    {
+      unite(std::size_t(triangles[3 * t]), std::size_t(triangles[3 * t + 1]));
+      unite(std::size_t(triangles[3 * t]), std::size_t(triangles[3 * t + 2]));
+    }
+  });
+  // Each root is its component's lowest vertex: numbered on meeting it.
+  std::vector<std::size_t> label(vertex_count, 0);
+  count = 0;
+  for (std::size_t v = 0; v < vertex_count; ++v)
+  {
+    const std::size_t root = parent[v].load(std::memory_order_relaxed);
+    label[v] = root == v ? count++ : label[find(root)];
+  }
+  return label;
+}
+} // namespace
+
+MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& centre_list,
+                                   const std::vector<double>& atom_radii,
+                                   const MolecularSurfaceOptions& options,
+                                   const ParallelFor& parallel_for, const SurfaceProgress& progress)
+{
+  check_input(centre_list, atom_radii, options);
+  MolecularSurface surface;
+  const std::size_t n = centre_list.size();
+  if (n == 0)
+  {
+    return surface;
+  }
+  const bool excluded = options.kind == SurfaceKind::SolventExcluded;
+  const double p = options.probe_radius;
+  std::vector<Vec> centres(n);
+  std::vector<double> radii(n); // of the spheres whose union is traced
+  double smallest = largest_radius, largest = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    centres[i] = Vec(centre_list[i][0], centre_list[i][1], centre_list[i][2]);
+    radii[i] = atom_radii[i] + (options.kind == SurfaceKind::VanDerWaals ? 0.0 : p);
+    smallest = std::min(smallest, atom_radii[i]);
+    largest = std::max(largest, radii[i]);
+  }
+  const auto report = [&](double fraction) {
+    if (progress)
+    {
+      progress(fraction);
+    }
+  };
+  const SasBoundary boundary = sas_boundary(centre_list, radii, excluded, parallel_for);
+  surface.degenerate_vertex_count = boundary.degenerate_vertices;
+  report(0.1);
+
+  // The tessellation: a body-centred cubic lattice for the surface's shape (its tetrahedra's
+  // longest edges one spacing long), then edges split where they stray from the surface. An
+  // edge gives a chord error of its length squared over eight radii of curvature on the most
+  // curved patches (the probe's or the smallest atom's); the lattice's is coarser than the
+  // tolerance (see grid_tolerance_ratio), and the splits bring each edge's midpoint within three
+  // quarters of the tolerance (so the triangles' centres within it).
+  const double curvature_radius = excluded
+    ? std::min(p, smallest)
+    : smallest + (options.kind == SurfaceKind::SolventAccessible ? p : 0.0);
+  // The spacing of a cubic grid whose cells' diagonals have a chord error of `tolerance`.
+  const auto cubic_spacing_for = [curvature_radius](double tolerance) {
+    return std::sqrt(8.0 * tolerance * curvature_radius) / std::sqrt(3.0);
+  };
+  double reach = 0.5 * std::sqrt(3.0) *
+    cubic_spacing_for(std::max(
+      options.tolerance,
+      std::min(coarse_grid_tolerance, grid_tolerance_ratio * options.tolerance)));
+  if (excluded)
+  {
+    reach = std::min(reach, cavity_reach_ratio * p);
+  }
+  const double spacing = spacing_per_reach * reach;
+  const double grid_tolerance = spacing * spacing / (8.0 * curvature_radius);
+  surface.grid_spacing = spacing;
+  if (options.tessellate)
+  {
+    // Refused before any work when too fine: the SES is rarely larger than 1.2 times the SAS,
+    // and a mesh refined to a tolerance has fewer triangles than a grid as fine would give.
+    double estimate = 0;
+    for (const double a : boundary.area)
+    {
+      estimate += a;
+    }
+    estimate *= excluded ? 1.2 : 1.0;
+    const double fine_spacing = cubic_spacing_for(options.tolerance);
+    const double expected_triangles = 5.0 * estimate / (fine_spacing * fine_spacing);
+    if (expected_triangles > largest_triangle_count)
+    {
+      throw InvalidInput("a surface of about " + std::to_string(estimate) + " Å² at tolerance " +
+                         std::to_string(options.tolerance) + " Å would need about " +
+                         std::to_string(expected_triangles / 1e6) +
+                         " million triangles; choose a larger tolerance");
+    }
+  }
+
+  // One index of the boundary's pieces serves the figures and the tessellation, with the
+  // larger reach either asks for (a larger one only coarsens its cells).
+  const bool figures = !excluded || options.exact_figures;
+  const double patch_reach = excluded && figures ? 2.0 * p + 0.6 * largest : 0.0;
+  const double mesh_reach = options.tessellate ? p * (excluded ? 1.0 : 0.0) + 3.0 * spacing : 0.0;
+  std::unique_ptr<const ProbeDistance> distance_index;
+  if (patch_reach > 0 || mesh_reach > 0)
+  {
+    distance_index = std::make_unique<const ProbeDistance>(
+      centres, radii, boundary, std::max(patch_reach, mesh_reach), parallel_for);
+  }
+
+  // Exact figures from the patches.
+  SesPatchIntegrals patches;
+  if (excluded && figures)
+  {
+    patches = ses_patch_integrals(centres, atom_radii, p, boundary, *distance_index, parallel_for);
+    surface.singular_patch_count = patches.singular_count;
+  }
+  else if (figures)
+  {
+    patches.face_area = boundary.area;
+    patches.face_volume.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      patches.face_volume[i] =
+        (radii[i] * boundary.area[i] + centres[i].dot(boundary.normal_integral[i])) / 3.0;
+    }
+  }
+  report(0.2);
+
+  std::vector<ContourVertex> vertices;
+  std::vector<std::int64_t> triangles;
+  if (options.tessellate)
+  {
+    const ProbeDistance& distance = *distance_index;
+    SesPieceProjection pieces(centres, atom_radii, p, boundary, distance);
+    // Patches the exact figures certified uncut need no further certificate (none without
+    // the figures).
+    pieces.take_uncut_patches(patches.arc_uncut, patches.vertex_uncut);
+    const std::unique_ptr<ContourField> field = excluded
+      ? excluded_surface_field(distance, pieces, boundary, centres, radii, atom_radii, p,
+                               p + hint_reach * spacing)
+      : union_surface_field(centres, radii);
+    // The grid: the spheres' box with two cells to spare, shifted off any symmetry of the input.
+    Vec low = Vec::Constant(1e300), high = -low;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      low = low.cwiseMin(centres[i] - Vec::Constant(radii[i]));
+      high = high.cwiseMax(centres[i] + Vec::Constant(radii[i]));
+    }
+    low -= Vec(2.0 + 0.318309886, 2.0 + 0.271828183, 2.0 + 0.141421356) * spacing;
+    high += Vec::Constant(3.0 * spacing);
+    ContourMesh mesh = contour_tetrahedra(*field, low, high, spacing, parallel_for,
+                                          [&](double f) { report(0.2 + 0.7 * f); });
+    // Each round of splits divides an edge's deviation by about four: enough rounds to go from
+    // the grid's chord error to the tolerance, and two for edges the grid left longer.
+    const double split_tolerance = 0.75 * options.tolerance;
+    const int rounds =
+      std::min(8,
+               2 +
+                 static_cast<int>(std::ceil(
+                   std::log(std::max(1.0, grid_tolerance / options.tolerance)) / std::log(4.0))));
+    SurfaceProjection projection;
+    if (excluded)
+    {
+      // Midpoints of edges up to a spacing long stray less than three quarters of one.
+      const double projection_limit = p + 0.75 * spacing;
+      projection = [&, projection_limit] {
+        return excluded_surface_projection(distance, pieces, boundary, centres, atom_radii, p,
+                                           projection_limit);
+      };
+    }
+    else
+    {
+      projection = [&] {
+        return union_surface_projection(distance, centres, radii, 1.5 * spacing);
+      };
+    }
+    refine_chords(mesh, projection, split_tolerance, 1.5 * spacing, rounds, parallel_for);
+    report(0.95);
+    vertices = std::move(mesh.vertices);
+    triangles = std::move(mesh.triangles);
+  }
+
+  // Components; cavities are those enclosing negative volume (their normals face inwards).
+  std::size_t component_count = 0;
+  const std::vector<std::size_t> component =
+    component_labels(triangles, vertices.size(), component_count, parallel_for);
+  std::vector<double> component_volume(component_count, 0.0);
+  for (std::size_t t = 0; t < triangles.size(); t += 3)
+  {
+    const Vec& a = vertices[std::size_t(triangles[t])].position;
+    const Vec& b = vertices[std::size_t(triangles[t + 1])].position;
+    const Vec& c = vertices[std::size_t(triangles[t + 2])].position;
+    component_volume[component[std::size_t(triangles[t])]] += a.dot(b.cross(c)) / 6.0;
+  }
+  std::vector<char> cavity(component_count, 0);
+  for (std::size_t k = 0; k < component_count; ++k)
+  {
+    cavity[k] = component_volume[k] < 0 ? 1 : 0;
+  }
+  surface.component_count = component_count;
+  surface.cavity_count = static_cast<std::size_t>(std::count(cavity.begin(), cavity.end(), 1));
+
+  // Exact figures, less those of dropped cavities. Tori and concave patches go whole, with the
+  // component of their mesh vertices (or of the nearest vertex of their atoms); a sphere's
+  // convex part goes by its boundary loops, each placed by the nearest vertex on that atom, the
+  // part bounded by its cavity loops taken as one region (Gauss-Bonnet per region).
+  // (In place: the patch integrals are not needed afterwards.)
+  std::vector<double>& face_area = patches.face_area;
+  std::vector<double>& face_volume = patches.face_volume;
+  std::vector<double>& arc_area = patches.arc_area;
+  std::vector<double>& arc_volume = patches.arc_volume;
+  std::vector<double>& vertex_area = patches.vertex_area;
+  std::vector<double>& vertex_volume = patches.vertex_volume;
+  if (figures && !options.keep_cavities && surface.cavity_count > 0)
+  {
+    std::vector<std::vector<std::uint32_t>> on_atom(n);
+    for (std::size_t v = 0; v < vertices.size(); ++v)
+    {
+      on_atom[std::size_t(vertices[v].atom)].push_back(static_cast<std::uint32_t>(v));
+    }
+    const auto nearest_is_cavity = [&](const Vec& x, std::initializer_list<std::uint32_t> atoms,
+                                       int patch_kind) {
+      double best = 1e300;
+      bool in_cavity = false;
+      for (const std::uint32_t atom : atoms)
+      {
+        for (const std::uint32_t v : on_atom[atom])
+        {
+          if (patch_kind >= 0 && vertices[v].patch != patch_kind)
+          {
+            continue;
+          }
+          const double d = (vertices[v].position - x).squaredNorm();
+          if (d < best)
+          {
+            best = d;
+            in_cavity = cavity[component[v]] != 0;
+          }
+        }
+      }
+      return in_cavity;
+    };
+    // Tori and concave patches: by vote of their vertices.
+    std::vector<int> arc_votes(boundary.arcs.size(), 0), vertex_votes(boundary.vertices.size(), 0);
+    std::vector<int> arc_seen(boundary.arcs.size(), 0), vertex_seen(boundary.vertices.size(), 0);
+    for (std::size_t v = 0; v < vertices.size(); ++v)
+    {
+      const int vote = cavity[component[v]] ? 1 : -1;
+      if (vertices[v].patch == static_cast<std::uint8_t>(SurfacePatch::Toroidal))
+      {
+        arc_votes[vertices[v].piece] += vote;
+        arc_seen[vertices[v].piece] = 1;
+      }
+      else if (vertices[v].patch == static_cast<std::uint8_t>(SurfacePatch::Concave))
+      {
+        vertex_votes[vertices[v].piece] += vote;
+        vertex_seen[vertices[v].piece] = 1;
+      }
+    }
+    for (std::size_t k = 0; k < boundary.arcs.size(); ++k)
+    {
+      const SasArc& arc = boundary.arcs[k];
+      const bool gone = arc_seen[k]
+        ? arc_votes[k] > 0
+        : nearest_is_cavity(arc.point(arc.start + 0.5 * arc.span), { arc.first, arc.second }, -1);
+      if (gone)
+      {
+        arc_area[k] = arc_volume[k] = 0;
+      }
+    }
+    for (std::size_t k = 0; k < boundary.vertices.size(); ++k)
+    {
+      const auto& s3 = boundary.vertices[k].spheres;
+      const bool gone = vertex_seen[k]
+        ? vertex_votes[k] > 0
+        : nearest_is_cavity(boundary.vertices[k].position, { s3[0], s3[1], s3[2] }, -1);
+      if (gone)
+      {
+        vertex_area[k] = vertex_volume[k] = 0;
+      }
+    }
+    // Convex parts: per sphere, its cavity loops.
+    constexpr double two_pi = 6.28318530717958647692;
+    std::size_t first_loop = 0;
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      std::size_t end_loop = first_loop;
+      while (end_loop < boundary.loops.size() && boundary.loops[end_loop].sphere == i)
+      {
+        ++end_loop;
+      }
+      const double atom_scale = atom_radii[i] / radii[i]; // the SAS sphere onto the atom (SES)
+      const double scale = excluded ? atom_scale : 1.0;
+      const double surface_radius = excluded ? atom_radii[i] : radii[i];
+      std::size_t cavity_loops = 0;
+      double turning = 0;
+      Vec normal_integral = Vec::Zero();
+      for (std::size_t l = first_loop; l < end_loop; ++l)
+      {
+        const SasLoop& loop = boundary.loops[l];
+        const Vec on_surface = centres[i] + scale * (loop.sample - centres[i]);
+        if (nearest_is_cavity(on_surface, { static_cast<std::uint32_t>(i) }, -1))
+        {
+          ++cavity_loops;
+          turning += loop.turning;
+          normal_integral += loop.normal_integral;
+        }
+      }
+      const std::size_t loop_count = end_loop - first_loop;
+      first_loop = end_loop;
+      if (face_area[i] <= 0)
+      {
+        continue;
+      }
+      if (loop_count == 0)
+      {
+        // Wholly exposed: a sphere of its own.
+        const Vec pole = centres[i] + Vec(surface_radius, 0, 0);
+        if (nearest_is_cavity(pole, { static_cast<std::uint32_t>(i) }, -1))
+        {
+          face_area[i] = face_volume[i] = 0;
+        }
+        continue;
+      }
+      if (cavity_loops == 0)
+      {
+        continue;
+      }
+      if (cavity_loops == loop_count)
+      {
+        face_area[i] = face_volume[i] = 0;
+        continue;
+      }
+      const double unit = std::max(0.0, two_pi * (2.0 - double(cavity_loops)) - turning);
+      const double area = surface_radius * surface_radius * unit;
+      const Vec normals = scale * scale * normal_integral;
+      face_area[i] = std::max(0.0, face_area[i] - area);
+      face_volume[i] -= (surface_radius * area + centres[i].dot(normals)) / 3.0;
+    }
+  }
+  const auto add = [&](const std::vector<double>& area, const std::vector<double>& volume,
+                       SurfacePatch kind) {
+    const int slot = static_cast<int>(kind);
+    for (std::size_t k = 0; k < area.size(); ++k)
+    {
+      surface.patch_area[slot] += area[k];
+      surface.volume += volume[k];
+      surface.patch_count[slot] += area[k] > 0 ? 1 : 0;
+    }
+  };
+  if (figures)
+  {
+    add(face_area, face_volume, SurfacePatch::Convex);
+    add(arc_area, arc_volume, SurfacePatch::Toroidal);
+    add(vertex_area, vertex_volume, SurfacePatch::Concave);
+    surface.area = surface.patch_area[0] + surface.patch_area[1] + surface.patch_area[2];
+  }
+  else
+  {
+    surface.area = surface.volume = std::numeric_limits<double>::quiet_NaN();
+    surface.patch_area.fill(std::numeric_limits<double>::quiet_NaN());
+  }
+
+  // The mesh, less dropped cavities (arrays sized first, then filled in place; when every
+  // vertex stays, the triangles keep their indices).
+  const bool keep_all = options.keep_cavities || surface.cavity_count == 0;
+  std::vector<std::int64_t> new_index(keep_all ? 0 : vertices.size(), -1);
+  std::size_t kept = keep_all ? vertices.size() : 0;
+  for (std::size_t v = 0; v < new_index.size(); ++v)
+  {
+    if (!cavity[component[v]])
+    {
+      new_index[v] = static_cast<std::int64_t>(kept++);
+    }
+  }
+  surface.points.resize(3 * kept);
+  surface.normals.resize(3 * kept);
+  surface.atom.resize(kept);
+  surface.patch.resize(kept);
+  run_parallel(parallel_for, vertices.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v)
+    {
+      const std::int64_t k = keep_all ? static_cast<std::int64_t>(v) : new_index[v];
+      if (k < 0)
+      {
+        continue;
+      }
+      const std::size_t at = static_cast<std::size_t>(k);
+      const ContourVertex& vertex = vertices[v];
+      for (int a = 0; a < 3; ++a)
+      {
+        surface.points[3 * at + std::size_t(a)] = vertex.position[a];
+        surface.normals[3 * at + std::size_t(a)] = vertex.normal[a];
+      }
+      surface.atom[at] = vertex.atom;
+      surface.patch[at] = static_cast<SurfacePatch>(vertex.patch);
+    }
+  });
+  if (keep_all)
+  {
+    surface.triangles = std::move(triangles);
+  }
+  else
+  {
+    for (const std::int64_t v : triangles)
+    {
+      if (new_index[std::size_t(v)] >= 0)
+      {
+        surface.triangles.push_back(new_index[std::size_t(v)]);
+      }
+    }
+  }
+  if (!options.keep_cavities)
+  {
+    surface.component_count -= surface.cavity_count;
+  }
+  report(1.0);
+  return surface;
+}
+
+} // namespace mesolens

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoMembraneMapping.h"
 
+#include "vtkMesoArrayNames.h"
 #include "vtkMesoAtomTableConversion.h"
+#include "vtkMesoMembraneWarp.h"
 
 #include "vtkMesoParallelFor.h"
 #include "vtkMesoSurfaceConversion.h"
@@ -27,7 +29,6 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
-#include <vtkStringArray.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <algorithm>
@@ -79,7 +80,7 @@ PatchData read_patch(vtkPolyData* atoms)
   patch.positions = data.positions.data();
   patch.atom_count = static_cast<std::size_t>(n);
   patch.centre_height = height;
-  vtkDataArray* box = atoms->GetFieldData()->GetArray("PeriodicBoxVectors");
+  vtkDataArray* box = atoms->GetFieldData()->GetArray(vtkMesoArrayNames::PeriodicBoxVectors);
   if (box && box->GetNumberOfComponents() == 9)
   {
     patch.origin = { 0, 0 };
@@ -93,7 +94,7 @@ PatchData read_patch(vtkPolyData* atoms)
     patch.a = { high[0] - low[0], 0 };
     patch.b = { 0, high[1] - low[1] };
   }
-  if (vtkDataArray* molecules = atoms->GetPointData()->GetArray("MoleculeId"))
+  if (vtkDataArray* molecules = atoms->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId))
   {
     data.molecule_ids.resize(static_cast<std::size_t>(n));
     for (vtkIdType i = 0; i < n; ++i)
@@ -102,7 +103,7 @@ PatchData read_patch(vtkPolyData* atoms)
     }
     patch.molecule_ids = data.molecule_ids.data();
   }
-  if (vtkDataArray* elements = atoms->GetPointData()->GetArray("AtomicNumber"))
+  if (vtkDataArray* elements = atoms->GetPointData()->GetArray(vtkMesoArrayNames::AtomicNumber))
   {
     data.masses.resize(static_cast<std::size_t>(n));
     for (vtkIdType i = 0; i < n; ++i)
@@ -124,17 +125,6 @@ PatchData read_patch(vtkPolyData* atoms)
     }
   }
   return data;
-}
-
-void add_field(vtkPolyData* output, const char* name, const std::vector<double>& values,
-               int components = 1)
-{
-  vtkNew<vtkDoubleArray> array;
-  array->SetName(name);
-  array->SetNumberOfComponents(components);
-  array->SetNumberOfTuples(static_cast<vtkIdType>(values.size() / std::size_t(components)));
-  std::copy(values.begin(), values.end(), array->GetPointer(0));
-  output->GetFieldData()->AddArray(array);
 }
 
 /// Output 0: the mapped atoms, bonds and arrays, k^2 copies of the patch (atoms a cut tile
@@ -200,7 +190,7 @@ void build_atoms(vtkPolyData* atoms, const PatchData& data, const mesolens::Mapp
     out->CopyData(in, source_ids->GetId(i), i);
   }
   vtkNew<vtkIntArray> tile_ids;
-  tile_ids->SetName("TileId");
+  tile_ids->SetName(vtkMesoArrayNames::TileId);
   tile_ids->SetNumberOfValues(total);
   for (vtkIdType i = 0; i < copies; ++i)
   {
@@ -214,7 +204,7 @@ void build_atoms(vtkPolyData* atoms, const PatchData& data, const mesolens::Mapp
   {
     const int stride = *std::max_element(data.molecule_ids.begin(), data.molecule_ids.end()) + 1;
     vtkNew<vtkIntArray> molecules;
-    molecules->SetName("MoleculeId");
+    molecules->SetName(vtkMesoArrayNames::MoleculeId);
     molecules->SetNumberOfValues(total);
     for (vtkIdType i = 0; i < copies; ++i)
     {
@@ -225,15 +215,15 @@ void build_atoms(vtkPolyData* atoms, const PatchData& data, const mesolens::Mapp
                               data.molecule_ids[std::size_t(i % n)]);
       }
     }
-    out->RemoveArray("MoleculeId");
+    out->RemoveArray(vtkMesoArrayNames::MoleculeId);
     out->AddArray(molecules);
   }
-  if (in->GetArray("AtomicNumber"))
+  if (in->GetArray(vtkMesoArrayNames::AtomicNumber))
   {
-    out->SetActiveScalars("AtomicNumber");
+    out->SetActiveScalars(vtkMesoArrayNames::AtomicNumber);
   }
   vtkNew<vtkFloatArray> change;
-  change->SetName("BondLengthChange");
+  change->SetName(vtkMesoArrayNames::BondLengthChange);
   change->SetNumberOfValues(total + static_cast<vtkIdType>(kept_changes.size()));
   for (vtkIdType i = 0; i < total; ++i)
   {
@@ -246,13 +236,6 @@ void build_atoms(vtkPolyData* atoms, const PatchData& data, const mesolens::Mapp
   output->GetCellData()->AddArray(change);
 }
 
-void add_text_field(vtkPolyData* output, const char* name, const std::string& text)
-{
-  vtkNew<vtkStringArray> array;
-  array->SetName(name);
-  array->InsertNextValue(text);
-  output->GetFieldData()->AddArray(array);
-}
 } // namespace
 
 struct vtkMesoMembraneMapping::State
@@ -344,42 +327,8 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
       build_atoms(atoms, data, mapped,
                   mesolens::bond_length_changes(data.patch, mapped, data.bonds, scale), output);
     }
-    const mesolens::MembranePatch& patch = data.patch;
-    add_field(output, "GeodesicRadius", { chart.radius });
-    add_field(output, "Tiles", { double(result.tiles_mapped) });
-    add_field(output, "TilesRequested", { double(result.tiles_asked) });
-    add_field(output, "TilesMapped", { double(result.tiles_mapped) });
-    add_field(output, "CutToDisk", { result.cut_to_disk ? 1.0 : 0.0 });
-    add_text_field(output, "MappingNote", result.note);
-    add_field(output, "MappingMethod", { double(this->MappingMethod) });
-    add_field(output, "MembraneToMeshScale", { scale });
-    add_field(output, "PatchOrigin", { patch.origin[0], patch.origin[1] }, 2);
-    add_field(output, "PatchCellA", { patch.a[0], patch.a[1] }, 2);
-    add_field(output, "PatchCellB", { patch.b[0], patch.b[1] }, 2);
-    add_field(output, "PatchCentreHeight", { patch.centre_height });
-    add_field(output, "LayerHalfThickness", { this->LayerHalfThickness });
-    add_field(output, "SeedUV", { chart.seed_uv[0], chart.seed_uv[1] }, 2);
-    add_field(output, "RefinementLevels", { double(chart.disk.refinement_levels) });
-    if (!mapped.polynomial_coefficients.empty())
-    {
-      add_field(output, "PolynomialCoefficients", mapped.polynomial_coefficients, 30);
-      add_field(
-        output, "PolynomialSplits",
-        std::vector<double>(mapped.polynomial_splits.begin(), mapped.polynomial_splits.end()));
-      add_field(output, "PolynomialResidualRMS", mapped.polynomial_rms_residual);
-      add_field(output, "PolynomialResidualMax", mapped.polynomial_max_residual);
-      add_field(output, "PolynomialFallbackTiles",
-                std::vector<double>(mapped.tile_fallback.begin(), mapped.tile_fallback.end()));
-    }
-    if (!mapped.instance_matrices.empty())
-    {
-      add_field(output, "InstanceMatrices", mapped.instance_matrices, 16);
-      add_field(
-        output, "InstanceMoleculeId",
-        std::vector<double>(mapped.instance_molecules.begin(), mapped.instance_molecules.end()));
-      add_field(output, "InstanceTileId",
-                std::vector<double>(mapped.instance_tiles.begin(), mapped.instance_tiles.end()));
-    }
+    vtkMesoMembraneWarp::Write(mesolens::membrane_warp(result, data.patch, request),
+                               output->GetFieldData());
     if (atoms->GetInformation()->Has(vtkDataObject::DATA_TIME_STEP()))
     {
       output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(),

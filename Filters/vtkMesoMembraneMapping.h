@@ -64,6 +64,8 @@
 #include "MesoLensFiltersModule.h"
 #include "vtkPolyDataAlgorithm.h"
 
+#include "mesolens/mapping/mapping_method.h"
+
 #include <memory>
 
 class MESOLENSFILTERS_EXPORT vtkMesoMembraneMapping : public vtkPolyDataAlgorithm
@@ -83,11 +85,12 @@ public:
     this->SetInputConnection(1, output);
   }
 
+  /// mesolens::MappingMethod's values (Core/include/mesolens/mapping/mapping_method.h).
   enum MappingMethods
   {
-    DISPLACEMENT = 0,
-    MOLECULE_INSTANCING = 1,
-    POLYNOMIAL = 2
+    DISPLACEMENT = int(mesolens::MappingMethod::Displacement),
+    MOLECULE_INSTANCING = int(mesolens::MappingMethod::MoleculeInstancing),
+    POLYNOMIAL = int(mesolens::MappingMethod::Polynomial)
   };
 
   ///@{

@@ -1,11 +1,14 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoAtomGPUData.h"
 
+#include "vtkMesoArrayNames.h"
 #include "vtkMesoElementLookupTable.h"
+#include "vtkMesoMembraneWarp.h"
 #include "vtkMesoParallelFor.h"
 
 #include "mesolens/molecules/elements.h"
-#include "mesolens/mapping/membrane_mapping.h"
+#include "mesolens/common/errors.h"
+#include "mesolens/mapping/membrane_warp.h"
 #include "mesolens/mapping/polynomial_warp.h"
 
 #include <vtkCellArray.h>
@@ -56,44 +59,6 @@ vtkDataArray* color_array(vtkPolyData* atoms, vtkMapper* mapper)
   return name && *name ? points->GetArray(name) : nullptr;
 }
 
-const double* field(vtkPolyData* data, const char* name, int components)
-{
-  vtkDataArray* array = data->GetFieldData()->GetArray(name);
-  if (!array || array->GetNumberOfComponents() != components || array->GetNumberOfTuples() < 1)
-  {
-    return nullptr;
-  }
-  return array->GetTuple(0);
-}
-
-/// The polynomial's pieces per side of each of `tiles` tiles (field data PolynomialSplits, one
-/// per tile; absent: one piece each) and the first piece of each; false when they do not add up
-/// to the coefficients given.
-bool polynomial_pieces(vtkPolyData* warp, vtkIdType tiles, std::vector<int>& splits,
-                       std::vector<vtkIdType>& first)
-{
-  vtkDataArray* coefficients = warp->GetFieldData()->GetArray("PolynomialCoefficients");
-  vtkDataArray* split_array = warp->GetFieldData()->GetArray("PolynomialSplits");
-  if (!coefficients || coefficients->GetNumberOfComponents() != 30 ||
-      (split_array && split_array->GetNumberOfTuples() != tiles))
-  {
-    return false;
-  }
-  splits.assign(static_cast<std::size_t>(tiles), 1);
-  first.assign(static_cast<std::size_t>(tiles) + 1, 0);
-  for (vtkIdType t = 0; t < tiles; ++t)
-  {
-    const int m = split_array ? static_cast<int>(split_array->GetTuple1(t)) : 1;
-    if (m < 1 || m > 64)
-    {
-      return false;
-    }
-    splits[std::size_t(t)] = m;
-    first[std::size_t(t) + 1] = first[std::size_t(t)] + m * m;
-  }
-  return first.back() == coefficients->GetNumberOfTuples();
-}
-
 /// Corners of a box: x from bounds[0..1], y [2..3], z [4..5].
 std::array<double, 3> corner(const double bounds[6], int index)
 {
@@ -109,74 +74,22 @@ void grow(double bounds[6], const double p[3])
   }
 }
 
-/// The patch frame fields of a membrane mapping output, and the tile count.
-struct PatchFrame
+/// Bounds of the polynomial-warped tiles: each piece's polynomial on a 5 x 5 x 5 grid over its
+/// part of the patch's (s, t, h) box. `warp` is drawable (mesolens::check_drawable).
+void polynomial_bounds(vtkPolyData* atoms, const mesolens::MembraneWarp& warp, double bounds[6])
 {
-  const double* origin = nullptr;
-  const double* a = nullptr;
-  const double* b = nullptr;
-  const double* centre = nullptr;
-  const double* half_thickness = nullptr;
-  const double* tiles = nullptr;
-  const double* method = nullptr;
-
-  explicit PatchFrame(vtkPolyData* warp)
-    : origin(field(warp, "PatchOrigin", 2))
-    , a(field(warp, "PatchCellA", 2))
-    , b(field(warp, "PatchCellB", 2))
-    , centre(field(warp, "PatchCentreHeight", 1))
-    , half_thickness(field(warp, "LayerHalfThickness", 1))
-    , tiles(field(warp, "Tiles", 1))
-    , method(field(warp, "MappingMethod", 1))
-  {
-  }
-
-  bool complete() const
-  {
-    return origin && a && b && centre && half_thickness && tiles && method && *tiles >= 1 &&
-      *half_thickness > 0;
-  }
-
-  mesolens::MembranePatch patch() const
-  {
-    mesolens::MembranePatch p;
-    p.origin = { origin[0], origin[1] };
-    p.a = { a[0], a[1] };
-    p.b = { b[0], b[1] };
-    p.centre_height = *centre;
-    return p;
-  }
-};
-
-/// Bounds of the polynomial-warped tiles: each tile's polynomial on a 5 x 5 x 5 grid over the
-/// patch's (s, t, h) box.
-bool polynomial_bounds(vtkPolyData* atoms, vtkPolyData* warp, const PatchFrame& frame,
-                       double bounds[6])
-{
-  vtkDataArray* coefficients = warp->GetFieldData()->GetArray("PolynomialCoefficients");
-  if (!coefficients || coefficients->GetNumberOfComponents() != 30)
-  {
-    return false;
-  }
   double patch_bounds[6];
   atoms->GetBounds(patch_bounds);
-  const mesolens::MembranePatch patch = frame.patch();
+  const mesolens::MembranePatch patch = warp.frame();
   double local[6] = { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
   for (int c = 0; c < 8; ++c)
   {
     const auto p = corner(patch_bounds, c);
     const float pf[3] = { float(p[0]), float(p[1]), float(p[2]) };
-    const auto q = mesolens::polynomial_coordinates(patch, *frame.half_thickness, pf);
+    const auto q = mesolens::polynomial_coordinates(patch, warp.layer_half_thickness, pf);
     grow(local, q.data());
   }
-  std::vector<int> splits;
-  std::vector<vtkIdType> first;
-  const vtkIdType tiles =
-    static_cast<vtkIdType>(*frame.tiles) * static_cast<vtkIdType>(*frame.tiles);
-  if (!polynomial_pieces(warp, tiles, splits, first))
-  {
-    return false;
-  }
+  const std::vector<std::size_t> first = mesolens::polynomial_first_pieces(warp);
   // Each piece over its own part of the tile's (s, t) box; the edge pieces also reach the
   // atoms beyond the cell.
   auto piece_range = [](int piece, int m, double low, double high, double range[2]) {
@@ -186,13 +99,14 @@ bool polynomial_bounds(vtkPolyData* atoms, vtkPolyData* warp, const PatchFrame& 
     range[1] = (to + 1) * m - 2 * piece - 1;
   };
   constexpr int steps = 5;
-  for (std::size_t tile = 0; tile < splits.size(); ++tile)
+  for (std::size_t tile = 0; tile + 1 < first.size(); ++tile)
   {
-    const int m = splits[tile];
+    const int m = warp.polynomial_splits.empty() ? 1 : warp.polynomial_splits[tile];
     for (int piece = 0; piece < m * m; ++piece)
     {
       mesolens::QuadraticWarp polynomial{};
-      coefficients->GetTuple(first[tile] + piece, polynomial.data());
+      std::copy_n(warp.polynomial_coefficients.data() + 30 * (first[tile] + std::size_t(piece)),
+                  30, polynomial.data());
       double s_range[2], t_range[2];
       piece_range(piece % m, m, local[0], local[1], s_range);
       piece_range(piece / m, m, local[2], local[3], t_range);
@@ -208,31 +122,23 @@ bool polynomial_bounds(vtkPolyData* atoms, vtkPolyData* warp, const PatchFrame& 
       }
     }
   }
-  return true;
 }
 
 /// Molecule slot per atom: the order of the instances of tile 0 (first appearance in the patch).
-bool molecule_slots(vtkPolyData* atoms, vtkPolyData* warp, std::vector<unsigned short>& slots,
-                    int& molecules_per_tile, std::string& problem)
+bool molecule_slots(vtkPolyData* atoms, const mesolens::MembraneWarp& warp,
+                    std::vector<unsigned short>& slots, int& molecules_per_tile,
+                    std::string& problem)
 {
-  vtkDataArray* instance_molecules = warp->GetFieldData()->GetArray("InstanceMoleculeId");
-  vtkDataArray* instance_tiles = warp->GetFieldData()->GetArray("InstanceTileId");
-  vtkDataArray* ids = atoms->GetPointData()->GetArray("MoleculeId");
-  if (!instance_molecules || !instance_tiles || !ids)
+  vtkDataArray* ids = atoms->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId);
+  if (!ids)
   {
-    problem = "molecule instancing needs InstanceMoleculeId and InstanceTileId on the warp input "
-              "and MoleculeId on the patch";
+    problem = "molecule instancing needs the patch's MoleculeId";
     return false;
   }
   std::unordered_map<long long, int> slot_of;
-  for (vtkIdType i = 0; i < instance_tiles->GetNumberOfTuples(); ++i)
+  for (std::size_t i = 0; i < mesolens::molecules_per_tile(warp); ++i)
   {
-    if (instance_tiles->GetComponent(i, 0) != 0)
-    {
-      break;
-    }
-    slot_of.emplace(static_cast<long long>(instance_molecules->GetComponent(i, 0)),
-                    static_cast<int>(i));
+    slot_of.emplace(warp.instance_molecules[i], static_cast<int>(i));
   }
   molecules_per_tile = static_cast<int>(slot_of.size());
   if (molecules_per_tile == 0 || molecules_per_tile > 65536)
@@ -291,7 +197,7 @@ void vtkMesoAtomGPUData::Clear()
   this->Types.clear();
   this->MoleculeSlots.clear();
   this->Bonds.clear();
-  this->WarpMethod = NONE;
+  this->WarpMethod = NoWarp;
   this->WarpTexels.clear();
   this->TypesKey = {};
   this->BondsKey = {};
@@ -309,7 +215,7 @@ bool vtkMesoAtomGPUData::Update(vtkPolyData* atoms, vtkPolyData* warp, const Sty
   this->BondRadius = static_cast<float>(style.BondRadius * style.RadiusScale);
   this->TileCount = 1;
   this->MoleculeSlots.clear();
-  this->WarpMethod = NONE;
+  this->WarpMethod = NoWarp;
   this->WarpTexels.clear();
   if (!atoms || !atoms->GetPoints() || atoms->GetNumberOfPoints() == 0)
   {
@@ -444,7 +350,7 @@ bool vtkMesoAtomGPUData::UpdatePositions(vtkPolyData* atoms, vtkMapper* mapper,
 
 void vtkMesoAtomGPUData::UpdateTypes(vtkPolyData* atoms, vtkMapper* mapper, vtkDataArray* mask)
 {
-  vtkDataArray* numbers = atoms->GetPointData()->GetArray("AtomicNumber");
+  vtkDataArray* numbers = atoms->GetPointData()->GetArray(vtkMesoArrayNames::AtomicNumber);
   vtkDataArray* scalars = color_array(atoms, mapper);
   vtkScalarsToColors* table = scalars ? mapper->GetLookupTable() : nullptr;
   if (table && !mapper->GetUseLookupTableScalarRange())
@@ -590,74 +496,59 @@ bool vtkMesoAtomGPUData::UpdateBonds(vtkPolyData* atoms, vtkMapper* mapper)
   return true;
 }
 
-bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp, vtkMapper* mapper)
+bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp_data, vtkMapper* mapper)
 {
-  const PatchFrame frame(warp);
-  if (!frame.complete())
+  mesolens::MembraneWarp warp;
+  if (!vtkMesoMembraneWarp::Read(warp_data->GetFieldData(), warp))
   {
     vtkErrorWithObjectMacro(mapper,
                             "Cannot warp the atoms: the warp input is not the output of "
                             "a vtkMesoMembraneMapping (its patch fields are missing)");
     return false;
   }
-  const vtkIdType tiles =
-    static_cast<vtkIdType>(*frame.tiles) * static_cast<vtkIdType>(*frame.tiles);
+  const auto tiles = static_cast<vtkIdType>(warp.tile_count());
   // The mapping's own output has TileId; a warp input with atoms has k^2 copies of the patch.
-  if (atoms->GetPointData()->GetArray("TileId") ||
-      (warp->GetNumberOfPoints() > 0 &&
-       warp->GetNumberOfPoints() != tiles * atoms->GetNumberOfPoints()))
+  if (atoms->GetPointData()->GetArray(vtkMesoArrayNames::TileId) ||
+      (warp_data->GetNumberOfPoints() > 0 &&
+       warp_data->GetNumberOfPoints() != tiles * atoms->GetNumberOfPoints()))
   {
     vtkErrorWithObjectMacro(mapper,
                             "Cannot warp the atoms: the mapper's input must be the "
                             "membrane patch that was mapped, not the mapped atoms");
     return false;
   }
-  const double* cut = field(warp, "CutToDisk", 1);
-  if (cut && *cut != 0)
+  try
   {
-    vtkErrorWithObjectMacro(mapper,
-                            "Cannot warp the atoms: the mapping cut its one tile to the disk "
-                            "(molecules outside it are dropped); draw its mapped atoms instead");
+    mesolens::check_drawable(warp);
+  }
+  catch (const mesolens::Error& e)
+  {
+    vtkErrorWithObjectMacro(mapper, "Cannot warp the atoms: " << e.what());
     return false;
   }
-  const int method = static_cast<int>(*frame.method);
-  const double determinant = frame.a[0] * frame.b[1] - frame.a[1] * frame.b[0];
-  if (!(std::abs(determinant) > 0))
-  {
-    vtkErrorWithObjectMacro(mapper, "Cannot warp the atoms: the patch cell is degenerate");
-    return false;
-  }
+  const double determinant = warp.a[0] * warp.b[1] - warp.a[1] * warp.b[0];
   this->TileCount = tiles;
-  this->PatchOrigin[0] = static_cast<float>(frame.origin[0]);
-  this->PatchOrigin[1] = static_cast<float>(frame.origin[1]);
-  this->PatchToFractional[0] = static_cast<float>(frame.b[1] / determinant);
-  this->PatchToFractional[1] = static_cast<float>(-frame.a[1] / determinant);
-  this->PatchToFractional[2] = static_cast<float>(-frame.b[0] / determinant);
-  this->PatchToFractional[3] = static_cast<float>(frame.a[0] / determinant);
-  this->PatchCentreHeight = static_cast<float>(*frame.centre);
-  this->InverseLayerHalfThickness = static_cast<float>(1.0 / *frame.half_thickness);
+  this->PatchOrigin[0] = static_cast<float>(warp.origin[0]);
+  this->PatchOrigin[1] = static_cast<float>(warp.origin[1]);
+  this->PatchToFractional[0] = static_cast<float>(warp.b[1] / determinant);
+  this->PatchToFractional[1] = static_cast<float>(-warp.a[1] / determinant);
+  this->PatchToFractional[2] = static_cast<float>(-warp.b[0] / determinant);
+  this->PatchToFractional[3] = static_cast<float>(warp.a[0] / determinant);
+  this->PatchCentreHeight = static_cast<float>(warp.centre_height);
+  this->InverseLayerHalfThickness = static_cast<float>(1.0 / warp.layer_half_thickness);
 
-  if (method == POLYNOMIAL)
+  if (warp.method == mesolens::MappingMethod::Polynomial)
   {
-    vtkDataArray* coefficients = warp->GetFieldData()->GetArray("PolynomialCoefficients");
-    std::vector<int> splits;
-    std::vector<vtkIdType> first;
-    if (!polynomial_pieces(warp, tiles, splits, first))
-    {
-      vtkErrorWithObjectMacro(mapper,
-                              "Cannot warp the atoms: PolynomialCoefficients should hold 30 "
-                              "values for each piece of the "
-                                << tiles << " tiles (PolynomialSplits: the pieces per side)");
-      return false;
-    }
     // A header texel per tile (its first piece, its pieces per side), then 10 per piece.
-    const vtkIdType pieces = first.back();
+    const std::vector<std::size_t> first = mesolens::polynomial_first_pieces(warp);
+    const auto pieces = static_cast<vtkIdType>(first.back());
     this->TileCountForHeader = static_cast<int>(tiles);
     this->WarpTexels.assign(static_cast<std::size_t>(4 * (tiles + 10 * pieces)), 0.0f);
     for (vtkIdType tile = 0; tile < tiles; ++tile)
     {
       this->WarpTexels[std::size_t(4 * tile)] = static_cast<float>(first[std::size_t(tile)]);
-      this->WarpTexels[std::size_t(4 * tile + 1)] = static_cast<float>(splits[std::size_t(tile)]);
+      this->WarpTexels[std::size_t(4 * tile + 1)] = static_cast<float>(
+        warp.polynomial_splits.empty() ? 1 : warp.polynomial_splits[std::size_t(tile)]);
     }
     for (vtkIdType piece = 0; piece < pieces; ++piece)
     {
@@ -665,13 +556,13 @@ bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp, vtkMapp
       {
         for (int d = 0; d < 3; ++d)
         {
-          this->WarpTexels[std::size_t(4 * tiles + 40 * piece + 4 * term + d)] =
-            static_cast<float>(coefficients->GetComponent(piece, 10 * d + term));
+          this->WarpTexels[std::size_t(4 * tiles + 40 * piece + 4 * term + d)] = static_cast<float>(
+            warp.polynomial_coefficients[std::size_t(30 * piece + 10 * d + term)]);
         }
       }
     }
   }
-  else if (method == MOLECULE_INSTANCING)
+  else
   {
     std::string problem;
     if (!molecule_slots(atoms, warp, this->MoleculeSlots, this->MoleculesPerTile, problem))
@@ -679,35 +570,18 @@ bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp, vtkMapp
       vtkErrorWithObjectMacro(mapper, "Cannot warp the atoms: " << problem);
       return false;
     }
-    vtkDataArray* matrices = warp->GetFieldData()->GetArray("InstanceMatrices");
     const vtkIdType motions = tiles * this->MoleculesPerTile;
-    if (!matrices || matrices->GetNumberOfComponents() != 16 ||
-        matrices->GetNumberOfTuples() != motions)
-    {
-      vtkErrorWithObjectMacro(
-        mapper, "Cannot warp the atoms: InstanceMatrices should hold " << motions << " matrices");
-      return false;
-    }
     this->WarpTexels.resize(static_cast<std::size_t>(12 * motions));
     for (vtkIdType m = 0; m < motions; ++m)
     {
       for (int k = 0; k < 12; ++k)
       {
         this->WarpTexels[std::size_t(12 * m + k)] =
-          static_cast<float>(matrices->GetComponent(m, k));
+          static_cast<float>(warp.instance_matrices[std::size_t(16 * m + k)]);
       }
     }
   }
-  else
-  {
-    vtkErrorWithObjectMacro(mapper,
-                            "Cannot warp the atoms on the GPU with mapping method "
-                              << method
-                              << ": only POLYNOMIAL and MOLECULE_INSTANCING have a GPU "
-                                 "form (draw the DISPLACEMENT output directly)");
-    return false;
-  }
-  this->WarpMethod = method;
+  this->WarpMethod = static_cast<int>(warp.method);
   ++this->WarpVersion;
   return true;
 }
@@ -715,7 +589,7 @@ bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp, vtkMapp
 double vtkMesoAtomGPUData::LargestRadius(vtkPolyData* atoms, const Style& style)
 {
   const std::vector<float> radii = StyleRadii(style);
-  vtkDataArray* numbers = atoms ? atoms->GetPointData()->GetArray("AtomicNumber") : nullptr;
+  vtkDataArray* numbers = atoms ? atoms->GetPointData()->GetArray(vtkMesoArrayNames::AtomicNumber) : nullptr;
   if (!numbers)
   {
     return radii[0];
@@ -736,60 +610,66 @@ double vtkMesoAtomGPUData::LargestRadius(vtkPolyData* atoms, const Style& style)
   return largest;
 }
 
-void vtkMesoAtomGPUData::PaddedBounds(vtkPolyData* atoms, vtkPolyData* warp, double pad,
+void vtkMesoAtomGPUData::PaddedBounds(vtkPolyData* atoms, vtkPolyData* warp_data, double pad,
                                       double bounds[6])
 {
   if (!atoms || atoms->GetNumberOfPoints() == 0)
   {
     return;
   }
-  if (warp)
+  if (warp_data)
   {
-    const PatchFrame frame(warp);
-    double warped[6] = { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
-    bool known = false;
-    if (frame.complete() && static_cast<int>(*frame.method) == POLYNOMIAL)
+    // A warp that cannot be drawn leaves the bounds as they are.
+    mesolens::MembraneWarp warp;
+    if (!vtkMesoMembraneWarp::Read(warp_data->GetFieldData(), warp))
     {
-      known = polynomial_bounds(atoms, warp, frame, warped);
+      return;
     }
-    else if (frame.complete() && static_cast<int>(*frame.method) == MOLECULE_INSTANCING)
+    try
+    {
+      mesolens::check_drawable(warp);
+    }
+    catch (const mesolens::Error&)
+    {
+      return;
+    }
+    double warped[6] = { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
+    if (warp.method == mesolens::MappingMethod::Polynomial)
+    {
+      polynomial_bounds(atoms, warp, warped);
+    }
+    else
     {
       std::vector<unsigned short> slots;
       int molecules = 0;
       std::string problem;
-      vtkDataArray* matrices = warp->GetFieldData()->GetArray("InstanceMatrices");
-      if (matrices && matrices->GetNumberOfComponents() == 16 &&
-          molecule_slots(atoms, warp, slots, molecules, problem))
+      if (!molecule_slots(atoms, warp, slots, molecules, problem))
       {
-        // Each molecule's box, moved by each of its motions.
-        std::vector<std::array<double, 6>> boxes(std::size_t(molecules),
-                                                 { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 });
-        for (vtkIdType a = 0; a < atoms->GetNumberOfPoints(); ++a)
-        {
-          grow(boxes[slots[std::size_t(a)]].data(), atoms->GetPoint(a));
-        }
-        for (vtkIdType m = 0; m < matrices->GetNumberOfTuples(); ++m)
-        {
-          const double* matrix = matrices->GetTuple(m);
-          const auto& box = boxes[std::size_t(m % molecules)];
-          for (int c = 0; c < 8; ++c)
-          {
-            const auto p = corner(box.data(), c);
-            double x[3];
-            for (int r = 0; r < 3; ++r)
-            {
-              x[r] = matrix[4 * r] * p[0] + matrix[4 * r + 1] * p[1] + matrix[4 * r + 2] * p[2] +
-                matrix[4 * r + 3];
-            }
-            grow(warped, x);
-          }
-        }
-        known = true;
+        return;
       }
-    }
-    if (!known)
-    {
-      return;
+      // Each molecule's box, moved by each of its motions.
+      std::vector<std::array<double, 6>> boxes(std::size_t(molecules),
+                                               { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 });
+      for (vtkIdType a = 0; a < atoms->GetNumberOfPoints(); ++a)
+      {
+        grow(boxes[slots[std::size_t(a)]].data(), atoms->GetPoint(a));
+      }
+      for (std::size_t m = 0; m < warp.instance_molecules.size(); ++m)
+      {
+        const double* matrix = warp.instance_matrices.data() + 16 * m;
+        const auto& box = boxes[m % std::size_t(molecules)];
+        for (int c = 0; c < 8; ++c)
+        {
+          const auto p = corner(box.data(), c);
+          double x[3];
+          for (int r = 0; r < 3; ++r)
+          {
+            x[r] = matrix[4 * r] * p[0] + matrix[4 * r + 1] * p[1] + matrix[4 * r + 2] * p[2] +
+              matrix[4 * r + 3];
+          }
+          grow(warped, x);
+        }
+      }
     }
     std::copy(warped, warped + 6, bounds);
   }

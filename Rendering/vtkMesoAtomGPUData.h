@@ -35,13 +35,8 @@ class vtkPolyData;
 class vtkMesoAtomGPUData
 {
 public:
-  /// Warp methods, numbered as vtkMesoMembraneMapping's MappingMethod; NONE: no warp.
-  enum WarpMethods
-  {
-    NONE = -1,
-    MOLECULE_INSTANCING = 1,
-    POLYNOMIAL = 2
-  };
+  /// WarpMethod without a warp (otherwise a mesolens::MappingMethod's value).
+  static constexpr int NoWarp = -1;
 
   /// The mapper's radius settings (see vtkMesoAtomMapper).
   struct Style
@@ -92,7 +87,7 @@ public:
   float BondRadius = 0;               ///< scene units
   std::vector<float> ColorTable;      ///< 256 RGBA
 
-  int WarpMethod = NONE;
+  int WarpMethod = NoWarp; ///< static_cast<int>(mesolens::MappingMethod) of the warp, or NoWarp
   std::vector<float> WarpTexels; ///< RGBA texels
   unsigned long WarpVersion = 0; ///< counts readings of the warp (WarpTexels, MoleculeSlots)
   float PatchOrigin[2] = { 0, 0 };

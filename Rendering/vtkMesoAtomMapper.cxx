@@ -15,6 +15,7 @@
 #include "vtkMesoMoleculeInstancingVS.h"
 #include "vtkMesoPolynomialWarpVS.h"
 
+#include "mesolens/mapping/mapping_method.h"
 #include "mesolens/render/atom_cells.h"
 #include "mesolens/render/depth_pyramid.h"
 
@@ -433,14 +434,14 @@ void vtkMesoAtomMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkShader*
 
   std::string vertex = shaders[vtkShader::Vertex]->GetSource();
   std::string position = "gl_Position = MCVCMatrix * vertexMC;\n";
-  if (warp >= 0)
+  if (warp != vtkMesoAtomGPUData::NoWarp)
   {
     vtkShaderProgram::Substitute(vertex, "//MESO::Warp::Dec",
-                                 warp == vtkMesoAtomGPUData::POLYNOMIAL
+                                 warp == static_cast<int>(mesolens::MappingMethod::Polynomial)
                                    ? vtkMesoPolynomialWarpVS
                                    : vtkMesoMoleculeInstancingVS);
     // Bonds read the molecule slot as an attribute, atoms pull it like the rest of the atom.
-    const std::string slot = warp != vtkMesoAtomGPUData::MOLECULE_INSTANCING ? "0.0"
+    const std::string slot = warp != static_cast<int>(mesolens::MappingMethod::MoleculeInstancing) ? "0.0"
       : atoms ? "floor(texelFetch(atomMolecules, slot).x * 65535.0 + 0.5)"
               : "atomMolecule";
     position = "vertexMC = vec4(warpedPosition(atomPosition, " + slot +
@@ -527,7 +528,7 @@ void vtkMesoAtomMapper::SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRe
     cellBO.VAO->AddAttributeArray(program, in.Positions, "atomPosition", 0, 3 * sizeof(float),
                                   VTK_FLOAT, 3, false);
     cellBO.VAO->AddAttributeArray(program, in.Types, "atomType", 0, 2, VTK_UNSIGNED_CHAR, 2, false);
-    if (data.WarpMethod == vtkMesoAtomGPUData::MOLECULE_INSTANCING)
+    if (data.WarpMethod == static_cast<int>(mesolens::MappingMethod::MoleculeInstancing))
     {
       cellBO.VAO->AddAttributeArray(program, in.Molecules, "atomMolecule", 0,
                                     sizeof(unsigned short), VTK_UNSIGNED_SHORT, 1, false);
@@ -554,15 +555,15 @@ void vtkMesoAtomMapper::SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRe
       program->SetUniformi("useDrawList", 0);
     }
 
-    if (data.WarpMethod == vtkMesoAtomGPUData::MOLECULE_INSTANCING)
+    if (data.WarpMethod == static_cast<int>(mesolens::MappingMethod::MoleculeInstancing))
     {
       set_uniform_int(program, "atomMolecules", in.MoleculeTexture->GetTextureUnit());
     }
   }
-  if (data.WarpMethod >= 0)
+  if (data.WarpMethod != vtkMesoAtomGPUData::NoWarp)
   {
     const char* buffer =
-      data.WarpMethod == vtkMesoAtomGPUData::POLYNOMIAL ? "warpCoefficients" : "moleculeMotions";
+      data.WarpMethod == static_cast<int>(mesolens::MappingMethod::Polynomial) ? "warpCoefficients" : "moleculeMotions";
     set_uniform_int(program, buffer, in.Warp.Texture->GetTextureUnit());
     if (program->IsUniformUsed("patchOrigin"))
     {
@@ -599,11 +600,11 @@ void vtkMesoAtomMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   in.Colors.Texture->Activate();
   in.PositionTexture->Activate();
   in.TypeTexture->Activate();
-  if (data.WarpMethod >= 0)
+  if (data.WarpMethod != vtkMesoAtomGPUData::NoWarp)
   {
     in.Warp.Texture->Activate();
   }
-  if (data.WarpMethod == vtkMesoAtomGPUData::MOLECULE_INSTANCING)
+  if (data.WarpMethod == static_cast<int>(mesolens::MappingMethod::MoleculeInstancing))
   {
     in.MoleculeTexture->Activate();
   }

@@ -47,7 +47,8 @@ def is_vtk(name):
 
 
 def module_public_headers(root, module):
-    """The headers of the module's CLASSES in its CMakeLists.txt."""
+    """The module's public headers in its CMakeLists.txt: its CLASSES' and its HEADERS and
+    NOWRAP_HEADERS (PRIVATE_HEADERS are private)."""
     with open(os.path.join(root, module, "CMakeLists.txt"), encoding="utf-8") as text:
         cmake = text.read()
     classes = set()
@@ -55,7 +56,10 @@ def module_public_headers(root, module):
         classes.update(block.split())
     for block in re.findall(r"CLASSES\s+([^\n]*)", cmake):
         classes.update(word for word in block.split() if not word.startswith("$"))
-    return {name + ".h" for name in classes}
+    headers = {name + ".h" for name in classes}
+    for block in re.findall(r"(?<!PRIVATE_)\b(?:NOWRAP_)?HEADERS\s+([^\n]*)", cmake):
+        headers.update(word for word in block.split() if word.endswith(".h"))
+    return headers
 
 
 def check(root):
@@ -65,6 +69,8 @@ def check(root):
         problems.append(f"{path}:{line}: {message}")
 
     # Core and its tests.
+    if os.path.exists(os.path.join(root, "Core", "vtk.module")):
+        report("Core/vtk.module", 1, "Core is a plain library, not a VTK module")
     for path in sources(root, "Core") + sources(root, "Testing/Core"):
         in_core = path.startswith("Core/")
         public = path.startswith("Core/include/")

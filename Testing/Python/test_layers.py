@@ -18,13 +18,14 @@ CLEAN = {
     "Core/mesh/detail/edges.h": "#include <Eigen/Core>\n",
     "Core/common/detail/grid.h": "#include <array>\n",
     "Testing/Core/mesh/test_edges.cpp": '#include "mesh/detail/edges.h"\n',
-    "Filters/CMakeLists.txt": "set(classes\n  vtkMesoReader)\nvtk_module_add_module(X CLASSES ${classes})\n",
+    "Filters/CMakeLists.txt": "set(classes\n  vtkMesoReader)\nvtk_module_add_module(X CLASSES ${classes}\n  NOWRAP_HEADERS vtkMesoNames.h\n  PRIVATE_HEADERS vtkMesoConversion.h)\n",
+    "Filters/vtkMesoNames.h": "",
     "Filters/vtkMesoReader.h": '#include "vtkPolyDataAlgorithm.h"\n',
     "Filters/vtkMesoReader.cxx": '#include "vtkMesoReader.h"\n#include "vtkMesoConversion.h"\n#include <gemmi/model.hpp>\n',
     "Filters/vtkMesoConversion.h": '#include "mesolens/mesh/triangle_mesh.h"\n',
     "Rendering/CMakeLists.txt": "vtk_module_add_module(Y\n  CLASSES vtkMesoMapper\n  SOURCES x.cxx)\n",
     "Rendering/vtkMesoMapper.h": '#include "vtkOpenGLPolyDataMapper.h"\n',
-    "Rendering/vtkMesoMapper.cxx": '#include "vtkMesoMapper.h"\n#include "vtkMesoReader.h"\n',
+    "Rendering/vtkMesoMapper.cxx": '#include "vtkMesoMapper.h"\n#include "vtkMesoReader.h"\n#include "vtkMesoNames.h"\n',
     "Rendering/Testing/Cxx/TestMapper.cxx": '#include "vtkMesoConversion.h"\n',
 }
 
@@ -38,6 +39,7 @@ BREACHES = [
     ("Testing/Core/cutaway/test_reach.cpp", '#include "mesh/detail/edges.h"\n', "cutaway includes a private file of mesh"),
     ("Filters/vtkMesoOther.cxx", '#include "mesh/detail/edges.h"\n', "private Core file is included outside Core"),
     ("Rendering/vtkMesoLeak.cxx", '#include "vtkMesoConversion.h"\n', "Rendering includes a private header of Filters"),
+    ("Core/vtk.module", "NAME MesoLens::MesoLensCore\n", "plain library"),
     ("Filters/vtkMesoReader.h", '#include "vtkPolyDataAlgorithm.h"\n#include <CGAL/Simple_cartesian.h>\n', "public VTK header includes a third-party header"),
 ]
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "mesolens/common/parallel_for.h"
+#include "mesolens/mapping/mapping_method.h"
 #include "mesolens/mapping/polynomial_warp.h"
 #include "mesolens/mapping/surface_chart.h"
 
@@ -13,21 +14,6 @@
 #include <vector>
 
 namespace mesolens {
-
-/// How membrane atoms are carried onto the surface.
-enum class MappingMethod
-{
-  /// Each atom at x0 + w n(x0): x0 the surface point at the atom's (u, v), n the interpolated
-  /// normal, w the atom's height. Follows the surface exactly; bends molecules.
-  Displacement = 0,
-  /// One rigid motion per molecule: its centre of mass is mapped like an atom, and the rotation
-  /// takes the patch's x, y, z axes to the surface's u tangent, v tangent and normal there.
-  /// Keeps every molecule undistorted.
-  MoleculeInstancing = 1,
-  /// One quadratic x(s, t, h) per tile, fitted by least squares to the displacement map on
-  /// 3 layers of samples. Smooth, cheap to evaluate (on the GPU, by the renderer).
-  Polynomial = 2,
-};
 
 /// A membrane patch in its own frame. Its periodic cell is spanned by the in-plane vectors a and
 /// b from `origin` (membrane units, e.g. Å); heights are measured from the bilayer centre.

@@ -56,7 +56,7 @@ int vtkMesoMolecularSurface::RequestData(vtkInformation*, vtkInformationVector**
     vtkErrorMacro(<< error);
     return 0;
   }
-  mesolens::MolecularSurfaceOptions options;
+  mesolens::MolecularSurfaceParams options;
   options.kind = static_cast<mesolens::SurfaceKind>(this->SurfaceType);
   options.probe_radius = this->ProbeRadius;
   options.tolerance = this->Tolerance;

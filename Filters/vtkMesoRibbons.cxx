@@ -221,7 +221,7 @@ int vtkMesoRibbons::RequestData(vtkInformation*, vtkInformationVector** inputVec
     const std::vector<mesolens::RibbonResidue>& residues = in.Residues;
     const std::vector<std::int64_t>& trace_atom = in.TraceAtom;
     const std::vector<int>& residue_index = in.ResidueIndex;
-    mesolens::RibbonSettings settings;
+    mesolens::RibbonParams settings;
     settings.subdivisions = this->Subdivisions;
     settings.tube_sides = this->TubeSides;
     settings.helix_as_cylinder = this->HelixAsCylinder;

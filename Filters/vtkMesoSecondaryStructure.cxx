@@ -171,7 +171,7 @@ int vtkMesoSecondaryStructure::RequestData(vtkInformation*, vtkInformationVector
       return 1; // the file's classes as they are
     }
     const mesolens::ProteinBackbone& backbone = in.Backbone;
-    mesolens::DsspSettings settings;
+    mesolens::DsspParams settings;
     settings.pi_helix_priority = this->PiHelixPriority;
     settings.polyproline_stretch = this->PolyprolineStretch;
     settings.bulges = this->Bulges;

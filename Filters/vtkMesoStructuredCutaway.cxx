@@ -484,7 +484,7 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
     }
 
     // 4. The removal order, kept while only the fractions change.
-    mesolens::CutawaySettings settings;
+    mesolens::CutawayParams settings;
     settings.k = this->K;
     settings.fraction_hidden = this->FractionHidden;
     settings.inverted = this->Inverted;

@@ -102,7 +102,7 @@ public:
 
   ///@{
   /// Use the priorities as probabilities (a seeded weighted random order, see
-  /// mesolens::CutawaySettings::probabilistic): K then blends from two classes (towards -1)
+  /// mesolens::CutawayParams::probabilistic): K then blends from two classes (towards -1)
   /// through 3x (0) to nearly random (towards 1). Off (default): the strict order by priority,
   /// the crispest wireframe, the same for every K.
   vtkSetMacro(ProbabilisticOrder, bool);

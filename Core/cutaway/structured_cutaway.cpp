@@ -30,7 +30,7 @@ void require_fraction(double fraction, const std::string& what)
   }
 }
 
-void require_fractions(const CutawaySettings& settings)
+void require_fractions(const CutawayParams& settings)
 {
   require_fraction(settings.fraction_hidden, "the fraction hidden");
   for (const auto& [type, fraction] : settings.fraction_by_type)
@@ -149,7 +149,7 @@ std::vector<double> StructuredCutaway::priorities(double k) const
 }
 
 std::vector<std::uint8_t> StructuredCutaway::visibility(const CutRegion& cut,
-                                                        const CutawaySettings& settings,
+                                                        const CutawayParams& settings,
                                                         const double* centres) const
 {
   return this->visibility([&cut](const std::array<double, 3>& p) { return cut.contains(p); },
@@ -158,7 +158,7 @@ std::vector<std::uint8_t> StructuredCutaway::visibility(const CutRegion& cut,
 
 std::vector<std::uint8_t> StructuredCutaway::visibility(
   const std::function<bool(const std::array<double, 3>&)>& inside_cut,
-  const CutawaySettings& settings, const double* centres) const
+  const CutawayParams& settings, const double* centres) const
 {
   require_fractions(settings);
   return this->visibility(this->removal_order(inside_cut, settings, centres), settings);
@@ -166,7 +166,7 @@ std::vector<std::uint8_t> StructuredCutaway::visibility(
 
 RemovalOrder StructuredCutaway::removal_order(
   const std::function<bool(const std::array<double, 3>&)>& inside_cut,
-  const CutawaySettings& settings, const double* centres) const
+  const CutawayParams& settings, const double* centres) const
 {
   const std::vector<double> priority = this->priorities(settings.k);
   const double* at = centres ? centres : this->Centres.data();
@@ -226,7 +226,7 @@ RemovalOrder StructuredCutaway::removal_order(
 }
 
 std::vector<std::uint8_t> StructuredCutaway::visibility(const RemovalOrder& order,
-                                                        const CutawaySettings& settings) const
+                                                        const CutawayParams& settings) const
 {
   require_fractions(settings);
   if (order.molecule_count != this->molecule_count())

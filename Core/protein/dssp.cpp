@@ -106,7 +106,7 @@ class Dssp
 {
 public:
   Dssp(const std::vector<BackboneResidue>& residues, const std::vector<std::size_t>& used,
-       const std::vector<std::uint8_t>& break_before, const DsspSettings& settings)
+       const std::vector<std::uint8_t>& break_before, const DsspParams& settings)
     : All(residues)
     , Used(used)
     , Settings(settings)
@@ -610,7 +610,7 @@ private:
 
   const std::vector<BackboneResidue>& All;
   const std::vector<std::size_t>& Used;
-  DsspSettings Settings;
+  DsspParams Settings;
   std::vector<std::uint8_t> Break;
   std::vector<Vec> Hydrogens;
   std::vector<BestTwo> Acceptors;
@@ -691,7 +691,7 @@ std::string dssp_string(const std::vector<SecondaryStructure>& structure)
 }
 
 DsspResult assign_secondary_structure(const std::vector<BackboneResidue>& residues,
-                                      const DsspSettings& settings, const ParallelFor& parallel_for)
+                                      const DsspParams& settings, const ParallelFor& parallel_for)
 {
   if (settings.polyproline_stretch < 0)
   {

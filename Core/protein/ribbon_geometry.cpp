@@ -150,7 +150,7 @@ Section lerp(const Section& a, const Section& b, double w)
 class SectionProfile
 {
 public:
-  SectionProfile(std::vector<RibbonStyle> styles, const RibbonSettings& settings, double shoulder)
+  SectionProfile(std::vector<RibbonStyle> styles, const RibbonParams& settings, double shoulder)
     : Styles(std::move(styles))
     , Shoulder(shoulder)
   {
@@ -531,7 +531,7 @@ std::vector<PiecePlan> plan_pieces(const std::vector<ResidueRun>& cylinders,
 
 SegmentCurve build_curve(const std::vector<RibbonResidue>& residues, const RibbonSegment& segment,
                          std::size_t segment_index, int subdivisions,
-                         const RibbonSettings& settings)
+                         const RibbonParams& settings)
 {
   const std::size_t n = segment.residue_count;
   const std::size_t first = segment.first_residue;
@@ -814,7 +814,7 @@ std::vector<const PiecePlan*> lay_out(RibbonMesh& mesh, const std::vector<Segmen
 /// Writes one piece into the arrays lay_out() sized; for a tube, also records in the centre
 /// line where each sample's ring starts.
 void write_piece(RibbonMesh& mesh, const std::vector<RibbonResidue>& residues,
-                 const RibbonSettings& settings, const RibbonPiece& piece, const PiecePlan& plan,
+                 const RibbonParams& settings, const RibbonPiece& piece, const PiecePlan& plan,
                  const SegmentCurve& curve, std::size_t sample_offset)
 {
   ClosedSweepWriter writer(mesh, residues, piece, settings.tube_sides);
@@ -841,7 +841,7 @@ void write_piece(RibbonMesh& mesh, const std::vector<RibbonResidue>& residues,
   });
 }
 
-void check_settings(const RibbonSettings& s)
+void check_settings(const RibbonParams& s)
 {
   const auto positive = [](double value, const char* name) {
     if (!(value > 0) || !std::isfinite(value))
@@ -881,7 +881,7 @@ std::string describe(const std::vector<RibbonResidue>& residues, std::size_t i)
     std::to_string(residues[i].chain) + ")";
 }
 
-std::vector<int> subdivisions_by_segment(const RibbonSettings& settings, std::size_t segments)
+std::vector<int> subdivisions_by_segment(const RibbonParams& settings, std::size_t segments)
 {
   if (settings.segment_subdivisions.empty())
   {
@@ -927,7 +927,7 @@ RibbonStyle ribbon_style(char secondary_structure, bool nucleotide)
 }
 
 std::vector<RibbonSegment> ribbon_segments(const std::vector<RibbonResidue>& residues,
-                                           const RibbonSettings& settings)
+                                           const RibbonParams& settings)
 {
   if (!(settings.protein_break_distance > 0) || !(settings.nucleic_break_distance > 0))
   {
@@ -962,7 +962,7 @@ std::vector<RibbonSegment> ribbon_segments(const std::vector<RibbonResidue>& res
   return segments;
 }
 
-RibbonMesh ribbon_mesh(const std::vector<RibbonResidue>& residues, const RibbonSettings& settings,
+RibbonMesh ribbon_mesh(const std::vector<RibbonResidue>& residues, const RibbonParams& settings,
                        const ParallelFor& parallel_for)
 {
   check_settings(settings);

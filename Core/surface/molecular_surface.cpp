@@ -54,7 +54,7 @@ constexpr double spacing_per_reach = 4.0 / 2.23606797749979;
 constexpr double hint_reach = 0.6;
 
 void check_input(const std::vector<std::array<double, 3>>& centres,
-                 const std::vector<double>& radii, const MolecularSurfaceOptions& options)
+                 const std::vector<double>& radii, const MolecularSurfaceParams& options)
 {
   if (radii.size() != centres.size())
   {
@@ -156,7 +156,7 @@ std::vector<std::size_t> component_labels(const std::vector<std::int64_t>& trian
 
 MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& centre_list,
                                    const std::vector<double>& atom_radii,
-                                   const MolecularSurfaceOptions& options,
+                                   const MolecularSurfaceParams& options,
                                    const ParallelFor& parallel_for, const SurfaceProgress& progress)
 {
   check_input(centre_list, atom_radii, options);

@@ -189,7 +189,7 @@ int main(int argc, char* argv[])
       solver =
         std::make_unique<mesolens::StructuredCutaway>(mesh, present, std::vector<int>{}, parallel);
     });
-    mesolens::CutawaySettings settings;
+    mesolens::CutawayParams settings;
     const auto half = [](const std::array<double, 3>& p) { return p[0] >= 0; };
     mesolens::RemovalOrder order;
     const double order_time =

@@ -9,7 +9,7 @@
 #include <random>
 
 namespace {
-using mesolens::CutawaySettings;
+using mesolens::CutawayParams;
 using mesolens::CutRegion;
 
 /// The regular icosahedron (circumradius ~1.9), triangles oriented outwards.
@@ -138,7 +138,7 @@ TEST(StructuredCutaway, CentresGoFirstAndEdgesLast)
   EXPECT_NEAR(priority[0], 1.0, 1e-9);
   EXPECT_NEAR(priority[20], 0.0, 1e-9);
 
-  CutawaySettings settings;
+  CutawayParams settings;
   settings.fraction_hidden = 0.4; // 20 of 50: exactly the triangle centres
   auto visible = cutaway.visibility(everything(), settings);
   for (std::size_t m = 0; m < 50; ++m)
@@ -170,7 +170,7 @@ TEST(StructuredCutaway, ExactFractionInsideNothingOutsideNested)
   ASSERT_LT(inside, 40u);
   for (bool random : { false, true })
   {
-    CutawaySettings settings;
+    CutawayParams settings;
     settings.random = random;
     std::vector<std::uint8_t> previous(50, 1);
     for (double fraction : { 0.0, 0.2, 0.5, 0.8, 1.0 })
@@ -208,7 +208,7 @@ TEST(StructuredCutaway, AKeptOrderGivesTheSameMasksForEveryFraction)
   const auto inside = [&](const std::array<double, 3>& p) { return upper.contains(p); };
   for (bool inverted : { false, true })
   {
-    CutawaySettings settings;
+    CutawayParams settings;
     settings.inverted = inverted;
     settings.k = -0.4;
     const mesolens::RemovalOrder order = cutaway.removal_order(inside, settings);
@@ -226,7 +226,7 @@ TEST(StructuredCutaway, AKeptOrderGivesTheSameMasksForEveryFraction)
   }
   mesolens::RemovalOrder other;
   other.molecule_count = 49;
-  EXPECT_THROW(cutaway.visibility(other, CutawaySettings()), mesolens::InvalidInput);
+  EXPECT_THROW(cutaway.visibility(other, CutawayParams()), mesolens::InvalidInput);
 }
 
 TEST(StructuredCutaway, ProbabilisticOrderMakesKABlendOfStructuredAndRandom)
@@ -258,7 +258,7 @@ TEST(StructuredCutaway, ProbabilisticOrderMakesKABlendOfStructuredAndRandom)
   const mesolens::StructuredCutaway cutaway(mesh, centres);
   const auto& x = cutaway.minimal_barycentric();
   // How far apart the hidden and the visible molecules' mean x are, at half hidden.
-  auto separation = [&](const CutawaySettings& settings) {
+  auto separation = [&](const CutawayParams& settings) {
     const auto visible = cutaway.visibility(everything(), settings);
     EXPECT_EQ(hidden_count(visible), x.size() / 2);
     double hidden_sum = 0, visible_sum = 0;
@@ -266,7 +266,7 @@ TEST(StructuredCutaway, ProbabilisticOrderMakesKABlendOfStructuredAndRandom)
       (visible[m] ? visible_sum : hidden_sum) += x[m];
     return (hidden_sum - visible_sum) / double(x.size() / 2);
   };
-  CutawaySettings settings;
+  CutawayParams settings;
   settings.fraction_hidden = 0.5;
   const double strict = separation(settings);
   settings.k = 0.9;
@@ -292,7 +292,7 @@ TEST(StructuredCutaway, ProbabilisticOrderMakesKABlendOfStructuredAndRandom)
   // Molecules on an edge (probability 0) never go before those with a chance.
   const auto edges = molecules_over(mesh);
   const mesolens::StructuredCutaway over(mesh, edges);
-  settings = CutawaySettings();
+  settings = CutawayParams();
   settings.probabilistic = true;
   settings.fraction_hidden = 0.4; // the 20 centre molecules of 50
   const auto visible = over.visibility(everything(), settings);
@@ -307,7 +307,7 @@ TEST(StructuredCutaway, SeedsTypesAndLaterFrames)
   std::vector<int> types(50, 2);
   std::fill(types.begin(), types.begin() + 20, 1);
   const mesolens::StructuredCutaway cutaway(mesh, centres, types);
-  CutawaySettings settings;
+  CutawayParams settings;
   settings.random = true;
   settings.fraction_hidden = 0.5;
   const auto first = cutaway.visibility(everything(), settings);
@@ -315,7 +315,7 @@ TEST(StructuredCutaway, SeedsTypesAndLaterFrames)
   settings.seed = 7;
   EXPECT_NE(first, cutaway.visibility(everything(), settings));
   // Per type: all of type 2 (the edge molecules), none of type 1.
-  settings = CutawaySettings();
+  settings = CutawayParams();
   settings.fraction_hidden = 0.0;
   settings.fraction_by_type[2] = 1.0;
   const auto by_type = cutaway.visibility(everything(), settings);
@@ -340,7 +340,7 @@ TEST(StructuredCutaway, BadInputs)
   EXPECT_THROW(mesolens::StructuredCutaway(mesolens::TriangleMesh(), { 1, 2, 3 }),
                mesolens::InvalidInput);
   const mesolens::StructuredCutaway cutaway(mesh, molecules_over(mesh));
-  CutawaySettings settings;
+  CutawayParams settings;
   settings.k = 1.0;
   EXPECT_THROW(cutaway.visibility(everything(), settings), mesolens::InvalidInput);
   settings.k = 0;

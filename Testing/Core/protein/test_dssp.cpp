@@ -119,7 +119,7 @@ TEST(Dssp, AnIdealAlphaHelixIsAHelixAndAStrandIsNot)
   const auto pp = ideal_backbone(8, -75.0, 145.0);
   EXPECT_NE(mesolens::dssp_string(mesolens::assign_secondary_structure(pp).structure).find("PPP"),
             std::string::npos);
-  mesolens::DsspSettings classic;
+  mesolens::DsspParams classic;
   classic.polyproline_stretch = 0;
   EXPECT_EQ(
     mesolens::dssp_string(mesolens::assign_secondary_structure(pp, classic).structure).find('P'),
@@ -220,7 +220,7 @@ TEST(Dssp, AgreesWithClassicDsspOnEveryModel)
   const std::string folder = mesolens_test::shared_file("reference/dssp_mdtraj/");
   if (!mesolens_test::exists(folder + "1bpi.pdb"))
     GTEST_SKIP() << "needs ../shared/data";
-  mesolens::DsspSettings classic;
+  mesolens::DsspParams classic;
   classic.pi_helix_priority = false;
   classic.polyproline_stretch = 0;
   const auto bpti = backbone_of(folder + "1bpi.pdb");
@@ -253,7 +253,7 @@ TEST(Dssp, AgreesWithMDAnalysisThreeStates)
   // MDAnalysis' DSSP oracle: one-line H/E/- strings for 10 header-less chains (helices of
   // every kind as H, strands and bridges as E). That method (PyDSSP's) joins no ladders across
   // bulges: compared with the same setting; with bulges, 1h4aX differs in its long sheets.
-  mesolens::DsspSettings pydssp;
+  mesolens::DsspParams pydssp;
   pydssp.bulges = false;
   const std::string folder = mesolens_test::shared_file("reference/dssp_mdanalysis/");
   if (!mesolens_test::exists(folder + "1ahsA.pdb"))
@@ -321,7 +321,7 @@ TEST(Dssp, HydrogensPresentOrAbsentGiveTheSameAnswer)
   const std::string placed =
     mesolens::dssp_string(mesolens::assign_secondary_structure(backbone.residues).structure);
   EXPECT_EQ(placed, "-HHHHHHHTTGGGGT-PPP-"); // mkdssp 4.2.2
-  mesolens::DsspSettings with_file_h;
+  mesolens::DsspParams with_file_h;
   with_file_h.file_hydrogens = true;
   const std::string from_file = mesolens::dssp_string(
     mesolens::assign_secondary_structure(backbone.residues, with_file_h).structure);
@@ -469,7 +469,7 @@ TEST(Dssp, BadInputs)
   auto broken = ideal_backbone(10, -57.0, -47.0);
   broken[3].ca[1] = std::nan("");
   EXPECT_THROW(mesolens::assign_secondary_structure(broken), mesolens::InvalidInput);
-  mesolens::DsspSettings negative;
+  mesolens::DsspParams negative;
   negative.polyproline_stretch = -1;
   EXPECT_THROW(mesolens::assign_secondary_structure(ideal_backbone(5, -57.0, -47.0), negative),
                mesolens::InvalidInput);

@@ -16,7 +16,7 @@ namespace {
 using mesolens::RibbonMesh;
 using mesolens::RibbonPiece;
 using mesolens::RibbonResidue;
-using mesolens::RibbonSettings;
+using mesolens::RibbonParams;
 using Point = std::array<double, 3>;
 using Chain = std::vector<RibbonResidue>;
 
@@ -244,7 +244,7 @@ TEST(RibbonGeometry, StylesOfDsspCodes)
 TEST(RibbonGeometry, CentreLineInterpolatesEveryTraceAtom)
 {
   const Chain chain = mixed_chain();
-  RibbonSettings settings;
+  RibbonParams settings;
   settings.subdivisions = 5;
   const RibbonMesh mesh = mesolens::ribbon_mesh(chain, settings);
   ASSERT_EQ(mesh.segments.size(), 1u);
@@ -268,7 +268,7 @@ TEST(RibbonGeometry, CentreLineIsSmoothThroughTheAtoms)
   // Across a Cα the second difference p(i + h) - 2 p(i) + p(i - h) of a C1 curve shrinks like
   // h², so halving h divides it by 4; at the corner of a polygon it only halves.
   const Chain chain = mixed_chain();
-  RibbonSettings coarse, fine;
+  RibbonParams coarse, fine;
   coarse.subdivisions = 10;
   fine.subdivisions = 20;
   const RibbonMesh a = mesolens::ribbon_mesh(chain, coarse);
@@ -369,7 +369,7 @@ TEST(RibbonGeometry, StrandFrameFollowsThePeptidePlanesWithoutFlipping)
   EXPECT_LT(dot(sub(*strand[3].carbonyl_oxygen, strand[3].trace),
                 sub(*strand[4].carbonyl_oxygen, strand[4].trace)),
             0);
-  RibbonSettings settings;
+  RibbonParams settings;
   settings.subdivisions = 7;
   const RibbonMesh mesh = mesolens::ribbon_mesh(strand, settings);
   ASSERT_GT(mesh.centre_line.size(), 50u);
@@ -438,7 +438,7 @@ TEST(RibbonGeometry, EveryPieceIsClosed)
     {
       for (int subdivisions : { 1, 2, 6, 12 })
       {
-        RibbonSettings settings;
+        RibbonParams settings;
         settings.helix_as_cylinder = cylinders;
         settings.tube_sides = sides;
         settings.subdivisions = subdivisions;
@@ -461,7 +461,7 @@ TEST(RibbonGeometry, CoilTubeNormalsPointOutward)
     residue.trace = { 3.8 * i, 0, 0 };
     chain.push_back(residue);
   }
-  const RibbonSettings settings;
+  const RibbonParams settings;
   const RibbonMesh mesh = mesolens::ribbon_mesh(chain, settings);
   expect_closed_pieces(mesh);
   const double end = 3.8 * 6;
@@ -483,7 +483,7 @@ TEST(RibbonGeometry, ArrowheadAtEveryStrandEnd)
   append(chain, ideal_strand(5));
   chain = numbered(chain);
   const std::size_t strand_ends[] = { 7, 16 }; // the second strand ends the chain
-  RibbonSettings settings;
+  RibbonParams settings;
   const RibbonMesh mesh = mesolens::ribbon_mesh(chain, settings);
   expect_closed_pieces(mesh);
   const double strand = 0.5 * settings.strand_width;
@@ -519,7 +519,7 @@ TEST(RibbonGeometry, SectionsChangeSmoothlyBetweenStyles)
 {
   Chain chain = ideal_helix(8);
   append(chain, loop(6));
-  RibbonSettings settings;
+  RibbonParams settings;
   settings.subdivisions = 10;
   const RibbonMesh mesh = mesolens::ribbon_mesh(chain, settings);
   EXPECT_DOUBLE_EQ(sample_at(mesh, 7).half_width, 0.5 * settings.helix_width);
@@ -541,7 +541,7 @@ TEST(RibbonGeometry, TriangleCountGrowsLinearlyWithSubdivisions)
   std::vector<std::size_t> triangles;
   for (int subdivisions = 1; subdivisions <= 12; ++subdivisions)
   {
-    RibbonSettings settings;
+    RibbonParams settings;
     settings.subdivisions = subdivisions;
     const RibbonMesh mesh = mesolens::ribbon_mesh(chain, settings);
     triangles.push_back(mesh.triangle_count());
@@ -567,7 +567,7 @@ TEST(RibbonGeometry, PerSegmentSubdivisionsAreHonoured)
   }
   chain.insert(chain.end(), second.begin(), second.end());
   ASSERT_EQ(mesolens::ribbon_segments(chain).size(), 2u);
-  RibbonSettings coarse, fine, mixed;
+  RibbonParams coarse, fine, mixed;
   coarse.subdivisions = 2;
   fine.subdivisions = 9;
   mixed.segment_subdivisions = { 2, 9 };
@@ -587,7 +587,7 @@ TEST(RibbonGeometry, HelixAsCylinderAlongItsAxis)
   append(chain, ideal_helix(12));
   append(chain, loop(4));
   chain = numbered(chain);
-  RibbonSettings settings;
+  RibbonParams settings;
   settings.helix_as_cylinder = true;
   const RibbonMesh mesh = mesolens::ribbon_mesh(chain, settings);
   ASSERT_EQ(mesh.pieces.size(), 3u);
@@ -638,7 +638,7 @@ TEST(RibbonGeometry, BadInputs)
   EXPECT_EQ(empty.triangle_count(), 0u);
   EXPECT_TRUE(empty.pieces.empty());
 
-  RibbonSettings bad;
+  RibbonParams bad;
   bad.subdivisions = 0;
   EXPECT_THROW(mesolens::ribbon_mesh({}, bad), mesolens::InvalidInput);
   EXPECT_THROW(mesolens::ribbon_mesh(mixed_chain(), bad), mesolens::InvalidInput);
@@ -691,7 +691,7 @@ TEST(RibbonGeometry, LoneResidueIsASphere)
     residue.carbonyl_oxygen = Point{ 1, 4, 3 };
     residue.secondary_structure = code;
     residue.id = 77;
-    const RibbonSettings settings;
+    const RibbonParams settings;
     const RibbonMesh mesh = mesolens::ribbon_mesh({ residue }, settings);
     ASSERT_EQ(mesh.pieces.size(), 1u);
     expect_closed_pieces(mesh);
@@ -718,7 +718,7 @@ TEST(RibbonGeometry, NucleicAcidBackboneIsAThickTubeThroughThePhosphates)
     chain.push_back(residue);
   }
   chain = numbered(chain);
-  const RibbonSettings settings;
+  const RibbonParams settings;
   const RibbonMesh mesh = mesolens::ribbon_mesh(chain, settings);
   ASSERT_EQ(mesh.segments.size(), 1u); // P-P 6.5 Å is bonded for nucleotides
   expect_closed_pieces(mesh);
@@ -742,7 +742,7 @@ TEST(RibbonGeometry, NucleicAcidBackboneIsAThickTubeThroughThePhosphates)
 TEST(RibbonGeometry, VerticesCarryTheirResidue)
 {
   const Chain chain = mixed_chain();
-  const RibbonSettings settings;
+  const RibbonParams settings;
   const RibbonMesh mesh = mesolens::ribbon_mesh(chain, settings);
   for (const auto& sample : mesh.centre_line)
   {
@@ -766,7 +766,7 @@ TEST(RibbonGeometry, DeterministicWhateverTheThreadSplit)
     residue.chain = 2;
   }
   chain.insert(chain.end(), other.begin(), other.end());
-  RibbonSettings settings;
+  RibbonParams settings;
   settings.helix_as_cylinder = true;
   const RibbonMesh serial = mesolens::ribbon_mesh(chain, settings);
   // Ranges of one item, run last to first.

@@ -22,7 +22,7 @@
 
 namespace {
 using mesolens::MolecularSurface;
-using mesolens::MolecularSurfaceOptions;
+using mesolens::MolecularSurfaceParams;
 using mesolens::SurfaceKind;
 using Centres = std::vector<std::array<double, 3>>;
 constexpr double pi = 3.14159265358979323846;
@@ -198,7 +198,7 @@ MolecularSurface surface_of(const Centres& centres, const std::vector<double>& r
                             double tolerance, SurfaceKind kind = SurfaceKind::SolventExcluded,
                             bool keep_cavities = true)
 {
-  MolecularSurfaceOptions options;
+  MolecularSurfaceParams options;
   options.kind = kind;
   options.tolerance = tolerance;
   options.keep_cavities = keep_cavities;
@@ -361,7 +361,7 @@ TEST(MolecularSurface, AccessibleAndVanDerWaalsFiguresAreTheSphereUnions)
   }
   const auto sas = mesolens::sphere_union_area(centres, inflated);
   const auto vdw = mesolens::sphere_union_area(centres, radii);
-  MolecularSurfaceOptions options;
+  MolecularSurfaceParams options;
   options.tessellate = false;
   options.kind = SurfaceKind::SolventAccessible;
   const MolecularSurface s = mesolens::molecular_surface(centres, radii, options);
@@ -546,7 +546,7 @@ TEST(MolecularSurface, TheSmallestCavityIsFoundOnTheCoarsestGrid)
             cage.push_back({ d * corner[0] + 0.17 * shift, d * corner[1] + 0.29 * shift,
                              d * corner[2] + 0.11 * shift });
           }
-      MolecularSurfaceOptions options;
+      MolecularSurfaceParams options;
       options.probe_radius = probe;
       options.tolerance = 1.0;
       const MolecularSurface s = mesolens::molecular_surface(
@@ -580,7 +580,7 @@ TEST(MolecularSurface, SameResultOnOneAndTwoThreads)
 {
   std::vector<double> radii;
   const Centres centres = crambin(radii);
-  MolecularSurfaceOptions options;
+  MolecularSurfaceParams options;
   options.tolerance = 0.2;
   const MolecularSurface one = mesolens::molecular_surface(centres, radii, options);
   const MolecularSurface two =
@@ -596,7 +596,7 @@ TEST(MolecularSurface, TheMeshAloneIsTheSameMeshWithoutFigures)
 {
   std::vector<double> radii;
   const Centres centres = crambin(radii);
-  MolecularSurfaceOptions options;
+  MolecularSurfaceParams options;
   options.tolerance = 0.2;
   const MolecularSurface full = mesolens::molecular_surface(centres, radii, options);
   options.exact_figures = false;
@@ -628,7 +628,7 @@ TEST(MolecularSurface, ProgressRisesToOne)
 TEST(MolecularSurface, BadInputsAreRefused)
 {
   const auto refused = [](const Centres& centres, const std::vector<double>& radii,
-                          MolecularSurfaceOptions options = {}) {
+                          MolecularSurfaceParams options = {}) {
     EXPECT_THROW(mesolens::molecular_surface(centres, radii, options), mesolens::InvalidInput);
   };
   const double nan = std::nan("");
@@ -640,13 +640,13 @@ TEST(MolecularSurface, BadInputsAreRefused)
   refused({ { 0, 0, 0 } }, { 1e6 });
   for (const double probe : { 0.0, -1.0, 1e6, nan })
   {
-    MolecularSurfaceOptions options;
+    MolecularSurfaceParams options;
     options.probe_radius = probe;
     refused({ { 0, 0, 0 } }, { 1.5 }, options);
   }
   for (const double tolerance : { 0.0, 1e-4, 5.0, nan })
   {
-    MolecularSurfaceOptions options;
+    MolecularSurfaceParams options;
     options.tolerance = tolerance;
     refused({ { 0, 0, 0 } }, { 1.5 }, options);
   }
@@ -657,7 +657,7 @@ TEST(MolecularSurface, BadInputsAreRefused)
     {
       many.push_back({ 4.0 * (k % 20), 4.0 * ((k / 20) % 20), 4.0 * (k / 400) });
     }
-    MolecularSurfaceOptions options;
+    MolecularSurfaceParams options;
     options.tolerance = 0.005;
     refused(many, std::vector<double>(many.size(), 1.5), options);
   }

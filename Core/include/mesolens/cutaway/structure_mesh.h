@@ -51,9 +51,6 @@ struct StructureMeshParams
   PeriodicBox box;
 };
 
-/// The former name of StructureMeshParams.
-using StructureMeshSize = StructureMeshParams;
-
 /// A sheet through the middle of `points` (3 coordinates each: the centres of a membrane's
 /// lipids, both leaflets, or their head groups alone; no water or ions, see
 /// structure_molecules()).

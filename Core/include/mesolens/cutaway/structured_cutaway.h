@@ -48,7 +48,7 @@ struct CutRegion
 };
 
 /// How much a cut removes, and in which order.
-struct CutawaySettings
+struct CutawayParams
 {
   /// The sigmoid's k, -1 < k < 1 (0: the minimal barycentric coordinate as it is).
   double k = 0;
@@ -121,26 +121,26 @@ public:
   /// in `cut`, the round(fraction x count) of highest priority (lowest when inverted; in
   /// random order in random mode) are hidden, per type; molecules outside the cut stay. Throws
   /// InvalidInput for settings out of range.
-  std::vector<std::uint8_t> visibility(const CutRegion& cut, const CutawaySettings& settings,
+  std::vector<std::uint8_t> visibility(const CutRegion& cut, const CutawayParams& settings,
                                        const double* centres = nullptr) const;
 
   /// The same with the cut given as a test of a point (true: inside the cut).
   std::vector<std::uint8_t> visibility(
     const std::function<bool(const std::array<double, 3>&)>& inside_cut,
-    const CutawaySettings& settings, const double* centres = nullptr) const;
+    const CutawayParams& settings, const double* centres = nullptr) const;
 
   /// The first, costlier half of visibility(): which molecules are in the cut and in which
   /// order they go (all settings but the fractions count). Keep it while only the fractions
   /// change (a slider): visibility(order, settings) is then O(molecules).
   RemovalOrder removal_order(const std::function<bool(const std::array<double, 3>&)>& inside_cut,
-                             const CutawaySettings& settings,
+                             const CutawayParams& settings,
                              const double* centres = nullptr) const;
 
   /// The mask for `order` with the fractions of `settings` (the rest of the settings are those
   /// the order was made with). Throws InvalidInput for fractions out of [0, 1] or an order
   /// made for another number of molecules.
   std::vector<std::uint8_t> visibility(const RemovalOrder& order,
-                                       const CutawaySettings& settings) const;
+                                       const CutawayParams& settings) const;
 
 private:
   std::vector<double> Centres;

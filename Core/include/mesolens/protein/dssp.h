@@ -15,7 +15,7 @@
 namespace mesolens {
 
 /// How DSSP assigns.
-struct DsspSettings
+struct DsspParams
 {
   /// pi helices before alpha helices where both apply (DSSP 4 and mkdssp 4.x); false: the
   /// classic order (DSSP 2), alpha first.
@@ -60,7 +60,7 @@ SecondaryStructure from_dssp_letter(char letter);
 /// Cα geometry instead (assign_from_ca). Throws InvalidInput for a non-finite coordinate of a
 /// present atom. `parallel_for` runs the energy search.
 DsspResult assign_secondary_structure(const std::vector<BackboneResidue>& residues,
-                                      const DsspSettings& settings = {},
+                                      const DsspParams& settings = {},
                                       const ParallelFor& parallel_for = {});
 
 /// Secondary structure from Cα positions alone (Å; `chain` per residue, same length), for

@@ -20,7 +20,7 @@ namespace mesolens {
 /// How a residue is drawn.
 enum class RibbonStyle : std::uint8_t
 {
-  Helix,      ///< wide flat ribbon, or part of a cylinder (RibbonSettings::helix_as_cylinder)
+  Helix,      ///< wide flat ribbon, or part of a cylinder (RibbonParams::helix_as_cylinder)
   Strand,     ///< flat ribbon; the last residue of a strand carries the arrowhead
   Coil,       ///< thin round tube (also turns, bends, isolated bridges)
   NucleicAcid ///< thicker round tube through the phosphorus atoms
@@ -56,7 +56,7 @@ struct RibbonResidue
 };
 
 /// Shape and level of detail of ribbon_mesh(). Lengths in Å.
-struct RibbonSettings
+struct RibbonParams
 {
   /// Spline samples per residue (level of detail), >= 1: 2 is coarse, 6 the default, 12 fine.
   /// The triangle count grows linearly with it.
@@ -163,7 +163,7 @@ struct RibbonMesh
 /// apart than the break distance. Throws InvalidInput for a non-finite trace
 /// position or a non-positive break distance.
 std::vector<RibbonSegment> ribbon_segments(const std::vector<RibbonResidue>& residues,
-                                           const RibbonSettings& settings = {});
+                                           const RibbonParams& settings = {});
 
 /// Sweeps the ribbon of every segment.
 ///
@@ -210,6 +210,6 @@ std::vector<RibbonSegment> ribbon_segments(const std::vector<RibbonResidue>& res
 /// the number of segments. Deterministic whatever `parallel_for` (which runs the segments, then
 /// the pieces); time and memory O(residues × subdivisions × tube_sides).
 RibbonMesh ribbon_mesh(const std::vector<RibbonResidue>& residues,
-                       const RibbonSettings& settings = {}, const ParallelFor& parallel_for = {});
+                       const RibbonParams& settings = {}, const ParallelFor& parallel_for = {});
 
 } // namespace mesolens

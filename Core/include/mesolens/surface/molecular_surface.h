@@ -36,7 +36,7 @@ enum class SurfacePatch : std::uint8_t
 };
 
 /// Parameters of molecular_surface().
-struct MolecularSurfaceOptions
+struct MolecularSurfaceParams
 {
   SurfaceKind kind = SurfaceKind::SolventExcluded;
   /// Radius of the solvent probe, Å (length units of the input), (0, 20]; default 1.4 (water).
@@ -124,7 +124,7 @@ using SurfaceProgress = std::function<void(double)>;
 /// whatever `parallel_for`.
 MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& centres,
                                    const std::vector<double>& radii,
-                                   const MolecularSurfaceOptions& options = {},
+                                   const MolecularSurfaceParams& options = {},
                                    const ParallelFor& parallel_for = {},
                                    const SurfaceProgress& progress = {});
 

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoAtomProperties.h"
 
+#include "vtkMesoArrayNames.h"
+
 #include "mesolens/molecules/elements.h"
 
 #include <vtkDataArray.h>
@@ -20,7 +22,7 @@ int vtkMesoAtomProperties::RequestData(vtkInformation*, vtkInformationVector** i
   vtkPolyData* input = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   output->Initialize();
-  vtkDataArray* atomic_numbers = input->GetPointData()->GetArray("AtomicNumber");
+  vtkDataArray* atomic_numbers = input->GetPointData()->GetArray(vtkMesoArrayNames::AtomicNumber);
   if (!atomic_numbers || atomic_numbers->GetNumberOfComponents() != 1)
   {
     vtkErrorMacro("The input has no one-component point array 'AtomicNumber'; "
@@ -30,10 +32,10 @@ int vtkMesoAtomProperties::RequestData(vtkInformation*, vtkInformationVector** i
   output->ShallowCopy(input);
   const vtkIdType n = atomic_numbers->GetNumberOfTuples();
   vtkNew<vtkFloatArray> van_der_waals;
-  van_der_waals->SetName("VanDerWaalsRadius");
+  van_der_waals->SetName(vtkMesoArrayNames::VanDerWaalsRadius);
   van_der_waals->SetNumberOfValues(n);
   vtkNew<vtkFloatArray> covalent;
-  covalent->SetName("CovalentRadius");
+  covalent->SetName(vtkMesoArrayNames::CovalentRadius);
   covalent->SetNumberOfValues(n);
   for (vtkIdType i = 0; i < n; ++i)
   {

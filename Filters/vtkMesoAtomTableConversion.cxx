@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoAtomTableConversion.h"
 
+#include "vtkMesoArrayNames.h"
+
 #include "mesolens/molecules/atom_table.h"
 #include "mesolens/molecules/elements.h"
 
@@ -118,25 +120,27 @@ void ToPolyData(const mesolens::AtomTable& table, double length_scale, vtkPolyDa
   {
     symbols[i] = mesolens::element_symbol(table.atomic_numbers[i]);
   }
-  add_strings(data, "AtomName", table.atom_names);
-  add_strings(data, "Element", symbols);
+  add_strings(data, vtkMesoArrayNames::AtomName, table.atom_names);
+  add_strings(data, vtkMesoArrayNames::Element, symbols);
   // Not unsigned char: VTK would take an unsigned char active scalar for colours, not values.
-  add_array<vtkUnsignedShortArray>(data, "AtomicNumber", table.atomic_numbers);
-  add_strings(data, "ResidueName", table.residue_names);
-  add_array<vtkIntArray>(data, "ResidueNumber", table.residue_numbers);
-  add_strings(data, "InsertionCode", as_strings(table.insertion_codes));
-  add_strings(data, "ChainId", table.chain_ids);
-  add_strings(data, "AltLoc", as_strings(table.alt_locs));
-  add_array<vtkFloatArray>(data, "Occupancy", table.occupancies);
-  add_array<vtkFloatArray>(data, "BFactor", table.b_factors);
-  add_array<vtkUnsignedCharArray>(data, "IsHetAtm", table.is_hetero);
-  add_array<vtkIntArray>(data, "SerialNumber", table.serials);
-  add_array<vtkSignedCharArray>(data, "FormalCharge", table.formal_charges);
-  add_array<vtkUnsignedCharArray>(data, "SecondaryStructure", table.secondary_structure);
-  add_array<vtkIntArray>(data, "SecondaryStructureId", table.secondary_structure_ids);
-  add_array<vtkIntArray>(data, "ResidueIndex", table.residue_indices);
-  add_array<vtkIntArray>(data, "MoleculeId", table.molecule_ids);
-  data->SetActiveScalars("AtomicNumber");
+  add_array<vtkUnsignedShortArray>(data, vtkMesoArrayNames::AtomicNumber, table.atomic_numbers);
+  add_strings(data, vtkMesoArrayNames::ResidueName, table.residue_names);
+  add_array<vtkIntArray>(data, vtkMesoArrayNames::ResidueNumber, table.residue_numbers);
+  add_strings(data, vtkMesoArrayNames::InsertionCode, as_strings(table.insertion_codes));
+  add_strings(data, vtkMesoArrayNames::ChainId, table.chain_ids);
+  add_strings(data, vtkMesoArrayNames::AltLoc, as_strings(table.alt_locs));
+  add_array<vtkFloatArray>(data, vtkMesoArrayNames::Occupancy, table.occupancies);
+  add_array<vtkFloatArray>(data, vtkMesoArrayNames::BFactor, table.b_factors);
+  add_array<vtkUnsignedCharArray>(data, vtkMesoArrayNames::IsHetAtm, table.is_hetero);
+  add_array<vtkIntArray>(data, vtkMesoArrayNames::SerialNumber, table.serials);
+  add_array<vtkSignedCharArray>(data, vtkMesoArrayNames::FormalCharge, table.formal_charges);
+  add_array<vtkUnsignedCharArray>(data, vtkMesoArrayNames::SecondaryStructure,
+                                  table.secondary_structure);
+  add_array<vtkIntArray>(data, vtkMesoArrayNames::SecondaryStructureId,
+                         table.secondary_structure_ids);
+  add_array<vtkIntArray>(data, vtkMesoArrayNames::ResidueIndex, table.residue_indices);
+  add_array<vtkIntArray>(data, vtkMesoArrayNames::MoleculeId, table.molecule_ids);
+  data->SetActiveScalars(vtkMesoArrayNames::AtomicNumber);
   SetPeriodicBox(table.box, length_scale, output);
 }
 
@@ -150,8 +154,10 @@ bool FromPolyData(vtkPolyData* atoms, double length_scale, mesolens::AtomTable& 
 {
   table = mesolens::AtomTable();
   vtkPointData* data = atoms ? atoms->GetPointData() : nullptr;
-  auto* names = data ? vtkStringArray::SafeDownCast(data->GetAbstractArray("AtomName")) : nullptr;
-  vtkDataArray* residues = data ? data->GetArray("ResidueIndex") : nullptr;
+  auto* names = data
+    ? vtkStringArray::SafeDownCast(data->GetAbstractArray(vtkMesoArrayNames::AtomName))
+    : nullptr;
+  vtkDataArray* residues = data ? data->GetArray(vtkMesoArrayNames::ResidueIndex) : nullptr;
   if (!names || !residues)
   {
     if (missing)
@@ -189,22 +195,22 @@ bool FromPolyData(vtkPolyData* atoms, double length_scale, mesolens::AtomTable& 
         static_cast<std::decay_t<decltype(fallback)>>(array->GetComponent(i, 0));
     }
   };
-  strings("AtomName", table.atom_names);
-  strings("ResidueName", table.residue_names);
-  strings("ChainId", table.chain_ids);
+  strings(vtkMesoArrayNames::AtomName, table.atom_names);
+  strings(vtkMesoArrayNames::ResidueName, table.residue_names);
+  strings(vtkMesoArrayNames::ChainId, table.chain_ids);
   std::vector<std::string> alternates;
-  strings("AltLoc", alternates);
+  strings(vtkMesoArrayNames::AltLoc, alternates);
   table.alt_locs.assign(count, ' ');
   for (std::size_t i = 0; i < count; ++i)
   {
     table.alt_locs[i] = alternates[i].empty() ? ' ' : alternates[i][0];
   }
-  numbers("ResidueIndex", table.residue_indices, 0);
-  numbers("MoleculeId", table.molecule_ids, 0);
-  numbers("ResidueNumber", table.residue_numbers, 0);
-  numbers("Occupancy", table.occupancies, 1.0f);
-  numbers("AtomicNumber", table.atomic_numbers, std::uint8_t(0));
-  numbers("SecondaryStructure", table.secondary_structure, std::uint8_t(0));
+  numbers(vtkMesoArrayNames::ResidueIndex, table.residue_indices, 0);
+  numbers(vtkMesoArrayNames::MoleculeId, table.molecule_ids, 0);
+  numbers(vtkMesoArrayNames::ResidueNumber, table.residue_numbers, 0);
+  numbers(vtkMesoArrayNames::Occupancy, table.occupancies, 1.0f);
+  numbers(vtkMesoArrayNames::AtomicNumber, table.atomic_numbers, std::uint8_t(0));
+  numbers(vtkMesoArrayNames::SecondaryStructure, table.secondary_structure, std::uint8_t(0));
   return true;
 }
 
@@ -231,13 +237,13 @@ void SetPositions(const std::vector<float>& positions, const std::vector<std::si
 void SetPeriodicBox(const mesolens::PeriodicBox& box, double length_scale, vtkPolyData* output)
 {
   vtkFieldData* field = output->GetFieldData();
-  field->RemoveArray("PeriodicBoxVectors");
+  field->RemoveArray(vtkMesoArrayNames::PeriodicBoxVectors);
   if (!box.is_set())
   {
     return;
   }
   vtkNew<vtkDoubleArray> vectors;
-  vectors->SetName("PeriodicBoxVectors");
+  vectors->SetName(vtkMesoArrayNames::PeriodicBoxVectors);
   vectors->SetNumberOfComponents(9);
   vectors->SetNumberOfTuples(1);
   for (int r = 0; r < 3; ++r)
@@ -303,7 +309,7 @@ bool AtomSpheres(vtkPolyData* atoms, const char* radius_array, double bead_radiu
       return false;
     }
   }
-  vtkDataArray* elements = atoms->GetPointData()->GetArray("AtomicNumber");
+  vtkDataArray* elements = atoms->GetPointData()->GetArray(vtkMesoArrayNames::AtomicNumber);
   centres.resize(static_cast<std::size_t>(n));
   radii.resize(static_cast<std::size_t>(n));
   for (vtkIdType a = 0; a < n; ++a)

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoDiskParameterization.h"
 
+#include "vtkMesoArrayNames.h"
+
 #include "vtkMesoSurfaceConversion.h"
 
 #include "mesolens/common/errors.h"
@@ -23,7 +25,7 @@ int vtkMesoDiskParameterization::RequestData(vtkInformation*, vtkInformationVect
   double radius = this->Radius;
   if (radius <= 0)
   {
-    vtkDataArray* stored = input->GetFieldData()->GetArray("GeodesicRadius");
+    vtkDataArray* stored = input->GetFieldData()->GetArray(vtkMesoArrayNames::GeodesicRadius);
     radius = stored ? stored->GetComponent(0, 0) : 0;
   }
   try

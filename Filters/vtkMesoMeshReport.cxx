@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoMeshReport.h"
 
+#include "vtkMesoArrayNames.h"
+
 #include "mesolens/mesh/mesh_report.h"
 
 #include <vtkCellArray.h>
@@ -102,7 +104,7 @@ bool vtkMesoMeshReport::Analyze(vtkPolyData* mesh)
 void vtkMesoMeshReport::AddResultsTo(vtkPolyData* output) const
 {
   vtkNew<vtkUnsignedCharArray> degenerate;
-  degenerate->SetName("DegenerateTriangle");
+  degenerate->SetName(vtkMesoArrayNames::DegenerateTriangle);
   degenerate->SetNumberOfValues(static_cast<vtkIdType>(this->DegenerateFlags.size()));
   for (std::size_t c = 0; c < this->DegenerateFlags.size(); ++c)
   {
@@ -110,7 +112,7 @@ void vtkMesoMeshReport::AddResultsTo(vtkPolyData* output) const
   }
   output->GetCellData()->AddArray(degenerate);
   vtkNew<vtkUnsignedCharArray> non_manifold;
-  non_manifold->SetName("NonManifoldVertex");
+  non_manifold->SetName(vtkMesoArrayNames::NonManifoldVertex);
   non_manifold->SetNumberOfValues(static_cast<vtkIdType>(this->NonManifoldFlags.size()));
   for (std::size_t p = 0; p < this->NonManifoldFlags.size(); ++p)
   {
@@ -118,15 +120,16 @@ void vtkMesoMeshReport::AddResultsTo(vtkPolyData* output) const
   }
   output->GetPointData()->AddArray(non_manifold);
   const std::pair<const char*, vtkIdType> counts[] = {
-    { "NumberOfBoundaryEdges", this->NumberOfBoundaryEdges },
-    { "NumberOfBoundaryLoops", this->NumberOfBoundaryLoops },
-    { "NumberOfNonManifoldEdges", this->NumberOfNonManifoldEdges },
-    { "NumberOfNonManifoldVertices", this->NumberOfNonManifoldVertices },
-    { "NumberOfInconsistentlyOrientedEdges", this->NumberOfInconsistentlyOrientedEdges },
-    { "NumberOfDegenerateTriangles", this->NumberOfDegenerateTriangles },
-    { "NumberOfUnreferencedVertices", this->NumberOfUnreferencedVertices },
-    { "NumberOfComponents", this->NumberOfComponents },
-    { "EulerCharacteristic", this->EulerCharacteristic },
+    { vtkMesoArrayNames::NumberOfBoundaryEdges, this->NumberOfBoundaryEdges },
+    { vtkMesoArrayNames::NumberOfBoundaryLoops, this->NumberOfBoundaryLoops },
+    { vtkMesoArrayNames::NumberOfNonManifoldEdges, this->NumberOfNonManifoldEdges },
+    { vtkMesoArrayNames::NumberOfNonManifoldVertices, this->NumberOfNonManifoldVertices },
+    { vtkMesoArrayNames::NumberOfInconsistentlyOrientedEdges,
+      this->NumberOfInconsistentlyOrientedEdges },
+    { vtkMesoArrayNames::NumberOfDegenerateTriangles, this->NumberOfDegenerateTriangles },
+    { vtkMesoArrayNames::NumberOfUnreferencedVertices, this->NumberOfUnreferencedVertices },
+    { vtkMesoArrayNames::NumberOfComponents, this->NumberOfComponents },
+    { vtkMesoArrayNames::EulerCharacteristic, this->EulerCharacteristic },
   };
   for (const auto& count : counts)
   {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoMolecularSurface.h"
 
+#include "vtkMesoArrayNames.h"
+
 #include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoSurfaceConversion.h"
 #include "vtkMesoParallelFor.h"
@@ -80,7 +82,7 @@ int vtkMesoMolecularSurface::RequestData(vtkInformation*, vtkInformationVector**
   coordinates->SetNumberOfComponents(3);
   coordinates->SetNumberOfTuples(vertices);
   vtkNew<vtkFloatArray> normals;
-  normals->SetName("Normals");
+  normals->SetName(vtkMesoArrayNames::Normals);
   normals->SetNumberOfComponents(3);
   normals->SetNumberOfTuples(vertices);
   for (vtkIdType v = 0; v < 3 * vertices; ++v)
@@ -89,10 +91,10 @@ int vtkMesoMolecularSurface::RequestData(vtkInformation*, vtkInformationVector**
     normals->SetValue(v, static_cast<float>(surface.normals[std::size_t(v)]));
   }
   vtkNew<vtkIdTypeArray> atom_ids;
-  atom_ids->SetName("AtomId");
+  atom_ids->SetName(vtkMesoArrayNames::AtomId);
   atom_ids->SetNumberOfValues(vertices);
   vtkNew<vtkUnsignedCharArray> patches;
-  patches->SetName("PatchType");
+  patches->SetName(vtkMesoArrayNames::PatchType);
   patches->SetNumberOfValues(vertices);
   vtkNew<vtkIdList> from;
   from->SetNumberOfIds(vertices);
@@ -110,10 +112,13 @@ int vtkMesoMolecularSurface::RequestData(vtkInformation*, vtkInformationVector**
   // Each numeric array of the atoms, carried to the vertices through their atoms.
   vtkPointData* in = atoms->GetPointData();
   vtkPointData* out = output->GetPointData();
-  vtkMesoAtomTableConversion::GatherAtomArrays(in, from, out, { "Normals", "AtomId", "PatchType" });
+  vtkMesoAtomTableConversion::GatherAtomArrays(
+    in, from, out,
+    { vtkMesoArrayNames::Normals, vtkMesoArrayNames::AtomId, vtkMesoArrayNames::PatchType });
   // Chains as numbers (in order of first appearance), to colour by chain.
-  vtkStringArray* chains = vtkStringArray::SafeDownCast(in->GetAbstractArray("ChainId"));
-  if (chains && !in->GetArray("ChainIndex"))
+  vtkStringArray* chains =
+    vtkStringArray::SafeDownCast(in->GetAbstractArray(vtkMesoArrayNames::ChainId));
+  if (chains && !in->GetArray(vtkMesoArrayNames::ChainIndex))
   {
     std::map<std::string, int> index_of;
     std::vector<int> chain_of_atom(static_cast<std::size_t>(chains->GetNumberOfValues()));
@@ -123,7 +128,7 @@ int vtkMesoMolecularSurface::RequestData(vtkInformation*, vtkInformationVector**
         index_of.emplace(chains->GetValue(a), int(index_of.size())).first->second;
     }
     vtkNew<vtkIntArray> chain_index;
-    chain_index->SetName("ChainIndex");
+    chain_index->SetName(vtkMesoArrayNames::ChainIndex);
     chain_index->SetNumberOfValues(vertices);
     for (vtkIdType v = 0; v < vertices; ++v)
     {
@@ -138,17 +143,19 @@ int vtkMesoMolecularSurface::RequestData(vtkInformation*, vtkInformationVector**
   using vtkMesoAtomTableConversion::SetFieldValue;
   if (std::isfinite(surface.area)) // else not asked for
   {
-    SetFieldValue(output, "Area", surface.area);
-    SetFieldValue(output, "Volume", surface.volume);
-    SetFieldValue(output, "ConvexArea", surface.patch_area[0]);
-    SetFieldValue(output, "ToroidalArea", surface.patch_area[1]);
-    SetFieldValue(output, "ConcaveArea", surface.patch_area[2]);
-    SetFieldValue(output, "SingularPatchCount", double(surface.singular_patch_count));
+    SetFieldValue(output, vtkMesoArrayNames::Area, surface.area);
+    SetFieldValue(output, vtkMesoArrayNames::Volume, surface.volume);
+    SetFieldValue(output, vtkMesoArrayNames::ConvexArea, surface.patch_area[0]);
+    SetFieldValue(output, vtkMesoArrayNames::ToroidalArea, surface.patch_area[1]);
+    SetFieldValue(output, vtkMesoArrayNames::ConcaveArea, surface.patch_area[2]);
+    SetFieldValue(output, vtkMesoArrayNames::SingularPatchCount,
+                  double(surface.singular_patch_count));
   }
-  SetFieldValue(output, "ComponentCount", double(surface.component_count));
-  SetFieldValue(output, "CavityCount", double(surface.cavity_count));
-  SetFieldValue(output, "GridSpacing", surface.grid_spacing);
-  SetFieldValue(output, "DegenerateVertexCount", double(surface.degenerate_vertex_count));
+  SetFieldValue(output, vtkMesoArrayNames::ComponentCount, double(surface.component_count));
+  SetFieldValue(output, vtkMesoArrayNames::CavityCount, double(surface.cavity_count));
+  SetFieldValue(output, vtkMesoArrayNames::GridSpacing, surface.grid_spacing);
+  SetFieldValue(output, vtkMesoArrayNames::DegenerateVertexCount,
+                double(surface.degenerate_vertex_count));
   if (surface.degenerate_vertex_count > 0)
   {
     vtkWarningMacro("Four or more atoms touch one probe position at "

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoRibbons.h"
 
+#include "vtkMesoArrayNames.h"
+
 #include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoSurfaceConversion.h"
 #include "vtkMesoParallelFor.h"
@@ -200,7 +202,7 @@ int vtkMesoRibbons::RequestData(vtkInformation*, vtkInformationVector** inputVec
       in.LayoutFrom = stamps;
     }
     // This frame's positions and classes.
-    vtkDataArray* codes = data->GetArray("SecondaryStructure");
+    vtkDataArray* codes = data->GetArray(vtkMesoArrayNames::SecondaryStructure);
     vtkPoints* positions = atoms->GetPoints();
     for (std::size_t r = 0; r < in.Residues.size(); ++r)
     {
@@ -252,22 +254,22 @@ int vtkMesoRibbons::RequestData(vtkInformation*, vtkInformationVector** inputVec
     coordinates->SetNumberOfComponents(3);
     coordinates->SetNumberOfTuples(vertices);
     vtkNew<vtkFloatArray> normals;
-    normals->SetName("Normals");
+    normals->SetName(vtkMesoArrayNames::Normals);
     normals->SetNumberOfComponents(3);
     normals->SetNumberOfTuples(vertices);
     vtkNew<vtkIdList> from;
     from->SetNumberOfIds(vertices);
     vtkNew<vtkIdTypeArray> atom_ids;
-    atom_ids->SetName("AtomId");
+    atom_ids->SetName(vtkMesoArrayNames::AtomId);
     atom_ids->SetNumberOfValues(vertices);
     vtkNew<vtkIntArray> residue_ids;
-    residue_ids->SetName("ResidueIndex");
+    residue_ids->SetName(vtkMesoArrayNames::ResidueIndex);
     residue_ids->SetNumberOfValues(vertices);
     vtkNew<vtkIntArray> chain_ids;
-    chain_ids->SetName("ChainIndex");
+    chain_ids->SetName(vtkMesoArrayNames::ChainIndex);
     chain_ids->SetNumberOfValues(vertices);
     vtkNew<vtkUnsignedCharArray> classes;
-    classes->SetName("SecondaryStructure");
+    classes->SetName(vtkMesoArrayNames::SecondaryStructure);
     classes->SetNumberOfValues(vertices);
     // Straight into the arrays' memory, in parallel: the mesh can have millions of vertices.
     float* xyz = coordinates->GetPointer(0);
@@ -303,8 +305,8 @@ int vtkMesoRibbons::RequestData(vtkInformation*, vtkInformationVector** inputVec
     vtkPointData* in = atoms->GetPointData();
     vtkPointData* out = output->GetPointData();
     // Each numeric array of the input, gathered from the trace atoms.
-    vtkMesoAtomTableConversion::GatherAtomArrays(in, from, out,
-                                                 { "ResidueIndex", "SecondaryStructure" });
+    vtkMesoAtomTableConversion::GatherAtomArrays(
+      in, from, out, { vtkMesoArrayNames::ResidueIndex, vtkMesoArrayNames::SecondaryStructure });
     out->AddArray(atom_ids);
     out->AddArray(residue_ids);
     out->AddArray(chain_ids);
@@ -313,10 +315,10 @@ int vtkMesoRibbons::RequestData(vtkInformation*, vtkInformationVector** inputVec
 
     // Per piece of chain: its bounds and residues, for a view-dependent level of detail.
     vtkNew<vtkDoubleArray> bounds;
-    bounds->SetName("SegmentBounds");
+    bounds->SetName(vtkMesoArrayNames::SegmentBounds);
     bounds->SetNumberOfComponents(6);
     vtkNew<vtkIntArray> lengths;
-    lengths->SetName("SegmentResidueCounts");
+    lengths->SetName(vtkMesoArrayNames::SegmentResidueCounts);
     for (const mesolens::RibbonSegment& segment : mesh.segments)
     {
       double box[6] = { VTK_DOUBLE_MAX, VTK_DOUBLE_MIN, VTK_DOUBLE_MAX,

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoSecondaryStructure.h"
 
+#include "vtkMesoArrayNames.h"
+
 #include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoParallelFor.h"
 #include "vtkMesoStamp.h"
@@ -77,7 +79,7 @@ namespace {
 /// Whether any atom has a class other than coil in the input's `SecondaryStructure`.
 bool has_records(vtkPolyData* atoms)
 {
-  vtkDataArray* classes = atoms->GetPointData()->GetArray("SecondaryStructure");
+  vtkDataArray* classes = atoms->GetPointData()->GetArray(vtkMesoArrayNames::SecondaryStructure);
   for (vtkIdType a = 0; classes && a < classes->GetNumberOfTuples(); ++a)
   {
     if (classes->GetComponent(a, 0) != 0)
@@ -209,10 +211,10 @@ int vtkMesoSecondaryStructure::RequestData(vtkInformation*, vtkInformationVector
     // Per atom: its residue's class and run.
     const std::vector<int> runs = run_ids(classes, backbone.residues);
     vtkNew<vtkUnsignedCharArray> per_atom;
-    per_atom->SetName("SecondaryStructure");
+    per_atom->SetName(vtkMesoArrayNames::SecondaryStructure);
     per_atom->SetNumberOfValues(n);
     vtkNew<vtkIntArray> per_atom_run;
-    per_atom_run->SetName("SecondaryStructureId");
+    per_atom_run->SetName(vtkMesoArrayNames::SecondaryStructureId);
     per_atom_run->SetNumberOfValues(n);
     for (vtkIdType a = 0; a < n; ++a)
     {
@@ -225,11 +227,11 @@ int vtkMesoSecondaryStructure::RequestData(vtkInformation*, vtkInformationVector
 
     // Per residue and per chain, in field data.
     vtkNew<vtkUnsignedCharArray> per_residue;
-    per_residue->SetName("ResidueSecondaryStructure");
+    per_residue->SetName(vtkMesoArrayNames::ResidueSecondaryStructure);
     vtkNew<vtkIntArray> residue_indices;
-    residue_indices->SetName("ResidueIndexOfAssignment");
+    residue_indices->SetName(vtkMesoArrayNames::ResidueIndexOfAssignment);
     vtkNew<vtkStringArray> chains;
-    chains->SetName("DSSP");
+    chains->SetName(vtkMesoArrayNames::DSSP);
     std::string letters;
     for (std::size_t r = 0; r < classes.size(); ++r)
     {
@@ -249,7 +251,7 @@ int vtkMesoSecondaryStructure::RequestData(vtkInformation*, vtkInformationVector
     output->GetFieldData()->AddArray(per_residue);
     output->GetFieldData()->AddArray(residue_indices);
     output->GetFieldData()->AddArray(chains);
-    vtkMesoAtomTableConversion::SetFieldValue(output, "HydrogenBonds",
+    vtkMesoAtomTableConversion::SetFieldValue(output, vtkMesoArrayNames::HydrogenBonds,
                                               double(result.hydrogen_bonds));
   }
   catch (const mesolens::Error& error)

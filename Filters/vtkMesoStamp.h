@@ -1,3 +1,4 @@
+#include "vtkMesoArrayNames.h"
 // SPDX-License-Identifier: GPL-3.0-or-later
 // What an object was when a filter computed something from it (private to MesoLensFilters).
 #ifndef vtkMesoStamp_h
@@ -36,8 +37,10 @@ struct vtkMesoStamp
 inline std::vector<vtkMesoStamp> vtkMesoAtomLayoutStamps(vtkPolyData* atoms)
 {
   std::vector<vtkMesoStamp> stamps;
-  for (const char* name : { "AtomName", "ResidueIndex", "ResidueName", "ChainId", "MoleculeId",
-                            "Occupancy", "AltLoc" })
+  for (const char* name :
+       { vtkMesoArrayNames::AtomName, vtkMesoArrayNames::ResidueIndex,
+         vtkMesoArrayNames::ResidueName, vtkMesoArrayNames::ChainId, vtkMesoArrayNames::MoleculeId,
+         vtkMesoArrayNames::Occupancy, vtkMesoArrayNames::AltLoc })
   {
     stamps.push_back(vtkMesoStamp::Of(atoms->GetPointData()->GetAbstractArray(name)));
   }

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoStructureReader.h"
 
+#include "vtkMesoArrayNames.h"
+
 #include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoAtomReaderParameters.h"
 
@@ -164,10 +166,11 @@ int vtkMesoStructureReader::RequestData(vtkInformation*, vtkInformationVector**,
     }
   }
   vtkMesoAtomTableConversion::ToPolyData(models[model], 1.0, output);
-  vtkMesoAtomTableConversion::SetFieldValue(output, "ModelIndex", double(model));
-  vtkMesoAtomTableConversion::SetFieldValue(output, "CoarseGrained",
+  vtkMesoAtomTableConversion::SetFieldValue(output, vtkMesoArrayNames::ModelIndex, double(model));
+  vtkMesoAtomTableConversion::SetFieldValue(output, vtkMesoArrayNames::CoarseGrained,
                                             this->Parsed->File.coarse_grained ? 1.0 : 0.0);
-  vtkMesoAtomTableConversion::SetFieldString(output, "Title", this->Parsed->File.title);
+  vtkMesoAtomTableConversion::SetFieldString(output, vtkMesoArrayNames::Title,
+                                             this->Parsed->File.title);
   if (models.size() > 1)
   {
     output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), double(model));

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoStructuredCutaway.h"
 
+#include "vtkMesoArrayNames.h"
+
 #include "vtkMesoParallelFor.h"
 #include "vtkMesoStamp.h"
 #include "vtkMesoSurfaceConversion.h"
@@ -400,10 +402,11 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
   Internals& in = *this->Internal;
   try
   {
-    vtkDataArray* ids = atoms->GetPointData()->GetArray("MoleculeId");
-    auto* names =
-      vtkStringArray::SafeDownCast(atoms->GetPointData()->GetAbstractArray("ResidueName"));
-    vtkDataArray* box_vectors = atoms->GetFieldData()->GetArray("PeriodicBoxVectors");
+    vtkDataArray* ids = atoms->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId);
+    auto* names = vtkStringArray::SafeDownCast(
+      atoms->GetPointData()->GetAbstractArray(vtkMesoArrayNames::ResidueName));
+    vtkDataArray* box_vectors =
+      atoms->GetFieldData()->GetArray(vtkMesoArrayNames::PeriodicBoxVectors);
     if (!box_vectors || box_vectors->GetNumberOfComponents() != 9 ||
         box_vectors->GetNumberOfTuples() == 0)
     {
@@ -452,13 +455,16 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
           molecules.StructureCentres(), params, &quality, vtkMesoParallelFor::Get());
         vtkNew<vtkPolyData> made;
         vtkMesoSurfaceConversion::FromTriangleMesh(mesh, made);
-        AddFieldValue(made->GetFieldData(), "MinAngle", quality.min_angle);
-        AddFieldValue(made->GetFieldData(), "MaxAngle", quality.max_angle);
-        AddFieldValue(made->GetFieldData(), "MeanEdge", quality.mean_edge);
-        AddFieldValue(made->GetFieldData(), "EdgeSpread", quality.edge_spread);
-        AddFieldValue(made->GetFieldData(), "BoundaryEdges", double(quality.boundary_edges));
-        AddFieldValue(made->GetFieldData(), "BoundaryLoops", double(quality.boundary_loops));
-        AddFieldValue(made->GetFieldData(), "Components", double(quality.components));
+        AddFieldValue(made->GetFieldData(), vtkMesoArrayNames::MinAngle, quality.min_angle);
+        AddFieldValue(made->GetFieldData(), vtkMesoArrayNames::MaxAngle, quality.max_angle);
+        AddFieldValue(made->GetFieldData(), vtkMesoArrayNames::MeanEdge, quality.mean_edge);
+        AddFieldValue(made->GetFieldData(), vtkMesoArrayNames::EdgeSpread, quality.edge_spread);
+        AddFieldValue(made->GetFieldData(), vtkMesoArrayNames::BoundaryEdges,
+                      double(quality.boundary_edges));
+        AddFieldValue(made->GetFieldData(), vtkMesoArrayNames::BoundaryLoops,
+                      double(quality.boundary_loops));
+        AddFieldValue(made->GetFieldData(), vtkMesoArrayNames::Components,
+                      double(quality.components));
         in.Structure->ShallowCopy(made);
         in.Structure->Modified();
         in.StructureVertices = this->StructureVertices;
@@ -523,7 +529,7 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
     {
       in.MoleculePriority = in.Solver->priorities(this->K);
       in.AtomPriority = vtkSmartPointer<vtkFloatArray>::New();
-      in.AtomPriority->SetName("RemovalPriority");
+      in.AtomPriority->SetName(vtkMesoArrayNames::RemovalPriority);
       in.AtomPriority->SetNumberOfValues(n);
       float* out = in.AtomPriority->GetPointer(0);
       vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
@@ -536,7 +542,7 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
       in.PriorityFrom = { this->K, in.Assignments };
     }
     vtkNew<vtkUnsignedCharArray> visible_atoms;
-    visible_atoms->SetName("Visible");
+    visible_atoms->SetName(vtkMesoArrayNames::Visible);
     visible_atoms->SetNumberOfValues(n);
     unsigned char* mask = visible_atoms->GetPointer(0);
     vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
@@ -566,10 +572,10 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
 
     std::size_t hidden = 0;
     vtkNew<vtkUnsignedCharArray> molecule_visible;
-    molecule_visible->SetName("MoleculeVisible");
+    molecule_visible->SetName(vtkMesoArrayNames::MoleculeVisible);
     molecule_visible->SetNumberOfValues(static_cast<vtkIdType>(visible.size()));
     vtkNew<vtkFloatArray> molecule_priority;
-    molecule_priority->SetName("MoleculeRemovalPriority");
+    molecule_priority->SetName(vtkMesoArrayNames::MoleculeRemovalPriority);
     molecule_priority->SetNumberOfValues(static_cast<vtkIdType>(visible.size()));
     for (std::size_t m = 0; m < visible.size(); ++m)
     {
@@ -581,8 +587,9 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
     output->GetFieldData()->AddArray(molecule_visible);
     output->GetFieldData()->AddArray(molecule_priority);
     for (const auto& [name, value] :
-         { std::pair<const char*, std::size_t>{ "MoleculesInCut", in.Order.in_cut() },
-           std::pair<const char*, std::size_t>{ "MoleculesHidden", hidden } })
+         { std::pair<const char*, std::size_t>{ vtkMesoArrayNames::MoleculesInCut,
+                                                in.Order.in_cut() },
+           std::pair<const char*, std::size_t>{ vtkMesoArrayNames::MoleculesHidden, hidden } })
     {
       vtkNew<vtkIdTypeArray> field;
       field->SetName(name);

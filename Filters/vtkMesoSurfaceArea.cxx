@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoSurfaceArea.h"
 
+#include "vtkMesoArrayNames.h"
+
 #include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoParallelFor.h"
 
@@ -57,15 +59,15 @@ int vtkMesoSurfaceArea::RequestData(vtkInformation*, vtkInformationVector** inpu
       mesolens::sphere_union_area(centres, radii, vtkMesoParallelFor::Get());
     output->ShallowCopy(atoms);
     vtkNew<vtkFloatArray> areas;
-    areas->SetName("AccessibleArea");
+    areas->SetName(vtkMesoArrayNames::AccessibleArea);
     areas->SetNumberOfValues(n);
     for (vtkIdType a = 0; a < n; ++a)
     {
       areas->SetValue(a, static_cast<float>(measured.per_sphere[std::size_t(a)]));
     }
     output->GetPointData()->AddArray(areas);
-    vtkMesoAtomTableConversion::SetFieldValue(output, "TotalArea", measured.total);
-    vtkMesoAtomTableConversion::SetFieldValue(output, "Volume", measured.volume);
+    vtkMesoAtomTableConversion::SetFieldValue(output, vtkMesoArrayNames::TotalArea, measured.total);
+    vtkMesoAtomTableConversion::SetFieldValue(output, vtkMesoArrayNames::Volume, measured.volume);
   }
   catch (const mesolens::Error& error)
   {

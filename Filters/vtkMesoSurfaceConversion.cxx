@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoSurfaceConversion.h"
 
+#include "vtkMesoArrayNames.h"
+
 #include "mesolens/common/errors.h"
 
 #include <vtkCellArray.h>
@@ -106,10 +108,10 @@ const mesolens::MembraneMapper& SurfaceMapper::For(vtkPolyData* surface, vtkMTim
 void AddDiskArrays(const mesolens::GeodesicDisk& disk, double radius, vtkPolyData* output)
 {
   vtkNew<vtkDoubleArray> distance;
-  distance->SetName("GeodesicDistance");
+  distance->SetName(vtkMesoArrayNames::GeodesicDistance);
   distance->SetNumberOfValues(static_cast<vtkIdType>(disk.distance.size()));
   vtkNew<vtkIdTypeArray> original;
-  original->SetName("OriginalPointId");
+  original->SetName(vtkMesoArrayNames::OriginalPointId);
   original->SetNumberOfValues(static_cast<vtkIdType>(disk.original_vertex.size()));
   for (std::size_t v = 0; v < disk.distance.size(); ++v)
   {
@@ -119,12 +121,12 @@ void AddDiskArrays(const mesolens::GeodesicDisk& disk, double radius, vtkPolyDat
   output->GetPointData()->AddArray(distance);
   output->GetPointData()->AddArray(original);
   vtkNew<vtkDoubleArray> normals;
-  normals->SetName("Normals");
+  normals->SetName(vtkMesoArrayNames::Normals);
   normals->SetNumberOfComponents(3);
   normals->SetNumberOfTuples(static_cast<vtkIdType>(disk.normals.size() / 3));
   std::copy(disk.normals.begin(), disk.normals.end(), normals->GetPointer(0));
   output->GetPointData()->SetNormals(normals);
-  output->GetPointData()->SetActiveScalars("GeodesicDistance");
+  output->GetPointData()->SetActiveScalars(vtkMesoArrayNames::GeodesicDistance);
   auto add_field = [output](const char* name, std::initializer_list<double> values) {
     vtkNew<vtkDoubleArray> array;
     array->SetName(name);
@@ -137,13 +139,13 @@ void AddDiskArrays(const mesolens::GeodesicDisk& disk, double radius, vtkPolyDat
     }
     output->GetFieldData()->AddArray(array);
   };
-  add_field("GeodesicRadius", { radius });
-  add_field("RefinementLevels", { double(disk.refinement_levels) });
-  add_field("HolesClosed", { double(disk.holes_closed) });
-  add_field("SeedTriangle", { double(disk.seed.triangle) });
-  add_field("SeedBarycentric",
+  add_field(vtkMesoArrayNames::GeodesicRadius, { radius });
+  add_field(vtkMesoArrayNames::RefinementLevels, { double(disk.refinement_levels) });
+  add_field(vtkMesoArrayNames::HolesClosed, { double(disk.holes_closed) });
+  add_field(vtkMesoArrayNames::SeedTriangle, { double(disk.seed.triangle) });
+  add_field(vtkMesoArrayNames::SeedBarycentric,
             { disk.seed.barycentric[0], disk.seed.barycentric[1], disk.seed.barycentric[2] });
-  add_field("SeedPosition",
+  add_field(vtkMesoArrayNames::SeedPosition,
             { disk.seed.position[0], disk.seed.position[1], disk.seed.position[2] });
 }
 
@@ -151,15 +153,15 @@ void AddParameterizationArrays(const mesolens::DiskParameterization& map, double
                                vtkPolyData* output)
 {
   vtkNew<vtkDoubleArray> uv;
-  uv->SetName("TextureCoordinates");
+  uv->SetName(vtkMesoArrayNames::TextureCoordinates);
   uv->SetNumberOfComponents(2);
   uv->SetNumberOfTuples(static_cast<vtkIdType>(map.uv.size() / 2));
   std::copy(map.uv.begin(), map.uv.end(), uv->GetPointer(0));
   output->GetPointData()->SetTCoords(uv);
   vtkNew<vtkDoubleArray> angle;
-  angle->SetName("AngleDistortion");
+  angle->SetName(vtkMesoArrayNames::AngleDistortion);
   vtkNew<vtkDoubleArray> area;
-  area->SetName("AreaDistortion");
+  area->SetName(vtkMesoArrayNames::AreaDistortion);
   angle->SetNumberOfValues(static_cast<vtkIdType>(map.angle_distortion.size()));
   area->SetNumberOfValues(static_cast<vtkIdType>(map.area_distortion.size()));
   for (std::size_t t = 0; t < map.angle_distortion.size(); ++t)
@@ -169,9 +171,10 @@ void AddParameterizationArrays(const mesolens::DiskParameterization& map, double
   }
   output->GetCellData()->AddArray(angle);
   output->GetCellData()->AddArray(area);
-  for (const auto& entry : { std::make_pair("ParameterizationRadius", radius),
-                             std::make_pair("FlippedTriangles", double(map.flipped_triangles)),
-                             std::make_pair("Bijective", map.bijective() ? 1.0 : 0.0) })
+  for (const auto& entry :
+       { std::make_pair(vtkMesoArrayNames::ParameterizationRadius, radius),
+         std::make_pair(vtkMesoArrayNames::FlippedTriangles, double(map.flipped_triangles)),
+         std::make_pair(vtkMesoArrayNames::Bijective, map.bijective() ? 1.0 : 0.0) })
   {
     vtkNew<vtkDoubleArray> array;
     array->SetName(entry.first);
@@ -183,9 +186,9 @@ void AddParameterizationArrays(const mesolens::DiskParameterization& map, double
 mesolens::SurfacePoint SeedOf(vtkPolyData* disk)
 {
   mesolens::SurfacePoint seed;
-  vtkDataArray* triangle = disk->GetFieldData()->GetArray("SeedTriangle");
-  vtkDataArray* barycentric = disk->GetFieldData()->GetArray("SeedBarycentric");
-  vtkDataArray* position = disk->GetFieldData()->GetArray("SeedPosition");
+  vtkDataArray* triangle = disk->GetFieldData()->GetArray(vtkMesoArrayNames::SeedTriangle);
+  vtkDataArray* barycentric = disk->GetFieldData()->GetArray(vtkMesoArrayNames::SeedBarycentric);
+  vtkDataArray* position = disk->GetFieldData()->GetArray(vtkMesoArrayNames::SeedPosition);
   if (!triangle || !barycentric || !position || barycentric->GetNumberOfComponents() != 3 ||
       position->GetNumberOfComponents() != 3)
   {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoTrajectoryReader.h"
 
+#include "vtkMesoArrayNames.h"
+
 #include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoAtomReaderParameters.h"
 
@@ -299,9 +301,10 @@ int vtkMesoTrajectoryReader::RequestData(vtkInformation*, vtkInformationVector**
   output->SetPoints(points);
   vtkMesoAtomTableConversion::SetPositions(frame.positions, state.KeptAtoms, scale, output);
   vtkMesoAtomTableConversion::SetPeriodicBox(frame.box, scale, output);
-  vtkMesoAtomTableConversion::SetFieldValue(output, "TimePs", frame.time_ps);
-  vtkMesoAtomTableConversion::SetFieldValue(output, "FrameIndex", double(frame_index));
-  vtkMesoAtomTableConversion::SetFieldValue(output, "Step", double(frame.step));
+  vtkMesoAtomTableConversion::SetFieldValue(output, vtkMesoArrayNames::TimePs, frame.time_ps);
+  vtkMesoAtomTableConversion::SetFieldValue(output, vtkMesoArrayNames::FrameIndex,
+                                            double(frame_index));
+  vtkMesoAtomTableConversion::SetFieldValue(output, vtkMesoArrayNames::Step, double(frame.step));
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), state.Times[frame_index]);
   this->UpdateProgress(1.0);
   return 1;

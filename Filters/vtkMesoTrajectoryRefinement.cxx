@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoTrajectoryRefinement.h"
 
+#include "vtkMesoArrayNames.h"
+
 #include "vtkMesoParallelFor.h"
 
 #include "mesolens/common/errors.h"
@@ -90,8 +92,9 @@ std::size_t requested_frame(vtkInformation* outInfo, const std::vector<double>& 
 mesolens::PeriodicBox periodic_box(vtkDataObject* data)
 {
   mesolens::PeriodicBox box;
-  vtkDataArray* vectors =
-    data->GetFieldData() ? data->GetFieldData()->GetArray("PeriodicBoxVectors") : nullptr;
+  vtkDataArray* vectors = data->GetFieldData()
+    ? data->GetFieldData()->GetArray(vtkMesoArrayNames::PeriodicBoxVectors)
+    : nullptr;
   if (!vectors || vectors->GetNumberOfValues() != 9)
   {
     return box;
@@ -109,7 +112,7 @@ mesolens::PeriodicBox periodic_box(vtkDataObject* data)
 /// negative (then atoms are unwrapped one by one).
 std::vector<int> molecule_ids(vtkPointSet* data)
 {
-  vtkDataArray* ids = data->GetPointData()->GetArray("MoleculeId");
+  vtkDataArray* ids = data->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId);
   std::vector<int> molecules;
   if (!ids || ids->GetNumberOfComponents() != 1 ||
       ids->GetNumberOfTuples() != data->GetNumberOfPoints() || ids->GetRange()[0] < 0)
@@ -350,9 +353,9 @@ int vtkMesoTrajectoryRefinement::RequestData(vtkInformation*, vtkInformationVect
   vtkNew<vtkFieldData> field;
   field->ShallowCopy(frames.Nearest->GetFieldData());
   vtkNew<vtkDoubleArray> index;
-  index->SetName("RefinedFrameIndex");
+  index->SetName(vtkMesoArrayNames::RefinedFrameIndex);
   index->InsertNextValue(double(frame));
-  field->RemoveArray("RefinedFrameIndex");
+  field->RemoveArray(vtkMesoArrayNames::RefinedFrameIndex);
   field->AddArray(index);
   output->SetFieldData(field);
   output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), state.RefinedTimes[frame]);

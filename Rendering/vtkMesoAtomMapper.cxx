@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoAtomMapper.h"
 
+#include "vtkMesoArrayNames.h"
+
 #include "vtkMesoAtomGPUData.h"
 #include "vtkMesoParallelFor.h"
 
@@ -267,7 +269,7 @@ vtkMesoAtomMapper::vtkMesoAtomMapper()
   : Internal(std::make_unique<Internals>())
 {
   this->SetNumberOfInputPorts(2);
-  this->SetVisibilityArrayName("Visible");
+  this->SetVisibilityArrayName(vtkMesoArrayNames::Visible);
 }
 
 vtkMesoAtomMapper::~vtkMesoAtomMapper()
@@ -441,7 +443,8 @@ void vtkMesoAtomMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkShader*
                                    ? vtkMesoPolynomialWarpVS
                                    : vtkMesoMoleculeInstancingVS);
     // Bonds read the molecule slot as an attribute, atoms pull it like the rest of the atom.
-    const std::string slot = warp != static_cast<int>(mesolens::MappingMethod::MoleculeInstancing) ? "0.0"
+    const std::string slot = warp != static_cast<int>(mesolens::MappingMethod::MoleculeInstancing)
+      ? "0.0"
       : atoms ? "floor(texelFetch(atomMolecules, slot).x * 65535.0 + 0.5)"
               : "atomMolecule";
     position = "vertexMC = vec4(warpedPosition(atomPosition, " + slot +
@@ -562,8 +565,9 @@ void vtkMesoAtomMapper::SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRe
   }
   if (data.WarpMethod != vtkMesoAtomGPUData::NoWarp)
   {
-    const char* buffer =
-      data.WarpMethod == static_cast<int>(mesolens::MappingMethod::Polynomial) ? "warpCoefficients" : "moleculeMotions";
+    const char* buffer = data.WarpMethod == static_cast<int>(mesolens::MappingMethod::Polynomial)
+      ? "warpCoefficients"
+      : "moleculeMotions";
     set_uniform_int(program, buffer, in.Warp.Texture->GetTextureUnit());
     if (program->IsUniformUsed("patchOrigin"))
     {

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoRibbonLevelOfDetail.h"
 
+#include "vtkMesoArrayNames.h"
+
 #include "vtkMesoRibbons.h"
 
 #include <vtkCallbackCommand.h>
@@ -98,12 +100,12 @@ long long vtkMesoRibbonLevelOfDetail::Update()
   }
   this->AdaptedPixelsPerSample = std::max(this->AdaptedPixelsPerSample, this->PixelsPerSample);
   vtkPolyData* output = ribbons->GetOutput();
-  if (!output->GetFieldData()->GetArray("SegmentBounds"))
+  if (!output->GetFieldData()->GetArray(vtkMesoArrayNames::SegmentBounds))
   {
     ribbons->Update();
   }
-  vtkDataArray* bounds = output->GetFieldData()->GetArray("SegmentBounds");
-  vtkDataArray* lengths = output->GetFieldData()->GetArray("SegmentResidueCounts");
+  vtkDataArray* bounds = output->GetFieldData()->GetArray(vtkMesoArrayNames::SegmentBounds);
+  vtkDataArray* lengths = output->GetFieldData()->GetArray(vtkMesoArrayNames::SegmentResidueCounts);
   if (!bounds || !lengths)
   {
     return 0;

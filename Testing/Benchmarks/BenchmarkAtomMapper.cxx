@@ -12,6 +12,7 @@
 // The atoms are copies of the all-atom DPPC patch of Data/ (16640 atoms, waters removed), one
 // periodic cell apart: a continuous membrane of a real membrane's density, seen 40 degrees off
 // its normal. Each frame turns the camera 2 degrees; times are medians.
+#include "vtkMesoArrayNames.h"
 #include "vtkMesoAtomMapper.h"
 #include "vtkMesoAtomProperties.h"
 #include "vtkMesoAtomTableConversion.h"
@@ -63,7 +64,7 @@ double median(std::vector<double> values)
 vtkSmartPointer<vtkPolyData> membrane_atoms(vtkPolyData* patch, vtkIdType count)
 {
   const vtkIdType n = patch->GetNumberOfPoints();
-  vtkDataArray* box = patch->GetFieldData()->GetArray("PeriodicBoxVectors");
+  vtkDataArray* box = patch->GetFieldData()->GetArray(vtkMesoArrayNames::PeriodicBoxVectors);
   if (!box || box->GetNumberOfComponents() != 9)
   {
     std::fprintf(stderr, "The membrane patch has no periodic box\n");
@@ -77,9 +78,9 @@ vtkSmartPointer<vtkPolyData> membrane_atoms(vtkPolyData* patch, vtkIdType count)
   coordinates->SetNumberOfComponents(3);
   coordinates->SetNumberOfTuples(count);
   vtkNew<vtkUnsignedShortArray> numbers;
-  numbers->SetName("AtomicNumber");
+  numbers->SetName(vtkMesoArrayNames::AtomicNumber);
   numbers->SetNumberOfValues(count);
-  vtkDataArray* patch_numbers = patch->GetPointData()->GetArray("AtomicNumber");
+  vtkDataArray* patch_numbers = patch->GetPointData()->GetArray(vtkMesoArrayNames::AtomicNumber);
   for (vtkIdType i = 0; i < count; ++i)
   {
     const vtkIdType copy = i / n;
@@ -111,11 +112,11 @@ struct VTKSpheres
     this->Radii->SetInputData(atoms);
     this->Radii->Update();
     this->Mapper->SetInputConnection(this->Radii->GetOutputPort());
-    this->Mapper->SetScaleArray("VanDerWaalsRadius");
+    this->Mapper->SetScaleArray(vtkMesoArrayNames::VanDerWaalsRadius);
     this->Mapper->SetLookupTable(this->Elements);
     this->Mapper->UseLookupTableScalarRangeOn();
     this->Mapper->SetScalarModeToUsePointFieldData();
-    this->Mapper->SelectColorArray("AtomicNumber");
+    this->Mapper->SelectColorArray(vtkMesoArrayNames::AtomicNumber);
     this->Mapper->SetColorModeToMapScalars();
   }
 

@@ -11,6 +11,7 @@
 // neither tool reads (goal 3 s), also as a mesh alone.
 //
 //   BenchmarkMolecularSurface [--repeats N]
+#include "vtkMesoArrayNames.h"
 #include "mesolens_benchmark_timing.h"
 #include "mesolens_test_data.h"
 #include "mesolens_test_protein.h"
@@ -227,7 +228,7 @@ int main(int argc, char* argv[])
     points->InsertNextPoint(0, 0, 0);
     points->InsertNextPoint(apart, apart, apart);
     vtkNew<vtkUnsignedShortArray> elements;
-    elements->SetName("AtomicNumber");
+    elements->SetName(vtkMesoArrayNames::AtomicNumber);
     elements->InsertNextValue(6);
     elements->InsertNextValue(6);
     pair->SetPoints(points);
@@ -272,9 +273,9 @@ int main(int argc, char* argv[])
         surface->Update();
       });
       vtkPolyData* out = surface->GetOutput();
-      const double exact = field(out, "Area");
+      const double exact = field(out, vtkMesoArrayNames::Area);
       exact_area = exact;
-      exact_volume = field(out, "Volume");
+      exact_volume = field(out, vtkMesoArrayNames::Volume);
       const double error = mesh_area(out) / exact - 1.0;
       std::printf("BENCH ses %s (%lld atoms) tolerance %.2f Å: %.3f s, mesh area %+.2f %% of the "
                   "exact %.1f Å² (%+.2f %% with its triangles projected onto the surface's "
@@ -282,8 +283,9 @@ int main(int argc, char* argv[])
                   "patches\n",
                   name.c_str(), static_cast<long long>(atoms->GetNumberOfPoints()), tolerance,
                   seconds, 100 * error, exact, 100 * (projected_area(out) / exact - 1.0),
-                  field(out, "Volume"), static_cast<long long>(out->GetNumberOfPolys()), peak_mib(),
-                  int(field(out, "SingularPatchCount")));
+                  field(out, vtkMesoArrayNames::Volume),
+                  static_cast<long long>(out->GetNumberOfPolys()), peak_mib(),
+                  int(field(out, vtkMesoArrayNames::SingularPatchCount)));
       if (tolerance == 0.1)
       {
         time_at_interactive = seconds;
@@ -356,9 +358,10 @@ int main(int argc, char* argv[])
                   "%.2f), exact area %.0f Å², volume %.0f Å³, mesh area %+.2f %% (%+.2f %% "
                   "projected), %lld triangles, peak memory %.0f MiB\n",
                   static_cast<long long>(reader->GetOutput()->GetNumberOfPoints()), tolerance,
-                  seconds, seconds / 3.0, field(out, "Area"), field(out, "Volume"),
-                  100 * (mesh_area(out) / field(out, "Area") - 1),
-                  100 * (projected_area(out) / field(out, "Area") - 1),
+                  seconds, seconds / 3.0, field(out, vtkMesoArrayNames::Area),
+                  field(out, vtkMesoArrayNames::Volume),
+                  100 * (mesh_area(out) / field(out, vtkMesoArrayNames::Area) - 1),
+                  100 * (projected_area(out) / field(out, vtkMesoArrayNames::Area) - 1),
                   static_cast<long long>(out->GetNumberOfPolys()), peak_mib());
     }
     surface->ComputeExactFiguresOff();

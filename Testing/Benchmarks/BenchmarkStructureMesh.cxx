@@ -11,6 +11,7 @@
 //   BenchmarkStructureMesh [--smoke] [--repeats N]
 //
 // --smoke (CI): N = 500 only, one run each.
+#include "vtkMesoArrayNames.h"
 #include "mesolens_benchmark_timing.h"
 #include "mesolens_test_data.h"
 #include "mesolens_vtk_test_utilities.h"
@@ -114,7 +115,8 @@ mesolens::TriangleMesh triangle_mesh(vtkPolyData* surface)
 /// The atoms of `atoms` whose AtomName is `name`, with their point data and field data.
 vtkSmartPointer<vtkPolyData> atoms_named(vtkPolyData* atoms, const char* name)
 {
-  auto* names = vtkStringArray::SafeDownCast(atoms->GetPointData()->GetAbstractArray("AtomName"));
+  auto* names = vtkStringArray::SafeDownCast(
+    atoms->GetPointData()->GetAbstractArray(vtkMesoArrayNames::AtomName));
   vtkNew<vtkIdList> kept;
   for (vtkIdType a = 0; names && a < atoms->GetNumberOfPoints(); ++a)
   {
@@ -151,7 +153,8 @@ void measure(const std::string& label, vtkPolyData* atoms, int vertices, int rep
     cutaway->Update();
     errors = events.AllErrors();
     structure = cutaway->GetOutput(1);
-    vtkDataArray* visible = cutaway->GetOutput()->GetFieldData()->GetArray("MoleculeVisible");
+    vtkDataArray* visible =
+      cutaway->GetOutput()->GetFieldData()->GetArray(vtkMesoArrayNames::MoleculeVisible);
     molecules = visible ? long(visible->GetNumberOfTuples()) : 0;
   });
   std::printf("BENCH structure-mesh %s, N = %d:", label.c_str(), vertices);
@@ -172,10 +175,10 @@ void measure(const std::string& label, vtkPolyData* atoms, int vertices, int rep
               "loop(s), extent %.0f x %.0f x %.0f Å; %ld molecules; %.3f s, %.2f x reading the "
               "file (%.3f s)\n",
               static_cast<long long>(structure->GetNumberOfPoints()),
-              double(structure->GetNumberOfPoints()) / vertices, field("MinAngle"),
-              field("MaxAngle"), component_count(mesh), mesolens::boundary_loops(mesh).size(),
-              bounds[1] - bounds[0], bounds[3] - bounds[2], bounds[5] - bounds[4], molecules,
-              seconds, seconds / read_seconds, read_seconds);
+              double(structure->GetNumberOfPoints()) / vertices, field(vtkMesoArrayNames::MinAngle),
+              field(vtkMesoArrayNames::MaxAngle), component_count(mesh),
+              mesolens::boundary_loops(mesh).size(), bounds[1] - bounds[0], bounds[3] - bounds[2],
+              bounds[5] - bounds[4], molecules, seconds, seconds / read_seconds, read_seconds);
 }
 } // namespace
 

@@ -10,6 +10,7 @@
 // not counted); goals: preparation <= 0.5 s, slider <= 5 ms.
 //
 //   BenchmarkStructuredCutaway [--seeds N] [--repeats N]
+#include "vtkMesoArrayNames.h"
 #include "mesolens_benchmark_timing.h"
 #include "mesolens_test_data.h"
 #include "vtkMesoMembraneMapping.h"
@@ -85,9 +86,9 @@ vtkSmartPointer<vtkPolyData> hiv_sized_vesicle(int seeds)
       continue;
     }
     // The mapping numbers its tiles' molecules apart; the mappings are numbered apart here.
-    vtkDataArray* ids = mapped->GetPointData()->GetArray("MoleculeId");
+    vtkDataArray* ids = mapped->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId);
     vtkNew<vtkIntArray> unique;
-    unique->SetName("MoleculeId");
+    unique->SetName(vtkMesoArrayNames::MoleculeId);
     unique->SetNumberOfValues(mapped->GetNumberOfPoints());
     for (vtkIdType a = 0; a < mapped->GetNumberOfPoints(); ++a)
     {
@@ -110,7 +111,7 @@ int main(int argc, char* argv[])
   const int repeats = mesolens_test::count_argument(argc, argv, "--repeats", 3);
   vtkSmartPointer<vtkPolyData> vesicle;
   const double build = seconds_of([&] { vesicle = hiv_sized_vesicle(seeds); });
-  vtkDataArray* ids = vesicle->GetPointData()->GetArray("MoleculeId");
+  vtkDataArray* ids = vesicle->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId);
   const long lipids = long(ids->GetRange()[1]) + 1;
   std::printf("BENCH structured-cutaway input: vesicle of radius %.0f Å, %d mapped 3x3 tiles of "
               "the Martini DPPC/CHOL "
@@ -134,10 +135,16 @@ int main(int argc, char* argv[])
       cutaway->SetCutFunction(plane);
       cutaway->SetFractionHidden(0.5);
       cutaway->Update();
-      molecules = long(
-        cutaway->GetOutput()->GetFieldData()->GetArray("MoleculeVisible")->GetNumberOfTuples());
-      in_cut = long(cutaway->GetOutput()->GetFieldData()->GetArray("MoleculesInCut")->GetTuple1(0));
-      min_angle = cutaway->GetOutput(1)->GetFieldData()->GetArray("MinAngle")->GetTuple1(0);
+      molecules = long(cutaway->GetOutput()
+                         ->GetFieldData()
+                         ->GetArray(vtkMesoArrayNames::MoleculeVisible)
+                         ->GetNumberOfTuples());
+      in_cut = long(cutaway->GetOutput()
+                      ->GetFieldData()
+                      ->GetArray(vtkMesoArrayNames::MoleculesInCut)
+                      ->GetTuple1(0));
+      min_angle =
+        cutaway->GetOutput(1)->GetFieldData()->GetArray(vtkMesoArrayNames::MinAngle)->GetTuple1(0);
     });
     std::printf("BENCH structured-cutaway preparation, %d structure vertices: %ld lipids (%ld in "
                 "the cut), %.3f s "

@@ -5,6 +5,7 @@
 // (reading included) and our computation alone; then the 79 k-atom proteasome (3l5q.gro).
 //
 //   BenchmarkSurfaceArea [--repeats N]
+#include "vtkMesoArrayNames.h"
 #include "mesolens_benchmark_timing.h"
 #include "mesolens_test_data.h"
 #include "vtkMesoStructureReader.h"
@@ -55,7 +56,8 @@ int main(int argc, char* argv[])
       area->Modified();
       area->Update();
     });
-    const double total = area->GetOutput()->GetFieldData()->GetArray("TotalArea")->GetTuple1(0);
+    const double total =
+      area->GetOutput()->GetFieldData()->GetArray(vtkMesoArrayNames::TotalArea)->GetTuple1(0);
     const double whole = median_seconds(repeats, [&] {
       vtkNew<vtkMesoStructureReader> fresh;
       fresh->SetFileName(path.c_str());
@@ -92,10 +94,12 @@ int main(int argc, char* argv[])
       area->Modified();
       area->Update();
     });
-    std::printf("BENCH sas 3l5q.gro (%lld atoms): exact SAS %.0f Å², volume %.0f Å³, %.2f s\n",
-                static_cast<long long>(reader->GetOutput()->GetNumberOfPoints()),
-                area->GetOutput()->GetFieldData()->GetArray("TotalArea")->GetTuple1(0),
-                area->GetOutput()->GetFieldData()->GetArray("Volume")->GetTuple1(0), seconds);
+    std::printf(
+      "BENCH sas 3l5q.gro (%lld atoms): exact SAS %.0f Å², volume %.0f Å³, %.2f s\n",
+      static_cast<long long>(reader->GetOutput()->GetNumberOfPoints()),
+      area->GetOutput()->GetFieldData()->GetArray(vtkMesoArrayNames::TotalArea)->GetTuple1(0),
+      area->GetOutput()->GetFieldData()->GetArray(vtkMesoArrayNames::Volume)->GetTuple1(0),
+      seconds);
   }
   return 0;
 }

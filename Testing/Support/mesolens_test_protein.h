@@ -3,6 +3,8 @@
 // in its surface: header-only, VTK.
 #pragma once
 
+#include "vtkMesoArrayNames.h"
+
 #include <vtkDataArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
@@ -19,9 +21,9 @@ inline vtkNew<vtkPolyData> protein_atoms(vtkPolyData* atoms)
   vtkNew<vtkPolyData> protein;
   vtkNew<vtkPoints> points;
   vtkNew<vtkUnsignedShortArray> elements;
-  elements->SetName("AtomicNumber");
-  vtkDataArray* hetero = atoms->GetPointData()->GetArray("IsHetAtm");
-  vtkDataArray* numbers = atoms->GetPointData()->GetArray("AtomicNumber");
+  elements->SetName(vtkMesoArrayNames::AtomicNumber);
+  vtkDataArray* hetero = atoms->GetPointData()->GetArray(vtkMesoArrayNames::IsHetAtm);
+  vtkDataArray* numbers = atoms->GetPointData()->GetArray(vtkMesoArrayNames::AtomicNumber);
   for (vtkIdType a = 0; a < atoms->GetNumberOfPoints(); ++a)
   {
     if (!hetero || hetero->GetTuple1(a) == 0)

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoArrayNames.h"
 #include "vtkMesoAtomProperties.h"
 #include "vtkMesoStructureReader.h"
 #include "vtkMesoTrajectoryReader.h"
@@ -22,12 +23,15 @@ TEST(vtkMesoAtomProperties, RadiiFromElements)
   properties->SetInputConnection(reader->GetOutputPort());
   properties->Update();
   vtkPointData* pd = properties->GetOutput()->GetPointData();
-  ASSERT_NE(pd->GetArray("VanDerWaalsRadius"), nullptr);
-  EXPECT_FLOAT_EQ(pd->GetArray("VanDerWaalsRadius")->GetTuple1(0), 1.55f); // N
-  EXPECT_FLOAT_EQ(pd->GetArray("CovalentRadius")->GetTuple1(1), 0.73f);    // CA
+  ASSERT_NE(pd->GetArray(vtkMesoArrayNames::VanDerWaalsRadius), nullptr);
+  EXPECT_FLOAT_EQ(pd->GetArray(vtkMesoArrayNames::VanDerWaalsRadius)->GetTuple1(0), 1.55f); // N
+  EXPECT_FLOAT_EQ(pd->GetArray(vtkMesoArrayNames::CovalentRadius)->GetTuple1(1), 0.73f);    // CA
   properties->SetLengthScale(0.1);
   properties->Update();
-  EXPECT_NEAR(properties->GetOutput()->GetPointData()->GetArray("VanDerWaalsRadius")->GetTuple1(0),
+  EXPECT_NEAR(properties->GetOutput()
+                ->GetPointData()
+                ->GetArray(vtkMesoArrayNames::VanDerWaalsRadius)
+                ->GetTuple1(0),
               0.155, 1e-6);
 }
 
@@ -42,8 +46,11 @@ TEST(vtkMesoAtomProperties, BeadsGetBeadRadius)
   EXPECT_EQ(properties->GetOutput()->GetNumberOfPoints(), 5040);
   // 360 DPPC x 11 bonds + 90 CHOL x 13 (Martini cholesterol's rigid ring constraints).
   EXPECT_EQ(properties->GetOutput()->GetNumberOfLines(), 360 * 11 + 90 * 13);
-  EXPECT_FLOAT_EQ(
-    properties->GetOutput()->GetPointData()->GetArray("VanDerWaalsRadius")->GetRange()[1], 2.35f);
+  EXPECT_FLOAT_EQ(properties->GetOutput()
+                    ->GetPointData()
+                    ->GetArray(vtkMesoArrayNames::VanDerWaalsRadius)
+                    ->GetRange()[1],
+                  2.35f);
 }
 
 TEST(vtkMesoAtomProperties, InputWithoutAtomicNumbers)
@@ -54,5 +61,5 @@ TEST(vtkMesoAtomProperties, InputWithoutAtomicNumbers)
   mesolens_test::EventRecorder events(properties);
   EXPECT_EQ(properties->GetExecutive()->Update(), 0);
   EXPECT_EQ(properties->GetOutput()->GetNumberOfPoints(), 0);
-  EXPECT_NE(events.AllErrors().find("AtomicNumber"), std::string::npos);
+  EXPECT_NE(events.AllErrors().find(vtkMesoArrayNames::AtomicNumber), std::string::npos);
 }

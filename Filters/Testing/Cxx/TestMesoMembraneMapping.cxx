@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoArrayNames.h"
 #include "vtkMesoDiskParameterization.h"
 #include "vtkMesoGeodesicDisk.h"
 #include "vtkMesoMembraneMapping.h"
@@ -70,11 +71,12 @@ TEST(vtkMesoGeodesicDisk, DiskAndParameterizationOnTheMitochondrion)
   ASSERT_EQ(map->GetExecutive()->Update(), 1);
   vtkPolyData* out = map->GetOutput();
   EXPECT_GE(out->GetNumberOfPolys(), 1000);
-  EXPECT_GE(field(out, "RefinementLevels"), 1.0); // edges of tens of nm: refined
-  EXPECT_EQ(field(out, "Bijective"), 1.0);
+  EXPECT_GE(field(out, vtkMesoArrayNames::RefinementLevels), 1.0); // edges of tens of nm: refined
+  EXPECT_EQ(field(out, vtkMesoArrayNames::Bijective), 1.0);
   ASSERT_NE(out->GetPointData()->GetTCoords(), nullptr);
-  ASSERT_NE(out->GetPointData()->GetArray("GeodesicDistance"), nullptr);
-  EXPECT_LE(out->GetPointData()->GetArray("GeodesicDistance")->GetRange()[1], 0.05 + 1e-12);
+  ASSERT_NE(out->GetPointData()->GetArray(vtkMesoArrayNames::GeodesicDistance), nullptr);
+  EXPECT_LE(out->GetPointData()->GetArray(vtkMesoArrayNames::GeodesicDistance)->GetRange()[1],
+            0.05 + 1e-12);
   vtkNew<vtkMesoMeshReport> report;
   report->Analyze(out);
   EXPECT_EQ(report->GetEulerCharacteristic(), 1);
@@ -112,15 +114,15 @@ TEST(vtkMesoMembraneMapping, ThreeMethodsOnTheMitochondrion)
     EXPECT_EQ(atoms->GetNumberOfPoints(), 4 * 16640);
     EXPECT_EQ(atoms->GetNumberOfVerts(), 4 * 16640);
     EXPECT_EQ(atoms->GetNumberOfLines(), 4 * 16512);
-    ASSERT_NE(atoms->GetPointData()->GetArray("TileId"), nullptr);
-    EXPECT_EQ(atoms->GetPointData()->GetArray("TileId")->GetRange()[1], 3.0);
-    ASSERT_NE(atoms->GetPointData()->GetArray("MoleculeId"), nullptr);
-    ASSERT_NE(atoms->GetPointData()->GetAbstractArray("AtomName"), nullptr);
-    vtkDataArray* change = atoms->GetCellData()->GetArray("BondLengthChange");
+    ASSERT_NE(atoms->GetPointData()->GetArray(vtkMesoArrayNames::TileId), nullptr);
+    EXPECT_EQ(atoms->GetPointData()->GetArray(vtkMesoArrayNames::TileId)->GetRange()[1], 3.0);
+    ASSERT_NE(atoms->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId), nullptr);
+    ASSERT_NE(atoms->GetPointData()->GetAbstractArray(vtkMesoArrayNames::AtomName), nullptr);
+    vtkDataArray* change = atoms->GetCellData()->GetArray(vtkMesoArrayNames::BondLengthChange);
     ASSERT_NE(change, nullptr);
     largest_change.push_back(largest_abs(change, atoms->GetNumberOfVerts()));
     // d = 2 x 64.2 Å = 0.01284 µm, r = 2 d.
-    EXPECT_NEAR(field(atoms, "GeodesicRadius"), 2 * 2 * 64.2 * 1e-4, 2e-5);
+    EXPECT_NEAR(field(atoms, vtkMesoArrayNames::GeodesicRadius), 2 * 2 * 64.2 * 1e-4, 2e-5);
     vtkPolyData* disk = vtkPolyData::SafeDownCast(mapping->GetOutputDataObject(1));
     EXPECT_GT(disk->GetNumberOfPolys(), 0);
     // Atoms stay within a bilayer's reach of the surface.
@@ -135,13 +137,14 @@ TEST(vtkMesoMembraneMapping, ThreeMethodsOnTheMitochondrion)
   mapping->SetMappingMethodToPolynomial();
   mapping->Update();
   vtkDataArray* coefficients =
-    mapping->GetOutput()->GetFieldData()->GetArray("PolynomialCoefficients");
+    mapping->GetOutput()->GetFieldData()->GetArray(vtkMesoArrayNames::PolynomialCoefficients);
   ASSERT_NE(coefficients, nullptr);
   EXPECT_EQ(coefficients->GetNumberOfComponents(), 30);
   EXPECT_EQ(coefficients->GetNumberOfTuples(), 4);
   mapping->SetMappingMethodToMoleculeInstancing();
   mapping->Update();
-  vtkDataArray* matrices = mapping->GetOutput()->GetFieldData()->GetArray("InstanceMatrices");
+  vtkDataArray* matrices =
+    mapping->GetOutput()->GetFieldData()->GetArray(vtkMesoArrayNames::InstanceMatrices);
   ASSERT_NE(matrices, nullptr);
   EXPECT_EQ(matrices->GetNumberOfTuples(), 4 * 128);
 
@@ -149,13 +152,15 @@ TEST(vtkMesoMembraneMapping, ThreeMethodsOnTheMitochondrion)
   std::vector<double> with_atoms(30);
   mapping->SetMappingMethodToPolynomial();
   mapping->Update();
-  coefficients = mapping->GetOutput()->GetFieldData()->GetArray("PolynomialCoefficients");
+  coefficients =
+    mapping->GetOutput()->GetFieldData()->GetArray(vtkMesoArrayNames::PolynomialCoefficients);
   coefficients->GetTuple(3, with_atoms.data());
   mapping->OutputAtomsOff();
   mapping->Update();
   EXPECT_EQ(mapping->GetOutput()->GetNumberOfPoints(), 0);
   EXPECT_EQ(mapping->GetOutput()->GetNumberOfLines(), 0);
-  coefficients = mapping->GetOutput()->GetFieldData()->GetArray("PolynomialCoefficients");
+  coefficients =
+    mapping->GetOutput()->GetFieldData()->GetArray(vtkMesoArrayNames::PolynomialCoefficients);
   ASSERT_NE(coefficients, nullptr);
   for (int c = 0; c < 30; ++c)
   {
@@ -164,7 +169,10 @@ TEST(vtkMesoMembraneMapping, ThreeMethodsOnTheMitochondrion)
   mapping->SetMappingMethodToMoleculeInstancing();
   mapping->Update();
   EXPECT_EQ(mapping->GetOutput()->GetNumberOfPoints(), 0);
-  EXPECT_EQ(mapping->GetOutput()->GetFieldData()->GetArray("InstanceMatrices")->GetNumberOfTuples(),
+  EXPECT_EQ(mapping->GetOutput()
+              ->GetFieldData()
+              ->GetArray(vtkMesoArrayNames::InstanceMatrices)
+              ->GetNumberOfTuples(),
             4 * 128);
   mapping->SetMappingMethodToDisplacement();
   mapping->Update();
@@ -272,17 +280,17 @@ TEST(vtkMesoMembraneMapping, BadInputsFailCleanly)
     if (fit)
     {
       vtkPolyData* out = mapping->GetOutput();
-      const double mapped = field(out, "TilesMapped");
-      EXPECT_EQ(field(out, "TilesRequested"), 40.0);
+      const double mapped = field(out, vtkMesoArrayNames::TilesMapped);
+      EXPECT_EQ(field(out, vtkMesoArrayNames::TilesRequested), 40.0);
       EXPECT_GE(mapped, 1.0);
       EXPECT_LT(mapped, 40.0);
-      EXPECT_EQ(field(out, "Tiles"), mapped);
+      EXPECT_EQ(field(out, vtkMesoArrayNames::Tiles), mapped);
       EXPECT_EQ(out->GetNumberOfPoints(),
                 vtkIdType(mapped * mapped) * membrane->GetOutput()->GetNumberOfPoints());
       EXPECT_NE(events.AllWarnings().find("instead of 40 x 40"), std::string::npos)
         << events.AllWarnings();
-      auto* note =
-        vtkStringArray::SafeDownCast(out->GetFieldData()->GetAbstractArray("MappingNote"));
+      auto* note = vtkStringArray::SafeDownCast(
+        out->GetFieldData()->GetAbstractArray(vtkMesoArrayNames::MappingNote));
       ASSERT_NE(note, nullptr);
       EXPECT_NE(note->GetValue(0).find("instead of 40 x 40"), std::string::npos);
     }
@@ -385,12 +393,12 @@ TEST(vtkMesoMembraneMapping, CoarseCellMapsOnTheSmoothSurfaceThroughItsVertices)
       mapping->SetMembraneToMeshScale(1e-4);
       ASSERT_EQ(mapping->GetExecutive()->Update(), 1) << events.AllErrors();
       vtkPolyData* out = mapping->GetOutput();
-      EXPECT_EQ(field(out, "TilesMapped"), double(tiles));
-      EXPECT_GE(field(out, "RefinementLevels"), 8.0);
+      EXPECT_EQ(field(out, vtkMesoArrayNames::TilesMapped), double(tiles));
+      EXPECT_GE(field(out, vtkMesoArrayNames::RefinementLevels), 8.0);
       EXPECT_EQ(out->GetNumberOfPoints(),
                 vtkIdType(tiles * tiles) * membrane->GetOutput()->GetNumberOfPoints());
       vtkPolyData* disk = mapping->GetOutput(1);
-      vtkDataArray* original = disk->GetPointData()->GetArray("OriginalPointId");
+      vtkDataArray* original = disk->GetPointData()->GetArray(vtkMesoArrayNames::OriginalPointId);
       ASSERT_NE(original, nullptr);
       for (vtkIdType p = 0; p < disk->GetNumberOfPoints(); ++p)
       {

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoArrayNames.h"
 #include "vtkMesoMeshReader.h"
 #include "vtkMesoMeshReport.h"
 
@@ -52,8 +53,10 @@ TEST(vtkMesoMeshReader, RealCellMeshesAreClosedManifolds)
     EXPECT_TRUE(report->GetIsClosedManifold()) << report->GetDefectsDescription();
     EXPECT_EQ(report->GetNumberOfComponents(), 1);
     vtkPolyData* out = report->GetOutput();
-    EXPECT_EQ(out->GetFieldData()->GetArray("NumberOfBoundaryLoops")->GetTuple1(0), 0.0);
-    EXPECT_EQ(out->GetCellData()->GetArray("DegenerateTriangle")->GetRange()[1], 0.0);
+    EXPECT_EQ(out->GetFieldData()->GetArray(vtkMesoArrayNames::NumberOfBoundaryLoops)->GetTuple1(0),
+              0.0);
+    EXPECT_EQ(out->GetCellData()->GetArray(vtkMesoArrayNames::DegenerateTriangle)->GetRange()[1],
+              0.0);
   }
 }
 

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoArrayNames.h"
 #include "vtkMesoMolecularSurface.h"
 
 #include "mesolens_test_data.h"
@@ -73,16 +74,17 @@ TEST(vtkMesoMolecularSurface, OneAtomInEveryKind)
     surface->Update();
     vtkPolyData* out = surface->GetOutput();
     const double radius = 1.6 + (type == 1 ? 1.4 : 0.0);
-    EXPECT_NEAR(field(out, "Area"), 4 * pi * radius * radius, 1e-9);
-    EXPECT_NEAR(field(out, "Volume"), 4.0 / 3.0 * pi * radius * radius * radius, 1e-9);
+    EXPECT_NEAR(field(out, vtkMesoArrayNames::Area), 4 * pi * radius * radius, 1e-9);
+    EXPECT_NEAR(field(out, vtkMesoArrayNames::Volume), 4.0 / 3.0 * pi * radius * radius * radius,
+                1e-9);
     ASSERT_GT(out->GetNumberOfPolys(), 100);
     EXPECT_EQ(open_edges(out), 0);
     double p[3];
     out->GetPoint(0, p);
     EXPECT_NEAR(std::hypot(p[0] - 1, p[1] - 2, p[2] - 3), radius, 1e-5);
     ASSERT_NE(out->GetPointData()->GetNormals(), nullptr);
-    ASSERT_NE(out->GetPointData()->GetArray("AtomId"), nullptr);
-    ASSERT_NE(out->GetPointData()->GetArray("PatchType"), nullptr);
+    ASSERT_NE(out->GetPointData()->GetArray(vtkMesoArrayNames::AtomId), nullptr);
+    ASSERT_NE(out->GetPointData()->GetArray(vtkMesoArrayNames::PatchType), nullptr);
     ASSERT_NE(out->GetPointData()->GetArray("Radius"), nullptr); // atom arrays carried over
   }
 }
@@ -109,9 +111,9 @@ TEST(vtkMesoMolecularSurface, EnterotoxinByChainWithProgress)
   EXPECT_GT(progress.size(), 3u);
   EXPECT_DOUBLE_EQ(progress.back(), 1.0);
   // Every vertex belongs to a real atom, chains are numbered, all three patch kinds appear.
-  vtkDataArray* atom_ids = out->GetPointData()->GetArray("AtomId");
-  vtkDataArray* chains = out->GetPointData()->GetArray("ChainIndex");
-  vtkDataArray* patches = out->GetPointData()->GetArray("PatchType");
+  vtkDataArray* atom_ids = out->GetPointData()->GetArray(vtkMesoArrayNames::AtomId);
+  vtkDataArray* chains = out->GetPointData()->GetArray(vtkMesoArrayNames::ChainIndex);
+  vtkDataArray* patches = out->GetPointData()->GetArray(vtkMesoArrayNames::PatchType);
   ASSERT_TRUE(atom_ids && chains && patches);
   std::set<int> chain_set, patch_set;
   for (vtkIdType v = 0; v < out->GetNumberOfPoints(); ++v)
@@ -124,29 +126,31 @@ TEST(vtkMesoMolecularSurface, EnterotoxinByChainWithProgress)
   EXPECT_GE(chain_set.size(), 2u);
   EXPECT_EQ(patch_set.size(), 3u);
   // EDTSurf (a grid, its own radii, ATOM records only) gives 24946 Å²; PyMOL 26278.
-  EXPECT_GT(field(out, "Area"), 22000.0);
-  EXPECT_LT(field(out, "Area"), 30000.0);
-  EXPECT_NEAR(field(out, "ConvexArea") + field(out, "ToroidalArea") + field(out, "ConcaveArea"),
-              field(out, "Area"), 1e-6 * field(out, "Area"));
+  EXPECT_GT(field(out, vtkMesoArrayNames::Area), 22000.0);
+  EXPECT_LT(field(out, vtkMesoArrayNames::Area), 30000.0);
+  EXPECT_NEAR(field(out, vtkMesoArrayNames::ConvexArea) +
+                field(out, vtkMesoArrayNames::ToroidalArea) +
+                field(out, vtkMesoArrayNames::ConcaveArea),
+              field(out, vtkMesoArrayNames::Area), 1e-6 * field(out, vtkMesoArrayNames::Area));
   // Dropping cavities leaves the outer surface alone.
   // (`out` is the filter's output object: the figures before the change are kept first.)
-  const double with_cavities = field(out, "Area");
-  const double cavities = field(out, "CavityCount");
+  const double with_cavities = field(out, vtkMesoArrayNames::Area);
+  const double cavities = field(out, vtkMesoArrayNames::CavityCount);
   ASSERT_GT(cavities, 0);
   surface->KeepCavitiesOff();
   surface->Update();
-  EXPECT_EQ(field(surface->GetOutput(), "CavityCount"), cavities);
-  EXPECT_EQ(field(surface->GetOutput(), "ComponentCount"), 1);
-  EXPECT_LT(field(surface->GetOutput(), "Area"), with_cavities);
+  EXPECT_EQ(field(surface->GetOutput(), vtkMesoArrayNames::CavityCount), cavities);
+  EXPECT_EQ(field(surface->GetOutput(), vtkMesoArrayNames::ComponentCount), 1);
+  EXPECT_LT(field(surface->GetOutput(), vtkMesoArrayNames::Area), with_cavities);
   EXPECT_EQ(open_edges(surface->GetOutput()), 0);
   // The mesh alone: the same triangles, no exact figures.
   const vtkIdType triangles = surface->GetOutput()->GetNumberOfCells();
   surface->ComputeExactFiguresOff();
   surface->Update();
   EXPECT_EQ(surface->GetOutput()->GetNumberOfCells(), triangles);
-  EXPECT_EQ(surface->GetOutput()->GetFieldData()->GetArray("Area"), nullptr);
-  EXPECT_EQ(surface->GetOutput()->GetFieldData()->GetArray("Volume"), nullptr);
-  EXPECT_EQ(field(surface->GetOutput(), "ComponentCount"), 1);
+  EXPECT_EQ(surface->GetOutput()->GetFieldData()->GetArray(vtkMesoArrayNames::Area), nullptr);
+  EXPECT_EQ(surface->GetOutput()->GetFieldData()->GetArray(vtkMesoArrayNames::Volume), nullptr);
+  EXPECT_EQ(field(surface->GetOutput(), vtkMesoArrayNames::ComponentCount), 1);
 }
 
 TEST(vtkMesoMolecularSurface, AccessibleAreaMatchesTheSurfaceAreaFilter)
@@ -161,8 +165,10 @@ TEST(vtkMesoMolecularSurface, AccessibleAreaMatchesTheSurfaceAreaFilter)
   area->SetInputConnection(reader->GetOutputPort());
   surface->Update();
   area->Update();
-  EXPECT_NEAR(field(surface->GetOutput(), "Area"), field(area->GetOutput(), "TotalArea"), 1e-6);
-  EXPECT_NEAR(field(surface->GetOutput(), "Volume"), field(area->GetOutput(), "Volume"), 1e-6);
+  EXPECT_NEAR(field(surface->GetOutput(), vtkMesoArrayNames::Area),
+              field(area->GetOutput(), vtkMesoArrayNames::TotalArea), 1e-6);
+  EXPECT_NEAR(field(surface->GetOutput(), vtkMesoArrayNames::Volume),
+              field(area->GetOutput(), vtkMesoArrayNames::Volume), 1e-6);
 }
 
 TEST(vtkMesoMolecularSurface, BadInputsGiveAnErrorAndNoSurface)

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoArrayNames.h"
 #include "vtkMesoRibbons.h"
 
 #include "mesolens_test_data.h"
@@ -67,9 +68,10 @@ TEST(vtkMesoRibbons, CartoonOf1tiiIsClosedAndCarriesTheAtomArrays)
   ASSERT_NE(ribbons->GetPointData()->GetNormals(), nullptr);
   // Every vertex leads back to a CA atom; helices and strands both present; 7 chains.
   vtkPolyData* atoms = pipeline.Reader->GetOutput();
-  auto* names = vtkStringArray::SafeDownCast(atoms->GetPointData()->GetAbstractArray("AtomName"));
-  vtkDataArray* atom_ids = ribbons->GetPointData()->GetArray("AtomId");
-  vtkDataArray* classes = ribbons->GetPointData()->GetArray("SecondaryStructure");
+  auto* names = vtkStringArray::SafeDownCast(
+    atoms->GetPointData()->GetAbstractArray(vtkMesoArrayNames::AtomName));
+  vtkDataArray* atom_ids = ribbons->GetPointData()->GetArray(vtkMesoArrayNames::AtomId);
+  vtkDataArray* classes = ribbons->GetPointData()->GetArray(vtkMesoArrayNames::SecondaryStructure);
   std::set<int> seen_classes;
   for (vtkIdType v = 0; v < ribbons->GetNumberOfPoints(); v += 97)
   {
@@ -78,15 +80,16 @@ TEST(vtkMesoRibbons, CartoonOf1tiiIsClosedAndCarriesTheAtomArrays)
   }
   EXPECT_TRUE(seen_classes.count(1)); // alpha helix
   EXPECT_TRUE(seen_classes.count(4)); // strand
-  EXPECT_EQ(ribbons->GetPointData()->GetArray("ChainIndex")->GetRange()[1], 6.0);
+  EXPECT_EQ(ribbons->GetPointData()->GetArray(vtkMesoArrayNames::ChainIndex)->GetRange()[1], 6.0);
   // A numeric atom array colours the ribbon: B-factors carried from the CA atoms.
-  vtkDataArray* b = ribbons->GetPointData()->GetArray("BFactor");
+  vtkDataArray* b = ribbons->GetPointData()->GetArray(vtkMesoArrayNames::BFactor);
   ASSERT_NE(b, nullptr);
-  EXPECT_EQ(
-    b->GetTuple1(0),
-    atoms->GetPointData()->GetArray("BFactor")->GetTuple1(vtkIdType(atom_ids->GetTuple1(0))));
+  EXPECT_EQ(b->GetTuple1(0),
+            atoms->GetPointData()
+              ->GetArray(vtkMesoArrayNames::BFactor)
+              ->GetTuple1(vtkIdType(atom_ids->GetTuple1(0))));
   // Per piece of chain: bounds and residue counts.
-  vtkDataArray* pieces = ribbons->GetFieldData()->GetArray("SegmentBounds");
+  vtkDataArray* pieces = ribbons->GetFieldData()->GetArray(vtkMesoArrayNames::SegmentBounds);
   ASSERT_NE(pieces, nullptr);
   EXPECT_GE(pieces->GetNumberOfTuples(), 7);
 }
@@ -135,10 +138,12 @@ TEST(vtkMesoRibbons, NucleicAcidsAsTubesThroughPhosphorus)
   vtkPolyData* tubes = ribbons->GetOutput();
   EXPECT_GT(tubes->GetNumberOfPolys(), 500);
   EXPECT_EQ(open_edges(tubes), 0);
-  EXPECT_EQ(tubes->GetFieldData()->GetArray("SegmentBounds")->GetNumberOfTuples(), 2);
-  auto* names =
-    vtkStringArray::SafeDownCast(reader->GetOutput()->GetPointData()->GetAbstractArray("AtomName"));
-  EXPECT_EQ(names->GetValue(vtkIdType(tubes->GetPointData()->GetArray("AtomId")->GetTuple1(0))),
+  EXPECT_EQ(tubes->GetFieldData()->GetArray(vtkMesoArrayNames::SegmentBounds)->GetNumberOfTuples(),
+            2);
+  auto* names = vtkStringArray::SafeDownCast(
+    reader->GetOutput()->GetPointData()->GetAbstractArray(vtkMesoArrayNames::AtomName));
+  EXPECT_EQ(names->GetValue(
+              vtkIdType(tubes->GetPointData()->GetArray(vtkMesoArrayNames::AtomId)->GetTuple1(0))),
             "P");
 }
 
@@ -158,7 +163,10 @@ TEST(vtkMesoRibbons, ProteasomeFromAGroFile)
   ribbons->Update();
   ASSERT_TRUE(events.Errors.empty()) << events.AllErrors();
   EXPECT_GT(ribbons->GetOutput()->GetNumberOfPolys(), 400000);
-  EXPECT_GE(ribbons->GetOutput()->GetFieldData()->GetArray("SegmentBounds")->GetNumberOfTuples(),
+  EXPECT_GE(ribbons->GetOutput()
+              ->GetFieldData()
+              ->GetArray(vtkMesoArrayNames::SegmentBounds)
+              ->GetNumberOfTuples(),
             28);
 }
 
@@ -173,7 +181,7 @@ TEST(vtkMesoRibbons, BadInputs)
   plain->SetPoints(points);
   ribbons->SetInputData(plain);
   ribbons->Update();
-  EXPECT_NE(events.AllErrors().find("AtomName"), std::string::npos);
+  EXPECT_NE(events.AllErrors().find(vtkMesoArrayNames::AtomName), std::string::npos);
   EXPECT_EQ(ribbons->GetOutput()->GetNumberOfPoints(), 0);
   // No atoms.
   events.Errors.clear();
@@ -209,7 +217,10 @@ TEST(vtkMesoRibbons, BadInputs)
   ribbons->Update();
   EXPECT_TRUE(events.Errors.empty()) << events.AllErrors();
   EXPECT_EQ(open_edges(ribbons->GetOutput()), 0);
-  EXPECT_GE(ribbons->GetOutput()->GetFieldData()->GetArray("SegmentBounds")->GetNumberOfTuples(),
+  EXPECT_GE(ribbons->GetOutput()
+              ->GetFieldData()
+              ->GetArray(vtkMesoArrayNames::SegmentBounds)
+              ->GetNumberOfTuples(),
             2);
   // A NaN Cα.
   first->GetPoints()->SetPoint(1, std::nan(""), 0, 0);

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoArrayNames.h"
 #include "vtkMesoSecondaryStructure.h"
 
 #include "mesolens_test_data.h"
@@ -26,7 +27,8 @@ namespace {
 /// All chains' DSSP strings joined.
 std::string dssp_of(vtkPolyData* output)
 {
-  auto* chains = vtkStringArray::SafeDownCast(output->GetFieldData()->GetAbstractArray("DSSP"));
+  auto* chains =
+    vtkStringArray::SafeDownCast(output->GetFieldData()->GetAbstractArray(vtkMesoArrayNames::DSSP));
   std::string joined;
   for (vtkIdType c = 0; chains && c < chains->GetNumberOfValues(); ++c)
     joined += chains->GetValue(c);
@@ -46,10 +48,11 @@ TEST(vtkMesoSecondaryStructure, CrambinAsMkdsspAssignsIt)
   vtkPolyData* output = dssp->GetOutput();
   EXPECT_EQ(dssp_of(output), "-EE-SSHHHHHHHHHHHTTT--HHHHHHHHS-EE-SSS---GGG--");
   // Every atom carries its residue's class: the CA of residue 10 (index 9) is in the helix.
-  vtkDataArray* classes = output->GetPointData()->GetArray("SecondaryStructure");
-  vtkDataArray* runs = output->GetPointData()->GetArray("SecondaryStructureId");
-  vtkDataArray* residues = output->GetPointData()->GetArray("ResidueIndex");
-  auto* names = vtkStringArray::SafeDownCast(output->GetPointData()->GetAbstractArray("AtomName"));
+  vtkDataArray* classes = output->GetPointData()->GetArray(vtkMesoArrayNames::SecondaryStructure);
+  vtkDataArray* runs = output->GetPointData()->GetArray(vtkMesoArrayNames::SecondaryStructureId);
+  vtkDataArray* residues = output->GetPointData()->GetArray(vtkMesoArrayNames::ResidueIndex);
+  auto* names = vtkStringArray::SafeDownCast(
+    output->GetPointData()->GetAbstractArray(vtkMesoArrayNames::AtomName));
   int helix_atoms = 0;
   for (vtkIdType a = 0; a < output->GetNumberOfPoints(); ++a)
   {
@@ -61,8 +64,11 @@ TEST(vtkMesoSecondaryStructure, CrambinAsMkdsspAssignsIt)
     }
   }
   EXPECT_GT(helix_atoms, 4);
-  EXPECT_EQ(output->GetFieldData()->GetArray("ResidueSecondaryStructure")->GetNumberOfTuples(), 46);
-  EXPECT_GT(output->GetFieldData()->GetArray("HydrogenBonds")->GetTuple1(0), 20.0);
+  EXPECT_EQ(output->GetFieldData()
+              ->GetArray(vtkMesoArrayNames::ResidueSecondaryStructure)
+              ->GetNumberOfTuples(),
+            46);
+  EXPECT_GT(output->GetFieldData()->GetArray(vtkMesoArrayNames::HydrogenBonds)->GetTuple1(0), 20.0);
   // The positions are the input's (a shallow copy).
   EXPECT_EQ(output->GetPoints(), reader->GetOutput()->GetPoints());
 }
@@ -82,9 +88,11 @@ TEST(vtkMesoSecondaryStructure, FileRecordsKeptOrRecomputed)
   dssp->KeepFileRecordsOn();
   dssp->Update();
   // Kept: the reader's classes (no turns, bends or 3-10 helices in the records) and no DSSP.
-  vtkDataArray* kept = dssp->GetOutput()->GetPointData()->GetArray("SecondaryStructure");
-  EXPECT_EQ(kept, reader->GetOutput()->GetPointData()->GetArray("SecondaryStructure"));
-  EXPECT_EQ(dssp->GetOutput()->GetFieldData()->GetAbstractArray("DSSP"), nullptr);
+  vtkDataArray* kept =
+    dssp->GetOutput()->GetPointData()->GetArray(vtkMesoArrayNames::SecondaryStructure);
+  EXPECT_EQ(kept,
+            reader->GetOutput()->GetPointData()->GetArray(vtkMesoArrayNames::SecondaryStructure));
+  EXPECT_EQ(dssp->GetOutput()->GetFieldData()->GetAbstractArray(vtkMesoArrayNames::DSSP), nullptr);
 }
 
 TEST(vtkMesoSecondaryStructure, NmrModelsAsTimeSteps)
@@ -173,10 +181,13 @@ TEST(vtkMesoSecondaryStructure, ProteasomeFromAGroFile)
   const std::string all = dssp_of(dssp->GetOutput());
   const auto helix = std::count(all.begin(), all.end(), 'H');
   const auto strand = std::count(all.begin(), all.end(), 'E');
-  std::printf(
-    "3l5q: %zu residues, %zu chains, %.1f %% H, %.1f %% E\n", all.size(),
-    std::size_t(dssp->GetOutput()->GetFieldData()->GetAbstractArray("DSSP")->GetNumberOfTuples()),
-    100.0 * double(helix) / double(all.size()), 100.0 * double(strand) / double(all.size()));
+  std::printf("3l5q: %zu residues, %zu chains, %.1f %% H, %.1f %% E\n", all.size(),
+              std::size_t(dssp->GetOutput()
+                            ->GetFieldData()
+                            ->GetAbstractArray(vtkMesoArrayNames::DSSP)
+                            ->GetNumberOfTuples()),
+              100.0 * double(helix) / double(all.size()),
+              100.0 * double(strand) / double(all.size()));
   EXPECT_GT(all.size(), 9000u);
   EXPECT_GT(double(helix) / double(all.size()), 0.2);
   EXPECT_GT(double(strand) / double(all.size()), 0.12);
@@ -193,7 +204,7 @@ TEST(vtkMesoSecondaryStructure, BadInputsGiveAnErrorAndNoOutput)
   plain->SetPoints(points);
   dssp->SetInputData(plain);
   dssp->Update();
-  EXPECT_NE(events.AllErrors().find("AtomName"), std::string::npos);
+  EXPECT_NE(events.AllErrors().find(vtkMesoArrayNames::AtomName), std::string::npos);
   EXPECT_EQ(dssp->GetOutput()->GetNumberOfPoints(), 0);
   // No atoms.
   events.Errors.clear();

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoArrayNames.h"
 #include "vtkMesoStructureReader.h"
 
 #include "mesolens_test_data.h"
@@ -30,30 +31,34 @@ TEST(vtkMesoStructureReader, ArraysOfOneAtomPerVertex)
   EXPECT_EQ(atoms->GetNumberOfVerts(), 327);
   EXPECT_EQ(atoms->GetNumberOfLines(), 337);
   vtkPointData* pd = atoms->GetPointData();
-  for (const char* name : { "AtomicNumber", "ResidueNumber", "SerialNumber", "ResidueIndex",
-                            "MoleculeId", "SecondaryStructure", "SecondaryStructureId", "Occupancy",
-                            "BFactor", "IsHetAtm", "FormalCharge" })
+  for (const char* name :
+       { vtkMesoArrayNames::AtomicNumber, vtkMesoArrayNames::ResidueNumber,
+         vtkMesoArrayNames::SerialNumber, vtkMesoArrayNames::ResidueIndex,
+         vtkMesoArrayNames::MoleculeId, vtkMesoArrayNames::SecondaryStructure,
+         vtkMesoArrayNames::SecondaryStructureId, vtkMesoArrayNames::Occupancy,
+         vtkMesoArrayNames::BFactor, vtkMesoArrayNames::IsHetAtm, vtkMesoArrayNames::FormalCharge })
   {
     ASSERT_NE(pd->GetArray(name), nullptr) << name;
     EXPECT_EQ(pd->GetArray(name)->GetNumberOfTuples(), 327) << name;
   }
   for (const char* name :
-       { "AtomName", "Element", "ResidueName", "ChainId", "InsertionCode", "AltLoc" })
+       { vtkMesoArrayNames::AtomName, vtkMesoArrayNames::Element, vtkMesoArrayNames::ResidueName,
+         vtkMesoArrayNames::ChainId, vtkMesoArrayNames::InsertionCode, vtkMesoArrayNames::AltLoc })
   {
     auto* strings = vtkStringArray::SafeDownCast(pd->GetAbstractArray(name));
     ASSERT_NE(strings, nullptr) << name;
     EXPECT_EQ(strings->GetNumberOfValues(), 327) << name;
   }
-  auto* names = vtkStringArray::SafeDownCast(pd->GetAbstractArray("AtomName"));
-  auto* elements = vtkStringArray::SafeDownCast(pd->GetAbstractArray("Element"));
+  auto* names = vtkStringArray::SafeDownCast(pd->GetAbstractArray(vtkMesoArrayNames::AtomName));
+  auto* elements = vtkStringArray::SafeDownCast(pd->GetAbstractArray(vtkMesoArrayNames::Element));
   EXPECT_EQ(names->GetValue(1), "CA");
   EXPECT_EQ(elements->GetValue(1), "C");
-  EXPECT_EQ(pd->GetArray("AtomicNumber")->GetTuple1(0), 7.0);
-  EXPECT_EQ(pd->GetScalars(), pd->GetArray("AtomicNumber"));
+  EXPECT_EQ(pd->GetArray(vtkMesoArrayNames::AtomicNumber)->GetTuple1(0), 7.0);
+  EXPECT_EQ(pd->GetScalars(), pd->GetArray(vtkMesoArrayNames::AtomicNumber));
   double bounds[6];
   atoms->GetBounds(bounds);
   EXPECT_LT(bounds[0], bounds[1]);
-  auto* box = atoms->GetFieldData()->GetArray("PeriodicBoxVectors");
+  auto* box = atoms->GetFieldData()->GetArray(vtkMesoArrayNames::PeriodicBoxVectors);
   ASSERT_NE(box, nullptr);
   EXPECT_NEAR(box->GetComponent(0, 0), 40.96, 1e-3); // CRYST1 a
   std::ostringstream print;
@@ -74,12 +79,16 @@ TEST(vtkMesoStructureReader, ModelsAreTimeSteps)
   double first[3];
   reader->GetOutput()->GetPoint(0, first);
   reader->UpdateTimeStep(12.4); // nearest model: 12
-  EXPECT_EQ(reader->GetOutput()->GetFieldData()->GetArray("ModelIndex")->GetTuple1(0), 12.0);
+  EXPECT_EQ(
+    reader->GetOutput()->GetFieldData()->GetArray(vtkMesoArrayNames::ModelIndex)->GetTuple1(0),
+    12.0);
   double twelfth[3];
   reader->GetOutput()->GetPoint(0, twelfth);
   EXPECT_NE(first[0], twelfth[0]);
   reader->UpdateTimeStep(1000); // clamped to the last model
-  EXPECT_EQ(reader->GetOutput()->GetFieldData()->GetArray("ModelIndex")->GetTuple1(0), 37.0);
+  EXPECT_EQ(
+    reader->GetOutput()->GetFieldData()->GetArray(vtkMesoArrayNames::ModelIndex)->GetTuple1(0),
+    37.0);
   EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 304);
 }
 
@@ -113,11 +122,12 @@ TEST(vtkMesoStructureReader, GromacsNumbersReachTheArrays)
   ASSERT_EQ(reader->GetExecutive()->Update(), 1);
   vtkPointData* pd = reader->GetOutput()->GetPointData();
   ASSERT_EQ(reader->GetOutput()->GetNumberOfPoints(), 280);
-  EXPECT_EQ(pd->GetArray("SerialNumber")->GetTuple1(189), 100000.0);
-  EXPECT_EQ(pd->GetArray("SerialNumber")->GetTuple1(279), 100090.0);
-  EXPECT_EQ(pd->GetArray("ResidueNumber")->GetTuple1(157), 10000.0);
-  EXPECT_EQ(pd->GetArray("ResidueNumber")->GetTuple1(279), 10040.0);
-  auto* residue_names = vtkStringArray::SafeDownCast(pd->GetAbstractArray("ResidueName"));
+  EXPECT_EQ(pd->GetArray(vtkMesoArrayNames::SerialNumber)->GetTuple1(189), 100000.0);
+  EXPECT_EQ(pd->GetArray(vtkMesoArrayNames::SerialNumber)->GetTuple1(279), 100090.0);
+  EXPECT_EQ(pd->GetArray(vtkMesoArrayNames::ResidueNumber)->GetTuple1(157), 10000.0);
+  EXPECT_EQ(pd->GetArray(vtkMesoArrayNames::ResidueNumber)->GetTuple1(279), 10040.0);
+  auto* residue_names =
+    vtkStringArray::SafeDownCast(pd->GetAbstractArray(vtkMesoArrayNames::ResidueName));
   EXPECT_EQ(residue_names->GetValue(0), "DPPC");
   EXPECT_EQ(residue_names->GetValue(279), "SOL");
   EXPECT_NE(std::string(reader->GetWarnings()).find("restart after 9999 "), std::string::npos);

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoArrayNames.h"
 #include "vtkMesoStructuredCutaway.h"
 
 #include "mesolens_test_data.h"
@@ -76,7 +77,7 @@ vtkSmartPointer<vtkPolyData> molecules_over(vtkPolyData* solid)
   auto atoms = vtkSmartPointer<vtkPolyData>::New();
   vtkNew<vtkPoints> points;
   vtkNew<vtkIntArray> molecule;
-  molecule->SetName("MoleculeId");
+  molecule->SetName(vtkMesoArrayNames::MoleculeId);
   for (std::size_t m = 0; m < directions.size(); ++m)
   {
     const auto& d = directions[m];
@@ -114,7 +115,10 @@ struct Scene
   /// Visible flag of molecule m (its first atom).
   int Visible(int m)
   {
-    return int(this->Cutaway->GetOutput()->GetPointData()->GetArray("Visible")->GetTuple1(2 * m));
+    return int(this->Cutaway->GetOutput()
+                 ->GetPointData()
+                 ->GetArray(vtkMesoArrayNames::Visible)
+                 ->GetTuple1(2 * m));
   }
 
   vtkIdType Field(const char* name)
@@ -132,9 +136,10 @@ TEST(vtkMesoStructuredCutaway, CentresFirstEdgesLastWithoutReassigning)
   ASSERT_EQ(scene.Cutaway->GetOutput()->GetNumberOfPoints(), 100);
   for (int m = 0; m < 50; ++m)
     EXPECT_EQ(scene.Visible(m), m < 20 ? 0 : 1) << m;
-  EXPECT_EQ(scene.Field("MoleculesInCut"), 50);
-  EXPECT_EQ(scene.Field("MoleculesHidden"), 20);
-  vtkDataArray* priority = scene.Cutaway->GetOutput()->GetPointData()->GetArray("RemovalPriority");
+  EXPECT_EQ(scene.Field(vtkMesoArrayNames::MoleculesInCut), 50);
+  EXPECT_EQ(scene.Field(vtkMesoArrayNames::MoleculesHidden), 20);
+  vtkDataArray* priority =
+    scene.Cutaway->GetOutput()->GetPointData()->GetArray(vtkMesoArrayNames::RemovalPriority);
   EXPECT_NEAR(priority->GetTuple1(0), 1.0, 1e-6);
   EXPECT_NEAR(priority->GetTuple1(40), 0.0, 1e-6);
   // Inverted, another k and fraction, then random order: the assignment stays.
@@ -146,7 +151,7 @@ TEST(vtkMesoStructuredCutaway, CentresFirstEdgesLastWithoutReassigning)
     EXPECT_EQ(scene.Visible(m), m < 20 ? 1 : 0) << m;
   scene.Cutaway->RandomOrderOn();
   scene.Cutaway->Update();
-  EXPECT_EQ(scene.Field("MoleculesHidden"), 30);
+  EXPECT_EQ(scene.Field(vtkMesoArrayNames::MoleculesHidden), 30);
   EXPECT_EQ(scene.Cutaway->GetNumberOfAssignments(), 1);
 }
 
@@ -159,7 +164,7 @@ TEST(vtkMesoStructuredCutaway, PlaneCutLeavesTheOtherSide)
   scene.Cutaway->SetFractionHidden(1.0);
   scene.Cutaway->Update();
   vtkPolyData* output = scene.Cutaway->GetOutput();
-  vtkDataArray* visible = output->GetPointData()->GetArray("Visible");
+  vtkDataArray* visible = output->GetPointData()->GetArray(vtkMesoArrayNames::Visible);
   vtkIdType hidden = 0;
   for (vtkIdType a = 0; a < output->GetNumberOfPoints(); a += 2)
   {
@@ -168,16 +173,16 @@ TEST(vtkMesoStructuredCutaway, PlaneCutLeavesTheOtherSide)
     EXPECT_EQ(visible->GetTuple1(a), p[2] > 0.001 ? 1 : 0);
     hidden += visible->GetTuple1(a) == 0;
   }
-  EXPECT_EQ(scene.Field("MoleculesHidden"), hidden);
+  EXPECT_EQ(scene.Field(vtkMesoArrayNames::MoleculesHidden), hidden);
   // Moving the plane only reorders.
   plane->SetOrigin(0, 0, 0.5);
   scene.Cutaway->Update();
-  EXPECT_GT(scene.Field("MoleculesHidden"), hidden);
+  EXPECT_GT(scene.Field(vtkMesoArrayNames::MoleculesHidden), hidden);
   EXPECT_EQ(scene.Cutaway->GetNumberOfAssignments(), 1);
   // No cut: nothing hidden.
   scene.Cutaway->SetCutFunction(nullptr);
   scene.Cutaway->Update();
-  EXPECT_EQ(scene.Field("MoleculesHidden"), 0);
+  EXPECT_EQ(scene.Field(vtkMesoArrayNames::MoleculesHidden), 0);
 }
 
 TEST(vtkMesoStructuredCutaway, BadInputsGiveAnErrorAndNoOutput)
@@ -229,9 +234,9 @@ TEST(vtkMesoStructuredCutaway, BadInputsGiveAnErrorAndNoOutput)
     vtkNew<vtkPolyData> water;
     vtkNew<vtkPoints> points;
     vtkNew<vtkIntArray> ids;
-    ids->SetName("MoleculeId");
+    ids->SetName(vtkMesoArrayNames::MoleculeId);
     vtkNew<vtkStringArray> names;
-    names->SetName("ResidueName");
+    names->SetName(vtkMesoArrayNames::ResidueName);
     for (int i = 0; i < 300; ++i)
     {
       points->InsertNextPoint(i % 10, (i / 10) % 10, i / 100);
@@ -284,13 +289,19 @@ TEST(vtkMesoStructuredCutaway, MakesTheStructureFromTheMoleculesWhenNoneIsGiven)
   const vtkIdType made_vertices = structure->GetNumberOfPoints();
   EXPECT_GT(structure->GetNumberOfPoints(), 120);
   EXPECT_LT(structure->GetNumberOfPoints(), 320);
-  EXPECT_GE(structure->GetFieldData()->GetArray("MinAngle")->GetTuple1(0), 30.0);
-  EXPECT_LE(structure->GetFieldData()->GetArray("MaxAngle")->GetTuple1(0), 120.0);
-  EXPECT_EQ(structure->GetFieldData()->GetArray("Components")->GetTuple1(0), 1.0);
-  EXPECT_EQ(cutaway->GetOutput()->GetFieldData()->GetArray("MoleculesHidden")->GetTuple1(0), 500);
+  EXPECT_GE(structure->GetFieldData()->GetArray(vtkMesoArrayNames::MinAngle)->GetTuple1(0), 30.0);
+  EXPECT_LE(structure->GetFieldData()->GetArray(vtkMesoArrayNames::MaxAngle)->GetTuple1(0), 120.0);
+  EXPECT_EQ(structure->GetFieldData()->GetArray(vtkMesoArrayNames::Components)->GetTuple1(0), 1.0);
+  EXPECT_EQ(cutaway->GetOutput()
+              ->GetFieldData()
+              ->GetArray(vtkMesoArrayNames::MoleculesHidden)
+              ->GetTuple1(0),
+            500);
   // The hidden molecules are those nearest their triangles' centres.
-  vtkDataArray* priority = cutaway->GetOutput()->GetPointData()->GetArray("RemovalPriority");
-  vtkDataArray* visible = cutaway->GetOutput()->GetPointData()->GetArray("Visible");
+  vtkDataArray* priority =
+    cutaway->GetOutput()->GetPointData()->GetArray(vtkMesoArrayNames::RemovalPriority);
+  vtkDataArray* visible =
+    cutaway->GetOutput()->GetPointData()->GetArray(vtkMesoArrayNames::Visible);
   double lowest_hidden = 1;
   double highest_visible = 0;
   for (vtkIdType a = 0; a < 2000; ++a)
@@ -357,10 +368,10 @@ TEST(vtkMesoStructuredCutaway, MartiniVesicleCutOpenAndStableOverFrames)
   auto field = [&](const char* name) {
     return vtkIdType(cutaway->GetOutput()->GetFieldData()->GetArray(name)->GetTuple1(0));
   };
-  const vtkIdType in_cut = field("MoleculesInCut");
+  const vtkIdType in_cut = field(vtkMesoArrayNames::MoleculesInCut);
   EXPECT_GT(in_cut, 1300); // about half of 3072
   EXPECT_LT(in_cut, 1800);
-  EXPECT_EQ(field("MoleculesHidden"), std::llround(0.5 * double(in_cut)));
+  EXPECT_EQ(field(vtkMesoArrayNames::MoleculesHidden), std::llround(0.5 * double(in_cut)));
   // The structure through the bilayer's middle: one closed sheet of even triangles.
   vtkPolyData* structure = cutaway->GetOutput(1);
   auto quality = [&](const char* name) {
@@ -368,11 +379,11 @@ TEST(vtkMesoStructuredCutaway, MartiniVesicleCutOpenAndStableOverFrames)
   };
   EXPECT_GT(structure->GetNumberOfPoints(), 255);
   EXPECT_LT(structure->GetNumberOfPoints(), 345);
-  EXPECT_GE(quality("MinAngle"), 30.0);
-  EXPECT_LE(quality("MaxAngle"), 120.0);
-  EXPECT_LT(quality("EdgeSpread"), 0.25);
-  EXPECT_EQ(quality("BoundaryEdges"), 0.0);
-  EXPECT_EQ(quality("Components"), 1.0);
+  EXPECT_GE(quality(vtkMesoArrayNames::MinAngle), 30.0);
+  EXPECT_LE(quality(vtkMesoArrayNames::MaxAngle), 120.0);
+  EXPECT_LT(quality(vtkMesoArrayNames::EdgeSpread), 0.25);
+  EXPECT_EQ(quality(vtkMesoArrayNames::BoundaryEdges), 0.0);
+  EXPECT_EQ(quality(vtkMesoArrayNames::Components), 1.0);
   const vtkIdType faces = structure->GetNumberOfCells();
   EXPECT_EQ(structure->GetNumberOfPoints() - 3 * faces / 2 + faces, 2); // a sphere
   // Its vertices between the leaflets: closer to the centre than most outer lipids.
@@ -392,7 +403,7 @@ TEST(vtkMesoStructuredCutaway, MartiniVesicleCutOpenAndStableOverFrames)
   {
     cutaway->SetFractionHidden(fraction);
     cutaway->Update();
-    EXPECT_EQ(field("MoleculesHidden"), std::llround(fraction * double(in_cut)));
+    EXPECT_EQ(field(vtkMesoArrayNames::MoleculesHidden), std::llround(fraction * double(in_cut)));
     EXPECT_EQ(cutaway->GetOutput()->GetPoints(), positions);
   }
   EXPECT_EQ(cutaway->GetNumberOfOrderings(), orderings);
@@ -405,7 +416,8 @@ TEST(vtkMesoStructuredCutaway, MartiniVesicleCutOpenAndStableOverFrames)
   // K: no change to the strict order's mask; in the probabilistic order a new mask of the
   // same size.
   auto mask = [&]() {
-    vtkDataArray* visible = cutaway->GetOutput()->GetPointData()->GetArray("Visible");
+    vtkDataArray* visible =
+      cutaway->GetOutput()->GetPointData()->GetArray(vtkMesoArrayNames::Visible);
     std::vector<int> values(std::size_t(visible->GetNumberOfTuples()));
     for (vtkIdType a = 0; a < visible->GetNumberOfTuples(); ++a)
       values[std::size_t(a)] = int(visible->GetTuple1(a));
@@ -419,7 +431,7 @@ TEST(vtkMesoStructuredCutaway, MartiniVesicleCutOpenAndStableOverFrames)
   cutaway->Update();
   const auto sharp = mask();
   EXPECT_NE(sharp, strict);
-  EXPECT_EQ(field("MoleculesHidden"), std::llround(0.5 * double(in_cut)));
+  EXPECT_EQ(field(vtkMesoArrayNames::MoleculesHidden), std::llround(0.5 * double(in_cut)));
   cutaway->SetK(0.8);
   cutaway->Update();
   EXPECT_NE(mask(), sharp);
@@ -433,8 +445,8 @@ TEST(vtkMesoStructuredCutaway, MartiniVesicleCutOpenAndStableOverFrames)
   auto hidden_molecules = [&]() {
     std::set<long long> hidden;
     vtkPolyData* output = cutaway->GetOutput();
-    vtkDataArray* visible = output->GetPointData()->GetArray("Visible");
-    vtkDataArray* ids = output->GetPointData()->GetArray("MoleculeId");
+    vtkDataArray* visible = output->GetPointData()->GetArray(vtkMesoArrayNames::Visible);
+    vtkDataArray* ids = output->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId);
     for (vtkIdType a = 0; a < output->GetNumberOfPoints(); ++a)
       if (visible->GetTuple1(a) == 0)
         hidden.insert((long long)ids->GetTuple1(a));
@@ -492,9 +504,9 @@ TEST(vtkMesoStructuredCutaway, PerResidueFractionsAndVisibleAtomsOnly)
   cutaway->Update();
   ASSERT_TRUE(events.Errors.empty()) << events.AllErrors();
   vtkPolyData* output = cutaway->GetOutput();
-  auto* names =
-    vtkStringArray::SafeDownCast(output->GetPointData()->GetAbstractArray("ResidueName"));
-  vtkDataArray* visible = output->GetPointData()->GetArray("Visible");
+  auto* names = vtkStringArray::SafeDownCast(
+    output->GetPointData()->GetAbstractArray(vtkMesoArrayNames::ResidueName));
+  vtkDataArray* visible = output->GetPointData()->GetArray(vtkMesoArrayNames::Visible);
   ASSERT_NE(names, nullptr);
   vtkIdType hidden_chol = 0;
   vtkIdType visible_count = 0;
@@ -511,9 +523,10 @@ TEST(vtkMesoStructuredCutaway, PerResidueFractionsAndVisibleAtomsOnly)
   }
   EXPECT_GT(hidden_chol, 8 * 5); // beads of at least 5 cholesterols
   const vtkIdType hidden =
-    vtkIdType(output->GetFieldData()->GetArray("MoleculesHidden")->GetTuple1(0));
+    vtkIdType(output->GetFieldData()->GetArray(vtkMesoArrayNames::MoleculesHidden)->GetTuple1(0));
   EXPECT_EQ(hidden * 8, hidden_chol); // 8 beads per Martini cholesterol
-  EXPECT_EQ(output->GetFieldData()->GetArray("MoleculeVisible")->GetNumberOfTuples(), 450);
+  EXPECT_EQ(
+    output->GetFieldData()->GetArray(vtkMesoArrayNames::MoleculeVisible)->GetNumberOfTuples(), 450);
 
   // The visible atoms alone, with the bonds among them.
   const vtkIdType all_bonds = output->GetNumberOfLines();
@@ -523,7 +536,7 @@ TEST(vtkMesoStructuredCutaway, PerResidueFractionsAndVisibleAtomsOnly)
   EXPECT_EQ(cutaway->GetOutput()->GetNumberOfPoints(), visible_count);
   EXPECT_LT(cutaway->GetOutput()->GetNumberOfLines(), all_bonds);
   EXPECT_GT(cutaway->GetOutput()->GetNumberOfLines(), all_bonds / 2);
-  vtkDataArray* kept = cutaway->GetOutput()->GetPointData()->GetArray("Visible");
+  vtkDataArray* kept = cutaway->GetOutput()->GetPointData()->GetArray(vtkMesoArrayNames::Visible);
   EXPECT_EQ(kept->GetRange()[0], 1.0);
   // Clearing the per-residue fraction with nothing else hidden: every atom comes back.
   cutaway->RemoveAllResidueFractions();
@@ -551,10 +564,10 @@ vtkSmartPointer<vtkPolyData> made_structure(vtkPolyData* atoms, int loops, const
   auto quality = [&](const char* field) {
     return structure->GetFieldData()->GetArray(field)->GetTuple1(0);
   };
-  EXPECT_GE(quality("MinAngle"), 30.0) << name;
-  EXPECT_LE(quality("MaxAngle"), 120.0) << name;
-  EXPECT_EQ(quality("Components"), 1.0) << name;
-  EXPECT_EQ(quality("BoundaryLoops"), double(loops)) << name;
+  EXPECT_GE(quality(vtkMesoArrayNames::MinAngle), 30.0) << name;
+  EXPECT_LE(quality(vtkMesoArrayNames::MaxAngle), 120.0) << name;
+  EXPECT_EQ(quality(vtkMesoArrayNames::Components), 1.0) << name;
+  EXPECT_EQ(quality(vtkMesoArrayNames::BoundaryLoops), double(loops)) << name;
   EXPECT_NEAR(double(structure->GetNumberOfPoints()), 300.0, 45.0) << name;
   return structure;
 }
@@ -562,7 +575,8 @@ vtkSmartPointer<vtkPolyData> made_structure(vtkPolyData* atoms, int loops, const
 /// The atoms of `atoms` named `name` (AtomName), with their point and field data.
 vtkSmartPointer<vtkPolyData> atoms_named(vtkPolyData* atoms, const std::string& name)
 {
-  auto* names = vtkStringArray::SafeDownCast(atoms->GetPointData()->GetAbstractArray("AtomName"));
+  auto* names = vtkStringArray::SafeDownCast(
+    atoms->GetPointData()->GetAbstractArray(vtkMesoArrayNames::AtomName));
   vtkNew<vtkIdList> kept;
   for (vtkIdType a = 0; a < atoms->GetNumberOfPoints(); ++a)
   {
@@ -632,7 +646,8 @@ TEST(vtkMesoStructuredCutaway, FlatMembranesGiveOneOpenSheetThroughTheirMiddleAc
     // Across the box: its extent along b's y is the box's.
     double bounds[6];
     structure->GetBounds(bounds);
-    vtkDataArray* box = reader->GetOutput()->GetFieldData()->GetArray("PeriodicBoxVectors");
+    vtkDataArray* box =
+      reader->GetOutput()->GetFieldData()->GetArray(vtkMesoArrayNames::PeriodicBoxVectors);
     EXPECT_NEAR(bounds[3] - bounds[2], box->GetComponent(0, 4), 1e-3) << file;
     EXPECT_GT(bounds[1] - bounds[0], 0.95 * box->GetComponent(0, 0)) << file;
   }

@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoArrayNames.h"
 #include "vtkMesoSurfaceArea.h"
 
 #include "mesolens_test_data.h"
@@ -48,17 +49,18 @@ TEST(vtkMesoSurfaceArea, TwoAtomsExactlyAndTheProbe)
   const double r1 = 1.5, r2 = 1.2, d = 2.0;
   const double h1 = (r1 * r1 + d * d - r2 * r2) / (2 * r1 * d);
   const double h2 = (r2 * r2 + d * d - r1 * r1) / (2 * r2 * d);
-  vtkDataArray* per_atom = area->GetOutput()->GetPointData()->GetArray("AccessibleArea");
+  vtkDataArray* per_atom =
+    area->GetOutput()->GetPointData()->GetArray(vtkMesoArrayNames::AccessibleArea);
   EXPECT_NEAR(per_atom->GetTuple1(0), 2 * pi * r1 * r1 * (1 + h1), 1e-4);
   EXPECT_NEAR(per_atom->GetTuple1(1), 2 * pi * r2 * r2 * (1 + h2), 1e-4);
   const double lens = pi * std::pow(r1 + r2 - d, 2) *
     (d * d + 2 * d * (r1 + r2) - 3 * (r1 - r2) * (r1 - r2)) / (12 * d);
-  EXPECT_NEAR(field(area->GetOutput(), "Volume"),
+  EXPECT_NEAR(field(area->GetOutput(), vtkMesoArrayNames::Volume),
               4.0 / 3.0 * pi * (r1 * r1 * r1 + r2 * r2 * r2) - lens, 1e-9);
   // With the probe, the spheres grow by 1.4 Å: more area in all.
   area->SetProbeRadius(1.4);
   area->Update();
-  EXPECT_GT(field(area->GetOutput(), "TotalArea"), 4 * pi * 2.9 * 2.9);
+  EXPECT_GT(field(area->GetOutput(), vtkMesoArrayNames::TotalArea), 4 * pi * 2.9 * 2.9);
 }
 
 TEST(vtkMesoSurfaceArea, CrambinFromElementRadii)
@@ -70,11 +72,12 @@ TEST(vtkMesoSurfaceArea, CrambinFromElementRadii)
   mesolens_test::EventRecorder events(area);
   area->Update();
   ASSERT_TRUE(events.Errors.empty()) << events.AllErrors();
-  const double sas = field(area->GetOutput(), "TotalArea");
+  const double sas = field(area->GetOutput(), vtkMesoArrayNames::TotalArea);
   // FreeSASA's ProtOr radii give 2999 Å²; Bondi's element radii are a little larger.
   EXPECT_GT(sas, 2800.0);
   EXPECT_LT(sas, 3300.0);
-  vtkDataArray* per_atom = area->GetOutput()->GetPointData()->GetArray("AccessibleArea");
+  vtkDataArray* per_atom =
+    area->GetOutput()->GetPointData()->GetArray(vtkMesoArrayNames::AccessibleArea);
   double sum = 0;
   int buried = 0;
   for (vtkIdType a = 0; a < per_atom->GetNumberOfTuples(); ++a)
@@ -85,10 +88,10 @@ TEST(vtkMesoSurfaceArea, CrambinFromElementRadii)
   EXPECT_NEAR(sum, sas, 1e-2 * sas);
   EXPECT_GT(buried, 50); // crambin has a core
   // Without the probe (the van der Waals surface) the enclosed volume is smaller.
-  const double sas_volume = field(area->GetOutput(), "Volume");
+  const double sas_volume = field(area->GetOutput(), vtkMesoArrayNames::Volume);
   area->SetProbeRadius(0.0);
   area->Update();
-  EXPECT_LT(field(area->GetOutput(), "Volume"), sas_volume);
+  EXPECT_LT(field(area->GetOutput(), vtkMesoArrayNames::Volume), sas_volume);
 }
 
 TEST(vtkMesoSurfaceArea, BadInputs)

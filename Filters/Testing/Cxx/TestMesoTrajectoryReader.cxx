@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // Reference coordinates: MDAnalysis (Testing/Tools/reference_values.py).
+#include "vtkMesoArrayNames.h"
 #include "vtkMesoTrajectoryReader.h"
 
 #include "mesolens_test_data.h"
@@ -40,7 +41,7 @@ double field(vtkPolyData* data, const char* name)
 /// Largest distance of an atom from the first atom of its molecule.
 double largest_molecule_extent(vtkPolyData* atoms)
 {
-  vtkDataArray* molecules = atoms->GetPointData()->GetArray("MoleculeId");
+  vtkDataArray* molecules = atoms->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId);
   std::map<long, vtkIdType> first;
   double largest = 0;
   for (vtkIdType i = 0; i < atoms->GetNumberOfPoints(); ++i)
@@ -78,24 +79,24 @@ TEST(vtkMesoTrajectoryReader, TimeStepsAndFrames)
   EXPECT_EQ(atoms->GetNumberOfPoints(), 43480);
   expect_point(atoms, 0, 22.75, 14.02, 56.94);
   expect_point(atoms, 1000, 10.13, 48.15, 46.31);
-  EXPECT_EQ(field(atoms, "FrameIndex"), 2.0);
+  EXPECT_EQ(field(atoms, vtkMesoArrayNames::FrameIndex), 2.0);
   EXPECT_DOUBLE_EQ(atoms->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP()), 40000.0);
   // Between frames: the latest frame not after the time; before the first: the first.
   reader->UpdateTimeStep(79999.0);
-  EXPECT_EQ(field(reader->GetOutput(), "FrameIndex"), 3.0);
+  EXPECT_EQ(field(reader->GetOutput(), vtkMesoArrayNames::FrameIndex), 3.0);
   reader->UpdateTimeStep(-5.0);
-  EXPECT_EQ(field(reader->GetOutput(), "FrameIndex"), 0.0);
+  EXPECT_EQ(field(reader->GetOutput(), vtkMesoArrayNames::FrameIndex), 0.0);
   expect_point(reader->GetOutput(), 0, 21.27, 11.35, 62.89);
   reader->UpdateTimeStep(1e9);
-  EXPECT_EQ(field(reader->GetOutput(), "FrameIndex"), 4.0);
+  EXPECT_EQ(field(reader->GetOutput(), vtkMesoArrayNames::FrameIndex), 4.0);
   expect_point(reader->GetOutput(), 43479, -15.01, 62.42, 83.23);
   // Topology arrays and bonds are those of the .gro.
   EXPECT_GT(reader->GetOutput()->GetNumberOfLines(), 40000);
   auto* residues = vtkStringArray::SafeDownCast(
-    reader->GetOutput()->GetPointData()->GetAbstractArray("ResidueName"));
+    reader->GetOutput()->GetPointData()->GetAbstractArray(vtkMesoArrayNames::ResidueName));
   ASSERT_NE(residues, nullptr);
   // Box vectors of the hexagonal cell.
-  auto* box = reader->GetOutput()->GetFieldData()->GetArray("PeriodicBoxVectors");
+  auto* box = reader->GetOutput()->GetFieldData()->GetArray(vtkMesoArrayNames::PeriodicBoxVectors);
   ASSERT_NE(box, nullptr);
   EXPECT_NEAR(box->GetComponent(0, 0), 108.905, 1e-2);
 }
@@ -127,7 +128,9 @@ TEST(vtkMesoTrajectoryReader, VesicleMoleculesAreWholeAndContinuous)
   whole->UpdateTimeStep(0.0);
   // A DPPC Martini lipid is ~3 nm long.
   EXPECT_LT(largest_molecule_extent(whole->GetOutput()), 40.0);
-  EXPECT_EQ(whole->GetOutput()->GetPointData()->GetArray("AtomicNumber")->GetRange()[1], 0.0);
+  EXPECT_EQ(
+    whole->GetOutput()->GetPointData()->GetArray(vtkMesoArrayNames::AtomicNumber)->GetRange()[1],
+    0.0);
   // Martini DPPC: 12 beads and 11 bonds per lipid, recovered exactly by the per-type consensus.
   EXPECT_EQ(whole->GetOutput()->GetNumberOfLines(), 3072 * 11);
 
@@ -161,7 +164,9 @@ TEST(vtkMesoTrajectoryReader, GroOnlyAndRemoveWaters)
   reader->RemoveWatersOn();
   reader->Update();
   EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 16640); // 128 lipids x 130 atoms
-  EXPECT_EQ(reader->GetOutput()->GetPointData()->GetArray("MoleculeId")->GetRange()[1], 127.0);
+  EXPECT_EQ(
+    reader->GetOutput()->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId)->GetRange()[1],
+    127.0);
   // Every atom of an all-atom lipid has at least one bond.
   EXPECT_GT(reader->GetOutput()->GetNumberOfLines(), 16000);
 }

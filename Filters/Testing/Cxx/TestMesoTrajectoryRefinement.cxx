@@ -1,4 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoArrayNames.h"
 #include "vtkMesoTrajectoryReader.h"
 #include "vtkMesoTrajectoryRefinement.h"
 
@@ -91,7 +92,7 @@ protected:
     vtkPolyData* output = vtkPolyData::GetData(outputVector);
     output->SetPoints(points);
     vtkNew<vtkDoubleArray> box;
-    box->SetName("PeriodicBoxVectors");
+    box->SetName(vtkMesoArrayNames::PeriodicBoxVectors);
     box->SetNumberOfComponents(9);
     const double vectors[9] = { 10, 0, 0, 0, 10, 0, 0, 0, 10 };
     box->InsertNextTuple(vectors);
@@ -189,10 +190,14 @@ TEST(vtkMesoTrajectoryRefinement, CubicAndLinearMotion)
     }
     EXPECT_NEAR(out->GetPoint(2)[1], 3.0 - 0.5 * s, 1e-5) << j; // linear: exact everywhere
     EXPECT_EQ(out->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP()), times[j]);
-    EXPECT_EQ(out->GetFieldData()->GetArray("RefinedFrameIndex")->GetTuple1(0), double(j));
+    EXPECT_EQ(out->GetFieldData()->GetArray(vtkMesoArrayNames::RefinedFrameIndex)->GetTuple1(0),
+              double(j));
   }
   // A time between refined frames gives the latest one not after it.
-  EXPECT_EQ(frame_at(refinement, 4.0)->GetFieldData()->GetArray("RefinedFrameIndex")->GetTuple1(0),
+  EXPECT_EQ(frame_at(refinement, 4.0)
+              ->GetFieldData()
+              ->GetArray(vtkMesoArrayNames::RefinedFrameIndex)
+              ->GetTuple1(0),
             3.0);
 }
 
@@ -302,7 +307,7 @@ TEST(vtkMesoTrajectoryRefinement, RealTrajectory)
     vtkPolyData* out = frame_at(refinement, times[std::size_t(j)]);
     ASSERT_EQ(out->GetNumberOfPoints(), 43480);
     EXPECT_EQ(out->GetNumberOfLines(), key_frames[0]->GetNumberOfLines());
-    EXPECT_NE(out->GetPointData()->GetArray("MoleculeId"), nullptr);
+    EXPECT_NE(out->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId), nullptr);
     const std::vector<double> weights = impulse_weights(5, 2, j);
     double largest_error = 0;
     for (vtkIdType i = 0; i < out->GetNumberOfPoints(); i += 7)

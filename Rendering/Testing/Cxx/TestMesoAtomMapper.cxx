@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // vtkMesoAtomMapper: picking against a CPU ray cast, GPU data size, animation uploads, bounds
 // and bad input.
+#include "vtkMesoArrayNames.h"
 #include "MesoAtomScenes.h"
 #include "mesolens_vtk_test_utilities.h"
 
@@ -102,7 +103,7 @@ void pixel_ray(vtkRenderer* renderer, int x, int y, Vector3& origin, Vector3& di
 vtkIdType cpu_pick(vtkPolyData* atoms, int style, const Vector3& origin, const Vector3& direction)
 {
   const double ball = style == vtkMesoAtomMapper::BALL_AND_STICK ? 0.25 : 1.0;
-  vtkDataArray* numbers = atoms->GetPointData()->GetArray("AtomicNumber");
+  vtkDataArray* numbers = atoms->GetPointData()->GetArray(vtkMesoArrayNames::AtomicNumber);
   double nearest = std::numeric_limits<double>::infinity();
   vtkIdType picked = -1;
   for (vtkIdType i = 0; i < atoms->GetNumberOfPoints(); ++i)
@@ -222,7 +223,7 @@ vtkSmartPointer<vtkPolyData> carbon_block(int side)
   auto atoms = vtkSmartPointer<vtkPolyData>::New();
   vtkNew<vtkPoints> points;
   vtkNew<vtkUnsignedCharArray> numbers;
-  numbers->SetName("AtomicNumber");
+  numbers->SetName(vtkMesoArrayNames::AtomicNumber);
   for (int i = 0; i < side * side * side; ++i)
   {
     points->InsertNextPoint(1.5 * (i % side), 1.5 * (i / side % side), 1.5 * (i / (side * side)));
@@ -408,7 +409,7 @@ TEST(MesoAtomMapper, CulledPictureIsExactForScatteredAtoms)
   auto atoms = vtkSmartPointer<vtkPolyData>::New();
   vtkNew<vtkPoints> points;
   vtkNew<vtkUnsignedCharArray> numbers;
-  numbers->SetName("AtomicNumber");
+  numbers->SetName(vtkMesoArrayNames::AtomicNumber);
   std::mt19937 random(11);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (int i = 0; i < 12000; ++i)
@@ -511,7 +512,7 @@ TEST(MesoAtomMapper, FourteenBytesPerAtomAndOnlyPositionsForANewFrame)
   EXPECT_EQ(scene.Mapper->GetLastUploadBytes(), 12 * n);
 
   // Other elements: the types go up again, not the positions.
-  vtkDataArray* numbers = atoms->GetPointData()->GetArray("AtomicNumber");
+  vtkDataArray* numbers = atoms->GetPointData()->GetArray(vtkMesoArrayNames::AtomicNumber);
   numbers->SetComponent(0, 0, 26);
   numbers->Modified();
   scene.Window->Render();
@@ -525,8 +526,8 @@ vtkSmartPointer<vtkPolyData> visible_subset(vtkPolyData* atoms, const std::vecto
   auto subset = vtkSmartPointer<vtkPolyData>::New();
   vtkNew<vtkPoints> points;
   vtkNew<vtkUnsignedCharArray> numbers;
-  numbers->SetName("AtomicNumber");
-  vtkDataArray* source = atoms->GetPointData()->GetArray("AtomicNumber");
+  numbers->SetName(vtkMesoArrayNames::AtomicNumber);
+  vtkDataArray* source = atoms->GetPointData()->GetArray(vtkMesoArrayNames::AtomicNumber);
   std::vector<vtkIdType> renumber(visible.size(), -1);
   for (vtkIdType a = 0; a < atoms->GetNumberOfPoints(); ++a)
   {
@@ -557,7 +558,7 @@ vtkSmartPointer<vtkPolyData> visible_subset(vtkPolyData* atoms, const std::vecto
 vtkUnsignedCharArray* set_mask(vtkPolyData* atoms, const std::vector<bool>& visible)
 {
   vtkNew<vtkUnsignedCharArray> mask;
-  mask->SetName("Visible");
+  mask->SetName(vtkMesoArrayNames::Visible);
   for (bool v : visible)
     mask->InsertNextValue(v ? 1 : 0);
   atoms->GetPointData()->AddArray(mask);
@@ -597,7 +598,7 @@ TEST(MesoAtomMapper, VisibilityMaskHidesAtomsAndBondsWithoutNewPositions)
   masked.Window->Render();
   EXPECT_EQ(masked.Mapper->GetHiddenAtomCount(), 0);
   EXPECT_GT(differing_pixels(capture(masked.Window), capture(alone.Window)), 500);
-  masked.Mapper->SetVisibilityArrayName("Visible");
+  masked.Mapper->SetVisibilityArrayName(vtkMesoArrayNames::Visible);
   masked.Window->Render();
 
   // A new mask (a cutaway slider): the type bytes go up again, the positions do not.
@@ -804,7 +805,8 @@ TEST(MesoAtomMapper, SplitPolynomialWarpBoundsCoverTheMappedAtoms)
 {
   // A bound of 0.2 Å splits every tile into pieces; the GPU's bounds follow the pieces.
   auto mapping = mesolens_test::mapped_membrane(vtkMesoMembraneMapping::POLYNOMIAL, false, 0.2);
-  vtkDataArray* splits = mapping->GetOutput()->GetFieldData()->GetArray("PolynomialSplits");
+  vtkDataArray* splits =
+    mapping->GetOutput()->GetFieldData()->GetArray(vtkMesoArrayNames::PolynomialSplits);
   ASSERT_NE(splits, nullptr);
   ASSERT_EQ(splits->GetNumberOfTuples(), 4);
   EXPECT_GE(splits->GetRange()[1], 2.0);

@@ -8,6 +8,7 @@
 // the same atoms), ssao, shadows, translucent, parallel_viewports, scalar_colors,
 // warp_polynomial_cpu, warp_polynomial_gpu, warp_instancing_cpu, warp_instancing_gpu.
 // --radius-factor scales every radius (a test breaks the picture on purpose with 1.1).
+#include "vtkMesoArrayNames.h"
 #include "MesoAtomScenes.h"
 
 #include "vtkMesoAtomProperties.h"
@@ -82,12 +83,12 @@ vtkSmartPointer<vtkRenderWindow> vtk_sphere_mapper()
   radii->SetLengthScale(radius_factor);
   vtkNew<vtkOpenGLSphereMapper> mapper;
   mapper->SetInputConnection(radii->GetOutputPort());
-  mapper->SetScaleArray("VanDerWaalsRadius");
+  mapper->SetScaleArray(vtkMesoArrayNames::VanDerWaalsRadius);
   vtkNew<vtkMesoElementLookupTable> elements;
   mapper->SetLookupTable(elements);
   mapper->UseLookupTableScalarRangeOn();
   mapper->SetScalarModeToUsePointFieldData();
-  mapper->SelectColorArray("AtomicNumber");
+  mapper->SelectColorArray(vtkMesoArrayNames::AtomicNumber);
   mapper->SetColorModeToMapScalars();
   auto window = mesolens_test::test_window(300, 300);
   window->AddRenderer(protein_renderer(mapper, reader));
@@ -205,8 +206,9 @@ vtkSmartPointer<vtkRenderWindow> scalar_colors()
   table->Build();
   mapper->SetLookupTable(table);
   mapper->SetScalarModeToUsePointFieldData();
-  mapper->SelectColorArray("BFactor");
-  mapper->SetScalarRange(reader->GetOutput()->GetPointData()->GetArray("BFactor")->GetRange());
+  mapper->SelectColorArray(vtkMesoArrayNames::BFactor);
+  mapper->SetScalarRange(
+    reader->GetOutput()->GetPointData()->GetArray(vtkMesoArrayNames::BFactor)->GetRange());
   auto window = mesolens_test::test_window(300, 300);
   window->AddRenderer(protein_renderer(mapper, reader));
   return window;

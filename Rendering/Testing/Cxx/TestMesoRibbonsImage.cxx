@@ -10,6 +10,7 @@
 // styles_1hpv (ribbons, the inhibitor in ball-and-stick through vtkMesoAtomMapper and the
 // translucent solvent-excluded surface of the protein, composited by depth peeling). --strand-width
 // changes the strands' width (Å; a test breaks the picture on purpose with it).
+#include "vtkMesoArrayNames.h"
 #include "MesoAtomScenes.h"
 #include "mesolens_test_data.h"
 #include "mesolens_test_protein.h"
@@ -99,14 +100,17 @@ struct Cartoon
     this->Mapper->UseLookupTableScalarRangeOn();
     if (by_chain)
     {
-      const int chains =
-        int(this->Ribbons->GetOutput()->GetPointData()->GetArray("ChainIndex")->GetRange()[1]) + 1;
-      this->Mapper->SelectColorArray("ChainIndex");
+      const int chains = int(this->Ribbons->GetOutput()
+                               ->GetPointData()
+                               ->GetArray(vtkMesoArrayNames::ChainIndex)
+                               ->GetRange()[1]) +
+        1;
+      this->Mapper->SelectColorArray(vtkMesoArrayNames::ChainIndex);
       this->Mapper->SetLookupTable(chain_colours(chains));
     }
     else
     {
-      this->Mapper->SelectColorArray("SecondaryStructure");
+      this->Mapper->SelectColorArray(vtkMesoArrayNames::SecondaryStructure);
       this->Mapper->SetLookupTable(secondary_structure_colours());
     }
     this->Actor->SetMapper(this->Mapper);
@@ -145,8 +149,8 @@ vtkSmartPointer<vtkRenderWindow> styles()
   // The ligand: its atoms, as a polydata of vertices with the reader's arrays.
   static vtkNew<vtkPolyData> ligand;
   {
-    auto* residues =
-      vtkStringArray::SafeDownCast(atoms->GetPointData()->GetAbstractArray("ResidueName"));
+    auto* residues = vtkStringArray::SafeDownCast(
+      atoms->GetPointData()->GetAbstractArray(vtkMesoArrayNames::ResidueName));
     vtkNew<vtkIdList> kept;
     for (vtkIdType a = 0; a < atoms->GetNumberOfPoints(); ++a)
       if (residues->GetValue(a) == "478")

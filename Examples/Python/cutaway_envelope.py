@@ -29,6 +29,7 @@ from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkRenderWindow
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 
 import mesolens
+from mesolens import array_names
 from mesolens.lens import write_png
 
 DATA = os.environ.get("MESOLENS_DATA_DIR",
@@ -71,12 +72,12 @@ def envelope(seeds):
             continue
         data = mapped.GetPointData()
         # The mapping numbers its tiles' molecules apart; the mappings are numbered apart here.
-        ids = vtk_to_numpy(data.GetArray("MoleculeId")).astype(np.int64)
+        ids = vtk_to_numpy(data.GetArray(array_names.MoleculeId)).astype(np.int64)
         unique = numpy_to_vtk(first_id + ids, deep=1)
-        unique.SetName("MoleculeId")
+        unique.SetName(array_names.MoleculeId)
         data.AddArray(unique)
         first_id += int(ids.max()) + 1
-        names = data.GetAbstractArray("ResidueName")
+        names = data.GetAbstractArray(array_names.ResidueName)
         colour = numpy_to_vtk(np.array([names.GetValue(i) == "CHOL"
                                         for i in range(names.GetNumberOfValues())],
                                        dtype=np.float32), deep=1)
@@ -100,7 +101,7 @@ def main():
 
     start = time.monotonic()
     vesicle = envelope(args.seeds)
-    lipids = len(np.unique(vtk_to_numpy(vesicle.GetPointData().GetArray("MoleculeId"))))
+    lipids = len(np.unique(vtk_to_numpy(vesicle.GetPointData().GetArray(array_names.MoleculeId))))
     print(f"built the envelope: {lipids} lipids, {vesicle.GetNumberOfPoints()} beads in "
           f"{time.monotonic() - start:.1f} s")
 
@@ -162,8 +163,8 @@ def main():
         keep.append((beads, mapper, actor, renderer))
         fields = beads.GetFieldData()
         print(f"{'random' if random_order else 'structured'}: "
-              f"{fields.GetArray('MoleculesHidden').GetValue(0)} of "
-              f"{fields.GetArray('MoleculesInCut').GetValue(0)} lipids in the cut hidden "
+              f"{fields.GetArray(array_names.MoleculesHidden).GetValue(0)} of "
+              f"{fields.GetArray(array_names.MoleculesInCut).GetValue(0)} lipids in the cut hidden "
               f"(update {1e3 * seconds:.0f} ms)")
     window.Render()
     write_png(window, args.output)

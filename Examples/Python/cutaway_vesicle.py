@@ -24,6 +24,7 @@ from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkRenderWindow
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 
 import mesolens
+from mesolens import array_names
 from mesolens.lens import write_png
 
 DATA = os.environ.get("MESOLENS_DATA_DIR",
@@ -113,8 +114,8 @@ def main():
             renderer.ResetCamera(frame)
             window.AddRenderer(renderer)
             keep.append((beads, mapper, actor, renderer))
-            hidden = cutaway.GetOutput().GetFieldData().GetArray("MoleculesHidden").GetValue(0)
-            cut_count = cutaway.GetOutput().GetFieldData().GetArray("MoleculesInCut").GetValue(0)
+            hidden = cutaway.GetOutput().GetFieldData().GetArray(array_names.MoleculesHidden).GetValue(0)
+            cut_count = cutaway.GetOutput().GetFieldData().GetArray(array_names.MoleculesInCut).GetValue(0)
             print(f"{'random' if random_order else 'structured'} {fraction:.0%}: {hidden} of "
                   f"{cut_count} lipids in the cut hidden")
     window.Render()

@@ -23,6 +23,7 @@ from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRendere
 from vtkmodules.vtkRenderingOpenGL2 import vtkOpenGLSphereMapper
 
 import mesolens
+from mesolens import array_names
 
 DATA = os.environ.get("MESOLENS_DATA_DIR",
                       os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Data"))
@@ -64,11 +65,11 @@ def main():
 
     atoms_mapper = vtkOpenGLSphereMapper()
     atoms_mapper.SetInputConnection(radii.GetOutputPort())
-    atoms_mapper.SetScaleArray("VanDerWaalsRadius")
+    atoms_mapper.SetScaleArray(array_names.VanDerWaalsRadius)
     atoms_mapper.SetLookupTable(mesolens.vtkMesoElementLookupTable())
     atoms_mapper.UseLookupTableScalarRangeOn()
     atoms_mapper.SetScalarModeToUsePointFieldData()
-    atoms_mapper.SelectColorArray("AtomicNumber")
+    atoms_mapper.SelectColorArray(array_names.AtomicNumber)
     atoms_mapper.SetColorModeToMapScalars()
     atoms = vtkActor()
     atoms.SetMapper(atoms_mapper)
@@ -94,7 +95,7 @@ def main():
         if not mapping.GetExecutive().Update():
             raise SystemExit(f"mapping with {name} failed")
         mapped = mapping.GetOutput()
-        change = vtk_to_numpy(mapped.GetCellData().GetArray("BondLengthChange"))[mapped.GetNumberOfVerts():]
+        change = vtk_to_numpy(mapped.GetCellData().GetArray(array_names.BondLengthChange))[mapped.GetNumberOfVerts():]
         print(f"{name}: {mapped.GetNumberOfPoints()} atoms in {args.tiles}x{args.tiles} tiles, "
               f"bond length change median {np.median(np.abs(change)):.2e}, "
               f"95th percentile {np.percentile(np.abs(change), 95):.2e}")

@@ -13,6 +13,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 
 import mesolens
+from mesolens import array_names
 
 DATA = os.environ.get("MESOLENS_DATA_DIR",
                       os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Data"))
@@ -30,7 +31,7 @@ def main():
     for time in times:
         reader.UpdateTimeStep(time)
         atoms = reader.GetOutput()
-        names = atoms.GetPointData().GetAbstractArray("AtomName")
+        names = atoms.GetPointData().GetAbstractArray(array_names.AtomName)
         phosphorus = np.array([names.GetValue(i) == "P" for i in range(names.GetNumberOfValues())])
         z = vtk_to_numpy(atoms.GetPoints().GetData())[phosphorus, 2]
         middle = np.median(z)

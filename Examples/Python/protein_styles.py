@@ -23,6 +23,7 @@ from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRendere
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 
 import mesolens
+from mesolens import array_names
 from mesolens.lens import write_png
 
 DATA = os.environ.get("MESOLENS_DATA_DIR",
@@ -45,7 +46,7 @@ def secondary_structure_colours():
 
 def residue_atoms(atoms, residue_name):
     """The atoms of one residue name, with their point data and the bonds among them."""
-    names = atoms.GetPointData().GetAbstractArray("ResidueName")
+    names = atoms.GetPointData().GetAbstractArray(array_names.ResidueName)
     rows = [a for a in range(atoms.GetNumberOfPoints()) if names.GetValue(a) == residue_name]
     kept = vtkIdList()
     for row in rows:
@@ -98,7 +99,7 @@ def main():
     ribbon_mapper = vtkPolyDataMapper()
     ribbon_mapper.SetInputConnection(ribbons.GetOutputPort())
     ribbon_mapper.SetScalarModeToUsePointFieldData()
-    ribbon_mapper.SelectColorArray("SecondaryStructure")
+    ribbon_mapper.SelectColorArray(array_names.SecondaryStructure)
     ribbon_mapper.SetColorModeToMapScalars()  # unsigned char codes, not colours
     ribbon_mapper.SetLookupTable(secondary_structure_colours())
     ribbon_mapper.UseLookupTableScalarRangeOn()
@@ -116,15 +117,15 @@ def main():
     ligand_actor = vtkActor()
     ligand_actor.SetMapper(ligand_mapper)
 
-    hetero = vtk_to_numpy(atoms.GetPointData().GetArray("IsHetAtm")) != 0
+    hetero = vtk_to_numpy(atoms.GetPointData().GetArray(array_names.IsHetAtm)) != 0
     protein = vtkPolyData()
     protein_points = vtkPoints()
     protein_points.SetData(numpy_to_vtk(np.ascontiguousarray(
         vtk_to_numpy(atoms.GetPoints().GetData())[~hetero], dtype=np.float32), deep=1))
     protein.SetPoints(protein_points)
     elements = numpy_to_vtk(np.ascontiguousarray(
-        vtk_to_numpy(atoms.GetPointData().GetArray("AtomicNumber"))[~hetero]), deep=1)
-    elements.SetName("AtomicNumber")
+        vtk_to_numpy(atoms.GetPointData().GetArray(array_names.AtomicNumber))[~hetero]), deep=1)
+    elements.SetName(array_names.AtomicNumber)
     protein.GetPointData().AddArray(elements)
     surface = mesolens.vtkMesoMolecularSurface()
     surface.SetInputData(protein)
@@ -157,7 +158,7 @@ def main():
     window.AddRenderer(renderer)
     window.Render()
     write_png(window, args.output)
-    chains = assignment.GetOutput().GetFieldData().GetAbstractArray("DSSP")
+    chains = assignment.GetOutput().GetFieldData().GetAbstractArray(array_names.DSSP)
     for chain in range(chains.GetNumberOfValues()):
         print(f"chain {chain}: {chains.GetValue(chain)}")
     print(f"{ligand.GetNumberOfPoints()} inhibitor atoms, "

@@ -12,6 +12,7 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkIOXML import vtkXMLPolyDataWriter
 
 import mesolens
+from mesolens import array_names
 
 DATA = os.environ.get("MESOLENS_DATA_DIR",
                       os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Data"))
@@ -30,12 +31,12 @@ def main():
         raise SystemExit(f"cannot read {args.file}")
     atoms = reader.GetOutput()
     data = atoms.GetPointData()
-    chains = data.GetAbstractArray("ChainId")
-    elements = data.GetAbstractArray("Element")
-    structure = vtk_to_numpy(data.GetArray("SecondaryStructure"))
+    chains = data.GetAbstractArray(array_names.ChainId)
+    elements = data.GetAbstractArray(array_names.Element)
+    structure = vtk_to_numpy(data.GetArray(array_names.SecondaryStructure))
     print(f"{args.file}: {reader.GetNumberOfModels()} model(s), {atoms.GetNumberOfPoints()} atoms, "
           f"{atoms.GetNumberOfLines()} bonds, "
-          f"{int(vtk_to_numpy(data.GetArray('MoleculeId')).max()) + 1} molecules")
+          f"{int(vtk_to_numpy(data.GetArray(array_names.MoleculeId)).max()) + 1} molecules")
     per_chain = collections.Counter(chains.GetValue(i) for i in range(chains.GetNumberOfValues()))
     print("atoms per chain:", dict(sorted(per_chain.items())))
     per_element = collections.Counter(elements.GetValue(i) for i in range(elements.GetNumberOfValues()))

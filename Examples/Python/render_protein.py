@@ -14,6 +14,7 @@ from vtkmodules.vtkRenderingCore import (vtkActor, vtkGlyph3DMapper, vtkRenderer
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (registers the OpenGL back end)
 
 import mesolens
+from mesolens import array_names
 
 DATA = os.environ.get("MESOLENS_DATA_DIR",
                       os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Data"))
@@ -35,13 +36,13 @@ def main():
     mapper = vtkGlyph3DMapper()
     mapper.SetInputConnection(radii.GetOutputPort())
     mapper.SetSourceConnection(sphere.GetOutputPort())
-    mapper.SetScaleArray("VanDerWaalsRadius")
+    mapper.SetScaleArray(array_names.VanDerWaalsRadius)
     mapper.SetScaleModeToScaleByMagnitude()
     mapper.SetScaleFactor(2.0)  # the source sphere has diameter 1
     mapper.SetLookupTable(mesolens.vtkMesoElementLookupTable())
     mapper.UseLookupTableScalarRangeOn()
     mapper.SetScalarModeToUsePointFieldData()
-    mapper.SelectColorArray("AtomicNumber")
+    mapper.SelectColorArray(array_names.AtomicNumber)
     actor = vtkActor()
     actor.SetMapper(mapper)
     renderer = vtkRenderer()

@@ -21,6 +21,7 @@ from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRendere
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 
 import mesolens
+from mesolens import array_names
 from mesolens.lens import write_png
 
 DATA = os.environ.get("MESOLENS_DATA_DIR",
@@ -73,8 +74,8 @@ def main():
     mapper = vtkPolyDataMapper()
     mapper.SetInputData(mesh)
     mapper.SetScalarModeToUsePointFieldData()
-    array, colours = (("ChainIndex", CHAIN_COLOURS) if args.colour_by == "chain"
-                      else ("PatchType", PATCH_COLOURS))
+    array, colours = ((array_names.ChainIndex, CHAIN_COLOURS) if args.colour_by == "chain"
+                      else (array_names.PatchType, PATCH_COLOURS))
     mapper.SelectColorArray(array)
     mapper.SetColorModeToMapScalars()
     mapper.SetLookupTable(lookup_table(colours))
@@ -99,8 +100,8 @@ def main():
     window.AddRenderer(renderer)
     window.Render()
     write_png(window, args.output)
-    print(f"1tii: {reader.GetOutput().GetNumberOfPoints()} atoms; SES {field(mesh, 'Area'):.0f} Å2, "
-          f"{field(mesh, 'Volume'):.0f} Å3, {int(field(mesh, 'CavityCount'))} cavities, "
+    print(f"1tii: {reader.GetOutput().GetNumberOfPoints()} atoms; SES {field(mesh, array_names.Area):.0f} Å2, "
+          f"{field(mesh, array_names.Volume):.0f} Å3, {int(field(mesh, array_names.CavityCount))} cavities, "
           f"{mesh.GetNumberOfPolys()} triangles at {args.tolerance} Å in {seconds:.2f} s; "
           f"wrote {args.output}")
 

@@ -14,6 +14,7 @@ import unittest
 import numpy as np
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
+from mesolens import array_names
 from mesolens.lens import LensError, MembraneLens
 from mesolens.viewer import CUT_SLIDER_ENDS, LensViewer
 
@@ -163,7 +164,7 @@ def cut_atoms(lens):
     lens' cut plane (counted here, not by the filter); and the largest molecule's atoms."""
     atoms = lens.cutaway.GetInput()
     points = vtk_to_numpy(atoms.GetPoints().GetData()).astype(np.float64)
-    molecule = np.unique(vtk_to_numpy(atoms.GetPointData().GetArray("MoleculeId")),
+    molecule = np.unique(vtk_to_numpy(atoms.GetPointData().GetArray(array_names.MoleculeId)),
                          return_inverse=True)[1]
     sizes = np.bincount(molecule)
     centres = np.column_stack([np.bincount(molecule, points[:, d]) for d in range(3)])
@@ -174,7 +175,7 @@ def cut_atoms(lens):
 
 def visible_mask(lens):
     lens.cut_counts()  # brings the cutaway up to date
-    return vtk_to_numpy(lens.cutaway.GetOutput().GetPointData().GetArray("Visible")).copy()
+    return vtk_to_numpy(lens.cutaway.GetOutput().GetPointData().GetArray(array_names.Visible)).copy()
 
 
 class Cutaway(unittest.TestCase):

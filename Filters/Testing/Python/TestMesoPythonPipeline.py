@@ -14,6 +14,7 @@ from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 import mesolens
+from mesolens import array_names
 
 DATA = os.environ["MESOLENS_DATA_DIR"]
 
@@ -36,7 +37,7 @@ class PythonPipeline(unittest.TestCase):
         self.assertGreater(tubes.GetOutput().GetNumberOfPoints(), 608 * 2)
         atoms = reader.GetOutput()
         self.assertIsInstance(atoms, vtkPolyData)
-        numbers = vtk_to_numpy(atoms.GetPointData().GetArray("AtomicNumber"))
+        numbers = vtk_to_numpy(atoms.GetPointData().GetArray(array_names.AtomicNumber))
         self.assertEqual(len(numbers), 660)
         self.assertEqual(int((numbers == 8).sum()), 118 + 58)  # protein O + water O
 
@@ -54,7 +55,7 @@ class PythonPipeline(unittest.TestCase):
         self.assertEqual(report.GetEulerCharacteristic(), 2)
         out = report.GetOutput()
         self.assertIsInstance(out, vtkPolyData)
-        self.assertEqual(out.GetFieldData().GetArray("NumberOfComponents").GetValue(0), 1)
+        self.assertEqual(out.GetFieldData().GetArray(array_names.NumberOfComponents).GetValue(0), 1)
 
     def test_trajectory_time_steps(self):
         reader = mesolens.vtkMesoTrajectoryReader()
@@ -65,7 +66,7 @@ class PythonPipeline(unittest.TestCase):
         reader.UpdateTimeStep(60000.0)
         out = reader.GetOutput()
         self.assertEqual(out.GetNumberOfPoints(), 43480)
-        self.assertEqual(out.GetFieldData().GetArray("FrameIndex").GetValue(0), 3)
+        self.assertEqual(out.GetFieldData().GetArray(array_names.FrameIndex).GetValue(0), 3)
 
     def test_cartoon_pipeline_with_level_of_detail(self):
         # Reader -> DSSP -> ribbons -> a VTK mapper, steered by the level-of-detail helper.
@@ -77,11 +78,11 @@ class PythonPipeline(unittest.TestCase):
         ribbons = mesolens.vtkMesoRibbons()
         ribbons.SetInputConnection(dssp.GetOutputPort())
         ribbons.Update()
-        chains = dssp.GetOutput().GetFieldData().GetAbstractArray("DSSP")
+        chains = dssp.GetOutput().GetFieldData().GetAbstractArray(array_names.DSSP)
         self.assertEqual(chains.GetValue(0),  # mkdssp 4.2.2
                          "-EEEEEETTS-EEEEE--TTSBHHHHHHHHHHHH---GGGEEEEETTEEPPTTSBTGGGTPPTT-EEEEEE--S--")
         self.assertGreater(ribbons.GetOutput().GetNumberOfPolys(), 5000)
-        colours = vtk_to_numpy(ribbons.GetOutput().GetPointData().GetArray("BFactor"))
+        colours = vtk_to_numpy(ribbons.GetOutput().GetPointData().GetArray(array_names.BFactor))
         self.assertGreater(colours.max(), colours.min())
         mapper = vtkPolyDataMapper()
         mapper.SetInputConnection(ribbons.GetOutputPort())

@@ -11,6 +11,7 @@ from vtkmodules.vtkCommonExecutionModel import vtkStreamingDemandDrivenPipeline
 from vtkmodules.util.numpy_support import vtk_to_numpy
 
 import mesolens
+from mesolens import array_names
 
 DATA = os.environ["MESOLENS_DATA_DIR"]
 
@@ -54,7 +55,7 @@ class TrajectoryRefinement(unittest.TestCase):
         _, key0 = points_at(keys, 0.0)
         _, key3 = points_at(keys, 60000.0)
         out, middle = points_at(refinement, times[3])
-        self.assertEqual(out.GetFieldData().GetArray("RefinedFrameIndex").GetValue(0), 3)
+        self.assertEqual(out.GetFieldData().GetArray(array_names.RefinedFrameIndex).GetValue(0), 3)
         expected = (-key0 + 9 * key1 + 9 * key2 - key3) / 16
         self.assertLess(abs(middle - expected).max(), 1e-3)
         self.assertEqual(out.GetNumberOfPoints(), 43480)

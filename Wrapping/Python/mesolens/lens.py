@@ -28,6 +28,7 @@ from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPlane, vtkPolyData
 from vtkmodules.vtkFiltersCore import vtkPolyDataNormals, vtkProbeFilter
 from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderer
 
+from . import array_names
 from .MesoLensFilters import (vtkMesoMembraneMapping, vtkMesoMeshReader,
                               vtkMesoStructureReader, vtkMesoStructuredCutaway,
                               vtkMesoTrajectoryReader, vtkMesoTrajectoryRefinement)
@@ -103,12 +104,12 @@ class _StableMoleculeArrays(VTKPythonAlgorithmBase):
         output = vtkPolyData.GetData(out_info)
         output.ShallowCopy(atoms)
         point_data = atoms.GetPointData()
-        molecules = point_data.GetArray("MoleculeId")
+        molecules = point_data.GetArray(array_names.MoleculeId)
         if molecules is None or atoms.GetNumberOfPoints() == 0:
             return 1
         ids = vtk_to_numpy(molecules)
         if self._ids is None or not np.array_equal(ids, self._ids):
-            names = point_data.GetAbstractArray("ResidueName")
+            names = point_data.GetAbstractArray(array_names.ResidueName)
             self._ids = ids.copy()
             self._arrays = (molecules,) + ((names,) if names is not None else ())
         for array in self._arrays:  # replace the input's arrays of these names in the output
@@ -125,7 +126,7 @@ def surface_lattice(disk, edge):
     wireframe. Empty where the disk has no parameterization."""
     output = vtkPolyData()
     point_data = disk.GetPointData()
-    uv_array = point_data.GetTCoords() or point_data.GetArray("TextureCoordinates")
+    uv_array = point_data.GetTCoords() or point_data.GetArray(array_names.TextureCoordinates)
     if uv_array is None or disk.GetNumberOfPolys() == 0:
         return output
     uv = vtk_to_numpy(uv_array)[:, :2].astype(np.float64)
@@ -557,8 +558,8 @@ class MembraneLens:
         self.cutaway.Update()
         self._cutaway_errors.take()  # place() reports failures; here only the numbers count
         fields = self.cutaway.GetOutput().GetFieldData()
-        hidden = fields.GetArray("MoleculesHidden")
-        in_cut = fields.GetArray("MoleculesInCut")
+        hidden = fields.GetArray(array_names.MoleculesHidden)
+        in_cut = fields.GetArray(array_names.MoleculesInCut)
         if hidden is None or in_cut is None:
             return None
         return int(hidden.GetValue(0)), int(in_cut.GetValue(0))
@@ -632,17 +633,17 @@ class MembraneLens:
     def tiles_mapped(self):
         """k of the k x k tiles mapped (fewer than asked where they do not fit), 0 before
         place()."""
-        value = self._mapping_field("TilesMapped") if self.centre is not None else None
+        value = self._mapping_field(array_names.TilesMapped) if self.centre is not None else None
         return int(value) if value is not None else 0
 
     def cut_to_disk(self):
         """Whether the mapping cut its one tile to the disk (not even one tile fitted)."""
-        value = self._mapping_field("CutToDisk") if self.centre is not None else None
+        value = self._mapping_field(array_names.CutToDisk) if self.centre is not None else None
         return bool(value)
 
     def mapping_note(self):
         """What was mapped instead of what was asked, and why; '' when the request was met."""
-        value = self._mapping_field("MappingNote") if self.centre is not None else None
+        value = self._mapping_field(array_names.MappingNote) if self.centre is not None else None
         return value or ""
 
     def atom_count(self):
@@ -653,7 +654,7 @@ class MembraneLens:
         if self.cutaway_on:
             self.cutaway.Update()
             self._cutaway_errors.take()
-            visible = self.cutaway.GetOutput().GetPointData().GetArray("Visible")
+            visible = self.cutaway.GetOutput().GetPointData().GetArray(array_names.Visible)
             if visible is None:
                 return 0
             return int(np.count_nonzero(vtk_to_numpy(visible)))

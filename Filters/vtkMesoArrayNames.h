@@ -134,6 +134,7 @@ constexpr const char* PatchCentreHeight = "PatchCentreHeight";
 constexpr const char* LayerHalfThickness = "LayerHalfThickness";
 constexpr const char* GeodesicRadius = "GeodesicRadius";
 constexpr const char* SeedUV = "SeedUV";
+constexpr const char* SeedNormal = "SeedNormal";
 constexpr const char* RefinementLevels = "RefinementLevels";
 constexpr const char* PolynomialCoefficients = "PolynomialCoefficients";
 constexpr const char* PolynomialSplits = "PolynomialSplits";

@@ -6,10 +6,12 @@
 #include "vtkMesoMembraneWarp.h"
 
 #include "vtkMesoParallelFor.h"
+#include "vtkMesoStamp.h"
 #include "vtkMesoSurfaceConversion.h"
 
 #include "mesolens/molecules/elements.h"
 #include "mesolens/common/errors.h"
+#include "mesolens/mapping/chart_lattice.h"
 #include "mesolens/mapping/membrane_mapper.h"
 
 #include <vtkCellArray.h>
@@ -19,7 +21,7 @@
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
-#include <vtkIdList.h>
+#include <vtkSmartPointer.h>
 #include <vtkIdTypeArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
@@ -127,34 +129,107 @@ PatchData read_patch(vtkPolyData* atoms)
   return data;
 }
 
-/// Output 0: the mapped atoms, bonds and arrays, k^2 copies of the patch (atoms a cut tile
-/// dropped left out). MoleculeId is made unique over the tiles: tile t's molecule m becomes
-/// t (largest id + 1) + m.
-void build_atoms(vtkPolyData* atoms, const PatchData& data, const mesolens::MappedMembrane& mapped,
-                 const std::vector<double>& bond_changes, vtkPolyData* output)
+/// Output index of every copied atom (tile-major), -1 where a cut tile dropped it; and the count
+/// kept.
+std::vector<vtkIdType> kept_atoms(const mesolens::MappedMembrane& mapped, vtkIdType copies,
+                                  vtkIdType& total)
 {
-  const vtkIdType n = atoms->GetNumberOfPoints();
-  const vtkIdType tiles = static_cast<vtkIdType>(mapped.positions.size() / (3 * std::size_t(n)));
-  const vtkIdType copies = n * tiles;
-  // Output index of every copied atom, -1 when dropped.
   std::vector<vtkIdType> kept(static_cast<std::size_t>(copies));
-  vtkIdType total = 0;
+  total = 0;
   for (vtkIdType i = 0; i < copies; ++i)
   {
     const bool mapped_here = mapped.atom_mapped.empty() || mapped.atom_mapped[std::size_t(i)];
     kept[std::size_t(i)] = mapped_here ? total++ : -1;
   }
+  return kept;
+}
+
+/// The mapped atoms' point arrays: the patch's, once per tile, with TileId, and MoleculeId made
+/// unique over the tiles (tile t's molecule m becomes t (largest id + 1) + m). Kept, the same
+/// array objects, while the patch's arrays, the tiles and the kept atoms stay: a new frame then
+/// changes only the positions, and what groups atoms by their arrays downstream (the cutaway)
+/// keeps its work.
+struct TileArrays
+{
+  std::vector<vtkMesoStamp> From;
+  std::vector<vtkIdType> Kept;
+  vtkSmartPointer<vtkPointData> Arrays;
+
+  vtkPointData* For(vtkPolyData* atoms, const PatchData& data, const std::vector<vtkIdType>& kept,
+                    vtkIdType total)
+  {
+    vtkPointData* in = atoms->GetPointData();
+    std::vector<vtkMesoStamp> from;
+    for (int a = 0; a < in->GetNumberOfArrays(); ++a)
+    {
+      from.push_back(vtkMesoStamp::Of(in->GetAbstractArray(a)));
+    }
+    if (this->Arrays && from == this->From && kept == this->Kept)
+    {
+      return this->Arrays;
+    }
+    const vtkIdType n = atoms->GetNumberOfPoints();
+    const auto copies = static_cast<vtkIdType>(kept.size());
+    this->Arrays = vtkSmartPointer<vtkPointData>::New();
+    vtkPointData* out = this->Arrays;
+    out->CopyAllocate(in, total);
+    vtkNew<vtkIntArray> tile_ids;
+    tile_ids->SetName(vtkMesoArrayNames::TileId);
+    tile_ids->SetNumberOfValues(total);
+    for (vtkIdType i = 0; i < copies; ++i)
+    {
+      if (kept[std::size_t(i)] >= 0)
+      {
+        out->CopyData(in, i % n, kept[std::size_t(i)]);
+        tile_ids->SetValue(kept[std::size_t(i)], static_cast<int>(i / n));
+      }
+    }
+    out->AddArray(tile_ids);
+    if (!data.molecule_ids.empty())
+    {
+      const int stride = *std::max_element(data.molecule_ids.begin(), data.molecule_ids.end()) + 1;
+      vtkNew<vtkIntArray> molecules;
+      molecules->SetName(vtkMesoArrayNames::MoleculeId);
+      molecules->SetNumberOfValues(total);
+      for (vtkIdType i = 0; i < copies; ++i)
+      {
+        if (kept[std::size_t(i)] >= 0)
+        {
+          molecules->SetValue(kept[std::size_t(i)],
+                              static_cast<int>(i / n) * stride +
+                                data.molecule_ids[std::size_t(i % n)]);
+        }
+      }
+      out->RemoveArray(vtkMesoArrayNames::MoleculeId);
+      out->AddArray(molecules);
+    }
+    if (in->GetArray(vtkMesoArrayNames::AtomicNumber))
+    {
+      out->SetActiveScalars(vtkMesoArrayNames::AtomicNumber);
+    }
+    this->From = std::move(from);
+    this->Kept = kept;
+    return out;
+  }
+};
+
+/// Output 0: the mapped atoms, bonds and arrays, k^2 copies of the patch (atoms a cut tile
+/// dropped left out), with each bond's BondLengthChange (0 for the atoms' vertices).
+void build_atoms(vtkPolyData* atoms, const PatchData& data, const mesolens::MappedMembrane& mapped,
+                 const std::vector<double>& bond_changes, TileArrays& arrays, vtkPolyData* output)
+{
+  const vtkIdType n = atoms->GetNumberOfPoints();
+  const vtkIdType tiles = static_cast<vtkIdType>(mapped.positions.size() / (3 * std::size_t(n)));
+  vtkIdType total = 0;
+  const std::vector<vtkIdType> kept = kept_atoms(mapped, n * tiles, total);
   vtkNew<vtkDoubleArray> coordinates;
   coordinates->SetNumberOfComponents(3);
   coordinates->SetNumberOfTuples(total);
-  vtkNew<vtkIdList> source_ids;
-  source_ids->SetNumberOfIds(total);
-  for (vtkIdType i = 0; i < copies; ++i)
+  for (vtkIdType i = 0; i < n * tiles; ++i)
   {
     if (kept[std::size_t(i)] >= 0)
     {
       coordinates->SetTypedTuple(kept[std::size_t(i)], mapped.positions.data() + 3 * i);
-      source_ids->SetId(kept[std::size_t(i)], i % n);
     }
   }
   vtkNew<vtkPoints> points;
@@ -180,48 +255,8 @@ void build_atoms(vtkPolyData* atoms, const PatchData& data, const mesolens::Mapp
     }
   }
   output->SetLines(lines);
+  output->GetPointData()->ShallowCopy(arrays.For(atoms, data, kept, total));
 
-  // The patch's point arrays, once per tile, and the tile of every atom.
-  vtkPointData* in = atoms->GetPointData();
-  vtkPointData* out = output->GetPointData();
-  out->CopyAllocate(in, total);
-  for (vtkIdType i = 0; i < total; ++i)
-  {
-    out->CopyData(in, source_ids->GetId(i), i);
-  }
-  vtkNew<vtkIntArray> tile_ids;
-  tile_ids->SetName(vtkMesoArrayNames::TileId);
-  tile_ids->SetNumberOfValues(total);
-  for (vtkIdType i = 0; i < copies; ++i)
-  {
-    if (kept[std::size_t(i)] >= 0)
-    {
-      tile_ids->SetValue(kept[std::size_t(i)], static_cast<int>(i / n));
-    }
-  }
-  out->AddArray(tile_ids);
-  if (!data.molecule_ids.empty())
-  {
-    const int stride = *std::max_element(data.molecule_ids.begin(), data.molecule_ids.end()) + 1;
-    vtkNew<vtkIntArray> molecules;
-    molecules->SetName(vtkMesoArrayNames::MoleculeId);
-    molecules->SetNumberOfValues(total);
-    for (vtkIdType i = 0; i < copies; ++i)
-    {
-      if (kept[std::size_t(i)] >= 0)
-      {
-        molecules->SetValue(kept[std::size_t(i)],
-                            static_cast<int>(i / n) * stride +
-                              data.molecule_ids[std::size_t(i % n)]);
-      }
-    }
-    out->RemoveArray(vtkMesoArrayNames::MoleculeId);
-    out->AddArray(molecules);
-  }
-  if (in->GetArray(vtkMesoArrayNames::AtomicNumber))
-  {
-    out->SetActiveScalars(vtkMesoArrayNames::AtomicNumber);
-  }
   vtkNew<vtkFloatArray> change;
   change->SetName(vtkMesoArrayNames::BondLengthChange);
   change->SetNumberOfValues(total + static_cast<vtkIdType>(kept_changes.size()));
@@ -241,13 +276,14 @@ void build_atoms(vtkPolyData* atoms, const PatchData& data, const mesolens::Mapp
 struct vtkMesoMembraneMapping::State
 {
   vtkMesoSurfaceConversion::SurfaceMapper Mapper;
+  TileArrays MappedArrays;
 };
 
 vtkMesoMembraneMapping::vtkMesoMembraneMapping()
   : Internal(new State)
 {
   this->SetNumberOfInputPorts(2);
-  this->SetNumberOfOutputPorts(2);
+  this->SetNumberOfOutputPorts(3);
 }
 
 vtkMesoMembraneMapping::~vtkMesoMembraneMapping() = default;
@@ -263,7 +299,7 @@ int vtkMesoMembraneMapping::RequestInformation(vtkInformation*, vtkInformationVe
 {
   // The membrane (input 1) may be a trajectory: its time steps are the output's.
   vtkInformation* membrane = inputVector[1]->GetInformationObject(0);
-  for (int port = 0; port < 2; ++port)
+  for (int port = 0; port < 3; ++port)
   {
     vtkInformation* out = outputVector->GetInformationObject(port);
     out->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
@@ -284,8 +320,10 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
   vtkPolyData* atoms = vtkPolyData::GetData(inputVector[1]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* disk_output = vtkPolyData::GetData(outputVector, 1);
+  vtkPolyData* lattice_output = vtkPolyData::GetData(outputVector, 2);
   output->Initialize();
   disk_output->Initialize();
+  lattice_output->Initialize();
   try
   {
     if (!surface || !atoms)
@@ -325,7 +363,8 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
     if (!mapped.positions.empty())
     {
       build_atoms(atoms, data, mapped,
-                  mesolens::bond_length_changes(data.patch, mapped, data.bonds, scale), output);
+                  mesolens::bond_length_changes(data.patch, mapped, data.bonds, scale),
+                  this->Internal->MappedArrays, output);
     }
     vtkMesoMembraneWarp::Write(mesolens::membrane_warp(result, data.patch, request),
                                output->GetFieldData());
@@ -338,12 +377,19 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
     vtkMesoSurfaceConversion::AddDiskArrays(chart.disk, chart.radius, disk_output);
     vtkMesoSurfaceConversion::AddParameterizationArrays(chart.parameterization, chart.radius,
                                                         disk_output);
+    if (this->LatticeEdge > 0)
+    {
+      vtkMesoSurfaceConversion::FromTriangleMesh(
+        mesolens::chart_lattice(chart.chart, chart.parameterization.uv, this->LatticeEdge),
+        lattice_output);
+    }
   }
   catch (const mesolens::Error& e)
   {
     vtkErrorMacro("Cannot map the membrane: " << e.what());
     output->Initialize();
     disk_output->Initialize();
+    lattice_output->Initialize();
     return 0;
   }
   this->UpdateProgress(1.0);
@@ -368,5 +414,6 @@ void vtkMesoMembraneMapping::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaximumDiskTriangles: " << this->MaximumDiskTriangles << "\n";
   os << indent << "MaximumStretch: " << this->MaximumStretch << "\n";
   os << indent << "MapWhatFits: " << (this->MapWhatFits ? "on" : "off") << "\n";
+  os << indent << "LatticeEdge: " << this->LatticeEdge << "\n";
   os << indent << "OutputAtoms: " << (this->OutputAtoms ? "on" : "off") << "\n";
 }

@@ -46,8 +46,12 @@
  * t) = 2 f - 1 from the atom's fractional coordinates f in its piece and h = (z - centre) / e; see
  * mesolens::evaluate_tile_polynomial), `PolynomialResidualRMS`, `PolynomialResidualMax` (per tile,
  * mesh units) and `PolynomialFallbackTiles` (per tile, 1 = displaced); MOLECULE_INSTANCING adds
- * `InstanceMatrices` (16 per instance, row-major), `InstanceMoleculeId`, `InstanceTileId`. Output
- * 1: the parameterized disk (TextureCoordinates, GeodesicDistance, distortions).
+ * `InstanceMatrices` (16 per instance, row-major), `InstanceMoleculeId`, `InstanceTileId`; and
+ * `SeedNormal` (3), the surface's normal at the seed, where the patch's +z goes. These arrays
+ * are the mesolens::MembraneWarp of vtkMesoMembraneWarp. Output 1: the parameterized disk
+ * (TextureCoordinates, GeodesicDistance, distortions). Output 2, when LatticeEdge > 0: a
+ * regular triangle lattice of that edge laid on the disk (mesolens::chart_lattice), the
+ * structure to cut the mapped membrane along with vtkMesoStructuredCutaway.
  *
  * The surface's preparation and the most recent disks and parameterizations
  * (mesolens::MembraneMapper) are kept while the surface stays the same, so a new trajectory
@@ -158,6 +162,13 @@ public:
   ///@}
 
   ///@{
+  /// The edge of the lattice of output 2, mesh units; 0 (default): no lattice. A tenth of the
+  /// disk's radius or more keeps it to a few hundred triangles.
+  vtkSetClampMacro(LatticeEdge, double, 0.0, VTK_DOUBLE_MAX);
+  vtkGetMacro(LatticeEdge, double);
+  ///@}
+
+  ///@{
   /// Map every atom into output 0 (on, default), or (off) leave output 0 without atoms and
   /// bonds, holding only the field data: for POLYNOMIAL and MOLECULE_INSTANCING, whose
   /// coefficients or matrices vtkMesoAtomMapper evaluates on the GPU (its warp input).
@@ -227,6 +238,7 @@ protected:
   double MaximumStretch = 1.5;
   bool MapWhatFits = true;
   bool OutputAtoms = true;
+  double LatticeEdge = 0;
 
 private:
   vtkMesoMembraneMapping(const vtkMesoMembraneMapping&) = delete;

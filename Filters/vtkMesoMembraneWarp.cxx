@@ -82,6 +82,7 @@ void vtkMesoMembraneWarp::Write(const mesolens::MembraneWarp& warp, vtkFieldData
   add(fields, names::PatchCentreHeight, warp.centre_height);
   add(fields, names::LayerHalfThickness, warp.layer_half_thickness);
   add(fields, names::SeedUV, warp.seed_uv, 2);
+  add(fields, names::SeedNormal, warp.seed_normal, 3);
   add(fields, names::RefinementLevels, double(warp.refinement_levels));
   if (!warp.polynomial_coefficients.empty())
   {
@@ -147,6 +148,10 @@ bool vtkMesoMembraneWarp::Read(vtkFieldData* fields, mesolens::MembraneWarp& war
   if (const double* seed = tuple(fields, names::SeedUV, 2))
   {
     warp.seed_uv = { seed[0], seed[1] };
+  }
+  if (const double* normal = tuple(fields, names::SeedNormal, 3))
+  {
+    warp.seed_normal = { normal[0], normal[1], normal[2] };
   }
   if (const double* levels = tuple(fields, names::RefinementLevels, 1))
   {

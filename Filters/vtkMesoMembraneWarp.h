@@ -6,7 +6,8 @@
  *
  * Arrays (vtkMesoArrayNames): MappingMethod, Tiles, TilesRequested, TilesMapped, CutToDisk,
  * MappingNote (string), MembraneToMeshScale, PatchOrigin (2), PatchCellA (2), PatchCellB (2),
- * PatchCentreHeight, LayerHalfThickness, GeodesicRadius, SeedUV (2), RefinementLevels; with
+ * PatchCentreHeight, LayerHalfThickness, GeodesicRadius, SeedUV (2), SeedNormal (3),
+ * RefinementLevels; with
  * the polynomial method PolynomialCoefficients (30 per piece), PolynomialSplits,
  * PolynomialResidualRMS, PolynomialResidualMax, PolynomialFallbackTiles (per tile); with
  * molecule instancing InstanceMatrices (16 per instance), InstanceMoleculeId, InstanceTileId.

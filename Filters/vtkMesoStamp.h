@@ -1,8 +1,9 @@
-#include "vtkMesoArrayNames.h"
 // SPDX-License-Identifier: GPL-3.0-or-later
 // What an object was when a filter computed something from it (private to MesoLensFilters).
 #ifndef vtkMesoStamp_h
 #define vtkMesoStamp_h
+
+#include "vtkMesoArrayNames.h"
 
 #include <vtkObject.h>
 #include <vtkPointData.h>

@@ -40,6 +40,11 @@ MembraneWarp membrane_warp(const MapResult& result, const MembranePatch& patch,
     warp.geodesic_radius = result.chart->radius;
     warp.seed_uv = result.chart->seed_uv;
     warp.refinement_levels = result.chart->disk.refinement_levels;
+    SurfaceFrame frame;
+    if (result.chart->chart.frame(warp.seed_uv[0], warp.seed_uv[1], frame))
+    {
+      warp.seed_normal = frame.normal;
+    }
   }
   const MappedMembrane& mapped = result.mapped;
   warp.polynomial_coefficients = mapped.polynomial_coefficients;

@@ -224,7 +224,7 @@ class Cutaway(unittest.TestCase):
             drawn_atoms(self.lens)
             self.assertEqual(self.lens.atoms.GetLastUploadBytes(), 2 * self.all_atoms)
         self.viewer.set_cut_plane(self.lens.centre, [-v for v in self.lens.cut_normal])
-        self.viewer.set_cut_plane(self.lens.centre, self.lens._outward(self.lens.centre))
+        self.viewer.set_cut_plane(self.lens.centre, self.lens.seed_normal())
         self.assertEqual(self.lens.cutaway.GetNumberOfAssignments(), 1)
 
         self.viewer.set_cut_fraction(0.0)

@@ -28,6 +28,7 @@ mesolens::MembraneWarp full_warp()
   warp.layer_half_thickness = 22;
   warp.geodesic_radius = 0.0513;
   warp.seed_uv = { 0.001, -0.002 };
+  warp.seed_normal = { 0.6, 0, 0.8 };
   warp.refinement_levels = 3;
   warp.polynomial_splits = { 1, 2, 1, 1 };
   for (int i = 0; i < 30 * 7; ++i)
@@ -69,6 +70,7 @@ TEST(MesoMembraneWarp, WhatIsWrittenIsReadBack)
   EXPECT_EQ(read.layer_half_thickness, written.layer_half_thickness);
   EXPECT_EQ(read.geodesic_radius, written.geodesic_radius);
   EXPECT_EQ(read.seed_uv, written.seed_uv);
+  EXPECT_EQ(read.seed_normal, written.seed_normal);
   EXPECT_EQ(read.refinement_levels, written.refinement_levels);
   EXPECT_EQ(read.polynomial_coefficients, written.polynomial_coefficients);
   EXPECT_EQ(read.polynomial_splits, written.polynomial_splits);

@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace {
 
 /// A drawable warp of k x k tiles by `method`: polynomial pieces per side `splits` (one per
@@ -144,6 +146,7 @@ TEST(MembraneWarp, IsWhatTheMapperMapped)
     EXPECT_EQ(warp.centre_height, patch.view().centre_height);
     EXPECT_EQ(warp.geodesic_radius, result.chart->radius);
     EXPECT_EQ(warp.seed_uv, result.chart->seed_uv);
+    EXPECT_NEAR(std::abs(warp.seed_normal[2]), 1.0, 1e-9); // the flat square's normal
     EXPECT_EQ(warp.polynomial_coefficients, result.mapped.polynomial_coefficients);
     EXPECT_EQ(warp.instance_matrices, result.mapped.instance_matrices);
     EXPECT_NO_THROW(mesolens::check_drawable(warp));

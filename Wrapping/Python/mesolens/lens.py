@@ -20,12 +20,11 @@ import os
 
 import numpy as np
 from vtkmodules.util.misc import calldata_type
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.util.vtkAlgorithm import VTKPythonAlgorithmBase
-from vtkmodules.util.vtkConstants import VTK_ID_TYPE, VTK_STRING
-from vtkmodules.vtkCommonCore import vtkCommand, vtkPoints
-from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPlane, vtkPolyData
-from vtkmodules.vtkFiltersCore import vtkPolyDataNormals, vtkProbeFilter
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.util.vtkConstants import VTK_STRING
+from vtkmodules.vtkCommonCore import vtkCommand
+from vtkmodules.vtkCommonDataModel import vtkPlane, vtkPolyData
+from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
 from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderer
 
 from . import array_names
@@ -70,122 +69,6 @@ class _ErrorCatcher:
         text = "; ".join(dict.fromkeys(self.messages))
         self.messages = []
         return text
-
-
-def _cell_array(offsets, connectivity):
-    cells = vtkCellArray()
-    cells.SetData(numpy_to_vtk(np.ascontiguousarray(offsets, dtype=np.int64), deep=1,
-                               array_type=VTK_ID_TYPE),
-                  numpy_to_vtk(np.ascontiguousarray(connectivity, dtype=np.int64), deep=1,
-                               array_type=VTK_ID_TYPE))
-    return cells
-
-
-def _points(coordinates):
-    points = vtkPoints()
-    points.SetData(numpy_to_vtk(np.ascontiguousarray(coordinates), deep=1))
-    return points
-
-
-class _StableMoleculeArrays(VTKPythonAlgorithmBase):
-    """The mapped atoms, passing on the same `MoleculeId` and `ResidueName` array objects while
-    the ids stay the same (a new frame of the trajectory): the cutaway then keeps its assignment
-    over the frames (it assigns again for new array objects), and the removal order stays
-    stable. The mapping already numbers each tile's molecules apart."""
-
-    def __init__(self):
-        super().__init__(nInputPorts=1, inputType="vtkPolyData", nOutputPorts=1,
-                         outputType="vtkPolyData")
-        self._ids = None  # numpy ids of the last output, and the arrays passed on with them
-        self._arrays = ()
-
-    def RequestData(self, _request, in_info, out_info):
-        atoms = vtkPolyData.GetData(in_info[0])
-        output = vtkPolyData.GetData(out_info)
-        output.ShallowCopy(atoms)
-        point_data = atoms.GetPointData()
-        molecules = point_data.GetArray(array_names.MoleculeId)
-        if molecules is None or atoms.GetNumberOfPoints() == 0:
-            return 1
-        ids = vtk_to_numpy(molecules)
-        if self._ids is None or not np.array_equal(ids, self._ids):
-            names = point_data.GetAbstractArray(array_names.ResidueName)
-            self._ids = ids.copy()
-            self._arrays = (molecules,) + ((names,) if names is not None else ())
-        for array in self._arrays:  # replace the input's arrays of these names in the output
-            output.GetPointData().AddArray(array)
-        return 1
-
-
-def surface_lattice(disk, edge):
-    """A regular triangle mesh (vtkPolyData) on the surface of a lens' disk (the output 1 of
-    vtkMesoMembraneMapping): equilateral triangles of edge `edge` (mesh units) laid out in the
-    disk's parameter plane (its TextureCoordinates, in mesh units and nearly isometric) and
-    carried onto the surface through the parameterization, covering the disk. The cutaway's
-    structure: the disk's own triangles are about one lipid wide, far too fine to show a
-    wireframe. Empty where the disk has no parameterization."""
-    output = vtkPolyData()
-    point_data = disk.GetPointData()
-    uv_array = point_data.GetTCoords() or point_data.GetArray(array_names.TextureCoordinates)
-    if uv_array is None or disk.GetNumberOfPolys() == 0:
-        return output
-    uv = vtk_to_numpy(uv_array)[:, :2].astype(np.float64)
-    # The disk flattened onto its parameters, carrying its surface points to interpolate.
-    flat = vtkPolyData()
-    flat.SetPoints(_points(np.column_stack([uv, np.zeros(len(uv))])))
-    flat.SetPolys(disk.GetPolys())
-    surface_points = numpy_to_vtk(vtk_to_numpy(disk.GetPoints().GetData()).astype(np.float64),
-                                  deep=1)
-    surface_points.SetName("SurfacePoint")
-    flat.GetPointData().AddArray(surface_points)
-
-    lattice_uv, triangles = _lattice(uv.min(axis=0), uv.max(axis=0), edge)
-    lattice = vtkPolyData()
-    lattice.SetPoints(_points(np.column_stack([lattice_uv, np.zeros(len(lattice_uv))])))
-    probe = vtkProbeFilter()
-    probe.SetInputData(lattice)
-    probe.SetSourceData(flat)
-    probe.Update()
-    probed = probe.GetOutput().GetPointData()
-    valid = vtk_to_numpy(probed.GetArray(probe.GetValidPointMaskArrayName())) != 0
-    on_surface = vtk_to_numpy(probed.GetArray("SurfacePoint"))
-    # Triangles wholly on the disk, their vertices renumbered.
-    triangles = triangles[valid[triangles].all(axis=1)]
-    used = np.unique(triangles)
-    renumber = np.full(len(lattice_uv), -1, dtype=np.int64)
-    renumber[used] = np.arange(len(used))
-    output.SetPoints(_points(on_surface[used]))
-    output.SetPolys(_cell_array(np.arange(0, 3 * len(triangles) + 1, 3),
-                                renumber[triangles].ravel()))
-    return output
-
-
-def _lattice(low, high, edge):
-    """Points (n x 2) and counter-clockwise triangles (m x 3) of an equilateral lattice of edge
-    `edge` covering the box [low, high], with a vertex at the box's centre."""
-    row_height = edge * math.sqrt(3) / 2
-    centre = (low + high) / 2
-    half_columns = math.ceil((high[0] - low[0]) / (2 * edge)) + 1
-    half_rows = math.ceil((high[1] - low[1]) / (2 * row_height)) + 1
-    columns = np.arange(-half_columns, half_columns + 1)
-    rows = np.arange(-half_rows, half_rows + 1)
-    shifted = rows % 2 == 1  # odd rows sit half an edge to the right
-    x = columns[None, :] * edge + shifted[:, None] * edge / 2
-    y = np.broadcast_to(rows[:, None] * row_height, x.shape)
-    points = np.column_stack([x.ravel() + centre[0], y.ravel() + centre[1]])
-    width = len(columns)
-    row, column = np.meshgrid(np.arange(len(rows) - 1), np.arange(width - 1), indexing="ij")
-    row, column = row.ravel(), column.ravel()
-    here = row * width + column  # (row, column)
-    right = here + 1             # (row, column + 1)
-    above = here + width         # (row + 1, column)
-    above_right = above + 1      # (row + 1, column + 1)
-    up = shifted[row + 1][:, None]  # the row above sits to the right of this one
-    first = np.where(up, np.column_stack([here, right, above]),
-                     np.column_stack([here, above_right, above]))
-    second = np.where(up, np.column_stack([right, above_right, above]),
-                      np.column_stack([here, right, above_right]))
-    return points, np.concatenate([first, second])
 
 
 def write_png(window, path):
@@ -297,6 +180,7 @@ class MembraneLens:
         self.mapping.SetSurfaceConnection(self.surface.GetOutputPort())
         self.mapping.SetMembraneConnection(self._patch_port())
         self.mapping.SetMembraneToMeshScale(self.scale)
+        self.mapping.SetLatticeEdge(CUT_STRUCTURE_EDGE * self.scale)  # the cutaway's structure
         self._mapping_errors = _ErrorCatcher(self.mapping)
 
         self.atoms = vtkMesoAtomMapper()
@@ -327,10 +211,10 @@ class MembraneLens:
         self.renderer.AddActor(self.atom_actor)
         # The structured cutaway, off until set_cutaway(True): the mapped atoms (each tile's
         # molecules its own) against a lattice on the lens' disk; the mapper draws what stays.
-        self._molecules_per_tile = _StableMoleculeArrays()
-        self._molecules_per_tile.SetInputConnection(self.mapping.GetOutputPort(0))
+        # The mapping keeps its atoms' MoleculeId and ResidueName arrays over the frames, so the
+        # cutaway keeps its assignment and removal order.
         self.cutaway = vtkMesoStructuredCutaway()
-        self.cutaway.SetInputConnection(self._molecules_per_tile.GetOutputPort())
+        self.cutaway.SetInputConnection(self.mapping.GetOutputPort(0))
         self.cut_structure = None  # made by place(): it stays over the frames of a trajectory
         self.cutaway.MakeAssemblyWholeOff()  # mapped atoms lie on the surface, not in a box
         # The filter cuts where the plane's function is <= 0, behind its normal; ours points
@@ -439,9 +323,10 @@ class MembraneLens:
             self.mapping.Update()
         if self.cutaway_on:
             if moved or self.cut_normal is None:
-                self.set_cut_plane(self.centre, self._outward(self.centre))
-            self.cut_structure = surface_lattice(self.mapping.GetOutput(1),
-                                                 CUT_STRUCTURE_EDGE * self.scale)
+                self.set_cut_plane(self.centre, self.seed_normal())
+            # A copy: the lattice stays over the frames, and so does the cutaway's assignment.
+            self.cut_structure = vtkPolyData()
+            self.cut_structure.ShallowCopy(self.mapping.GetOutput(2))
             self.cutaway.SetInputData(1, self.cut_structure)
             try:
                 self._draw_cutaway()
@@ -469,19 +354,20 @@ class MembraneLens:
         self.atoms.SetInputConnection(port)
         self.atoms.SetWarpConnection(None)
 
-    def _outward(self, point):
-        """The direction from the surface's centre to `point`, unit length."""
-        organelle = self.surface.GetOutput().GetCenter()
-        outward = [point[d] - organelle[d] for d in range(3)]
-        length = math.sqrt(sum(v * v for v in outward)) or 1.0
-        return tuple(v / length for v in outward)
+    def seed_normal(self):
+        """The surface's unit normal at the mapped patch's centre, where the patch's +z goes (the
+        mapping's SeedNormal); None before place()."""
+        array = self.mapping.GetOutput().GetFieldData().GetArray(array_names.SeedNormal)
+        if self.centre is None or array is None or array.GetNumberOfTuples() == 0:
+            return None
+        return tuple(array.GetTuple3(0))
 
     # The structured cutaway ----------------------------------------------------------------
 
     def set_cutaway(self, on):
         """Cuts the mapped membrane open (on) or shows it whole (off). The cut is the half-space
-        of set_cut_plane, at first the plane through the lens' centre facing away from the
-        surface's centre; of the molecules there, set_cut_fraction's share is hidden (default
+        of set_cut_plane, at first the plane through the lens' centre facing along the surface's
+        normal there (seed_normal: the side of the patch's upper leaflet); of the molecules there, set_cut_fraction's share is hidden (default
         0.5), in structured order (a wireframe of triangles of CUT_STRUCTURE_EDGE Å; patches with
         set_cut_inverted) or random order (set_cut_random). While on, all methods map the atoms
         on the CPU. Raises LensError before place() or when the cutaway fails (it is then off)."""

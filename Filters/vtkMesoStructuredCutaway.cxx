@@ -8,6 +8,7 @@
 #include "vtkMesoSurfaceConversion.h"
 
 #include "mesolens/common/errors.h"
+#include "mesolens/molecules/molecule_groups.h"
 #include "mesolens/molecules/molecule_pbc.h"
 #include "mesolens/cutaway/structure_mesh.h"
 #include "mesolens/cutaway/structured_cutaway.h"
@@ -47,58 +48,49 @@ vtkStandardNewMacro(vtkMesoStructuredCutaway);
 vtkCxxSetObjectMacro(vtkMesoStructuredCutaway, CutFunction, vtkImplicitFunction);
 
 namespace {
-/// Atoms grouped into molecules (dense ids in order of first appearance), their types and
+/// Atoms grouped into molecules (mesolens::group_molecules), their types (residue names) and
 /// centres, and the shifts that make the assembly whole.
 struct Molecules
 {
-  std::vector<std::uint32_t> OfAtom;
+  mesolens::MoleculeGroups Groups;
   std::vector<int> Types;                    ///< per molecule, an index into TypeNames
   std::vector<std::string> TypeNames;        ///< residue names, in order of first appearance
   std::vector<double> Centres;               ///< 3 per molecule, after the shifts
   std::vector<std::array<double, 3>> Shifts; ///< per molecule; empty: none
-  std::vector<std::size_t> AtomCounts;       ///< per molecule
-  std::size_t Count = 0;
 
-  /// Groups the atoms by `ids` (nullptr: one molecule per atom); types from `names`.
+  std::size_t Count() const
+  {
+    return this->Groups.count();
+  }
+
+  /// Groups the atoms by `ids` (nullptr: one molecule per atom); types from `names`, the
+  /// residue name of each molecule's first atom.
   void Group(vtkIdType atoms, vtkDataArray* ids, vtkStringArray* names)
   {
-    this->OfAtom.assign(static_cast<std::size_t>(atoms), 0);
+    std::vector<int> id_values;
+    if (ids)
+    {
+      id_values.resize(static_cast<std::size_t>(atoms));
+      for (vtkIdType a = 0; a < atoms; ++a)
+      {
+        id_values[static_cast<std::size_t>(a)] = static_cast<int>(ids->GetComponent(a, 0));
+      }
+    }
+    this->Groups =
+      mesolens::group_molecules(ids ? id_values.data() : nullptr, static_cast<std::size_t>(atoms));
     this->Types.clear();
     this->TypeNames.clear();
-    std::unordered_map<long long, std::uint32_t> index;
     std::unordered_map<std::string, int> type_index;
-    vtkIntArray* int_ids = vtkIntArray::SafeDownCast(ids);
-    long long previous = 0;
-    std::uint32_t current = 0;
-    for (vtkIdType a = 0; a < atoms; ++a)
+    for (std::size_t m = 0; m < this->Groups.count(); ++m)
     {
-      const long long id = int_ids ? int_ids->GetValue(a)
-        : ids                      ? static_cast<long long>(ids->GetComponent(a, 0))
-                                   : a;
-      // Atoms of a molecule are usually consecutive: look the id up only when it changes.
-      if (a == 0 || id != previous)
+      const std::uint32_t first_atom = this->Groups.atoms[this->Groups.first[m]];
+      const std::string name = names ? names->GetValue(first_atom) : std::string();
+      const auto type = type_index.emplace(name, static_cast<int>(this->TypeNames.size()));
+      if (type.second)
       {
-        const auto found = index.emplace(id, static_cast<std::uint32_t>(index.size()));
-        current = found.first->second;
-        previous = id;
-        if (found.second)
-        {
-          const std::string name = names ? names->GetValue(a) : std::string();
-          const auto type = type_index.emplace(name, static_cast<int>(this->TypeNames.size()));
-          if (type.second)
-          {
-            this->TypeNames.push_back(name);
-          }
-          this->Types.push_back(type.first->second);
-        }
+        this->TypeNames.push_back(name);
       }
-      this->OfAtom[static_cast<std::size_t>(a)] = current;
-    }
-    this->Count = index.size();
-    this->AtomCounts.assign(this->Count, 0);
-    for (const std::uint32_t m : this->OfAtom)
-    {
-      ++this->AtomCounts[m];
+      this->Types.push_back(type.first->second);
     }
   }
 
@@ -106,10 +98,15 @@ struct Molecules
   /// mesolens::structure_molecules()).
   std::vector<double> StructureCentres() const
   {
+    std::vector<std::size_t> atom_counts(this->Count());
+    for (std::size_t m = 0; m < this->Count(); ++m)
+    {
+      atom_counts[m] = this->Groups.size_of(m);
+    }
     const std::vector<std::uint8_t> kept =
-      mesolens::structure_molecules(this->Types, this->TypeNames, this->AtomCounts);
+      mesolens::structure_molecules(this->Types, this->TypeNames, atom_counts);
     std::vector<double> centres;
-    for (std::size_t m = 0; m < this->Count; ++m)
+    for (std::size_t m = 0; m < this->Count(); ++m)
     {
       if (kept[m])
       {
@@ -120,7 +117,7 @@ struct Molecules
     if (centres.size() < 3 * 4)
     {
       throw mesolens::InvalidInput(
-        "only " + std::to_string(centres.size() / 3) + " of the " + std::to_string(this->Count) +
+        "only " + std::to_string(centres.size() / 3) + " of the " + std::to_string(this->Count()) +
         " molecules are neither water nor ions: too few to make a structure mesh from; give one");
     }
     return centres;
@@ -130,41 +127,18 @@ struct Molecules
   /// assembly in `box` when it is given.
   void Centre(vtkPoints* points, const mesolens::PeriodicBox* box)
   {
-    this->Centres.assign(3 * this->Count, 0.0);
-    std::vector<double> counts(this->Count, 0.0);
-    const vtkIdType n = points->GetNumberOfPoints();
-    vtkFloatArray* floats = vtkFloatArray::SafeDownCast(points->GetData());
-    for (vtkIdType a = 0; a < n; ++a)
+    if (auto* floats = vtkFloatArray::SafeDownCast(points->GetData()))
     {
-      double p[3];
-      if (floats)
-      {
-        const float* f = floats->GetPointer(3 * a);
-        p[0] = f[0];
-        p[1] = f[1];
-        p[2] = f[2];
-      }
-      else
-      {
-        points->GetPoint(a, p);
-      }
-      const std::uint32_t m = this->OfAtom[static_cast<std::size_t>(a)];
-      for (int d = 0; d < 3; ++d)
-      {
-        if (!std::isfinite(p[d]))
-        {
-          throw mesolens::InvalidInput("atom " + std::to_string(a) + " has a non-finite position");
-        }
-        this->Centres[3 * m + d] += p[d];
-      }
-      counts[m] += 1;
+      this->Centres = mesolens::molecule_centres(this->Groups, floats->GetPointer(0));
     }
-    for (std::size_t m = 0; m < this->Count; ++m)
+    else
     {
-      for (int d = 0; d < 3; ++d)
+      std::vector<double> coordinates(3 * static_cast<std::size_t>(points->GetNumberOfPoints()));
+      for (vtkIdType a = 0; a < points->GetNumberOfPoints(); ++a)
       {
-        this->Centres[3 * m + d] /= counts[m];
+        points->GetPoint(a, coordinates.data() + 3 * a);
       }
+      this->Centres = mesolens::molecule_centres(this->Groups, coordinates.data());
     }
     this->Shifts.clear();
     if (box)
@@ -195,7 +169,7 @@ struct Molecules
       {
         double p[3];
         atoms->GetPoint(a, p);
-        const auto& shift = this->Shifts[this->OfAtom[static_cast<std::size_t>(a)]];
+        const auto& shift = this->Shifts[this->Groups.of_atom[static_cast<std::size_t>(a)]];
         moved->SetPoint(a, p[0] + shift[0], p[1] + shift[1], p[2] + shift[2]);
       }
     });
@@ -419,7 +393,7 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
                                                    vtkMesoStamp::Of(atoms->GetPoints()->GetData()),
                                                    vtkMesoStamp::Of(box_vectors) };
     const bool same_grouping = in.GroupsFrom[0] == groups_from[0] &&
-      in.GroupsFrom[1] == groups_from[1] && in.Groups.OfAtom.size() == std::size_t(n);
+      in.GroupsFrom[1] == groups_from[1] && in.Groups.Groups.of_atom.size() == std::size_t(n);
     if (!same_grouping)
     {
       in.Groups.Group(n, ids, names);
@@ -536,7 +510,7 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
         for (vtkIdType a = begin; a < end; ++a)
         {
           out[a] =
-            static_cast<float>(in.MoleculePriority[molecules.OfAtom[static_cast<std::size_t>(a)]]);
+            static_cast<float>(in.MoleculePriority[molecules.Groups.of_atom[static_cast<std::size_t>(a)]]);
         }
       });
       in.PriorityFrom = { this->K, in.Assignments };
@@ -548,7 +522,7 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
     vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType a = begin; a < end; ++a)
       {
-        mask[a] = visible[molecules.OfAtom[static_cast<std::size_t>(a)]];
+        mask[a] = visible[molecules.Groups.of_atom[static_cast<std::size_t>(a)]];
       }
     });
 

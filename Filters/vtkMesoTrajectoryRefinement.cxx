@@ -6,6 +6,7 @@
 #include "vtkMesoParallelFor.h"
 
 #include "mesolens/common/errors.h"
+#include "mesolens/molecules/molecule_groups.h"
 #include "mesolens/molecules/periodic_box.h"
 #include "mesolens/mapping/temporal_subdivision.h"
 
@@ -28,6 +29,7 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <vector>
 
@@ -261,7 +263,7 @@ bool vtkMesoTrajectoryRefinement::LoadKeyFrames(std::size_t frame, vtkInformatio
     return false;
   }
   const std::vector<float>* previous = nullptr; // neighbour towards the nearest key frame
-  std::vector<int> molecules;                   // MoleculeId, when the input has one
+  std::unique_ptr<mesolens::MoleculeGroups> molecules; // by MoleculeId, when the input has one
   const std::vector<std::size_t> order = loading_order(frames.Stencil);
   for (std::size_t step = 0; step < order.size(); ++step)
   {
@@ -285,7 +287,12 @@ bool vtkMesoTrajectoryRefinement::LoadKeyFrames(std::size_t frame, vtkInformatio
     {
       frames.Nearest.TakeReference(input->NewInstance());
       frames.Nearest->ShallowCopy(input);
-      molecules = molecule_ids(input);
+      const std::vector<int> ids = molecule_ids(input);
+      if (!ids.empty())
+      {
+        molecules = std::make_unique<mesolens::MoleculeGroups>(
+          mesolens::group_molecules(ids.data(), ids.size()));
+      }
     }
     else if (p.size() != frames.Positions[order[0]].size())
     {
@@ -301,7 +308,7 @@ bool vtkMesoTrajectoryRefinement::LoadKeyFrames(std::size_t frame, vtkInformatio
         previous = &frames.Positions[order[0]]; // the first frame before the nearest one
       }
       mesolens::unwrap_to_reference(p.data(), previous->data(), p.size() / 3, periodic_box(input),
-                                    molecules.empty() ? nullptr : molecules.data(),
+                                    molecules.get(),
                                     vtkMesoParallelFor::Get());
     }
     previous = &p;

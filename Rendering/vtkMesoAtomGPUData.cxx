@@ -9,6 +9,7 @@
 #include "mesolens/molecules/elements.h"
 #include "mesolens/common/errors.h"
 #include "mesolens/mapping/membrane_warp.h"
+#include "mesolens/molecules/molecule_groups.h"
 #include "mesolens/mapping/polynomial_warp.h"
 
 #include <vtkCellArray.h>
@@ -135,7 +136,8 @@ bool molecule_slots(vtkPolyData* atoms, const mesolens::MembraneWarp& warp,
     problem = "molecule instancing needs the patch's MoleculeId";
     return false;
   }
-  std::unordered_map<long long, int> slot_of;
+  // The slot of each of the patch's molecules: its instance's place among tile 0's.
+  std::unordered_map<int, int> slot_of;
   for (std::size_t i = 0; i < mesolens::molecules_per_tile(warp); ++i)
   {
     slot_of.emplace(warp.instance_molecules[i], static_cast<int>(i));
@@ -148,18 +150,28 @@ bool molecule_slots(vtkPolyData* atoms, const mesolens::MembraneWarp& warp,
     return false;
   }
   const vtkIdType n = atoms->GetNumberOfPoints();
-  slots.resize(static_cast<std::size_t>(n));
+  std::vector<int> id_values(static_cast<std::size_t>(n));
   for (vtkIdType a = 0; a < n; ++a)
   {
-    const auto found = slot_of.find(static_cast<long long>(ids->GetComponent(a, 0)));
+    id_values[static_cast<std::size_t>(a)] = static_cast<int>(ids->GetComponent(a, 0));
+  }
+  const mesolens::MoleculeGroups groups =
+    mesolens::group_molecules(id_values.data(), id_values.size());
+  slots.resize(static_cast<std::size_t>(n));
+  for (std::size_t m = 0; m < groups.count(); ++m)
+  {
+    const auto found = slot_of.find(groups.ids[m]);
     if (found == slot_of.end())
     {
-      problem = "patch atom " + std::to_string(a) + " belongs to molecule " +
-        std::to_string(static_cast<long long>(ids->GetComponent(a, 0))) +
+      problem = "patch atom " + std::to_string(groups.atoms[groups.first[m]]) +
+        " belongs to molecule " + std::to_string(groups.ids[m]) +
         ", which the warp input does not place: is it the patch that was mapped?";
       return false;
     }
-    slots[static_cast<std::size_t>(a)] = static_cast<unsigned short>(found->second);
+    for (const std::uint32_t a : groups.atoms_of(m))
+    {
+      slots[a] = static_cast<unsigned short>(found->second);
+    }
   }
   return true;
 }

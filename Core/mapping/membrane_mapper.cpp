@@ -2,12 +2,12 @@
 #include "mesolens/mapping/membrane_mapper.h"
 
 #include "mesolens/common/errors.h"
+#include "mesolens/molecules/molecule_groups.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <mutex>
-#include <set>
 #include <sstream>
 #include <vector>
 
@@ -36,13 +36,10 @@ struct ChartFailure
 /// worth mapping.
 double molecule_footprint(const MembranePatch& patch)
 {
-  std::set<int> molecules;
-  for (std::size_t a = 0; patch.molecule_ids && a < patch.atom_count; ++a)
-  {
-    molecules.insert(patch.molecule_ids[a]);
-  }
+  const std::size_t molecules =
+    patch.molecule_ids ? group_molecules(patch.molecule_ids, patch.atom_count).count() : 0;
   const double area = std::abs(patch.a[0] * patch.b[1] - patch.a[1] * patch.b[0]);
-  const double per_leaflet = std::max<double>(1.0, double(molecules.size()) / 2);
+  const double per_leaflet = std::max<double>(1.0, double(molecules) / 2);
   // Without molecule ids: a typical lipid's 60 Å^2 if the patch is in Å, capped by the cell.
   const double footprint = patch.molecule_ids ? area / per_leaflet : std::min(area, 60.0);
   return std::sqrt(footprint / pi);

@@ -2,6 +2,7 @@
 #include "mesolens/mapping/membrane_mapping.h"
 
 #include "mesolens/common/errors.h"
+#include "mesolens/molecules/molecule_groups.h"
 
 #include <algorithm>
 #include <cmath>
@@ -122,53 +123,26 @@ void check_params(const MembranePatch& patch, const MappingParams& params)
   }
 }
 
-/// Atoms of each molecule, and their centres (mass-weighted when masses are given). Without
-/// molecule ids every atom is its own molecule.
-struct Molecules
+/// The patch's molecules and their centres (of mass, when masses are given). Without molecule
+/// ids every atom is its own molecule.
+struct PatchMolecules
 {
-  std::vector<int> ids;
-  std::vector<std::vector<std::uint32_t>> atoms;
-  std::vector<std::array<double, 3>> centres;
+  MoleculeGroups groups;
+  std::vector<double> centres; ///< 3 per molecule
 };
 
-Molecules group_molecules(const MembranePatch& patch)
+PatchMolecules patch_molecules(const MembranePatch& patch)
 {
-  std::map<int, std::size_t> index_of;
-  Molecules molecules;
-  for (std::uint32_t i = 0; i < patch.atom_count; ++i)
+  for (std::size_t i = 0; patch.molecule_ids && i < patch.atom_count; ++i)
   {
-    const int id = patch.molecule_ids ? patch.molecule_ids[i] : int(i);
-    if (id < 0)
+    if (patch.molecule_ids[i] < 0)
     {
       throw InvalidInput("membrane atom " + std::to_string(i) + " has a negative molecule id");
     }
-    const auto found = index_of.emplace(id, molecules.ids.size());
-    if (found.second)
-    {
-      molecules.ids.push_back(id);
-      molecules.atoms.emplace_back();
-    }
-    molecules.atoms[found.first->second].push_back(i);
   }
-  for (const auto& atoms : molecules.atoms)
-  {
-    std::array<double, 3> centre{ 0, 0, 0 };
-    double total = 0;
-    for (const std::uint32_t i : atoms)
-    {
-      const double m = patch.masses ? double(patch.masses[i]) : 1.0;
-      for (int d = 0; d < 3; ++d)
-      {
-        centre[std::size_t(d)] += m * patch.positions[3 * i + std::size_t(d)];
-      }
-      total += m;
-    }
-    for (double& c : centre)
-    {
-      c /= total > 0 ? total : 1.0;
-    }
-    molecules.centres.push_back(centre);
-  }
+  PatchMolecules molecules;
+  molecules.groups = group_molecules(patch.molecule_ids, patch.atom_count);
+  molecules.centres = molecule_centres(molecules.groups, patch.positions, patch.masses);
   return molecules;
 }
 
@@ -198,7 +172,7 @@ public:
     }
     if (need_molecules)
     {
-      this->Groups = group_molecules(patch);
+      this->Molecules = patch_molecules(patch);
     }
   }
 
@@ -208,7 +182,7 @@ public:
   /// Molecules of the patch (0 unless instancing or cutting to a disk grouped them).
   std::size_t molecule_count() const
   {
-    return this->Groups.ids.size();
+    return this->Molecules.groups.count();
   }
 
   void displacement(std::size_t tile)
@@ -246,19 +220,20 @@ public:
     const double scale = this->Params.scale;
     SurfaceFrame frame;
     std::array<double, 3> x{};
-    for (std::size_t m = 0; m < this->Groups.ids.size(); ++m)
+    const MoleculeGroups& groups = this->Molecules.groups;
+    for (std::size_t m = 0; m < groups.count(); ++m)
     {
-      const auto& c = this->Groups.centres[m];
+      const double* c = this->Molecules.centres.data() + 3 * m;
       const auto uv = this->Layout.uv(c[0], c[1], i, j);
-      const std::size_t instance = tile * this->Groups.ids.size() + m;
+      const std::size_t instance = tile * groups.count() + m;
       double* matrix = this->Out.instance_matrices.data() + 16 * instance;
-      this->Out.instance_molecules[instance] = this->Groups.ids[m];
+      this->Out.instance_molecules[instance] = groups.ids[m];
       this->Out.instance_tiles[instance] = int(tile);
       const bool inside =
         displaced(this->Chart, uv, scale * (c[2] - this->Patch.centre_height), x, frame);
       if (!inside && !this->Params.cut_to_disk)
       {
-        this->Failures[tile] = outside_message(this->Groups.atoms[m].front(), i, j, uv);
+        this->Failures[tile] = outside_message(groups.atoms[groups.first[m]], i, j, uv);
         return;
       }
       if (!inside)
@@ -289,7 +264,7 @@ public:
         continue;
       }
       double* out = this->Out.positions.data() + 3 * n * tile;
-      for (const std::uint32_t a : this->Groups.atoms[m])
+      for (const std::uint32_t a : groups.atoms_of(m))
       {
         const float* p = this->Patch.positions + 3 * a;
         for (int r = 0; r < 3; ++r)
@@ -444,7 +419,7 @@ private:
   const MappingParams& Params;
   TileLayout Layout;
   MappedMembrane& Out;
-  Molecules Groups;
+  PatchMolecules Molecules;
 
   /// The surface under one point of a tile's finest sample grid: (samples - 1) m_max + 1
   /// points a side, so the grids of every split nest in it and each point is located once.
@@ -500,8 +475,9 @@ private:
     const std::size_t n = this->Patch.atom_count;
     double* out = this->Out.positions.data() + 3 * n * tile;
     std::uint8_t* mapped = this->Out.atom_mapped.data() + n * tile;
-    for (const auto& atoms : this->Groups.atoms)
+    for (std::size_t m = 0; m < this->Molecules.groups.count(); ++m)
     {
+      const auto atoms = this->Molecules.groups.atoms_of(m);
       const bool whole = std::all_of(atoms.begin(), atoms.end(),
                                      [out](std::uint32_t a) { return !std::isnan(out[3 * a]); });
       for (const std::uint32_t a : atoms)

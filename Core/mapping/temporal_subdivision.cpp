@@ -208,7 +208,7 @@ void combine_frames(const std::vector<const float*>& frames, const std::vector<d
 }
 
 void unwrap_to_reference(float* positions, const float* reference, std::size_t atom_count,
-                         const PeriodicBox& box, const int* molecule_ids,
+                         const PeriodicBox& box, const MoleculeGroups* molecules,
                          const ParallelFor& parallel_for)
 {
   if (!box.is_set() || atom_count == 0)
@@ -234,7 +234,7 @@ void unwrap_to_reference(float* positions, const float* reference, std::size_t a
       }
     }
   };
-  if (!molecule_ids)
+  if (!molecules)
   {
     run_parallel(parallel_for, atom_count, [&](std::size_t begin, std::size_t end) {
       for (std::size_t i = begin; i < end; ++i)
@@ -244,35 +244,29 @@ void unwrap_to_reference(float* positions, const float* reference, std::size_t a
     });
     return;
   }
-  // Mean displacement of each molecule, then one shift per molecule.
-  std::vector<std::array<double, 4>> sums; // x, y, z, atom count
-  for (std::size_t i = 0; i < atom_count; ++i)
+  if (molecules->of_atom.size() != atom_count)
   {
-    if (molecule_ids[i] < 0)
-    {
-      throw InvalidInput("unwrap_to_reference: negative molecule id at atom " + std::to_string(i));
-    }
-    const std::size_t m = std::size_t(molecule_ids[i]);
-    if (m >= sums.size())
-    {
-      sums.resize(m + 1, { 0, 0, 0, 0 });
-    }
-    const std::array<double, 3> d = displacement(i);
-    sums[m] = { sums[m][0] + d[0], sums[m][1] + d[1], sums[m][2] + d[2], sums[m][3] + 1 };
+    throw InvalidInput("unwrap_to_reference: the molecules group " +
+                       std::to_string(molecules->of_atom.size()) + " atoms, not " +
+                       std::to_string(atom_count));
   }
-  std::vector<std::array<double, 3>> shifts(sums.size(), { 0, 0, 0 });
-  for (std::size_t m = 0; m < sums.size(); ++m)
+  // Mean displacement of each molecule (its atoms summed in atom order), one shift per molecule.
+  std::vector<std::array<double, 3>> shifts(molecules->count(), { 0, 0, 0 });
+  for (std::size_t m = 0; m < molecules->count(); ++m)
   {
-    if (sums[m][3] > 0)
+    std::array<double, 3> sum{ 0, 0, 0 };
+    for (const std::uint32_t i : molecules->atoms_of(m))
     {
-      const double n = sums[m][3];
-      shifts[m] = shift_of({ sums[m][0] / n, sums[m][1] / n, sums[m][2] / n });
+      const std::array<double, 3> d = displacement(i);
+      sum = { sum[0] + d[0], sum[1] + d[1], sum[2] + d[2] };
     }
+    const double n = double(molecules->size_of(m));
+    shifts[m] = shift_of({ sum[0] / n, sum[1] / n, sum[2] / n });
   }
   run_parallel(parallel_for, atom_count, [&](std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i)
     {
-      move(i, shifts[std::size_t(molecule_ids[i])]);
+      move(i, shifts[molecules->of_atom[i]]);
     }
   });
 }

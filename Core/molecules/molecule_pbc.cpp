@@ -2,13 +2,13 @@
 #include "mesolens/molecules/molecule_pbc.h"
 
 #include "mesolens/common/errors.h"
+#include "mesolens/molecules/molecule_groups.h"
 
 #include <Eigen/Dense>
 
 #include <algorithm>
 #include <cmath>
 #include <map>
-#include <unordered_map>
 
 namespace mesolens {
 
@@ -26,19 +26,6 @@ Eigen::Matrix3d box_columns(const PeriodicBox& box)
   return m;
 }
 
-int molecule_count(const std::vector<int>& molecule_ids)
-{
-  int count = 0;
-  for (const int id : molecule_ids)
-  {
-    if (id < 0)
-    {
-      throw InvalidInput("molecule ids must be >= 0");
-    }
-    count = std::max(count, id + 1);
-  }
-  return count;
-}
 } // namespace
 
 void make_molecules_whole(float* positions, const int* molecule_ids, std::size_t atom_count,
@@ -49,59 +36,29 @@ void make_molecules_whole(float* positions, const int* molecule_ids, std::size_t
     return;
   }
   const MinimumImage minimum_image(box);
-  std::unordered_map<int, std::size_t> previous_atom;
-  previous_atom.reserve(atom_count / 4 + 1);
-  for (std::size_t i = 0; i < atom_count; ++i)
+  // Each atom next to the previous atom of its molecule.
+  const MoleculeGroups molecules = group_molecules(molecule_ids, atom_count);
+  for (std::size_t m = 0; m < molecules.count(); ++m)
   {
-    const auto found = previous_atom.find(molecule_ids[i]);
-    if (found != previous_atom.end())
+    const std::uint32_t* atom = molecules.atoms.data() + molecules.first[m];
+    for (std::size_t k = 1; k < molecules.size_of(m); ++k)
     {
-      const std::size_t j = found->second;
-      float* p = positions + 3 * i;
-      const float* q = positions + 3 * j;
+      float* p = positions + 3 * std::size_t(atom[k]);
+      const float* q = positions + 3 * std::size_t(atom[k - 1]);
       const std::array<double, 3> d =
         minimum_image({ double(p[0]) - q[0], double(p[1]) - q[1], double(p[2]) - q[2] });
-      for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c)
       {
-        p[k] = float(double(q[k]) + d[std::size_t(k)]);
+        p[c] = float(double(q[c]) + d[std::size_t(c)]);
       }
-      found->second = i;
-    }
-    else
-    {
-      previous_atom.emplace(molecule_ids[i], i);
     }
   }
 }
 
-MoleculeContinuity::MoleculeContinuity(std::vector<int> molecule_ids)
-  : MoleculeIds(std::move(molecule_ids))
+MoleculeContinuity::MoleculeContinuity(const std::vector<int>& molecule_ids)
+  : Molecules(group_molecules(molecule_ids.data(), molecule_ids.size()))
 {
-  this->MoleculeCount = molecule_count(this->MoleculeIds);
-  this->CurrentShifts.assign(3 * std::size_t(this->MoleculeCount), 0);
-}
-
-std::vector<double> MoleculeContinuity::centroids(const float* positions) const
-{
-  std::vector<double> sums(3 * std::size_t(this->MoleculeCount), 0.0);
-  std::vector<double> counts(std::size_t(this->MoleculeCount), 0.0);
-  for (std::size_t i = 0; i < this->MoleculeIds.size(); ++i)
-  {
-    const std::size_t m = std::size_t(this->MoleculeIds[i]);
-    for (int k = 0; k < 3; ++k)
-    {
-      sums[3 * m + std::size_t(k)] += positions[3 * i + std::size_t(k)];
-    }
-    counts[m] += 1.0;
-  }
-  for (std::size_t m = 0; m < counts.size(); ++m)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      sums[3 * m + std::size_t(k)] /= std::max(counts[m], 1.0);
-    }
-  }
-  return sums;
+  this->CurrentShifts.assign(3 * this->Molecules.count(), 0);
 }
 
 void MoleculeContinuity::add_frame(std::size_t frame, float* positions, const PeriodicBox& box)
@@ -115,9 +72,9 @@ void MoleculeContinuity::add_frame(std::size_t frame, float* positions, const Pe
   std::vector<Change> changes;
   if (frame > 0 && box.is_set())
   {
-    const std::vector<double> current = this->centroids(positions);
+    const std::vector<double> current = molecule_centres(this->Molecules, positions);
     const Eigen::PartialPivLU<Eigen::Matrix3d> lu(box_columns(box));
-    for (std::size_t mol = 0; mol < std::size_t(this->MoleculeCount); ++mol)
+    for (std::size_t mol = 0; mol < this->Molecules.count(); ++mol)
     {
       const Eigen::Vector3d drift(this->PreviousCentroids[3 * mol] - current[3 * mol],
                                   this->PreviousCentroids[3 * mol + 1] - current[3 * mol + 1],
@@ -145,7 +102,7 @@ void MoleculeContinuity::add_frame(std::size_t frame, float* positions, const Pe
     this->Checkpoints.push_back(this->CurrentShifts);
   }
   this->shift_atoms(this->CurrentShifts, positions, box);
-  this->PreviousCentroids = this->centroids(positions);
+  this->PreviousCentroids = molecule_centres(this->Molecules, positions);
 }
 
 std::vector<std::int32_t> MoleculeContinuity::shifts_of(std::size_t frame) const
@@ -180,9 +137,9 @@ void MoleculeContinuity::shift_atoms(const std::vector<std::int32_t>& shifts, fl
   {
     return;
   }
-  for (std::size_t i = 0; i < this->MoleculeIds.size(); ++i)
+  for (std::size_t i = 0; i < this->Molecules.of_atom.size(); ++i)
   {
-    const std::size_t mol = std::size_t(this->MoleculeIds[i]);
+    const std::size_t mol = this->Molecules.of_atom[i];
     for (int k = 0; k < 3; ++k)
     {
       double offset = 0;

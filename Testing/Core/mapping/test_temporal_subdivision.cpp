@@ -239,15 +239,23 @@ TEST(TemporalSubdivision, UnwrapToReference)
   // and wrapped differently in the next frame stays whole.
   const std::vector<float> pair_reference = { 9.5f, 5, 5, 10.5f, 5, 5, 2, 2, 2 };
   std::vector<float> pair = { 0.0f, 5, 5, 1.0f, 5, 5, 2.5f, 2, 2 }; // molecule 0 moved +0.5
-  const std::vector<int> molecules = { 0, 0, 1 };
-  mesolens::unwrap_to_reference(pair.data(), pair_reference.data(), 3, box, molecules.data());
+  const std::vector<float> pair_frame = pair;
+  const std::vector<int> ids = { 0, 0, 1 };
+  const auto molecules = mesolens::group_molecules(ids.data(), 3);
+  mesolens::unwrap_to_reference(pair.data(), pair_reference.data(), 3, box, &molecules);
   EXPECT_FLOAT_EQ(pair[0], 10.0f);
   EXPECT_FLOAT_EQ(pair[3], 11.0f);
   EXPECT_FLOAT_EQ(pair[6], 2.5f);
-  const std::vector<int> negative = { 0, -1, 1 };
-  EXPECT_THROW(
-    mesolens::unwrap_to_reference(pair.data(), pair_reference.data(), 3, box, negative.data()),
-    mesolens::InvalidInput);
+  // Any ids, negative or far apart, group the same.
+  const std::vector<int> sparse = { -7, -7, 2000000000 };
+  const auto sparse_molecules = mesolens::group_molecules(sparse.data(), 3);
+  std::vector<float> again = pair_frame;
+  mesolens::unwrap_to_reference(again.data(), pair_reference.data(), 3, box, &sparse_molecules);
+  EXPECT_EQ(again, pair);
+  // Molecules of another number of atoms are refused.
+  const auto two = mesolens::group_molecules(ids.data(), 2);
+  EXPECT_THROW(mesolens::unwrap_to_reference(again.data(), pair_reference.data(), 3, box, &two),
+               mesolens::InvalidInput);
   // Unset box: no-op.
   std::vector<float> same = { 1.5f, 5, 5, 1.25f, 1, 9.75f };
   mesolens::unwrap_to_reference(same.data(), reference.data(), 2, mesolens::PeriodicBox{});

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "mesolens/common/parallel_for.h"
+#include "mesolens/molecules/molecule_groups.h"
 #include "mesolens/molecules/periodic_box.h"
 
 #include <cstddef>
@@ -72,15 +73,16 @@ void combine_frames(const std::vector<const float*>& frames, const std::vector<d
 
 /// Moves atoms of `positions` by whole box vectors to the periodic image closest to the same
 /// atoms in `reference`, so an atom that crossed the box between two frames does not jump
-/// across it. Without molecule_ids each atom moves by the minimum image of its own displacement
-/// positions - reference; with molecule_ids (per atom, >= 0) all atoms of a molecule move by the
-/// box vectors that bring the mean displacement of the molecule to its minimum image, so
-/// molecules that are whole in both frames stay whole. Correct while atoms (molecules) moved
-/// less than half the shortest box height between the two frames. Coordinates not moved stay
-/// bit-identical; no-op when the box is not set. positions, reference: 3 floats per atom (same
-/// length unit as the box, e.g. Å). Throws InvalidInput on a negative molecule id.
+/// across it. Without `molecules` each atom moves by the minimum image of its own displacement
+/// positions - reference; with them (group_molecules() of the atoms) all atoms of a molecule
+/// move by the box vectors that bring the mean displacement of the molecule to its minimum
+/// image, so molecules that are whole in both frames stay whole. Correct while atoms
+/// (molecules) moved less than half the shortest box height between the two frames.
+/// Coordinates not moved stay bit-identical; no-op when the box is not set. positions,
+/// reference: 3 floats per atom (same length unit as the box, e.g. Å). Throws InvalidInput when
+/// `molecules` groups another number of atoms.
 void unwrap_to_reference(float* positions, const float* reference, std::size_t atom_count,
-                         const PeriodicBox& box, const int* molecule_ids = nullptr,
+                         const PeriodicBox& box, const MoleculeGroups* molecules = nullptr,
                          const ParallelFor& parallel_for = {});
 
 } // namespace mesolens

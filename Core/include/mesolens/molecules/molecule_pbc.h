@@ -2,6 +2,7 @@
 // Making molecules whole across periodic boundaries, and keeping them continuous in time.
 #pragma once
 
+#include "mesolens/molecules/molecule_groups.h"
 #include "mesolens/molecules/periodic_box.h"
 
 #include <array>
@@ -13,7 +14,7 @@ namespace mesolens {
 
 /// Moves atoms by box vectors so that every molecule is whole: each atom is placed at the
 /// minimum image of its displacement from the previous atom of the same molecule (atoms of a
-/// molecule are contiguous or not; order within the molecule is file order). Correct whenever
+/// molecule are contiguous or not; order within the molecule is file order; ids any values). Correct whenever
 /// consecutive atoms of a molecule are closer than half the shortest box height, which holds for
 /// lipids, proteins and nucleic acids in any sensible box. No-op when the box is not set.
 /// positions: 3 per atom, same length unit as the box. molecule_ids: per atom, >= 0.
@@ -29,8 +30,8 @@ void make_molecules_whole(float* positions, const int* molecule_ids, std::size_t
 class MoleculeContinuity
 {
 public:
-  /// molecule_ids: per atom, >= 0; the tracker is valid while they stay the same.
-  explicit MoleculeContinuity(std::vector<int> molecule_ids);
+  /// molecule_ids: per atom (any values); the tracker is valid while they stay the same.
+  explicit MoleculeContinuity(const std::vector<int>& molecule_ids);
 
   /// Number of frames whose shifts are known.
   std::size_t known_frames() const
@@ -55,13 +56,11 @@ private:
     std::int32_t molecule;
     std::array<std::int32_t, 3> shift;
   };
-  std::vector<double> centroids(const float* positions) const;
   std::vector<std::int32_t> shifts_of(std::size_t frame) const;
   void shift_atoms(const std::vector<std::int32_t>& shifts, float* positions,
                    const PeriodicBox& box) const;
 
-  std::vector<int> MoleculeIds;
-  int MoleculeCount = 0;
+  MoleculeGroups Molecules;
   std::vector<std::vector<Change>> Changes;           ///< per frame: new shifts
   std::vector<std::vector<std::int32_t>> Checkpoints; ///< full shifts at frames 0, 64, ...
   std::vector<std::int32_t> CurrentShifts;            ///< shifts of the last known frame

@@ -261,6 +261,38 @@ void AddFieldValue(vtkFieldData* field, const char* name, double value)
 }
 } // namespace
 
+/// The atom input as the stages see it.
+struct AtomInput
+{
+  vtkPolyData* Atoms = nullptr;
+  vtkDataArray* Ids = nullptr;
+  vtkStringArray* Names = nullptr;
+  vtkDataArray* BoxVectors = nullptr; ///< 9 components, or nullptr
+  std::array<vtkMesoStamp, 4> Stamps; ///< ids, names, points, box
+
+  explicit AtomInput(vtkPolyData* atoms)
+    : Atoms(atoms)
+    , Ids(atoms->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId))
+    , Names(vtkStringArray::SafeDownCast(
+        atoms->GetPointData()->GetAbstractArray(vtkMesoArrayNames::ResidueName)))
+    , BoxVectors(atoms->GetFieldData()->GetArray(vtkMesoArrayNames::PeriodicBoxVectors))
+  {
+    if (this->BoxVectors &&
+        (this->BoxVectors->GetNumberOfComponents() != 9 ||
+         this->BoxVectors->GetNumberOfTuples() == 0))
+    {
+      this->BoxVectors = nullptr;
+    }
+    this->Stamps = { vtkMesoStamp::Of(this->Ids), vtkMesoStamp::Of(this->Names),
+                     vtkMesoStamp::Of(atoms->GetPoints()->GetData()),
+                     vtkMesoStamp::Of(this->BoxVectors) };
+  }
+  vtkIdType Count() const
+  {
+    return this->Atoms->GetNumberOfPoints();
+  }
+};
+
 struct vtkMesoStructuredCutaway::Internals
 {
   // The molecules, kept while the input's points, ids, names and box stay.
@@ -270,11 +302,11 @@ struct vtkMesoStructuredCutaway::Internals
   vtkSmartPointer<vtkPoints> MovedAtoms;
   int CentresVersion = 0;
 
-  // The structure made from the molecules when none is connected.
+  // The structure made from the molecules when none is connected (the mesh and its VTK form).
+  mesolens::TriangleMesh StructureMesh;
   vtkNew<vtkPolyData> Structure;
   int StructureVertices = 0;
   double StructureRadius = -1;
-  int StructureFromCentres = -1;
 
   // The assignment: kept while the structure and the molecules' grouping stay.
   std::unique_ptr<mesolens::StructuredCutaway> Solver;
@@ -295,6 +327,193 @@ struct vtkMesoStructuredCutaway::Internals
   std::pair<double, int> PriorityFrom{ 2.0, -1 };
 
   std::map<std::string, double> ResidueFractions;
+
+  /// The fractions set per residue name, for the molecule types that have them.
+  void AddResidueFractions(mesolens::CutawayParams& settings) const
+  {
+    for (std::size_t t = 0; t < this->Groups.TypeNames.size(); ++t)
+    {
+      const auto found = this->ResidueFractions.find(this->Groups.TypeNames[t]);
+      if (found != this->ResidueFractions.end())
+      {
+        settings.fraction_by_type[static_cast<int>(t)] = found->second;
+      }
+    }
+  }
+
+  /// Stage 1: the molecules and their centres (made whole in the box when `whole`), kept while
+  /// the atoms' ids, names, points and box stay.
+  void GroupMolecules(const AtomInput& input, bool whole)
+  {
+    const bool same_grouping = this->GroupsFrom[0] == input.Stamps[0] &&
+      this->GroupsFrom[1] == input.Stamps[1] &&
+      this->Groups.Groups.of_atom.size() == std::size_t(input.Count());
+    if (!same_grouping)
+    {
+      this->Groups.Group(input.Count(), input.Ids, input.Names);
+    }
+    if (!same_grouping || !(this->GroupsFrom[2] == input.Stamps[2]) ||
+        !(this->GroupsFrom[3] == input.Stamps[3]) || this->GroupsWhole != whole)
+    {
+      this->GroupsFrom = {}; // stays invalid if Centre throws
+      const mesolens::PeriodicBox box = BoxOf(input.BoxVectors);
+      this->Groups.Centre(input.Atoms->GetPoints(), whole && input.BoxVectors ? &box : nullptr);
+      this->MovedAtoms = this->Groups.MovedAtoms(input.Atoms->GetPoints());
+      this->GroupsFrom = input.Stamps;
+      this->GroupsWhole = whole;
+      ++this->CentresVersion;
+    }
+  }
+
+  /// Stage 2 without a connected structure: the structure mesh of the molecules' centres, made
+  /// once and kept with the assignment over later frames.
+  vtkPolyData* MadeStructure(const AtomInput& input, int vertices, double mid_surface_radius)
+  {
+    const bool same_molecules = this->Solver && this->SolverGroups[0] == input.Stamps[0] &&
+      this->SolverGroups[1] == input.Stamps[1] && this->SolverAtoms == input.Count();
+    if (same_molecules && this->StructureVertices == vertices &&
+        this->StructureRadius == mid_surface_radius)
+    {
+      return this->Structure;
+    }
+    mesolens::StructureMeshParams params;
+    params.vertices = static_cast<std::size_t>(vertices);
+    params.mid_surface_radius = mid_surface_radius;
+    params.box = BoxOf(input.BoxVectors); // a flat periodic patch is meshed over its cell
+    mesolens::MeshQuality quality;
+    this->StructureMesh = mesolens::structure_mesh(this->Groups.StructureCentres(), params,
+                                                   &quality, vtkMesoParallelFor::Get());
+    vtkNew<vtkPolyData> made;
+    vtkMesoSurfaceConversion::FromTriangleMesh(this->StructureMesh, made);
+    vtkFieldData* fields = made->GetFieldData();
+    AddFieldValue(fields, vtkMesoArrayNames::MinAngle, quality.min_angle);
+    AddFieldValue(fields, vtkMesoArrayNames::MaxAngle, quality.max_angle);
+    AddFieldValue(fields, vtkMesoArrayNames::MeanEdge, quality.mean_edge);
+    AddFieldValue(fields, vtkMesoArrayNames::EdgeSpread, quality.edge_spread);
+    AddFieldValue(fields, vtkMesoArrayNames::BoundaryEdges, double(quality.boundary_edges));
+    AddFieldValue(fields, vtkMesoArrayNames::BoundaryLoops, double(quality.boundary_loops));
+    AddFieldValue(fields, vtkMesoArrayNames::Components, double(quality.components));
+    this->Structure->ShallowCopy(made);
+    this->Structure->Modified();
+    this->StructureVertices = vertices;
+    this->StructureRadius = mid_surface_radius;
+    return this->Structure;
+  }
+
+  /// Stage 3: the molecules assigned to the structure's triangles, only for a new structure or
+  /// a new set of molecules.
+  void Assign(vtkPolyData* structure, const AtomInput& input)
+  {
+    if (this->Solver && this->SolverStructure == vtkMesoStamp::Of(structure) &&
+        this->SolverGroups[0] == input.Stamps[0] && this->SolverGroups[1] == input.Stamps[1] &&
+        this->SolverAtoms == input.Count())
+    {
+      return;
+    }
+    this->Solver.reset();
+    this->HasOrder = false;
+    // The structure made here is at hand as a mesh; a connected one is converted.
+    const mesolens::TriangleMesh mesh = structure == this->Structure.GetPointer()
+      ? this->StructureMesh
+      : vtkMesoSurfaceConversion::ToTriangleMesh(structure);
+    this->Solver = std::make_unique<mesolens::StructuredCutaway>(
+      mesh, this->Groups.Centres, this->Groups.Types, vtkMesoParallelFor::Get());
+    this->SolverStructure = vtkMesoStamp::Of(structure);
+    this->SolverGroups = { input.Stamps[0], input.Stamps[1] };
+    this->SolverAtoms = input.Count();
+    ++this->Assignments;
+  }
+
+  /// Stage 4: the removal order for the cut (kept while only the fractions change) and the
+  /// molecules it leaves visible.
+  template<typename OrderKey>
+  std::vector<std::uint8_t> Visibility(vtkImplicitFunction* cut,
+                                       const mesolens::CutawayParams& settings,
+                                       const OrderKey& order_from)
+  {
+    if (!this->HasOrder || this->OrderFrom != order_from)
+    {
+      this->Order = this->Solver->removal_order(
+        [cut](const std::array<double, 3>& p) {
+          double x[3] = { p[0], p[1], p[2] };
+          return cut && cut->FunctionValue(x) <= 0;
+        },
+        settings, this->Groups.Centres.data());
+      this->OrderFrom = order_from;
+      this->HasOrder = true;
+      ++this->Orderings;
+    }
+    return this->Solver->visibility(this->Order, settings);
+  }
+
+  /// Stage 5, the per-atom arrays: each atom's removal priority (kept per K and assignment)
+  /// and visibility.
+  vtkSmartPointer<vtkUnsignedCharArray> AtomArrays(double k,
+                                                   const std::vector<std::uint8_t>& visible,
+                                                   vtkIdType n)
+  {
+    const std::vector<std::uint32_t>& of_atom = this->Groups.Groups.of_atom;
+    if (this->PriorityFrom != std::make_pair(k, this->Assignments) || !this->AtomPriority ||
+        this->AtomPriority->GetNumberOfValues() != n)
+    {
+      this->MoleculePriority = this->Solver->priorities(k);
+      this->AtomPriority = vtkSmartPointer<vtkFloatArray>::New();
+      this->AtomPriority->SetName(vtkMesoArrayNames::RemovalPriority);
+      this->AtomPriority->SetNumberOfValues(n);
+      float* out = this->AtomPriority->GetPointer(0);
+      const std::vector<double>& priority = this->MoleculePriority;
+      vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+        for (vtkIdType a = begin; a < end; ++a)
+        {
+          out[a] = static_cast<float>(priority[of_atom[static_cast<std::size_t>(a)]]);
+        }
+      });
+      this->PriorityFrom = { k, this->Assignments };
+    }
+    auto visible_atoms = vtkSmartPointer<vtkUnsignedCharArray>::New();
+    visible_atoms->SetName(vtkMesoArrayNames::Visible);
+    visible_atoms->SetNumberOfValues(n);
+    unsigned char* mask = visible_atoms->GetPointer(0);
+    vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType a = begin; a < end; ++a)
+      {
+        mask[a] = visible[of_atom[static_cast<std::size_t>(a)]];
+      }
+    });
+    return visible_atoms;
+  }
+
+  /// The molecules' visibility and priority, and the counts in the cut and hidden, as field
+  /// data of `output`.
+  void AddMoleculeFields(const std::vector<std::uint8_t>& visible, vtkPolyData* output) const
+  {
+    std::size_t hidden = 0;
+    vtkNew<vtkUnsignedCharArray> molecule_visible;
+    molecule_visible->SetName(vtkMesoArrayNames::MoleculeVisible);
+    molecule_visible->SetNumberOfValues(static_cast<vtkIdType>(visible.size()));
+    vtkNew<vtkFloatArray> molecule_priority;
+    molecule_priority->SetName(vtkMesoArrayNames::MoleculeRemovalPriority);
+    molecule_priority->SetNumberOfValues(static_cast<vtkIdType>(visible.size()));
+    for (std::size_t m = 0; m < visible.size(); ++m)
+    {
+      hidden += visible[m] ? 0 : 1;
+      molecule_visible->SetValue(static_cast<vtkIdType>(m), visible[m]);
+      molecule_priority->SetValue(static_cast<vtkIdType>(m),
+                                  static_cast<float>(this->MoleculePriority[m]));
+    }
+    output->GetFieldData()->AddArray(molecule_visible);
+    output->GetFieldData()->AddArray(molecule_priority);
+    for (const auto& [name, value] :
+         { std::pair<const char*, std::size_t>{ vtkMesoArrayNames::MoleculesInCut,
+                                                this->Order.in_cut() },
+           std::pair<const char*, std::size_t>{ vtkMesoArrayNames::MoleculesHidden, hidden } })
+    {
+      vtkNew<vtkIdTypeArray> field;
+      field->SetName(name);
+      field->InsertNextValue(static_cast<vtkIdType>(value));
+      output->GetFieldData()->AddArray(field);
+    }
+  }
 };
 
 vtkMesoStructuredCutaway::vtkMesoStructuredCutaway()
@@ -376,94 +595,13 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
   Internals& in = *this->Internal;
   try
   {
-    vtkDataArray* ids = atoms->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId);
-    auto* names = vtkStringArray::SafeDownCast(
-      atoms->GetPointData()->GetAbstractArray(vtkMesoArrayNames::ResidueName));
-    vtkDataArray* box_vectors =
-      atoms->GetFieldData()->GetArray(vtkMesoArrayNames::PeriodicBoxVectors);
-    if (!box_vectors || box_vectors->GetNumberOfComponents() != 9 ||
-        box_vectors->GetNumberOfTuples() == 0)
-    {
-      box_vectors = nullptr;
-    }
-    const vtkIdType n = atoms->GetNumberOfPoints();
-
-    // 1. The molecules and their centres.
-    const std::array<vtkMesoStamp, 4> groups_from{ vtkMesoStamp::Of(ids), vtkMesoStamp::Of(names),
-                                                   vtkMesoStamp::Of(atoms->GetPoints()->GetData()),
-                                                   vtkMesoStamp::Of(box_vectors) };
-    const bool same_grouping = in.GroupsFrom[0] == groups_from[0] &&
-      in.GroupsFrom[1] == groups_from[1] && in.Groups.Groups.of_atom.size() == std::size_t(n);
-    if (!same_grouping)
-    {
-      in.Groups.Group(n, ids, names);
-    }
-    if (!same_grouping || !(in.GroupsFrom[2] == groups_from[2]) ||
-        !(in.GroupsFrom[3] == groups_from[3]) || in.GroupsWhole != this->MakeAssemblyWhole)
-    {
-      in.GroupsFrom = {}; // stays invalid if Centre throws
-      const mesolens::PeriodicBox box = BoxOf(box_vectors);
-      in.Groups.Centre(atoms->GetPoints(), this->MakeAssemblyWhole && box_vectors ? &box : nullptr);
-      in.MovedAtoms = in.Groups.MovedAtoms(atoms->GetPoints());
-      in.GroupsFrom = groups_from;
-      in.GroupsWhole = this->MakeAssemblyWhole;
-      ++in.CentresVersion;
-    }
-    const Molecules& molecules = in.Groups;
-
-    // 2. The structure.
+    const AtomInput input(atoms);
+    in.GroupMolecules(input, this->MakeAssemblyWhole);
     if (!structure)
     {
-      // Made from the molecules' centres once, kept with the assignment over later frames.
-      const bool same_molecules = in.Solver && in.SolverGroups[0] == groups_from[0] &&
-        in.SolverGroups[1] == groups_from[1] && in.SolverAtoms == n;
-      if (!same_molecules || in.StructureVertices != this->StructureVertices ||
-          in.StructureRadius != this->StructureMidSurfaceRadius)
-      {
-        mesolens::StructureMeshParams params;
-        params.vertices = static_cast<std::size_t>(this->StructureVertices);
-        params.mid_surface_radius = this->StructureMidSurfaceRadius;
-        params.box = BoxOf(box_vectors); // a flat periodic patch is meshed over its cell
-        mesolens::MeshQuality quality;
-        const mesolens::TriangleMesh mesh = mesolens::structure_mesh(
-          molecules.StructureCentres(), params, &quality, vtkMesoParallelFor::Get());
-        vtkNew<vtkPolyData> made;
-        vtkMesoSurfaceConversion::FromTriangleMesh(mesh, made);
-        AddFieldValue(made->GetFieldData(), vtkMesoArrayNames::MinAngle, quality.min_angle);
-        AddFieldValue(made->GetFieldData(), vtkMesoArrayNames::MaxAngle, quality.max_angle);
-        AddFieldValue(made->GetFieldData(), vtkMesoArrayNames::MeanEdge, quality.mean_edge);
-        AddFieldValue(made->GetFieldData(), vtkMesoArrayNames::EdgeSpread, quality.edge_spread);
-        AddFieldValue(made->GetFieldData(), vtkMesoArrayNames::BoundaryEdges,
-                      double(quality.boundary_edges));
-        AddFieldValue(made->GetFieldData(), vtkMesoArrayNames::BoundaryLoops,
-                      double(quality.boundary_loops));
-        AddFieldValue(made->GetFieldData(), vtkMesoArrayNames::Components,
-                      double(quality.components));
-        in.Structure->ShallowCopy(made);
-        in.Structure->Modified();
-        in.StructureVertices = this->StructureVertices;
-        in.StructureRadius = this->StructureMidSurfaceRadius;
-      }
-      structure = in.Structure;
+      structure = in.MadeStructure(input, this->StructureVertices, this->StructureMidSurfaceRadius);
     }
-
-    // 3. The assignment, only for a new structure or a new set of molecules.
-    if (!in.Solver || !(in.SolverStructure == vtkMesoStamp::Of(structure)) ||
-        !(in.SolverGroups[0] == groups_from[0]) || !(in.SolverGroups[1] == groups_from[1]) ||
-        in.SolverAtoms != n)
-    {
-      in.Solver.reset();
-      in.HasOrder = false;
-      const mesolens::TriangleMesh mesh = vtkMesoSurfaceConversion::ToTriangleMesh(structure);
-      in.Solver = std::make_unique<mesolens::StructuredCutaway>(
-        mesh, molecules.Centres, molecules.Types, vtkMesoParallelFor::Get());
-      in.SolverStructure = vtkMesoStamp::Of(structure);
-      in.SolverGroups = { groups_from[0], groups_from[1] };
-      in.SolverAtoms = n;
-      ++in.Assignments;
-    }
-
-    // 4. The removal order, kept while only the fractions change.
+    in.Assign(structure, input);
     mesolens::CutawayParams settings;
     settings.k = this->K;
     settings.fraction_hidden = this->FractionHidden;
@@ -471,60 +609,12 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
     settings.random = this->RandomOrder;
     settings.probabilistic = this->ProbabilisticOrder;
     settings.seed = static_cast<std::uint64_t>(this->Seed);
-    for (std::size_t t = 0; t < molecules.TypeNames.size(); ++t)
-    {
-      const auto found = in.ResidueFractions.find(molecules.TypeNames[t]);
-      if (found != in.ResidueFractions.end())
-      {
-        settings.fraction_by_type[static_cast<int>(t)] = found->second;
-      }
-    }
+    in.AddResidueFractions(settings);
     const auto order_from = std::make_tuple(
       this->K, this->Inverted, this->RandomOrder, this->ProbabilisticOrder, this->Seed,
       vtkMesoStamp::Of(this->CutFunction), in.CentresVersion, in.Assignments);
-    if (!in.HasOrder || in.OrderFrom != order_from)
-    {
-      vtkImplicitFunction* cut = this->CutFunction;
-      in.Order = in.Solver->removal_order(
-        [cut](const std::array<double, 3>& p) {
-          double x[3] = { p[0], p[1], p[2] };
-          return cut && cut->FunctionValue(x) <= 0;
-        },
-        settings, molecules.Centres.data());
-      in.OrderFrom = order_from;
-      in.HasOrder = true;
-      ++in.Orderings;
-    }
-    const std::vector<std::uint8_t> visible = in.Solver->visibility(in.Order, settings);
-
-    // 5. Per-atom arrays: the priorities once per K, the mask every time.
-    if (in.PriorityFrom != std::make_pair(this->K, in.Assignments) || !in.AtomPriority ||
-        in.AtomPriority->GetNumberOfValues() != n)
-    {
-      in.MoleculePriority = in.Solver->priorities(this->K);
-      in.AtomPriority = vtkSmartPointer<vtkFloatArray>::New();
-      in.AtomPriority->SetName(vtkMesoArrayNames::RemovalPriority);
-      in.AtomPriority->SetNumberOfValues(n);
-      float* out = in.AtomPriority->GetPointer(0);
-      vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-        for (vtkIdType a = begin; a < end; ++a)
-        {
-          out[a] =
-            static_cast<float>(in.MoleculePriority[molecules.Groups.of_atom[static_cast<std::size_t>(a)]]);
-        }
-      });
-      in.PriorityFrom = { this->K, in.Assignments };
-    }
-    vtkNew<vtkUnsignedCharArray> visible_atoms;
-    visible_atoms->SetName(vtkMesoArrayNames::Visible);
-    visible_atoms->SetNumberOfValues(n);
-    unsigned char* mask = visible_atoms->GetPointer(0);
-    vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType a = begin; a < end; ++a)
-      {
-        mask[a] = visible[molecules.Groups.of_atom[static_cast<std::size_t>(a)]];
-      }
-    });
+    const std::vector<std::uint8_t> visible =
+      in.Visibility(this->CutFunction, settings, order_from);
 
     vtkNew<vtkPolyData> all;
     all->ShallowCopy(atoms);
@@ -532,6 +622,8 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
     {
       all->SetPoints(in.MovedAtoms); // the same object while the input stays: no new upload
     }
+    vtkSmartPointer<vtkUnsignedCharArray> visible_atoms =
+      in.AtomArrays(this->K, visible, atoms->GetNumberOfPoints());
     all->GetPointData()->AddArray(visible_atoms);
     all->GetPointData()->AddArray(in.AtomPriority);
     if (this->ExtractVisibleAtoms)
@@ -543,33 +635,7 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
       output->ShallowCopy(all);
     }
     structure_output->ShallowCopy(structure);
-
-    std::size_t hidden = 0;
-    vtkNew<vtkUnsignedCharArray> molecule_visible;
-    molecule_visible->SetName(vtkMesoArrayNames::MoleculeVisible);
-    molecule_visible->SetNumberOfValues(static_cast<vtkIdType>(visible.size()));
-    vtkNew<vtkFloatArray> molecule_priority;
-    molecule_priority->SetName(vtkMesoArrayNames::MoleculeRemovalPriority);
-    molecule_priority->SetNumberOfValues(static_cast<vtkIdType>(visible.size()));
-    for (std::size_t m = 0; m < visible.size(); ++m)
-    {
-      hidden += visible[m] ? 0 : 1;
-      molecule_visible->SetValue(static_cast<vtkIdType>(m), visible[m]);
-      molecule_priority->SetValue(static_cast<vtkIdType>(m),
-                                  static_cast<float>(in.MoleculePriority[m]));
-    }
-    output->GetFieldData()->AddArray(molecule_visible);
-    output->GetFieldData()->AddArray(molecule_priority);
-    for (const auto& [name, value] :
-         { std::pair<const char*, std::size_t>{ vtkMesoArrayNames::MoleculesInCut,
-                                                in.Order.in_cut() },
-           std::pair<const char*, std::size_t>{ vtkMesoArrayNames::MoleculesHidden, hidden } })
-    {
-      vtkNew<vtkIdTypeArray> field;
-      field->SetName(name);
-      field->InsertNextValue(static_cast<vtkIdType>(value));
-      output->GetFieldData()->AddArray(field);
-    }
+    in.AddMoleculeFields(visible, output);
   }
   catch (const mesolens::Error& error)
   {

@@ -3,6 +3,7 @@
 
 #include "vtkMesoArrayNames.h"
 
+#include "vtkMesoAtomInput.h"
 #include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoSurfaceConversion.h"
 #include "vtkMesoParallelFor.h"
@@ -38,45 +39,13 @@ vtkMesoMolecularSurface::~vtkMesoMolecularSurface()
   this->SetRadiusArrayName(nullptr);
 }
 
-int vtkMesoMolecularSurface::RequestData(vtkInformation*, vtkInformationVector** inputVector,
-                                         vtkInformationVector* outputVector)
+namespace {
+/// The surface as the output's points, triangles and normals, each vertex with its atom
+/// (AtomId), its patch type, every numeric array of its atom, and ChainIndex (chains numbered
+/// in order of first appearance) when the atoms have chain ids.
+void write_surface(const mesolens::MolecularSurface& surface, vtkPolyData* atoms,
+                   vtkPolyData* output)
 {
-  vtkPolyData* atoms = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* output = vtkPolyData::GetData(outputVector);
-  output->Initialize();
-  if (!atoms || atoms->GetNumberOfPoints() == 0)
-  {
-    vtkErrorMacro("No atoms to wrap in a surface.");
-    return 0;
-  }
-  std::vector<std::array<double, 3>> centres;
-  std::vector<double> radii;
-  std::string error;
-  if (!vtkMesoAtomTableConversion::AtomSpheres(atoms, this->RadiusArrayName, this->BeadRadius,
-                                               centres, radii, error))
-  {
-    vtkErrorMacro(<< error);
-    return 0;
-  }
-  mesolens::MolecularSurfaceParams options;
-  options.kind = static_cast<mesolens::SurfaceKind>(this->SurfaceType);
-  options.probe_radius = this->ProbeRadius;
-  options.tolerance = this->Tolerance;
-  options.keep_cavities = this->KeepCavities;
-  options.exact_figures = this->ComputeExactFigures;
-  mesolens::MolecularSurface surface;
-  try
-  {
-    surface =
-      mesolens::molecular_surface(centres, radii, options, vtkMesoParallelFor::Get(),
-                                  [this](double fraction) { this->UpdateProgress(fraction); });
-  }
-  catch (const mesolens::Error& failure)
-  {
-    vtkErrorMacro("Cannot build the surface: " << failure.what());
-    return 0;
-  }
-
   const vtkIdType vertices = static_cast<vtkIdType>(surface.atom.size());
   vtkNew<vtkFloatArray> coordinates;
   coordinates->SetNumberOfComponents(3);
@@ -139,7 +108,11 @@ int vtkMesoMolecularSurface::RequestData(vtkInformation*, vtkInformationVector**
   out->AddArray(atom_ids);
   out->AddArray(patches);
   out->SetNormals(normals);
+}
 
+/// The surface's figures as field data (areas and volume only when they were computed).
+void add_surface_fields(const mesolens::MolecularSurface& surface, vtkPolyData* output)
+{
   using vtkMesoAtomTableConversion::SetFieldValue;
   if (std::isfinite(surface.area)) // else not asked for
   {
@@ -156,6 +129,43 @@ int vtkMesoMolecularSurface::RequestData(vtkInformation*, vtkInformationVector**
   SetFieldValue(output, vtkMesoArrayNames::GridSpacing, surface.grid_spacing);
   SetFieldValue(output, vtkMesoArrayNames::DegenerateVertexCount,
                 double(surface.degenerate_vertex_count));
+}
+} // namespace
+
+int vtkMesoMolecularSurface::RequestData(vtkInformation*, vtkInformationVector** inputVector,
+                                         vtkInformationVector* outputVector)
+{
+  vtkPolyData* atoms = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  output->Initialize();
+  if (!atoms || atoms->GetNumberOfPoints() == 0)
+  {
+    vtkErrorMacro("No atoms to wrap in a surface.");
+    return 0;
+  }
+  mesolens::MolecularSurfaceParams params;
+  params.kind = static_cast<mesolens::SurfaceKind>(this->SurfaceType);
+  params.probe_radius = this->ProbeRadius;
+  params.tolerance = this->Tolerance;
+  params.keep_cavities = this->KeepCavities;
+  params.exact_figures = this->ComputeExactFigures;
+  mesolens::MolecularSurface surface;
+  try
+  {
+    std::vector<std::array<double, 3>> centres;
+    std::vector<double> radii;
+    vtkMesoAtomInput::Spheres(atoms, this->RadiusArrayName, this->BeadRadius, centres, radii);
+    surface =
+      mesolens::molecular_surface(centres, radii, params, vtkMesoParallelFor::Get(),
+                                  [this](double fraction) { this->UpdateProgress(fraction); });
+  }
+  catch (const mesolens::Error& failure)
+  {
+    vtkErrorMacro("Cannot build the surface: " << failure.what());
+    return 0;
+  }
+  write_surface(surface, atoms, output);
+  add_surface_fields(surface, output);
   if (surface.degenerate_vertex_count > 0)
   {
     vtkWarningMacro("Four or more atoms touch one probe position at "

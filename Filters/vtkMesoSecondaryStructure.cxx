@@ -3,6 +3,7 @@
 
 #include "vtkMesoArrayNames.h"
 
+#include "vtkMesoAtomInput.h"
 #include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoParallelFor.h"
 #include "vtkMesoStamp.h"
@@ -39,32 +40,127 @@ struct vtkMesoSecondaryStructure::Internals
   std::vector<mesolens::SecondaryStructure> LastShown;
   // The backbone's layout (which atom is which), kept while the atoms' names and residues stay:
   // a new frame then only reads positions.
-  std::vector<vtkMesoStamp> LayoutFrom;
+  vtkMesoAtomInput Atoms;
   mesolens::ProteinBackbone Backbone;
   std::vector<int> BackboneResidueOfAtom; ///< per atom, -1: not an amino acid's
-  std::vector<float> Positions;
+
+  /// Stage 1: the backbone of this frame; its layout read again only for new atoms.
+  void ReadBackbone(vtkPolyData* atoms)
+  {
+    if (!this->Atoms.ReadLayout(atoms))
+    {
+      this->Backbone.update_positions(this->Atoms.Positions(atoms));
+      return;
+    }
+    const mesolens::AtomTable& table = this->Atoms.Layout();
+    this->Backbone = mesolens::protein_backbone(table);
+    // Per atom, its residue's place among the backbone residues (-1: none).
+    std::vector<int> slot_of_residue;
+    for (std::size_t r = 0; r < this->Backbone.residue_index.size(); ++r)
+    {
+      const auto index = static_cast<std::size_t>(std::max(0, this->Backbone.residue_index[r]));
+      if (index >= slot_of_residue.size())
+      {
+        slot_of_residue.resize(index + 1, -1);
+      }
+      slot_of_residue[index] = static_cast<int>(r);
+    }
+    this->BackboneResidueOfAtom.assign(table.residue_indices.size(), -1);
+    for (std::size_t a = 0; a < table.residue_indices.size(); ++a)
+    {
+      const int residue = table.residue_indices[a];
+      if (residue >= 0 && std::size_t(residue) < slot_of_residue.size())
+      {
+        this->BackboneResidueOfAtom[a] = slot_of_residue[std::size_t(residue)];
+      }
+    }
+  }
+
+  /// Stage 3, a played trajectory: the classes shown after the hysteresis over `frames`
+  /// successive time steps (1: none). New settings (`settings_time`) or a jump back in time
+  /// start over; the same frame again shows what it showed.
+  std::vector<mesolens::SecondaryStructure> Shown(
+    const std::vector<mesolens::SecondaryStructure>& assigned, int frames, double time,
+    vtkMTimeType settings_time)
+  {
+    std::vector<mesolens::SecondaryStructure> classes = assigned;
+    if (frames > 1)
+    {
+      if (!this->Hysteresis || this->SettingsTime != settings_time || time < this->LastTime)
+      {
+        this->LastShown.clear();
+        this->Hysteresis.emplace(frames);
+        this->SettingsTime = settings_time;
+      }
+      if (time != this->LastTime || this->LastShown.size() != assigned.size())
+      {
+        this->LastShown = this->Hysteresis->update(assigned);
+      }
+      classes = this->LastShown;
+    }
+    else
+    {
+      this->Hysteresis.reset();
+    }
+    this->LastTime = time;
+    return classes;
+  }
 };
 
 namespace {
 /// The atoms' positions as floats (a pointer into the points when they are floats already).
-const float* float_positions(vtkPolyData* atoms, std::vector<float>& storage)
+/// Stage 4a: per atom, its residue's class (SecondaryStructure) and run (SecondaryStructureId).
+void add_atom_classes(const std::vector<mesolens::SecondaryStructure>& classes,
+                      const std::vector<int>& runs, const std::vector<int>& residue_of_atom,
+                      vtkPolyData* output)
 {
-  if (auto* floats = vtkFloatArray::FastDownCast(atoms->GetPoints()->GetData()))
-  {
-    return floats->GetPointer(0);
-  }
-  const vtkIdType n = atoms->GetNumberOfPoints();
-  storage.resize(3 * std::size_t(n));
+  const auto n = static_cast<vtkIdType>(residue_of_atom.size());
+  vtkNew<vtkUnsignedCharArray> per_atom;
+  per_atom->SetName(vtkMesoArrayNames::SecondaryStructure);
+  per_atom->SetNumberOfValues(n);
+  vtkNew<vtkIntArray> per_atom_run;
+  per_atom_run->SetName(vtkMesoArrayNames::SecondaryStructureId);
+  per_atom_run->SetNumberOfValues(n);
   for (vtkIdType a = 0; a < n; ++a)
   {
-    double p[3];
-    atoms->GetPoint(a, p);
-    for (int d = 0; d < 3; ++d)
-    {
-      storage[3 * std::size_t(a) + std::size_t(d)] = static_cast<float>(p[d]);
-    }
+    const int slot = residue_of_atom[std::size_t(a)];
+    per_atom->SetValue(a, slot >= 0 ? static_cast<unsigned char>(classes[std::size_t(slot)]) : 0);
+    per_atom_run->SetValue(a, slot >= 0 ? runs[std::size_t(slot)] : -1);
   }
-  return storage.data();
+  output->GetPointData()->AddArray(per_atom);
+  output->GetPointData()->AddArray(per_atom_run);
+}
+
+/// Stage 4b: per residue its class and residue index, and per chain its DSSP string, in field
+/// data.
+void add_residue_classes(const std::vector<mesolens::SecondaryStructure>& classes,
+                         const mesolens::ProteinBackbone& backbone, vtkPolyData* output)
+{
+  vtkNew<vtkUnsignedCharArray> per_residue;
+  per_residue->SetName(vtkMesoArrayNames::ResidueSecondaryStructure);
+  vtkNew<vtkIntArray> residue_indices;
+  residue_indices->SetName(vtkMesoArrayNames::ResidueIndexOfAssignment);
+  vtkNew<vtkStringArray> chains;
+  chains->SetName(vtkMesoArrayNames::DSSP);
+  std::string letters;
+  for (std::size_t r = 0; r < classes.size(); ++r)
+  {
+    per_residue->InsertNextValue(static_cast<unsigned char>(classes[r]));
+    residue_indices->InsertNextValue(backbone.residue_index[r]);
+    if (r > 0 && backbone.residues[r].chain != backbone.residues[r - 1].chain)
+    {
+      chains->InsertNextValue(letters);
+      letters.clear();
+    }
+    letters += mesolens::dssp_string({ classes[r] });
+  }
+  if (!letters.empty())
+  {
+    chains->InsertNextValue(letters);
+  }
+  output->GetFieldData()->AddArray(per_residue);
+  output->GetFieldData()->AddArray(residue_indices);
+  output->GetFieldData()->AddArray(chains);
 }
 } // namespace
 
@@ -128,129 +224,27 @@ int vtkMesoSecondaryStructure::RequestData(vtkInformation*, vtkInformationVector
   Internals& in = *this->Internal;
   try
   {
-    const vtkIdType n = atoms->GetNumberOfPoints();
-    const auto stamps = vtkMesoAtomLayoutStamps(atoms);
-    if (stamps != in.LayoutFrom)
-    {
-      in.LayoutFrom.clear();
-      mesolens::AtomTable table;
-      std::string missing;
-      if (!vtkMesoAtomTableConversion::FromPolyData(atoms, 1.0, table, &missing))
-      {
-        vtkErrorMacro(<< vtkMesoAtomTableConversion::MissingArrayMessage(missing));
-        return 0;
-      }
-      in.Backbone = mesolens::protein_backbone(table);
-      // Per atom, its residue's place among the backbone residues (-1: none), once per layout.
-      std::vector<int> slot_of_residue;
-      for (std::size_t r = 0; r < in.Backbone.residue_index.size(); ++r)
-      {
-        const auto index = static_cast<std::size_t>(std::max(0, in.Backbone.residue_index[r]));
-        if (index >= slot_of_residue.size())
-        {
-          slot_of_residue.resize(index + 1, -1);
-        }
-        slot_of_residue[index] = static_cast<int>(r);
-      }
-      in.BackboneResidueOfAtom.assign(std::size_t(n), -1);
-      for (std::size_t a = 0; a < std::size_t(n); ++a)
-      {
-        const int residue = table.residue_indices[a];
-        if (residue >= 0 && std::size_t(residue) < slot_of_residue.size())
-        {
-          in.BackboneResidueOfAtom[a] = slot_of_residue[std::size_t(residue)];
-        }
-      }
-      in.LayoutFrom = stamps;
-    }
-    else
-    {
-      in.Backbone.update_positions(float_positions(atoms, in.Positions));
-    }
+    in.ReadBackbone(atoms);
     output->ShallowCopy(atoms);
     if (this->KeepFileRecords && has_records(atoms))
     {
       return 1; // the file's classes as they are
     }
-    const mesolens::ProteinBackbone& backbone = in.Backbone;
-    mesolens::DsspParams settings;
-    settings.pi_helix_priority = this->PiHelixPriority;
-    settings.polyproline_stretch = this->PolyprolineStretch;
-    settings.bulges = this->Bulges;
-    settings.file_hydrogens = this->UseFileHydrogens;
+    mesolens::DsspParams params;
+    params.pi_helix_priority = this->PiHelixPriority;
+    params.polyproline_stretch = this->PolyprolineStretch;
+    params.bulges = this->Bulges;
+    params.file_hydrogens = this->UseFileHydrogens;
     const mesolens::DsspResult result =
-      mesolens::assign_secondary_structure(backbone.residues, settings, vtkMesoParallelFor::Get());
-
-    // A played trajectory: the hysteresis over successive time steps.
-    std::vector<mesolens::SecondaryStructure> classes = result.structure;
+      mesolens::assign_secondary_structure(in.Backbone.residues, params, vtkMesoParallelFor::Get());
     const double time = atoms->GetInformation()->Has(vtkDataObject::DATA_TIME_STEP())
       ? atoms->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP())
       : 0.0;
-    if (this->HysteresisFrames > 1)
-    {
-      // New settings or a jump back in time start over.
-      if (!in.Hysteresis || in.SettingsTime != this->GetMTime() || time < in.LastTime)
-      {
-        in.LastShown.clear();
-        in.Hysteresis.emplace(this->HysteresisFrames);
-        in.SettingsTime = this->GetMTime();
-      }
-      // The same frame again (a setting changed) is no new frame: it shows what it showed.
-      if (time != in.LastTime || in.LastShown.size() != result.structure.size())
-      {
-        in.LastShown = in.Hysteresis->update(result.structure);
-      }
-      classes = in.LastShown;
-    }
-    else
-    {
-      in.Hysteresis.reset();
-    }
-    in.LastTime = time;
-
-    // Per atom: its residue's class and run.
-    const std::vector<int> runs = run_ids(classes, backbone.residues);
-    vtkNew<vtkUnsignedCharArray> per_atom;
-    per_atom->SetName(vtkMesoArrayNames::SecondaryStructure);
-    per_atom->SetNumberOfValues(n);
-    vtkNew<vtkIntArray> per_atom_run;
-    per_atom_run->SetName(vtkMesoArrayNames::SecondaryStructureId);
-    per_atom_run->SetNumberOfValues(n);
-    for (vtkIdType a = 0; a < n; ++a)
-    {
-      const int slot = in.BackboneResidueOfAtom[std::size_t(a)];
-      per_atom->SetValue(a, slot >= 0 ? static_cast<unsigned char>(classes[std::size_t(slot)]) : 0);
-      per_atom_run->SetValue(a, slot >= 0 ? runs[std::size_t(slot)] : -1);
-    }
-    output->GetPointData()->AddArray(per_atom);
-    output->GetPointData()->AddArray(per_atom_run);
-
-    // Per residue and per chain, in field data.
-    vtkNew<vtkUnsignedCharArray> per_residue;
-    per_residue->SetName(vtkMesoArrayNames::ResidueSecondaryStructure);
-    vtkNew<vtkIntArray> residue_indices;
-    residue_indices->SetName(vtkMesoArrayNames::ResidueIndexOfAssignment);
-    vtkNew<vtkStringArray> chains;
-    chains->SetName(vtkMesoArrayNames::DSSP);
-    std::string letters;
-    for (std::size_t r = 0; r < classes.size(); ++r)
-    {
-      per_residue->InsertNextValue(static_cast<unsigned char>(classes[r]));
-      residue_indices->InsertNextValue(backbone.residue_index[r]);
-      if (r > 0 && backbone.residues[r].chain != backbone.residues[r - 1].chain)
-      {
-        chains->InsertNextValue(letters);
-        letters.clear();
-      }
-      letters += mesolens::dssp_string({ classes[r] });
-    }
-    if (!letters.empty())
-    {
-      chains->InsertNextValue(letters);
-    }
-    output->GetFieldData()->AddArray(per_residue);
-    output->GetFieldData()->AddArray(residue_indices);
-    output->GetFieldData()->AddArray(chains);
+    const std::vector<mesolens::SecondaryStructure> classes =
+      in.Shown(result.structure, this->HysteresisFrames, time, this->GetMTime());
+    add_atom_classes(classes, run_ids(classes, in.Backbone.residues), in.BackboneResidueOfAtom,
+                     output);
+    add_residue_classes(classes, in.Backbone, output);
     vtkMesoAtomTableConversion::SetFieldValue(output, vtkMesoArrayNames::HydrogenBonds,
                                               double(result.hydrogen_bonds));
   }

@@ -3,6 +3,7 @@
 
 #include "vtkMesoArrayNames.h"
 
+#include "vtkMesoAtomInput.h"
 #include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoParallelFor.h"
 
@@ -40,21 +41,15 @@ int vtkMesoSurfaceArea::RequestData(vtkInformation*, vtkInformationVector** inpu
     return 0;
   }
   const vtkIdType n = atoms->GetNumberOfPoints();
-  std::vector<std::array<double, 3>> centres;
-  std::vector<double> radii;
-  std::string error;
-  if (!vtkMesoAtomTableConversion::AtomSpheres(atoms, this->RadiusArrayName, this->BeadRadius,
-                                               centres, radii, error))
-  {
-    vtkErrorMacro(<< error);
-    return 0;
-  }
-  for (double& radius : radii)
-  {
-    radius += this->ProbeRadius;
-  }
   try
   {
+    std::vector<std::array<double, 3>> centres;
+    std::vector<double> radii;
+    vtkMesoAtomInput::Spheres(atoms, this->RadiusArrayName, this->BeadRadius, centres, radii);
+    for (double& radius : radii)
+    {
+      radius += this->ProbeRadius;
+    }
     const mesolens::SphereUnionArea measured =
       mesolens::sphere_union_area(centres, radii, vtkMesoParallelFor::Get());
     output->ShallowCopy(atoms);

@@ -27,6 +27,7 @@
 #include <vtkStreamingDemandDrivenPipeline.h>
 
 #include <algorithm>
+#include <functional>
 #include <cmath>
 
 vtkStandardNewMacro(vtkMesoTrajectoryReader);
@@ -42,6 +43,66 @@ struct vtkMesoTrajectoryReader::State
   bool TrajectoryIsTopology = false;              // the frames are those of the topology file
   std::vector<double> Times;                      // ps
   std::unique_ptr<mesolens::MoleculeContinuity> Continuity;
+
+  /// Frame `index` of the file (the topology's own when there is no trajectory, or when the
+  /// trajectory is the topology file and index is 0), its molecules made whole when asked.
+  mesolens::TrajectoryFrame WholeFrame(std::size_t index, bool make_whole) const
+  {
+    mesolens::TrajectoryFrame frame;
+    if (!this->File || (index == 0 && this->TrajectoryIsTopology))
+    {
+      frame.positions = this->Topology.positions;
+      frame.box = this->Topology.box;
+      if (this->File)
+      {
+        frame.time_ps = this->Times.front();
+      }
+    }
+    else
+    {
+      frame = this->File->read_frame(index);
+    }
+    if (make_whole)
+    {
+      mesolens::make_molecules_whole(frame.positions.data(), this->Topology.molecule_ids.data(),
+                                     this->Topology.size(), frame.box);
+    }
+    return frame;
+  }
+
+  /// Frame `index`, whole and, with Continuity, continuous with the frames before it: those not
+  /// seen yet are visited once, in order, each reported to `visited`, which returns false to
+  /// stop (then false).
+  bool ContinuousFrame(std::size_t index, bool make_whole,
+                       const std::function<bool(std::size_t)>& visited,
+                       mesolens::TrajectoryFrame& frame)
+  {
+    if (this->Continuity)
+    {
+      for (std::size_t k = this->Continuity->known_frames(); k < index; ++k)
+      {
+        mesolens::TrajectoryFrame earlier = this->WholeFrame(k, make_whole);
+        this->Continuity->add_frame(k, earlier.positions.data(), earlier.box);
+        if (!visited(k))
+        {
+          return false;
+        }
+      }
+    }
+    frame = this->WholeFrame(index, make_whole);
+    if (this->Continuity)
+    {
+      if (this->Continuity->known_frames() == index)
+      {
+        this->Continuity->add_frame(index, frame.positions.data(), frame.box);
+      }
+      else
+      {
+        this->Continuity->apply(index, frame.positions.data(), frame.box);
+      }
+    }
+    return true;
+  }
 };
 
 vtkMesoTrajectoryReader::vtkMesoTrajectoryReader()
@@ -226,64 +287,13 @@ int vtkMesoTrajectoryReader::RequestData(vtkInformation*, vtkInformationVector**
   mesolens::TrajectoryFrame frame;
   try
   {
-    auto whole_frame = [&](std::size_t index) {
-      mesolens::TrajectoryFrame f;
-      if (index == 0 && state.TrajectoryIsTopology)
-      {
-        // The topology already holds the first frame of its own file.
-        f.positions = state.Topology.positions;
-        f.box = state.Topology.box;
-        f.time_ps = state.Times.front();
-      }
-      else
-      {
-        f = state.File->read_frame(index);
-      }
-      if (this->MakeMoleculesWhole)
-      {
-        mesolens::make_molecules_whole(f.positions.data(), state.Topology.molecule_ids.data(),
-                                       state.Topology.size(), f.box);
-      }
-      return f;
+    auto visited = [this, frame_index](std::size_t k) {
+      this->UpdateProgress(0.9 * double(k) / double(frame_index));
+      return !this->GetAbortExecute();
     };
-    if (state.File)
+    if (!state.ContinuousFrame(frame_index, this->MakeMoleculesWhole, visited, frame))
     {
-      // Continuity needs every earlier frame once: visit the ones not seen yet, in order.
-      if (state.Continuity)
-      {
-        for (std::size_t k = state.Continuity->known_frames(); k < frame_index; ++k)
-        {
-          mesolens::TrajectoryFrame earlier = whole_frame(k);
-          state.Continuity->add_frame(k, earlier.positions.data(), earlier.box);
-          this->UpdateProgress(0.9 * double(k) / double(frame_index));
-          if (this->GetAbortExecute())
-          {
-            return 0;
-          }
-        }
-      }
-      frame = whole_frame(frame_index);
-      if (state.Continuity)
-      {
-        if (state.Continuity->known_frames() == frame_index)
-        {
-          state.Continuity->add_frame(frame_index, frame.positions.data(), frame.box);
-        }
-        else
-        {
-          state.Continuity->apply(frame_index, frame.positions.data(), frame.box);
-        }
-      }
-    }
-    else
-    {
-      frame.positions = state.Topology.positions;
-      frame.box = state.Topology.box;
-      if (this->MakeMoleculesWhole)
-      {
-        mesolens::make_molecules_whole(frame.positions.data(), state.Topology.molecule_ids.data(),
-                                       state.Topology.size(), frame.box);
-      }
+      return 0;
     }
   }
   catch (const mesolens::Error& e)

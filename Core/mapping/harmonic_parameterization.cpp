@@ -45,60 +45,58 @@ std::vector<std::int64_t> boundary_loop(const TriangleMesh& disk)
   }
   return std::move(loops.front());
 }
-} // namespace
 
-DiskParameterization harmonic_parameterization(const TriangleMesh& disk, double radius)
+/// The disk's boundary loop on the circle of `radius` by arc length, counter-clockwise; sets
+/// those vertices' uv and numbers the others (the unknowns) in `unknown` (-1 on the boundary).
+/// Returns the number of unknowns.
+std::int64_t place_boundary(const TriangleMesh& disk, double radius, std::vector<double>& uv,
+                            std::vector<std::int64_t>& unknown)
 {
-  if (!(radius > 0) || !std::isfinite(radius))
-  {
-    throw InvalidInput("the parameterization radius must be positive and finite");
-  }
-  require_manifold(disk, "the disk to parameterize");
-  const MeshReport report = mesh_report(disk.view());
-  if (report.euler_characteristic != 1 || report.boundary_loops != 1)
-  {
-    throw TopologyError(
-      "the mesh to parameterize is not a topological disk (Euler characteristic " +
-      std::to_string(report.euler_characteristic) + ", " + std::to_string(report.boundary_loops) +
-      " boundary loops)");
-  }
-  const std::size_t n = disk.vertex_count();
   const std::vector<std::int64_t> loop = boundary_loop(disk);
-  DiskParameterization result;
-  result.uv.assign(2 * n, 0.0);
-
-  // Boundary on the circle by arc length, counter-clockwise.
   std::vector<double> arc(loop.size() + 1, 0.0);
   for (std::size_t i = 0; i < loop.size(); ++i)
   {
     arc[i + 1] =
       arc[i] + length(minus(disk.point(loop[(i + 1) % loop.size()]), disk.point(loop[i])));
   }
-  std::vector<std::int64_t> unknown(n, -1);
-  std::vector<bool> on_boundary(n, false);
+  std::vector<bool> on_boundary(disk.vertex_count(), false);
   for (std::size_t i = 0; i < loop.size(); ++i)
   {
     const double angle = 2 * pi * arc[i] / arc.back();
     const auto v = std::size_t(loop[i]);
-    result.uv[2 * v] = radius * std::cos(angle);
-    result.uv[2 * v + 1] = radius * std::sin(angle);
+    uv[2 * v] = radius * std::cos(angle);
+    uv[2 * v + 1] = radius * std::sin(angle);
     on_boundary[v] = true;
   }
+  unknown.assign(disk.vertex_count(), -1);
   std::int64_t interior = 0;
-  for (std::size_t v = 0; v < n; ++v)
+  for (std::size_t v = 0; v < disk.vertex_count(); ++v)
   {
     if (!on_boundary[v])
     {
       unknown[v] = interior++;
     }
   }
+  return interior;
+}
 
-  // Mean-value weights: w_ij = (tan(a/2) + tan(b/2)) / |x_j - x_i|, with a and b the angles at
-  // x_i of the two triangles on edge ij. Each triangle adds its half-angle tangents at i to the
-  // weights of its two other vertices.
+/// The mean-value system of the interior vertices: A (as triplets) and the right-hand sides
+/// (u, v) that the boundary contributes.
+struct MeanValueSystem
+{
   std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(12 * std::size_t(interior));
-  Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(interior, 2);
+  Eigen::MatrixXd rhs;
+};
+
+/// Mean-value weights: w_ij = (tan(a/2) + tan(b/2)) / |x_j - x_i|, with a and b the angles at
+/// x_i of the two triangles on edge ij. Each triangle adds its half-angle tangents at i to the
+/// weights of its two other vertices.
+MeanValueSystem mean_value_system(const TriangleMesh& disk, const std::vector<double>& uv,
+                                  const std::vector<std::int64_t>& unknown, std::int64_t interior)
+{
+  MeanValueSystem system;
+  system.entries.reserve(12 * std::size_t(interior));
+  system.rhs = Eigen::MatrixXd::Zero(interior, 2);
   std::vector<double> diagonal(std::size_t(interior), 0.0);
   for (std::size_t t = 0; t < disk.triangle_count(); ++t)
   {
@@ -123,47 +121,56 @@ DiskParameterization harmonic_parameterization(const TriangleMesh& disk, double 
         diagonal[std::size_t(row)] += w;
         if (unknown[std::size_t(other)] >= 0)
         {
-          entries.emplace_back(row, unknown[std::size_t(other)], -w);
+          system.entries.emplace_back(row, unknown[std::size_t(other)], -w);
         }
         else
         {
-          rhs(row, 0) += w * result.uv[2 * std::size_t(other)];
-          rhs(row, 1) += w * result.uv[2 * std::size_t(other) + 1];
+          system.rhs(row, 0) += w * uv[2 * std::size_t(other)];
+          system.rhs(row, 1) += w * uv[2 * std::size_t(other) + 1];
         }
       }
     }
   }
   for (std::int64_t row = 0; row < interior; ++row)
   {
-    entries.emplace_back(row, row, diagonal[std::size_t(row)]);
+    system.entries.emplace_back(row, row, diagonal[std::size_t(row)]);
   }
-  if (interior > 0)
-  {
-    Eigen::SparseMatrix<double> system(interior, interior);
-    system.setFromTriplets(entries.begin(), entries.end());
-    Eigen::SparseLU<Eigen::SparseMatrix<double>> solver;
-    solver.analyzePattern(system);
-    solver.factorize(system);
-    if (solver.info() != Eigen::Success)
-    {
-      throw SolverFailure("the mean-value system could not be factorized: " +
-                          solver.lastErrorMessage());
-    }
-    const Eigen::MatrixXd solution = solver.solve(rhs);
-    if (solver.info() != Eigen::Success || !solution.allFinite())
-    {
-      throw SolverFailure("the mean-value system could not be solved");
-    }
-    for (std::size_t v = 0; v < n; ++v)
-    {
-      if (unknown[v] >= 0)
-      {
-        result.uv[2 * v] = solution(unknown[v], 0);
-        result.uv[2 * v + 1] = solution(unknown[v], 1);
-      }
-    }
-  }
+  return system;
+}
 
+/// Solves the system (sparse LU) and writes the interior vertices' uv.
+void solve_interior(const MeanValueSystem& system, const std::vector<std::int64_t>& unknown,
+                    std::int64_t interior, std::vector<double>& uv)
+{
+  Eigen::SparseMatrix<double> matrix(interior, interior);
+  matrix.setFromTriplets(system.entries.begin(), system.entries.end());
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> solver;
+  solver.analyzePattern(matrix);
+  solver.factorize(matrix);
+  if (solver.info() != Eigen::Success)
+  {
+    throw SolverFailure("the mean-value system could not be factorized: " +
+                        solver.lastErrorMessage());
+  }
+  const Eigen::MatrixXd solution = solver.solve(system.rhs);
+  if (solver.info() != Eigen::Success || !solution.allFinite())
+  {
+    throw SolverFailure("the mean-value system could not be solved");
+  }
+  for (std::size_t v = 0; v < unknown.size(); ++v)
+  {
+    if (unknown[v] >= 0)
+    {
+      uv[2 * v] = solution(unknown[v], 0);
+      uv[2 * v + 1] = solution(unknown[v], 1);
+    }
+  }
+}
+
+/// Per triangle, the distortion of the affine map 3D triangle -> uv triangle (its Jacobian's
+/// singular values), and the triangles it flips.
+void measure_distortion(const TriangleMesh& disk, DiskParameterization& result)
+{
   // Distortion per triangle, from the Jacobian of the affine map 3D triangle -> uv triangle.
   const std::size_t triangles = disk.triangle_count();
   result.angle_distortion.resize(triangles);
@@ -206,9 +213,8 @@ DiskParameterization harmonic_parameterization(const TriangleMesh& disk, double 
     const double s_min = std::abs(q - r);
     result.angle_distortion[t] =
       s_min > 0 ? s_max / s_min : std::numeric_limits<double>::infinity();
-    result.stretch[t] = s_min > 0 && std::isfinite(s_max)
-      ? std::max(s_max, 1 / s_min)
-      : std::numeric_limits<double>::infinity();
+    result.stretch[t] = s_min > 0 && std::isfinite(s_max) ? std::max(s_max, 1 / s_min)
+                                                          : std::numeric_limits<double>::infinity();
     ratio[t] = std::abs(area_uv) / area_3d;
     total_uv += std::abs(area_uv);
     total_3d += area_3d;
@@ -218,6 +224,34 @@ DiskParameterization harmonic_parameterization(const TriangleMesh& disk, double 
   {
     result.area_distortion[t] = ratio[t] / global;
   }
+}
+} // namespace
+
+DiskParameterization harmonic_parameterization(const TriangleMesh& disk, double radius)
+{
+  if (!(radius > 0) || !std::isfinite(radius))
+  {
+    throw InvalidInput("the parameterization radius must be positive and finite");
+  }
+  require_manifold(disk, "the disk to parameterize");
+  const MeshReport report = mesh_report(disk.view());
+  if (report.euler_characteristic != 1 || report.boundary_loops != 1)
+  {
+    throw TopologyError(
+      "the mesh to parameterize is not a topological disk (Euler characteristic " +
+      std::to_string(report.euler_characteristic) + ", " + std::to_string(report.boundary_loops) +
+      " boundary loops)");
+  }
+  DiskParameterization result;
+  result.uv.assign(2 * disk.vertex_count(), 0.0);
+  std::vector<std::int64_t> unknown;
+  const std::int64_t interior = place_boundary(disk, radius, result.uv, unknown);
+  if (interior > 0)
+  {
+    solve_interior(mean_value_system(disk, result.uv, unknown, interior), unknown, interior,
+                   result.uv);
+  }
+  measure_distortion(disk, result);
   return result;
 }
 

@@ -320,7 +320,32 @@ private:
     return a >= b && a - b < limit;
   }
 
+  /// Bridges (B) and strands (E): the ladders of bridges, joined across bulges.
   void Sheets(std::vector<SecondaryStructure>& ss) const
+  {
+    std::vector<Ladder> ladders = this->Ladders(this->BridgeCandidates());
+    this->JoinAcrossBulges(ladders);
+    for (const Ladder& ladder : ladders)
+    {
+      const SecondaryStructure kind =
+        ladder.i.size() > 1 ? SecondaryStructure::Strand : SecondaryStructure::Bridge;
+      for (const auto* side : { &ladder.i, &ladder.j })
+      {
+        const std::size_t low = std::min(side->front(), side->back());
+        const std::size_t high = std::max(side->front(), side->back());
+        for (std::size_t r = low; r <= high; ++r)
+        {
+          if (ss[r] != SecondaryStructure::Strand)
+          {
+            ss[r] = kind;
+          }
+        }
+      }
+    }
+  }
+
+  /// The residue pairs (i, j) that may form a bridge, in DSSP's order (i, then j).
+  std::vector<std::pair<std::size_t, std::size_t>> BridgeCandidates() const
   {
     const std::size_t n = this->Used.size();
     // A bridge (i, j) needs an H-bond between i - 1..i + 1 and j - 1..j + 1: only the pairs
@@ -353,6 +378,13 @@ private:
     }
     std::sort(candidates.begin(), candidates.end());
     candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    return candidates;
+  }
+
+  /// The bridges among the candidates, gathered into ladders of consecutive bridges.
+  std::vector<Ladder> Ladders(
+    const std::vector<std::pair<std::size_t, std::size_t>>& candidates) const
+  {
     std::vector<Ladder> ladders;
     for (const auto& [i, j] : candidates)
     {
@@ -394,7 +426,13 @@ private:
         }
       }
     }
-    // Ladders joined across bulges (gaps of up to 1 residue on one strand and 4 on the other).
+    return ladders;
+  }
+
+  /// Ladders of the same type joined across bulges (gaps of up to 1 residue on one strand and
+  /// 4 on the other), when the settings allow bulges.
+  void JoinAcrossBulges(std::vector<Ladder>& ladders) const
+  {
     std::stable_sort(ladders.begin(), ladders.end(),
                      [](const Ladder& x, const Ladder& y) { return x.i.front() < y.i.front(); });
     for (std::size_t a = 0; a < ladders.size(); ++a)
@@ -435,23 +473,6 @@ private:
           }
           ladders.erase(ladders.begin() + std::ptrdiff_t(b));
           --b;
-        }
-      }
-    }
-    for (const Ladder& ladder : ladders)
-    {
-      const SecondaryStructure kind =
-        ladder.i.size() > 1 ? SecondaryStructure::Strand : SecondaryStructure::Bridge;
-      for (const auto* side : { &ladder.i, &ladder.j })
-      {
-        const std::size_t low = std::min(side->front(), side->back());
-        const std::size_t high = std::max(side->front(), side->back());
-        for (std::size_t r = low; r <= high; ++r)
-        {
-          if (ss[r] != SecondaryStructure::Strand)
-          {
-            ss[r] = kind;
-          }
         }
       }
     }

@@ -17,9 +17,9 @@ import statistics
 import time
 
 from vtkmodules.vtkRenderingCore import vtkRenderWindow
-from vtkmodules.vtkRenderingOpenGL2 import vtkRenderStepsPass, vtkSSAOPass
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
 
+from mesolens import vtkMesoRenderPasses
 from mesolens.lens import MembraneLens
 
 DATA = os.environ.get("MESOLENS_DATA_DIR",
@@ -46,11 +46,10 @@ def main():
     window.SetMultiSamples(0)
     window.SetSize(width, height)
     window.AddRenderer(lens.renderer)
-    basic = vtkRenderStepsPass()
-    occlusion = vtkSSAOPass()
-    occlusion.SetDelegatePass(basic)
-    occlusion.SetKernelSize(32)
-    occlusion.BlurOn()
+    # Ambient occlusion sized to one tile, whatever the number of tiles.
+    effects = vtkMesoRenderPasses()
+    effects.SetSSAOKernelSize(32)
+    effects.SSAOBlurOn()
 
     def frame_time(animated):
         times = []
@@ -79,15 +78,17 @@ def main():
         lens.look_at_patch()
         extent = max(lens.atoms.GetBounds()[2 * d + 1] - lens.atoms.GetBounds()[2 * d]
                      for d in range(3))
-        occlusion.SetRadius(0.05 * extent / k)
-        occlusion.SetBias(0.005 * extent / k)
+        effects.SetSSAORadius(0.05 * extent / k)
+        effects.SetSSAOBias(0.005 * extent / k)
         row = []
         for style, ao, animated in columns:
             lens.set_style(style)
-            lens.renderer.SetPass(occlusion if ao else None)
+            effects.SetSSAO(ao)
+            effects.Apply(lens.renderer)
             row.append(f"{1000 * frame_time(animated):.0f}")
         print(f"| {k}x{k} | {lens.atom_count():,} | " + " | ".join(row) + " |", flush=True)
-    lens.renderer.SetPass(None)
+    effects.SSAOOff()
+    effects.Apply(lens.renderer)
 
 
 if __name__ == "__main__":

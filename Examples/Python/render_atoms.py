@@ -17,9 +17,7 @@ import numpy as np
 from vtkmodules.vtkIOImage import vtkPNGWriter
 from vtkmodules.vtkRenderingCore import (vtkActor, vtkLight, vtkPolyDataMapper, vtkRenderer,
                                          vtkRenderWindow, vtkWindowToImageFilter)
-from vtkmodules.vtkRenderingOpenGL2 import (vtkCameraPass, vtkRenderPassCollection,
-                                            vtkRenderStepsPass, vtkSequencePass, vtkShadowMapPass,
-                                            vtkSSAOPass)
+import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL factory)
 
 import mesolens
 
@@ -126,26 +124,21 @@ def mapped_membrane(prefix, size, tiles):
     renderer.AddLight(light)
 
     # Shadows from the light, then ambient occlusion over the lit picture's geometry.
-    shadows = vtkShadowMapPass()
-    shadows.GetShadowMapBakerPass().SetResolution(2048)
-    passes = vtkRenderPassCollection()
-    passes.AddItem(shadows.GetShadowMapBakerPass())
-    passes.AddItem(shadows)
-    sequence = vtkSequencePass()
-    sequence.SetPasses(passes)
-    camera_pass = vtkCameraPass()
-    camera_pass.SetDelegatePass(sequence)
-    occlusion = vtkSSAOPass()
-    occlusion.SetDelegatePass(camera_pass)
-    occlusion.SetRadius(4 * ANGSTROM_TO_MICROMETRE)
-    occlusion.SetBias(0.5 * ANGSTROM_TO_MICROMETRE)
-    occlusion.SetKernelSize(64)
-    occlusion.BlurOn()
-    renderer.SetPass(occlusion)
+    effects = mesolens.vtkMesoRenderPasses()
+    effects.ShadowsOn()
+    effects.SetShadowMapResolution(2048)
+    effects.SSAOOn()
+    effects.SetSSAORadius(4 * ANGSTROM_TO_MICROMETRE)
+    effects.SetSSAOBias(0.5 * ANGSTROM_TO_MICROMETRE)
+    effects.SetSSAOKernelSize(64)
+    effects.SSAOBlurOn()
+    effects.Apply(renderer)
     save(window_of(renderer, size), f"{prefix}_membrane_ssao_shadows.png")
 
     # The same without the passes, for comparison.
-    renderer.SetPass(vtkRenderStepsPass())
+    effects.ShadowsOff()
+    effects.SSAOOff()
+    effects.Apply(renderer)
     save(window_of(renderer, size), f"{prefix}_membrane_plain.png")
 
 

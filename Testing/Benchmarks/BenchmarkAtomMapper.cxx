@@ -19,6 +19,7 @@
 #include "vtkMesoElementLookupTable.h"
 #include "vtkMesoMembraneMapping.h"
 #include "vtkMesoMeshReader.h"
+#include "vtkMesoRenderPasses.h"
 #include "vtkMesoTrajectoryReader.h"
 
 #include "mesolens_test_data.h"
@@ -37,9 +38,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
-#include <vtkRenderStepsPass.h>
 #include <vtkRenderWindow.h>
-#include <vtkSSAOPass.h>
 #include <vtkUnsignedShortArray.h>
 
 #include <algorithm>
@@ -143,8 +142,7 @@ struct Stage
   vtkSmartPointer<vtkOpenGLRenderer> Renderer =
     vtkOpenGLRenderer::SafeDownCast(vtkSmartPointer<vtkRenderer>::New());
   vtkNew<vtkActor> Actor;
-  vtkNew<vtkRenderStepsPass> Basic;
-  vtkNew<vtkSSAOPass> Occlusion;
+  vtkNew<vtkMesoRenderPasses> Effects;
 
   explicit Stage(int width = 1024, int height = 768)
   {
@@ -154,16 +152,16 @@ struct Stage
     this->Window->AddRenderer(this->Renderer);
     this->Renderer->AddActor(this->Actor);
     this->Renderer->SetBackground(0.1, 0.1, 0.15);
-    this->Occlusion->SetDelegatePass(this->Basic);
-    this->Occlusion->SetRadius(4.0);
-    this->Occlusion->SetBias(0.05);
-    this->Occlusion->SetKernelSize(32);
+    this->Effects->SetSSAORadius(4.0);
+    this->Effects->SetSSAOBias(0.05);
+    this->Effects->SetSSAOKernelSize(32);
   }
 
   void Show(vtkMapper* mapper, bool ssao)
   {
     this->Actor->SetMapper(mapper);
-    this->Renderer->SetPass(ssao ? static_cast<vtkRenderPass*>(this->Occlusion) : nullptr);
+    this->Effects->SetSSAO(ssao);
+    this->Effects->Apply(this->Renderer);
     // The same view every time: down the membrane normal, then 40 degrees off it.
     vtkCamera* camera = this->Renderer->GetActiveCamera();
     camera->SetFocalPoint(0, 0, 0);

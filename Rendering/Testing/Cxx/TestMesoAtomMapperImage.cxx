@@ -13,25 +13,18 @@
 
 #include "vtkMesoAtomProperties.h"
 #include "vtkMesoElementLookupTable.h"
+#include "vtkMesoRenderPasses.h"
 
-#include <vtkCameraPass.h>
 #include <vtkLight.h>
 #include <vtkLookupTable.h>
-#include <vtkOpenGLRenderer.h>
 #include <vtkOpenGLSphereMapper.h>
 #include <vtkPNGWriter.h>
 #include <vtkPlaneSource.h>
 #include <vtkPointData.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkProperty.h>
-#include <vtkRenderPassCollection.h>
-#include <vtkRenderStepsPass.h>
 #include <vtkRendererCollection.h>
 #include <vtkActorCollection.h>
-#include <vtkSSAOPass.h>
-#include <vtkSequencePass.h>
-#include <vtkShadowMapBakerPass.h>
-#include <vtkShadowMapPass.h>
 #include <vtkWindowToImageFilter.h>
 
 #include <cmath>
@@ -98,15 +91,13 @@ vtkSmartPointer<vtkRenderWindow> vtk_sphere_mapper()
 vtkSmartPointer<vtkRenderWindow> ssao()
 {
   auto window = protein(vtkMesoAtomMapper::SPACE_FILLING);
-  vtkRenderer* renderer = window->GetRenderers()->GetFirstRenderer();
-  vtkNew<vtkRenderStepsPass> basic;
-  vtkNew<vtkSSAOPass> occlusion;
-  occlusion->SetDelegatePass(basic);
-  occlusion->SetRadius(3.0);
-  occlusion->SetBias(0.05);
-  occlusion->SetKernelSize(64);
-  occlusion->BlurOn();
-  vtkOpenGLRenderer::SafeDownCast(renderer)->SetPass(occlusion);
+  vtkNew<vtkMesoRenderPasses> passes;
+  passes->SSAOOn();
+  passes->SetSSAORadius(3.0);
+  passes->SetSSAOBias(0.05);
+  passes->SetSSAOKernelSize(64);
+  passes->SSAOBlurOn();
+  passes->Apply(window->GetRenderers()->GetFirstRenderer());
   return window;
 }
 
@@ -136,15 +127,9 @@ vtkSmartPointer<vtkRenderWindow> shadows()
   light->PositionalOn();
   light->SetConeAngle(60);
   renderer->AddLight(light);
-  vtkNew<vtkShadowMapPass> shadow_pass;
-  vtkNew<vtkRenderPassCollection> passes;
-  passes->AddItem(shadow_pass->GetShadowMapBakerPass());
-  passes->AddItem(shadow_pass);
-  vtkNew<vtkSequencePass> sequence;
-  sequence->SetPasses(passes);
-  vtkNew<vtkCameraPass> camera_pass;
-  camera_pass->SetDelegatePass(sequence);
-  vtkOpenGLRenderer::SafeDownCast(renderer)->SetPass(camera_pass);
+  vtkNew<vtkMesoRenderPasses> passes;
+  passes->ShadowsOn();
+  passes->Apply(renderer);
   vtkCamera* camera = renderer->GetActiveCamera();
   camera->Elevation(-35);
   renderer->ResetCameraClippingRange();
@@ -157,9 +142,10 @@ vtkSmartPointer<vtkRenderWindow> translucent()
   auto window = protein(vtkMesoAtomMapper::SPACE_FILLING);
   window->SetAlphaBitPlanes(1);
   vtkRenderer* renderer = window->GetRenderers()->GetFirstRenderer();
-  renderer->SetUseDepthPeeling(1);
-  renderer->SetMaximumNumberOfPeels(16);
-  renderer->SetOcclusionRatio(0.0);
+  vtkNew<vtkMesoRenderPasses> passes;
+  passes->DepthPeelingOn();
+  passes->SetMaximumNumberOfPeels(16);
+  passes->Apply(renderer);
   renderer->GetActors()->GetLastActor()->GetProperty()->SetOpacity(0.4);
   double bounds[6];
   renderer->ComputeVisiblePropBounds(bounds);

@@ -31,7 +31,7 @@ from . import array_names
 from .MesoLensFilters import (vtkMesoMembraneMapping, vtkMesoMeshReader,
                               vtkMesoStructureReader, vtkMesoStructuredCutaway,
                               vtkMesoTrajectoryReader, vtkMesoTrajectoryRefinement)
-from .MesoLensRendering import vtkMesoAtomMapper
+from .MesoLensRendering import vtkMesoAtomMapper, vtkMesoRenderPasses
 
 METHODS = {"displacement": vtkMesoMembraneMapping.DISPLACEMENT,
            "instancing": vtkMesoMembraneMapping.MOLECULE_INSTANCING,
@@ -230,6 +230,12 @@ class MembraneLens:
         self.centre = None
         self.ssao = False
         self.shadows = False
+        # Ambient occlusion and shadows (set_effects): SSAO blurred over 32 samples, shadows
+        # from a sun above the patch beside a dimmed headlight.
+        self._effects = vtkMesoRenderPasses()
+        self._effects.SetSSAOKernelSize(32)
+        self._effects.SSAOBlurOn()
+        self._effects.SunLightOn()
         self.set_tiles(3)
 
     def _read(self, reader, what, path):
@@ -451,53 +457,19 @@ class MembraneLens:
         return int(hidden.GetValue(0)), int(in_cut.GetValue(0))
 
     def set_effects(self, ssao=False, shadows=False):
-        """Ambient occlusion (vtkSSAOPass, sized to the patch) and shadows (vtkShadowMapPass,
-        from a light above the patch, beside the headlight) on or off. Both need the renderer
+        """Ambient occlusion (SSAO, sized to the patch) and shadows (from a sun above the patch,
+        beside the headlight) on or off, through a vtkMesoRenderPasses. Both need the renderer
         to start at the window's origin (VTK 9.1's SSAO pass draws black elsewhere)."""
-        from vtkmodules.vtkRenderingCore import vtkLight
-        from vtkmodules.vtkRenderingOpenGL2 import (vtkCameraPass, vtkRenderPassCollection,
-                                                    vtkRenderStepsPass, vtkSequencePass,
-                                                    vtkShadowMapPass, vtkSSAOPass)
         self.ssao = bool(ssao)
         self.shadows = bool(shadows)
-        self.renderer.RemoveAllLights()  # back to VTK's headlight
         extent, centre, outward = self._patch_frame()
-        keep = []
-        if self.shadows:
-            headlight = vtkLight()
-            headlight.SetLightTypeToHeadlight()
-            headlight.SetIntensity(0.5)
-            sun = vtkLight()
-            sun.SetLightTypeToSceneLight()
-            sun.SetFocalPoint(centre)
-            sun.SetPosition([centre[d] + 4 * extent * outward[d] for d in range(3)])
-            sun.PositionalOn()
-            sun.SetConeAngle(45)
-            sun.SetIntensity(0.7)
-            self.renderer.AddLight(headlight)
-            self.renderer.AddLight(sun)
-            shadow = vtkShadowMapPass()
-            passes = vtkRenderPassCollection()
-            passes.AddItem(shadow.GetShadowMapBakerPass())
-            passes.AddItem(shadow)
-            sequence = vtkSequencePass()
-            sequence.SetPasses(passes)
-            base = vtkCameraPass()
-            base.SetDelegatePass(sequence)
-            keep += [headlight, sun, shadow, passes, sequence]
-        else:
-            base = vtkRenderStepsPass()
-        top = base if self.shadows else None
-        if self.ssao:
-            occlusion = vtkSSAOPass()
-            occlusion.SetDelegatePass(base)
-            occlusion.SetRadius(0.05 * extent)
-            occlusion.SetBias(0.005 * extent)
-            occlusion.SetKernelSize(32)
-            occlusion.BlurOn()
-            top = occlusion
-        self._effects = keep + [base, top]  # VTK holds passes weakly from Python's side
-        self.renderer.SetPass(top)
+        self._effects.SetSSAO(self.ssao)
+        self._effects.SetSSAORadius(0.05 * extent)
+        self._effects.SetSSAOBias(0.005 * extent)
+        self._effects.SetShadows(self.shadows)
+        self._effects.SetSunFocalPoint(centre)
+        self._effects.SetSunPosition([centre[d] + 4 * extent * outward[d] for d in range(3)])
+        self._effects.Apply(self.renderer)
 
     def _patch_frame(self):
         """The patch's size, centre and outward direction (or the surface's, before place())."""

@@ -189,6 +189,453 @@ struct alignas(64) BlockOutput
   std::vector<std::uint64_t> foreign_keys;
   std::vector<std::array<std::uint32_t, 3>> triangles;
 };
+
+/// Edges are keyed by the lattice point they are filed under and their kind; the block whose
+/// cell owner_offset() names makes an edge's vertex.
+class EdgeKeys
+{
+public:
+  static constexpr std::uint64_t kinds = 16;
+  static_assert(edge_kinds <= int(kinds), "an edge's kind must fit its key");
+
+  explicit EdgeKeys(const ContourGrid& grid)
+    : points_{ grid.cells[0] + 1, grid.cells[1] + 1, grid.cells[2] + 1 }
+    , blocks_(grid.blocks)
+  {
+  }
+
+  std::uint64_t key(std::int64_t x, std::int64_t y, std::int64_t z, int kind) const
+  {
+    return this->point_key(x, y, z) * kinds + std::uint64_t(kind);
+  }
+  /// The block making the vertex of the edge of `kind` filed under point (x, y, z).
+  std::size_t owner_block(std::int64_t x, std::int64_t y, std::int64_t z, int kind) const
+  {
+    const auto offset = owner_offset(kind);
+    return this->block_of_cell(x + offset[0], y + offset[1], z + offset[2]);
+  }
+  std::size_t owner_of(std::uint64_t key) const
+  {
+    const auto& points = this->points_;
+    const std::uint64_t point = key / kinds;
+    return this->owner_block(
+      static_cast<std::int64_t>(point % std::uint64_t(points[0])),
+      static_cast<std::int64_t>((point / std::uint64_t(points[0])) % std::uint64_t(points[1])),
+      static_cast<std::int64_t>(point / std::uint64_t(points[0] * points[1])),
+      static_cast<int>(key % kinds));
+  }
+
+private:
+  std::uint64_t point_key(std::int64_t x, std::int64_t y, std::int64_t z) const
+  {
+    return static_cast<std::uint64_t>(x + this->points_[0] * (y + this->points_[1] * z));
+  }
+  std::size_t block_of_cell(std::int64_t x, std::int64_t y, std::int64_t z) const
+  {
+    const auto along = [&](std::int64_t c, int a) {
+      return std::clamp<std::int64_t>(c / ContourGrid::block_cells, 0, this->blocks_[a] - 1);
+    };
+    return static_cast<std::size_t>(
+      along(x, 0) + this->blocks_[0] * (along(y, 1) + this->blocks_[1] * along(z, 2)));
+  }
+
+  std::array<std::int64_t, 3> points_; ///< per axis
+  std::array<std::int64_t, 3> blocks_; ///< per axis
+};
+
+/// Points per block edge, in a block's arrays.
+constexpr int block_side = ContourGrid::block_points;
+
+/// What a thread reuses from block to block: the field's local view and the block's tables.
+struct BlockBuffers
+{
+  std::unique_ptr<LocalContourField> local;
+  std::array<std::vector<double>, 2> values;       ///< of the grid and the centred grid
+  std::array<std::vector<std::uint32_t>, 2> hints; ///< of the grid and the centred grid
+  /// Per block point and edge kind, the block that made the vertex on that edge (its number
+  /// plus one, in the high half) and the vertex's index: entries of earlier blocks are
+  /// stale, so the table is never cleared.
+  std::vector<std::uint64_t> made;
+};
+
+/// How the field's samples of a block came out.
+enum class Sampled
+{
+  Crossed,  ///< a zero lies among its points
+  Empty,    ///< none does
+  OneSided, ///< the two grids disagree on that: the field is at fault
+};
+
+/// Samples the field on block `block` of both grids into `buffers` (made on first use).
+Sampled sample_block(const ContourField& field, const ContourGrid& grid, const ContourGrid& centred,
+                     std::size_t block, BlockBuffers& buffers)
+{
+  if (!buffers.local)
+  {
+    buffers.local = field.local();
+    for (int g = 0; g < 2; ++g)
+    {
+      buffers.values[std::size_t(g)].resize(block_side * block_side * block_side);
+      buffers.hints[std::size_t(g)].resize(block_side * block_side * block_side);
+    }
+    buffers.made.assign(std::size_t(block_side * block_side * block_side * edge_kinds), 0);
+  }
+  LocalContourField* const local = buffers.local.get();
+  if (!local->sample_block(grid, block, buffers.values[0].data(), buffers.hints[0].data()))
+  {
+    return Sampled::Empty;
+  }
+  if (!local->sample_block(centred, block, buffers.values[1].data(), buffers.hints[1].data()))
+  {
+    return Sampled::OneSided;
+  }
+  return Sampled::Crossed;
+}
+
+/// Contours the cells of one sampled block into its output: a cell's tetrahedra whose corners
+/// change sign, cut into triangles whose corners are the vertices on their crossed edges.
+class BlockContour
+{
+public:
+  BlockContour(const ContourGrid& grid, const ContourGrid& centred, const EdgeKeys& keys,
+               const CellTables& tables, std::size_t block, BlockBuffers& buffers, BlockOutput& out)
+    : grid_(grid)
+    , centred_(centred)
+    , keys_(keys)
+    , tables_(tables)
+    , block_(block)
+    , buffers_(buffers)
+    , out_(out)
+    , local_(buffers.local.get())
+    , first_(grid.block_first(block))
+    , stamp_(std::uint64_t(block + 1) << 32)
+  {
+  }
+
+  /// Contours the cells whose twelve points change sign.
+  void contour_crossed_cells()
+  {
+    const auto& cells = this->grid_.cells;
+    const auto& lattice = this->tables_.lattice;
+    const auto& place = this->tables_.place;
+    const double* const values[2] = { this->buffers_.values[0].data(),
+                                      this->buffers_.values[1].data() };
+    const std::int64_t x0 = this->first_[0], y0 = this->first_[1], z0 = this->first_[2];
+    const std::int64_t x1 = std::min(x0 + ContourGrid::block_cells, cells[0]);
+    const std::int64_t y1 = std::min(y0 + ContourGrid::block_cells, cells[1]);
+    const std::int64_t z1 = std::min(z0 + ContourGrid::block_cells, cells[2]);
+    for (std::int64_t z = z0; z < z1; ++z)
+      for (std::int64_t y = y0; y < y1; ++y)
+        for (std::int64_t x = x0; x < x1; ++x)
+        {
+          const std::size_t at =
+            std::size_t((x - x0) + block_side * ((y - y0) + block_side * (z - z0)));
+          int inside = 0;
+          for (int k = 0; k < cell_points; ++k)
+          {
+            inside += values[lattice[std::size_t(k)]][at + place[std::size_t(k)]] > 0 ? 1 : 0;
+          }
+          if (inside != 0 && inside != cell_points)
+          {
+            this->contour_cell({ x, y, z }, at);
+          }
+        }
+  }
+
+private:
+  /// Cell `cell` (at `at` in the block's arrays): its points' samples, then its tetrahedra.
+  void contour_cell(const std::array<std::int64_t, 3>& cell, std::size_t at)
+  {
+    this->cell_ = cell;
+    for (int k = 0; k < cell_points; ++k)
+    {
+      const std::size_t g = std::size_t(this->tables_.lattice[std::size_t(k)]);
+      const std::size_t i = at + this->tables_.place[std::size_t(k)];
+      const auto& d = this->tables_.step[std::size_t(k)];
+      this->corner_[std::size_t(k)] = {
+        (g ? this->centred_ : this->grid_).point(cell[0] + d[0], cell[1] + d[1], cell[2] + d[2]),
+        this->buffers_.values[g][i], this->buffers_.hints[g][i]
+      };
+    }
+    for (const auto& tet : this->tables_.tetrahedra)
+    {
+      this->cut_tetrahedron(tet);
+    }
+  }
+
+  /// The triangles where the surface crosses tetrahedron `tet` (cell points, positively
+  /// oriented), counter-clockwise seen from outside: one about a corner alone on its side, two
+  /// where two corners lie on each side.
+  void cut_tetrahedron(const std::array<int, 4>& tet)
+  {
+    const auto& corner = this->corner_;
+    BlockOutput& out = this->out_;
+    int inside_mask = 0, inside_count = 0;
+    for (int k = 0; k < 4; ++k)
+    {
+      if (corner[std::size_t(tet[std::size_t(k)])].value > 0)
+      {
+        inside_mask |= 1 << k;
+        ++inside_count;
+      }
+    }
+    if (inside_count == 0 || inside_count == 4)
+    {
+      return;
+    }
+    if (inside_count == 1 || inside_count == 3)
+    {
+      int lone = 0;
+      for (int k = 0; k < 4; ++k)
+      {
+        const bool in = (inside_mask >> k) & 1;
+        if (in == (inside_count == 1))
+        {
+          lone = k;
+        }
+      }
+      const int* order = first_alone[lone];
+      const int a = tet[std::size_t(order[0])], b = tet[std::size_t(order[1])],
+                c = tet[std::size_t(order[2])], d = tet[std::size_t(order[3])];
+      if (inside_count == 1)
+      {
+        out.triangles.push_back({ this->edge_vertex(a, b, tet), this->edge_vertex(a, c, tet),
+                                  this->edge_vertex(a, d, tet) });
+      }
+      else
+      {
+        out.triangles.push_back({ this->edge_vertex(a, b, tet), this->edge_vertex(a, d, tet),
+                                  this->edge_vertex(a, c, tet) });
+      }
+      return;
+    }
+    int pair[2], p = 0;
+    for (int k = 0; k < 4; ++k)
+    {
+      if ((inside_mask >> k) & 1)
+      {
+        pair[p++] = k;
+      }
+    }
+    int order[4];
+    pair_order(pair[0], pair[1], order);
+    const int a = tet[std::size_t(order[0])], b = tet[std::size_t(order[1])],
+              c = tet[std::size_t(order[2])], d = tet[std::size_t(order[3])];
+    const std::uint32_t ac = this->edge_vertex(a, c, tet), ad = this->edge_vertex(a, d, tet),
+                        bd = this->edge_vertex(b, d, tet), bc = this->edge_vertex(b, c, tet);
+    out.triangles.push_back({ ac, ad, bd });
+    out.triangles.push_back({ ac, bd, bc });
+  }
+
+  /// The vertex on the edge between cell points `a` and `b` of tetrahedron `tet`, as the
+  /// block's own or foreign index: made once per block (the table of made edges remembers it),
+  /// by this block when it owns the edge, else left to its owner and found by key.
+  std::uint32_t edge_vertex(int a, int b, const std::array<int, 4>& tet)
+  {
+    const auto& corner = this->corner_;
+    BlockOutput& out = this->out_;
+    const CellEdge& kind = this->tables_.edges[std::size_t(a)][std::size_t(b)];
+    const std::int64_t x = this->cell_[0] + kind.point[0], y = this->cell_[1] + kind.point[1],
+                       z = this->cell_[2] + kind.point[2];
+    std::uint64_t& entry = this->buffers_.made[std::size_t(
+      edge_kinds *
+        ((x - this->first_[0]) +
+         block_side * ((y - this->first_[1]) + block_side * (z - this->first_[2]))) +
+      kind.kind)];
+    if ((entry & ~std::uint64_t(0xffffffffu)) != this->stamp_)
+    {
+      std::uint32_t index = 0;
+      const std::uint64_t key = this->keys_.key(x, y, z, kind.kind);
+      if (this->keys_.owner_block(x, y, z, kind.kind) == this->block_)
+      {
+        const int outside = corner[std::size_t(a)].value > 0 ? b : a;
+        const int inside = corner[std::size_t(a)].value > 0 ? a : b;
+        index = static_cast<std::uint32_t>(out.vertices.size());
+        out.vertices.push_back(
+          this->local_->vertex(corner[std::size_t(outside)], corner[std::size_t(inside)],
+                               { corner[std::size_t(tet[0])], corner[std::size_t(tet[1])],
+                                 corner[std::size_t(tet[2])], corner[std::size_t(tet[3])] }));
+        out.keys.push_back(key);
+      }
+      else
+      {
+        // The owner computes it: every cell holding a crossed edge is contoured, as the
+        // signs at lattice points do not depend on the block asking.
+        index = static_cast<std::uint32_t>(out.foreign_keys.size()) | foreign_bit;
+        out.foreign_keys.push_back(key);
+      }
+      entry = this->stamp_ | index;
+    }
+    return static_cast<std::uint32_t>(entry);
+  }
+
+  const ContourGrid& grid_;
+  const ContourGrid& centred_;
+  const EdgeKeys& keys_;
+  const CellTables& tables_;
+  const std::size_t block_;
+  BlockBuffers& buffers_;
+  BlockOutput& out_;
+  LocalContourField* const local_;
+  const std::array<std::int64_t, 3> first_; ///< the block's lowest grid point
+  const std::uint64_t stamp_;               ///< the block's mark in the table of made edges
+  std::array<std::int64_t, 3> cell_{};      ///< the cell being contoured
+  std::array<LocalContourField::Sample, cell_points> corner_; ///< and its points' samples
+};
+
+/// The blocks that made something, in increasing order, with what they made: far fewer than
+/// the grid's blocks where the molecule is sparse (every block's output would take gigabytes
+/// for atoms thousands of Å apart).
+struct ContouredBlocks
+{
+  std::vector<std::size_t> active;
+  std::vector<BlockOutput> outputs;
+  bool one_sided = false; ///< some block's grids disagreed on whether a zero lies among them
+};
+
+/// Contours every block of the grid, in rounds so that progress is reported from this thread.
+ContouredBlocks contour_blocks(const ContourField& field, const ContourGrid& grid,
+                               const EdgeKeys& keys, const ParallelFor& parallel_for,
+                               const std::function<void(double)>& progress)
+{
+  static const CellTables tables = cell_tables();
+  const ContourGrid centred = grid.centred();
+  const std::size_t block_count = grid.block_count();
+  ContouredBlocks blocks;
+  std::atomic<bool> one_sided_block{ false };
+  const std::size_t round = 256;
+  std::vector<BlockOutput> round_outputs(round);
+  for (std::size_t first = 0; first < block_count; first += round)
+  {
+    const std::size_t count = std::min(round, block_count - first);
+    // Blocks the surface crosses cost far more than the others: taken one at a time.
+    run_balanced<BlockBuffers>(parallel_for, count, [&](std::size_t k, BlockBuffers& buffers) {
+      const std::size_t block = first + k;
+      const Sampled sampled = sample_block(field, grid, centred, block, buffers);
+      if (sampled == Sampled::OneSided)
+      {
+        one_sided_block = true;
+      }
+      else if (sampled == Sampled::Crossed)
+      {
+        BlockContour(grid, centred, keys, tables, block, buffers, round_outputs[k])
+          .contour_crossed_cells();
+      }
+    });
+    for (std::size_t k = 0; k < count; ++k)
+    {
+      BlockOutput& out = round_outputs[k];
+      if (!out.vertices.empty() || !out.triangles.empty() || !out.foreign_keys.empty())
+      {
+        blocks.active.push_back(first + k);
+        blocks.outputs.push_back(std::move(out));
+        out = {};
+      }
+    }
+    if (progress)
+    {
+      progress(double(first + count) / double(block_count));
+    }
+  }
+  blocks.one_sided = one_sided_block;
+  return blocks;
+}
+
+/// Per active block, its own vertices' keys sorted, with their indices: the foreign vertices
+/// are found in their owners' keys.
+using OwnedKeys = std::vector<std::vector<std::pair<std::uint64_t, std::uint32_t>>>;
+
+OwnedKeys sorted_owned_keys(const std::vector<BlockOutput>& outputs,
+                            const ParallelFor& parallel_for)
+{
+  OwnedKeys owned(outputs.size());
+  run_parallel(parallel_for, outputs.size(), [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; ++b)
+    {
+      auto& sorted = owned[b];
+      sorted.resize(outputs[b].keys.size());
+      for (std::size_t k = 0; k < sorted.size(); ++k)
+      {
+        sorted[k] = { outputs[b].keys[k], static_cast<std::uint32_t>(k) };
+      }
+      std::sort(sorted.begin(), sorted.end());
+    }
+  });
+  return owned;
+}
+
+/// The mesh index of the vertex its owner made for edge `key`; -1 when its owner made none.
+std::int64_t global_vertex(std::uint64_t key, const std::vector<std::size_t>& active,
+                           const OwnedKeys& owned, const std::vector<std::int64_t>& first_vertex,
+                           const EdgeKeys& keys)
+{
+  const std::size_t block = keys.owner_of(key);
+  const auto at = std::lower_bound(active.begin(), active.end(), block);
+  if (at == active.end() || *at != block)
+  {
+    return -1;
+  }
+  const std::size_t owner = static_cast<std::size_t>(at - active.begin());
+  const auto& sorted = owned[owner];
+  const auto found =
+    std::lower_bound(sorted.begin(), sorted.end(), std::pair<std::uint64_t, std::uint32_t>(key, 0));
+  if (found == sorted.end() || found->first != key)
+  {
+    return -1;
+  }
+  return first_vertex[owner] + std::int64_t(found->second);
+}
+
+/// The blocks' outputs joined into one mesh, vertices numbered block by block and foreign
+/// references resolved; false when some foreign vertex was made by no block.
+bool join_blocks(ContouredBlocks& blocks, const EdgeKeys& keys, const ParallelFor& parallel_for,
+                 ContourMesh& mesh)
+{
+  const std::vector<std::size_t>& active = blocks.active;
+  std::vector<BlockOutput>& outputs = blocks.outputs;
+  const std::size_t active_count = active.size();
+  std::vector<std::int64_t> first_vertex(active_count + 1, 0), first_triangle(active_count + 1, 0);
+  for (std::size_t b = 0; b < active_count; ++b)
+  {
+    first_vertex[b + 1] = first_vertex[b] + std::int64_t(outputs[b].vertices.size());
+    first_triangle[b + 1] = first_triangle[b] + std::int64_t(outputs[b].triangles.size());
+  }
+  const OwnedKeys owned = sorted_owned_keys(outputs, parallel_for);
+  // Room for twice as many again, which refinements fill in place (pages left unused are not
+  // committed): otherwise their splits would copy the whole mesh. (3wip refined from the
+  // coarsest lattice to 0.1 Å has 2.4 times the lattice's vertices.)
+  mesh.vertices.reserve(3 * std::size_t(first_vertex[active_count]));
+  mesh.triangles.reserve(9 * std::size_t(first_triangle[active_count]));
+  mesh.vertices.resize(std::size_t(first_vertex[active_count]));
+  mesh.triangles.resize(3 * std::size_t(first_triangle[active_count]));
+  // Signs at lattice points do not depend on the block asking, so every cell holding a crossed
+  // edge is contoured and each foreign vertex has been made by its owner.
+  std::vector<char> complete(active_count, 1);
+  run_parallel(parallel_for, active_count, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; ++b)
+    {
+      BlockOutput& out = outputs[b];
+      std::copy(out.vertices.begin(), out.vertices.end(), mesh.vertices.begin() + first_vertex[b]);
+      std::vector<std::int64_t> foreign(out.foreign_keys.size());
+      for (std::size_t k = 0; k < foreign.size(); ++k)
+      {
+        foreign[k] = global_vertex(out.foreign_keys[k], active, owned, first_vertex, keys);
+        complete[b] = complete[b] && foreign[k] >= 0;
+      }
+      std::int64_t* corner = mesh.triangles.data() + 3 * first_triangle[b];
+      for (const auto& triangle : out.triangles)
+      {
+        for (const std::uint32_t v : triangle)
+        {
+          *corner++ =
+            (v & foreign_bit) ? foreign[v & ~foreign_bit] : first_vertex[b] + std::int64_t(v);
+        }
+      }
+      out = {};
+    }
+  });
+  return std::find(complete.begin(), complete.end(), 0) == complete.end();
+}
 } // namespace
 
 ContourGrid::ContourGrid(const Vec& low_corner, const Vec& high, double grid_spacing)
@@ -263,310 +710,13 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
                                const ParallelFor& parallel_for,
                                const std::function<void(double)>& progress)
 {
-  ContourMesh mesh;
   const ContourGrid grid(low, high, spacing);
-  const ContourGrid centred = grid.centred();
-  const auto& cells = grid.cells;
-  const auto& blocks = grid.blocks;
-  constexpr int block_cells = ContourGrid::block_cells;
-  const std::array<std::int64_t, 3> points = { cells[0] + 1, cells[1] + 1, cells[2] + 1 };
-  const std::size_t block_count = grid.block_count();
-  static const CellTables tables = cell_tables();
-  // Edges are keyed by the point they are filed under and their kind.
-  constexpr std::uint64_t key_kinds = 16;
-  static_assert(edge_kinds <= int(key_kinds), "an edge's kind must fit its key");
-  const auto point_key = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
-    return static_cast<std::uint64_t>(x + points[0] * (y + points[1] * z));
-  };
-  const auto block_of_cell = [&](std::int64_t x, std::int64_t y, std::int64_t z) {
-    const auto along = [&](std::int64_t c, int a) {
-      return std::clamp<std::int64_t>(c / block_cells, 0, blocks[a] - 1);
-    };
-    return static_cast<std::size_t>(along(x, 0) +
-                                    blocks[0] * (along(y, 1) + blocks[1] * along(z, 2)));
-  };
-  // The block making the vertex of the edge of `kind` filed under point (x, y, z): that of the
-  // cell owner_offset() names.
-  const auto owner_block = [&](std::int64_t x, std::int64_t y, std::int64_t z, int kind) {
-    const auto offset = owner_offset(kind);
-    return block_of_cell(x + offset[0], y + offset[1], z + offset[2]);
-  };
-  const auto owner_of = [&](std::uint64_t key) {
-    const std::uint64_t point = key / key_kinds;
-    return owner_block(
-      static_cast<std::int64_t>(point % std::uint64_t(points[0])),
-      static_cast<std::int64_t>((point / std::uint64_t(points[0])) % std::uint64_t(points[1])),
-      static_cast<std::int64_t>(point / std::uint64_t(points[0] * points[1])),
-      static_cast<int>(key % key_kinds));
-  };
-
+  const EdgeKeys keys(grid);
   field.prepare(grid, parallel_for);
-  // The blocks that made triangles, in increasing order, with what they made: far fewer than
-  // the grid's blocks where the molecule is sparse (every block's output would take gigabytes
-  // for atoms thousands of Å apart).
-  std::vector<std::size_t> active;
-  std::vector<BlockOutput> outputs;
-  // What a thread reuses from block to block: the field's local view and the block's tables.
-  struct BlockBuffers
-  {
-    std::unique_ptr<LocalContourField> local;
-    std::array<std::vector<double>, 2> values;       ///< of the grid and the centred grid
-    std::array<std::vector<std::uint32_t>, 2> hints; ///< of the grid and the centred grid
-    /// Per block point and edge kind, the block that made the vertex on that edge (its number
-    /// plus one, in the high half) and the vertex's index: entries of earlier blocks are
-    /// stale, so the table is never cleared.
-    std::vector<std::uint64_t> made;
-  };
-  constexpr int side = ContourGrid::block_points;
-  std::atomic<bool> one_sided_block{ false };
-  const auto run_block = [&](std::size_t block, BlockOutput& out, BlockBuffers& buffers) {
-    if (!buffers.local)
-    {
-      buffers.local = field.local();
-      for (int g = 0; g < 2; ++g)
-      {
-        buffers.values[std::size_t(g)].resize(side * side * side);
-        buffers.hints[std::size_t(g)].resize(side * side * side);
-      }
-      buffers.made.assign(std::size_t(side * side * side * edge_kinds), 0);
-    }
-    LocalContourField* const local = buffers.local.get();
-    if (!local->sample_block(grid, block, buffers.values[0].data(), buffers.hints[0].data()))
-    {
-      return;
-    }
-    if (!local->sample_block(centred, block, buffers.values[1].data(), buffers.hints[1].data()))
-    {
-      one_sided_block = true;
-      return;
-    }
-    const auto first = grid.block_first(block);
-    const std::int64_t x0 = first[0], y0 = first[1], z0 = first[2];
-    std::vector<std::uint64_t>& made = buffers.made;
-    const std::uint64_t stamp = std::uint64_t(block + 1) << 32;
-    const auto& lattice = tables.lattice;
-    const auto& place = tables.place;
-    const auto contour_cell = [&](const std::array<std::int64_t, 3>& cell, std::size_t at) {
-      std::array<LocalContourField::Sample, cell_points> corner;
-      for (int k = 0; k < cell_points; ++k)
-      {
-        const std::size_t g = std::size_t(lattice[std::size_t(k)]);
-        const std::size_t i = at + place[std::size_t(k)];
-        const auto& d = tables.step[std::size_t(k)];
-        corner[std::size_t(k)] = {
-          (g ? centred : grid).point(cell[0] + d[0], cell[1] + d[1], cell[2] + d[2]),
-          buffers.values[g][i], buffers.hints[g][i]
-        };
-      }
-      const auto edge = [&](int a, int b, const std::array<int, 4>& tet) {
-        const CellEdge& kind = tables.edges[std::size_t(a)][std::size_t(b)];
-        const std::int64_t x = cell[0] + kind.point[0], y = cell[1] + kind.point[1],
-                           z = cell[2] + kind.point[2];
-        std::uint64_t& entry = made[std::size_t(
-          edge_kinds * ((x - x0) + side * ((y - y0) + side * (z - z0))) + kind.kind)];
-        if ((entry & ~std::uint64_t(0xffffffffu)) != stamp)
-        {
-          std::uint32_t index = 0;
-          const std::uint64_t key = point_key(x, y, z) * key_kinds + std::uint64_t(kind.kind);
-          if (owner_block(x, y, z, kind.kind) == block)
-          {
-            const int outside = corner[std::size_t(a)].value > 0 ? b : a;
-            const int inside = corner[std::size_t(a)].value > 0 ? a : b;
-            index = static_cast<std::uint32_t>(out.vertices.size());
-            out.vertices.push_back(
-              local->vertex(corner[std::size_t(outside)], corner[std::size_t(inside)],
-                            { corner[std::size_t(tet[0])], corner[std::size_t(tet[1])],
-                              corner[std::size_t(tet[2])], corner[std::size_t(tet[3])] }));
-            out.keys.push_back(key);
-          }
-          else
-          {
-            // The owner computes it: every cell holding a crossed edge is contoured, as the
-            // signs at lattice points do not depend on the block asking.
-            index = static_cast<std::uint32_t>(out.foreign_keys.size()) | foreign_bit;
-            out.foreign_keys.push_back(key);
-          }
-          entry = stamp | index;
-        }
-        return static_cast<std::uint32_t>(entry);
-      };
-      for (const auto& tet : tables.tetrahedra)
-      {
-        int inside_mask = 0, inside_count = 0;
-        for (int k = 0; k < 4; ++k)
-        {
-          if (corner[std::size_t(tet[std::size_t(k)])].value > 0)
-          {
-            inside_mask |= 1 << k;
-            ++inside_count;
-          }
-        }
-        if (inside_count == 0 || inside_count == 4)
-        {
-          continue;
-        }
-        if (inside_count == 1 || inside_count == 3)
-        {
-          int lone = 0;
-          for (int k = 0; k < 4; ++k)
-          {
-            const bool in = (inside_mask >> k) & 1;
-            if (in == (inside_count == 1))
-            {
-              lone = k;
-            }
-          }
-          const int* order = first_alone[lone];
-          const int a = tet[std::size_t(order[0])], b = tet[std::size_t(order[1])],
-                    c = tet[std::size_t(order[2])], d = tet[std::size_t(order[3])];
-          if (inside_count == 1)
-          {
-            out.triangles.push_back({ edge(a, b, tet), edge(a, c, tet), edge(a, d, tet) });
-          }
-          else
-          {
-            out.triangles.push_back({ edge(a, b, tet), edge(a, d, tet), edge(a, c, tet) });
-          }
-          continue;
-        }
-        int pair[2], p = 0;
-        for (int k = 0; k < 4; ++k)
-        {
-          if ((inside_mask >> k) & 1)
-          {
-            pair[p++] = k;
-          }
-        }
-        int order[4];
-        pair_order(pair[0], pair[1], order);
-        const int a = tet[std::size_t(order[0])], b = tet[std::size_t(order[1])],
-                  c = tet[std::size_t(order[2])], d = tet[std::size_t(order[3])];
-        const std::uint32_t ac = edge(a, c, tet), ad = edge(a, d, tet), bd = edge(b, d, tet),
-                            bc = edge(b, c, tet);
-        out.triangles.push_back({ ac, ad, bd });
-        out.triangles.push_back({ ac, bd, bc });
-      }
-    };
-    // The cells whose twelve points change sign.
-    const double* const values[2] = { buffers.values[0].data(), buffers.values[1].data() };
-    const std::int64_t x1 = std::min(x0 + block_cells, cells[0]);
-    const std::int64_t y1 = std::min(y0 + block_cells, cells[1]);
-    const std::int64_t z1 = std::min(z0 + block_cells, cells[2]);
-    for (std::int64_t z = z0; z < z1; ++z)
-      for (std::int64_t y = y0; y < y1; ++y)
-        for (std::int64_t x = x0; x < x1; ++x)
-        {
-          const std::size_t at = std::size_t((x - x0) + side * ((y - y0) + side * (z - z0)));
-          int inside = 0;
-          for (int k = 0; k < cell_points; ++k)
-          {
-            inside += values[lattice[std::size_t(k)]][at + place[std::size_t(k)]] > 0 ? 1 : 0;
-          }
-          if (inside != 0 && inside != cell_points)
-          {
-            contour_cell({ x, y, z }, at);
-          }
-        }
-  };
-
-  // Blocks in rounds, so progress is reported from this thread.
-  const std::size_t round = 256;
-  std::vector<BlockOutput> round_outputs(round);
-  for (std::size_t first = 0; first < block_count; first += round)
-  {
-    const std::size_t count = std::min(round, block_count - first);
-    // Blocks the surface crosses cost far more than the others: taken one at a time.
-    run_balanced<BlockBuffers>(parallel_for, count, [&](std::size_t k, BlockBuffers& buffers) {
-      run_block(first + k, round_outputs[k], buffers);
-    });
-    for (std::size_t k = 0; k < count; ++k)
-    {
-      BlockOutput& out = round_outputs[k];
-      if (!out.vertices.empty() || !out.triangles.empty() || !out.foreign_keys.empty())
-      {
-        active.push_back(first + k);
-        outputs.push_back(std::move(out));
-        out = {};
-      }
-    }
-    if (progress)
-    {
-      progress(double(first + count) / double(block_count));
-    }
-  }
-
-  // Vertices numbered block by block; foreign references found in their owners' keys.
-  const std::size_t active_count = active.size();
-  std::vector<std::int64_t> first_vertex(active_count + 1, 0), first_triangle(active_count + 1, 0);
-  for (std::size_t b = 0; b < active_count; ++b)
-  {
-    first_vertex[b + 1] = first_vertex[b] + std::int64_t(outputs[b].vertices.size());
-    first_triangle[b + 1] = first_triangle[b] + std::int64_t(outputs[b].triangles.size());
-  }
-  std::vector<std::vector<std::pair<std::uint64_t, std::uint32_t>>> owned(active_count);
-  run_parallel(parallel_for, active_count, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t b = begin; b < end; ++b)
-    {
-      auto& sorted = owned[b];
-      sorted.resize(outputs[b].keys.size());
-      for (std::size_t k = 0; k < sorted.size(); ++k)
-      {
-        sorted[k] = { outputs[b].keys[k], static_cast<std::uint32_t>(k) };
-      }
-      std::sort(sorted.begin(), sorted.end());
-    }
-  });
-  const auto global_of = [&](std::uint64_t key) -> std::int64_t {
-    const std::size_t block = owner_of(key);
-    const auto at = std::lower_bound(active.begin(), active.end(), block);
-    if (at == active.end() || *at != block)
-    {
-      return -1;
-    }
-    const std::size_t owner = static_cast<std::size_t>(at - active.begin());
-    const auto& sorted = owned[owner];
-    const auto found = std::lower_bound(sorted.begin(), sorted.end(),
-                                        std::pair<std::uint64_t, std::uint32_t>(key, 0));
-    if (found == sorted.end() || found->first != key)
-    {
-      return -1;
-    }
-    return first_vertex[owner] + std::int64_t(found->second);
-  };
-  // Room for twice as many again, which refinements fill in place (pages left unused are not
-  // committed): otherwise their splits would copy the whole mesh. (3wip refined from the
-  // coarsest lattice to 0.1 Å has 2.4 times the lattice's vertices.)
-  mesh.vertices.reserve(3 * std::size_t(first_vertex[active_count]));
-  mesh.triangles.reserve(9 * std::size_t(first_triangle[active_count]));
-  mesh.vertices.resize(std::size_t(first_vertex[active_count]));
-  mesh.triangles.resize(3 * std::size_t(first_triangle[active_count]));
-  // Signs at lattice points do not depend on the block asking, so every cell holding a crossed
-  // edge is contoured and each foreign vertex has been made by its owner.
-  std::vector<char> complete(active_count, 1);
-  run_parallel(parallel_for, active_count, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t b = begin; b < end; ++b)
-    {
-      BlockOutput& out = outputs[b];
-      std::copy(out.vertices.begin(), out.vertices.end(), mesh.vertices.begin() + first_vertex[b]);
-      std::vector<std::int64_t> foreign(out.foreign_keys.size());
-      for (std::size_t k = 0; k < foreign.size(); ++k)
-      {
-        foreign[k] = global_of(out.foreign_keys[k]);
-        complete[b] = complete[b] && foreign[k] >= 0;
-      }
-      std::int64_t* corner = mesh.triangles.data() + 3 * first_triangle[b];
-      for (const auto& triangle : out.triangles)
-      {
-        for (const std::uint32_t v : triangle)
-        {
-          *corner++ =
-            (v & foreign_bit) ? foreign[v & ~foreign_bit] : first_vertex[b] + std::int64_t(v);
-        }
-      }
-      out = {};
-    }
-  });
-  if (one_sided_block || std::find(complete.begin(), complete.end(), 0) != complete.end())
+  ContouredBlocks blocks = contour_blocks(field, grid, keys, parallel_for, progress);
+  ContourMesh mesh;
+  const bool complete = join_blocks(blocks, keys, parallel_for, mesh);
+  if (blocks.one_sided || !complete)
   {
     throw std::logic_error("contour_tetrahedra: a field gave a lattice point different signs in "
                            "different blocks, or a zero in one grid of a block and not the other");

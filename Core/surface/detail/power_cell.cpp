@@ -55,16 +55,12 @@ bool redirect(Corner& corner, std::int32_t from, std::int32_t to)
   *at = to;
   return true;
 }
-} // namespace
 
-int power_cell_faces(const std::vector<PowerPlane>& planes, std::vector<char>& bounding,
-                     PowerCellWork& work)
+/// The cube, a simple polytope: corner k has coordinates +-1 by the bits of k; the faces
+/// x = -1, x = 1, y = -1, ... are planes -1, -2, -3, ... Its edge along the x and y faces runs
+/// in z (bit 4), and so on.
+void start_from_cube(std::vector<Corner>& corners)
 {
-  bounding.assign(planes.size(), 0);
-  // The cube, a simple polytope: corner k has coordinates +-1 by the bits of k; the faces
-  // x = -1, x = 1, y = -1, ... are planes -1, -2, -3, ... Its edge along the x and y faces runs
-  // in z (bit 4), and so on.
-  auto& corners = work.corners;
   corners.clear();
   for (std::int32_t k = 0; k < 8; ++k)
   {
@@ -73,136 +69,155 @@ int power_cell_faces(const std::vector<PowerPlane>& planes, std::vector<char>& b
                         { -1 - bx, -3 - by, -5 - bz },
                         { k ^ 4, k ^ 1, k ^ 2 } });
   }
-  const auto mark_all = [&] {
-    std::fill(bounding.begin(), bounding.end(), 1);
-    return 2;
-  };
-  auto& side = work.side;
-  auto& beyond = work.beyond;
-  // Per plane, the first new corner met on it: the other one on that face joins it along the
-  // cut (a face of a convex polytope meets a plane at two points).
-  auto& pending = work.pending;
-  auto& pending_planes = work.pending_planes;
-  pending.assign(planes.size() + cube_faces, -1);
-  std::int32_t start = 0;
-  for (std::size_t k = 0; k < planes.size(); ++k)
+}
+
+/// Where the corners lie against a plane.
+enum class Beyond
+{
+  None,    ///< every corner is kept
+  Some,    ///< some corners go (listed in work.beyond)
+  All,     ///< every corner goes, some of them only within the margin
+  Clearly, ///< every corner goes, beyond the margin
+};
+
+/// Lists the corners beyond `plane` (within the margin) in work.beyond, with each corner's
+/// signed distance from it in work.side; all of them are looked at, as a corner moved within
+/// the margin may leave a dent no deeper than it that the climb cannot see past.
+Beyond corners_beyond(const PowerPlane& plane, PowerCellWork& work)
+{
+  const std::vector<Corner>& corners = work.corners;
+  work.side.resize(corners.size());
+  work.beyond.clear();
+  bool clearly_beyond = true;
+  for (std::size_t c = 0; c < corners.size(); ++c)
   {
-    const PowerPlane& plane = planes[k];
-    double top = 0;
-    const std::int32_t highest = highest_corner(corners, plane.axis, start, top);
-    start = highest;
-    if (top - plane.height < -climb_margin)
+    work.side[c] = corners[c].position.dot(plane.axis) - plane.height;
+    if (work.side[c] >= -margin)
     {
-      continue; // the plane holds it all, and will as it shrinks
+      work.beyond.push_back(static_cast<std::int32_t>(c));
+      clearly_beyond = clearly_beyond && work.side[c] > margin;
     }
-    // The corners beyond (within the margin), all of them looked at: a corner moved within
-    // the margin may leave a dent no deeper than it that the climb cannot see past.
-    const std::int32_t cut = static_cast<std::int32_t>(k);
-    side.resize(corners.size());
-    beyond.clear();
-    bool clearly_beyond = true;
-    for (std::size_t c = 0; c < corners.size(); ++c)
-    {
-      side[c] = corners[c].position.dot(plane.axis) - plane.height;
-      if (side[c] >= -margin)
-      {
-        beyond.push_back(static_cast<std::int32_t>(c));
-        clearly_beyond = clearly_beyond && side[c] > margin;
-      }
-    }
-    if (beyond.empty())
-    {
-      continue; // within the climb's margin, but clear of every corner
-    }
-    if (beyond.size() == corners.size())
-    {
-      return clearly_beyond ? 0 : mark_all();
-    }
-    // Each edge from a corner beyond to a kept one gets a new corner where the plane cuts it.
-    pending_planes.clear();
-    const std::size_t old_count = corners.size();
-    for (const std::int32_t c : beyond)
-    {
-      for (int e = 0; e < 3; ++e)
-      {
-        const std::int32_t other = corners[std::size_t(c)].next[std::size_t(e)];
-        const double other_side = side[std::size_t(other)];
-        if (other_side >= -margin)
-        {
-          continue;
-        }
-        const Corner& from = corners[std::size_t(c)];
-        const std::int32_t a = from.planes[std::size_t(e)];
-        const std::int32_t b = from.planes[std::size_t((e + 1) % 3)];
-        // On the edge itself: a corner beyond only by the margin gives its own position.
-        const double t =
-          std::clamp(side[std::size_t(c)] / (side[std::size_t(c)] - other_side), 0.0, 1.0);
-        const Vec position =
-          from.position + t * (corners[std::size_t(other)].position - from.position);
-        const std::int32_t made = static_cast<std::int32_t>(corners.size());
-        corners.push_back({ position, { a, b, cut }, { other, -1, -1 } });
-        if (!redirect(corners[std::size_t(other)], c, made))
-        {
-          return mark_all();
-        }
-        // Edge 1 runs along b and the cut, edge 2 along the cut and a.
-        for (int slot = 1; slot <= 2; ++slot)
-        {
-          const std::int32_t shared = slot == 1 ? b : a;
-          std::int32_t& first = pending[std::size_t(shared + cube_faces)];
-          if (first == -1)
-          {
-            first = made;
-            pending_planes.push_back(shared);
-            continue;
-          }
-          if (first < 0)
-          {
-            return mark_all(); // a third corner on one face's cut
-          }
-          Corner& partner = corners[std::size_t(first)];
-          const std::size_t free_slot = partner.planes[1] == shared ? 1 : 2;
-          if (partner.next[free_slot] != -1)
-          {
-            return mark_all();
-          }
-          partner.next[free_slot] = made;
-          corners[std::size_t(made)].next[std::size_t(slot)] = first;
-          first = -2; // both met
-        }
-      }
-    }
-    bool closed = true;
-    for (const std::int32_t shared : pending_planes)
-    {
-      closed = closed && pending[std::size_t(shared + cube_faces)] == -2;
-      pending[std::size_t(shared + cube_faces)] = -1;
-    }
-    if (!closed || corners.size() == old_count)
-    {
-      return mark_all(); // a face met at one point only
-    }
-    // The corners beyond go, the last one moving into each hole (highest holes first, so that
-    // the last one is never beyond). No corner left points to one beyond any more.
-    std::sort(beyond.begin(), beyond.end(), std::greater<>());
-    for (const std::int32_t hole : beyond)
-    {
-      const std::int32_t last = static_cast<std::int32_t>(corners.size()) - 1;
-      if (hole != last)
-      {
-        corners[std::size_t(hole)] = corners[std::size_t(last)];
-        for (const std::int32_t next : corners[std::size_t(hole)].next)
-        {
-          if (!redirect(corners[std::size_t(next)], last, hole))
-          {
-            return mark_all();
-          }
-        }
-      }
-      corners.pop_back();
-    }
-    start = 0;
   }
+  if (work.beyond.empty())
+  {
+    return Beyond::None;
+  }
+  if (work.beyond.size() == corners.size())
+  {
+    return clearly_beyond ? Beyond::Clearly : Beyond::All;
+  }
+  return Beyond::Some;
+}
+
+/// Joins corner `made`, new on plane `shared` (its edge `slot` runs along that plane and the
+/// cut), to the other new corner on that plane's face: the first one met waits in
+/// work.pending, the second closes the edge. False when a third comes or the slot is taken.
+bool join_on_face(std::int32_t made, std::int32_t shared, int slot, PowerCellWork& work)
+{
+  std::int32_t& first = work.pending[std::size_t(shared + cube_faces)];
+  if (first == -1)
+  {
+    first = made;
+    work.pending_planes.push_back(shared);
+    return true;
+  }
+  if (first < 0)
+  {
+    return false; // a third corner on one face's cut
+  }
+  Corner& partner = work.corners[std::size_t(first)];
+  const std::size_t free_slot = partner.planes[1] == shared ? 1 : 2;
+  if (partner.next[free_slot] != -1)
+  {
+    return false;
+  }
+  partner.next[free_slot] = made;
+  work.corners[std::size_t(made)].next[std::size_t(slot)] = first;
+  first = -2; // both met
+  return true;
+}
+
+/// Gives each edge from a corner beyond plane `cut` to a kept one a new corner where the plane
+/// cuts it, and joins the new corners along the cut (a face of a convex polytope meets a plane
+/// at two points). False where the cut is not a simple polygon.
+bool cut_edges(std::int32_t cut, PowerCellWork& work)
+{
+  auto& corners = work.corners;
+  const auto& side = work.side;
+  work.pending_planes.clear();
+  const std::size_t old_count = corners.size();
+  for (const std::int32_t c : work.beyond)
+  {
+    for (int e = 0; e < 3; ++e)
+    {
+      const std::int32_t other = corners[std::size_t(c)].next[std::size_t(e)];
+      const double other_side = side[std::size_t(other)];
+      if (other_side >= -margin)
+      {
+        continue;
+      }
+      const Corner& from = corners[std::size_t(c)];
+      const std::int32_t a = from.planes[std::size_t(e)];
+      const std::int32_t b = from.planes[std::size_t((e + 1) % 3)];
+      // On the edge itself: a corner beyond only by the margin gives its own position.
+      const double t =
+        std::clamp(side[std::size_t(c)] / (side[std::size_t(c)] - other_side), 0.0, 1.0);
+      const Vec position =
+        from.position + t * (corners[std::size_t(other)].position - from.position);
+      const std::int32_t made = static_cast<std::int32_t>(corners.size());
+      corners.push_back({ position, { a, b, cut }, { other, -1, -1 } });
+      if (!redirect(corners[std::size_t(other)], c, made))
+      {
+        return false;
+      }
+      // Edge 1 runs along b and the cut, edge 2 along the cut and a.
+      for (int slot = 1; slot <= 2; ++slot)
+      {
+        if (!join_on_face(made, slot == 1 ? b : a, slot, work))
+        {
+          return false;
+        }
+      }
+    }
+  }
+  bool closed = true;
+  for (const std::int32_t shared : work.pending_planes)
+  {
+    closed = closed && work.pending[std::size_t(shared + cube_faces)] == -2;
+    work.pending[std::size_t(shared + cube_faces)] = -1;
+  }
+  return closed && corners.size() != old_count; // else a face met at one point only
+}
+
+/// Removes the corners beyond, the last one moving into each hole (highest holes first, so that
+/// the last one is never beyond); no corner left points to one beyond any more. False when an
+/// edge back to a moved corner is missing.
+bool drop_corners_beyond(PowerCellWork& work)
+{
+  auto& corners = work.corners;
+  std::sort(work.beyond.begin(), work.beyond.end(), std::greater<>());
+  for (const std::int32_t hole : work.beyond)
+  {
+    const std::int32_t last = static_cast<std::int32_t>(corners.size()) - 1;
+    if (hole != last)
+    {
+      corners[std::size_t(hole)] = corners[std::size_t(last)];
+      for (const std::int32_t next : corners[std::size_t(hole)].next)
+      {
+        if (!redirect(corners[std::size_t(next)], last, hole))
+        {
+          return false;
+        }
+      }
+    }
+    corners.pop_back();
+  }
+  return true;
+}
+
+/// Marks the planes through some corner kept as bounding.
+void mark_bounding(const std::vector<Corner>& corners, std::vector<char>& bounding)
+{
   for (const Corner& corner : corners)
   {
     for (const std::int32_t plane : corner.planes)
@@ -213,6 +228,49 @@ int power_cell_faces(const std::vector<PowerPlane>& planes, std::vector<char>& b
       }
     }
   }
+}
+} // namespace
+
+int power_cell_faces(const std::vector<PowerPlane>& planes, std::vector<char>& bounding,
+                     PowerCellWork& work)
+{
+  bounding.assign(planes.size(), 0);
+  // Where the clipping meets corners it cannot tell apart: every plane counts as bounding.
+  const auto mark_all = [&] {
+    std::fill(bounding.begin(), bounding.end(), 1);
+    return 2;
+  };
+  start_from_cube(work.corners);
+  // Per plane, the first new corner of a cut met on its face (join_on_face()).
+  work.pending.assign(planes.size() + cube_faces, -1);
+  std::int32_t start = 0;
+  for (std::size_t k = 0; k < planes.size(); ++k)
+  {
+    const PowerPlane& plane = planes[k];
+    double top = 0;
+    start = highest_corner(work.corners, plane.axis, start, top);
+    if (top - plane.height < -climb_margin)
+    {
+      continue; // the plane holds it all, and will as it shrinks
+    }
+    switch (corners_beyond(plane, work))
+    {
+      case Beyond::None:
+        continue; // within the climb's margin, but clear of every corner
+      case Beyond::Clearly:
+        return 0;
+      case Beyond::All:
+        return mark_all();
+      case Beyond::Some:
+        break;
+    }
+    if (!cut_edges(static_cast<std::int32_t>(k), work) || !drop_corners_beyond(work))
+    {
+      return mark_all();
+    }
+    start = 0;
+  }
+  mark_bounding(work.corners, bounding);
   return 1;
 }
 

@@ -322,53 +322,50 @@ void reset_lists(std::vector<List>& lists, std::size_t count)
   }
 }
 
-/// The exposed area of the unit sphere under `caps` (times R^2 by the caller), and in
-/// `normal_integral` the integral of the outward unit normal over it (for the volume). With
-/// `pieces`, also the arcs and corners that bound it. `caps` sorted by sort_larger_first().
-double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPieces* pieces,
-                         UnitWorkspace& work)
+/// Drops the caps inside another cap: they bound nothing (cap b lies in cap a when the angle
+/// between their axes plus b's radius is at most a's radius; compared as cosines, without acos).
+void drop_nested_caps(std::vector<Cap>& caps, std::vector<Cap>& kept)
 {
-  normal_integral = Vec::Zero();
-  // Caps inside another cap bound nothing: dropped (cap b lies in cap a when the angle between
-  // their axes plus b's radius is at most a's radius; compared as cosines, without acos).
+  kept.clear();
+  for (const Cap& cap : caps)
   {
-    std::vector<Cap>& kept = work.kept;
-    kept.clear();
-    for (const Cap& cap : caps)
+    bool inside = false;
+    for (const Cap& larger : kept)
     {
-      bool inside = false;
-      for (const Cap& larger : kept)
+      // between <= larger.angle - cap.angle  <=>  cos(between) >= cos(larger - cap)
+      // (larger.height <= cap.height: sorted, the larger angular radius first.)
+      inside = cap.axis.dot(larger.axis) >= larger.height * cap.height + larger.sine * cap.sine;
+      if (inside)
       {
-        // between <= larger.angle - cap.angle  <=>  cos(between) >= cos(larger - cap)
-        // (larger.height <= cap.height: sorted, the larger angular radius first.)
-        inside = cap.axis.dot(larger.axis) >= larger.height * cap.height + larger.sine * cap.sine;
-        if (inside)
-        {
-          break;
-        }
-      }
-      if (!inside)
-      {
-        kept.push_back(cap);
+        break;
       }
     }
-    caps.swap(kept);
+    if (!inside)
+    {
+      kept.push_back(cap);
+    }
   }
+  caps.swap(kept);
+}
+
+/// Gives each cap the frame of its circle.
+void set_circle_frames(std::vector<Cap>& caps)
+{
   for (Cap& cap : caps)
   {
-    // The frame of the circle, for the caps that stay.
     const Vec helper = std::abs(cap.axis[0]) < 0.9 ? Vec::UnitX() : Vec::UnitY();
     cap.e1 = cap.axis.cross(helper).normalized();
     cap.e2 = cap.axis.cross(cap.e1);
   }
+}
+
+/// The overlapping caps (between < angle a + angle b: while a + b < pi, cos(between) >
+/// cos(a + b)): they make the union's components, and only they can cover a point of each
+/// other's circles.
+CapSets overlapping_caps(const std::vector<Cap>& caps, std::vector<std::uint64_t>& buffer)
+{
   const std::size_t count = caps.size();
-  if (count == 0)
-  {
-    return 4.0 * pi;
-  }
-  // Overlapping caps (between < angle a + angle b: while a + b < pi, cos(between) > cos(a + b)):
-  // they make the union's components, and only they can cover a point of each other's circles.
-  CapSets overlapping(work.overlapping, count);
+  CapSets overlapping(buffer, count);
   for (std::size_t a = 0; a < count; ++a)
   {
     for (std::size_t b = a + 1; b < count; ++b)
@@ -384,21 +381,74 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
       }
     }
   }
-  const std::size_t unions = overlapping.components(work.seen, work.frontier);
-  // Whether a cap overlapping cap `on` (and cap `also`, unless SIZE_MAX) holds u.
-  auto covered = [&](const Vec& u, std::size_t on, std::size_t also = SIZE_MAX) {
-    return overlapping.any(on, also, SIZE_MAX,
-                           [&](std::size_t c) { return u.dot(caps[c].axis) > caps[c].height; });
-  };
+  return overlapping;
+}
 
-  // The crossing points of the caps' circles, and on each circle their azimuths.
-  std::vector<Vec>& vertices = work.vertices;
-  vertices.clear();
-  auto& on_circle = work.on_circle;
-  reset_lists(on_circle, count);
-  for (std::size_t a = 0; a < count; ++a)
+/// The arrangement of the caps' circles on the unit sphere, traced into the exposed part's
+/// boundary: its corners, its arcs (each with the corner at its end), and its loops.
+class UnitArrangement
+{
+public:
+  UnitArrangement(const std::vector<Cap>& caps, const CapSets& overlapping, UnitPieces* pieces,
+                  UnitWorkspace& work)
+    : caps_(caps)
+    , overlapping_(overlapping)
+    , pieces_(pieces)
+    , work_(work)
   {
-    overlapping.any(a, SIZE_MAX, a, [&](std::size_t b) {
+  }
+
+  /// The crossing points of the caps' circles that no other cap covers (work.vertices), and on
+  /// each circle their azimuths (work.on_circle).
+  void find_corners();
+  /// The exposed arcs (work.arcs), travelled clockwise about each axis (uncovered side on the
+  /// left), and the whole circles no cap covers; their geodesic curvature into turning(), and
+  /// into `normal_integral` half the integral of x cross dx along them (the exposed part's
+  /// vector area, the integral of its normal).
+  void trace_arcs(Vec& normal_integral);
+  /// The turning at each corner, from the arc ending there to the arc leaving it.
+  void turn_at_corners();
+  /// The arcs joined end to end into loops, with their shares of the turning and the normal
+  /// integral.
+  void close_loops();
+
+  double turning() const
+  {
+    return this->turning_;
+  }
+  std::size_t loops() const
+  {
+    return this->loops_;
+  }
+
+private:
+  /// Whether a cap overlapping cap `on` (and cap `also`, unless SIZE_MAX) holds u.
+  bool covered(const Vec& u, std::size_t on, std::size_t also = SIZE_MAX) const
+  {
+    return this->overlapping_.any(on, also, SIZE_MAX, [&](std::size_t c) {
+      return u.dot(this->caps_[c].axis) > this->caps_[c].height;
+    });
+  }
+
+  const std::vector<Cap>& caps_;
+  const CapSets overlapping_; ///< by value: a view of the workspace's bits, read in hot loops
+  UnitPieces* pieces_;
+  UnitWorkspace& work_;
+  double turning_ = 0; ///< the boundary's geodesic curvature integrated, plus the corners
+  std::size_t loops_ = 0;
+};
+
+void UnitArrangement::find_corners()
+{
+  const std::vector<Cap>& caps = this->caps_;
+  UnitPieces* const pieces = this->pieces_;
+  std::vector<Vec>& vertices = this->work_.vertices;
+  vertices.clear();
+  auto& on_circle = this->work_.on_circle;
+  reset_lists(on_circle, caps.size());
+  for (std::size_t a = 0; a < caps.size(); ++a)
+  {
+    this->overlapping_.any(a, SIZE_MAX, a, [&](std::size_t b) {
       Vec crossing[2];
       if (!circle_crossings(caps[a], caps[b], crossing))
       {
@@ -409,12 +459,12 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
         // A crossing inside a third cap is no corner of the exposed part: exposure along a
         // circle changes only at crossings no other cap covers, so those alone cut the arcs.
         // (A cap holding a point of both circles overlaps both caps.)
-        if (covered(u, a, b))
+        if (this->covered(u, a, b))
         {
           continue;
         }
         // A third circle through the crossing (to rounding): four spheres meet at one point.
-        if (pieces && overlapping.any(a, SIZE_MAX, SIZE_MAX, [&](std::size_t c) {
+        if (pieces && this->overlapping_.any(a, SIZE_MAX, SIZE_MAX, [&](std::size_t c) {
               return c != b && std::abs(u.dot(caps[c].axis) - caps[c].height) < 1e-9;
             }))
         {
@@ -432,23 +482,25 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
       return false;
     });
   }
+}
 
-  // The exposed arcs: travelled clockwise about each axis (uncovered side on the left).
-  std::vector<ExposedArc>& arcs = work.arcs;
+void UnitArrangement::trace_arcs(Vec& normal_integral)
+{
+  const std::vector<Cap>& caps = this->caps_;
+  UnitPieces* const pieces = this->pieces_;
+  std::vector<ExposedArc>& arcs = this->work_.arcs;
   arcs.clear();
-  double turning = 0; // the boundary's geodesic curvature integrated, plus the corners
-  std::size_t loops = 0;
-  for (std::size_t a = 0; a < count; ++a)
+  for (std::size_t a = 0; a < caps.size(); ++a)
   {
     const Cap& cap = caps[a];
-    auto& crossings = on_circle[a];
+    auto& crossings = this->work_.on_circle[a];
     if (crossings.empty())
     {
-      if (!covered(cap.point(0.0), a))
+      if (!this->covered(cap.point(0.0), a))
       {
-        turning += -cap.height * 2.0 * pi;
+        this->turning_ += -cap.height * 2.0 * pi;
         normal_integral += -pi * cap.sine * cap.sine * cap.axis;
-        ++loops;
+        ++this->loops_;
         if (pieces)
         {
           pieces->arcs.push_back({ cap, 0.0, 2.0 * pi });
@@ -467,11 +519,11 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
       {
         continue;
       }
-      if (covered(cap.point(0.5 * (low + high)), a))
+      if (this->covered(cap.point(0.5 * (low + high)), a))
       {
         continue;
       }
-      turning += -cap.height * (high - low);
+      this->turning_ += -cap.height * (high - low);
       // The vector area of a surface is half the boundary integral of x cross dx.
       const double h = cap.height, r = cap.sine;
       const Vec along_arc = h * r * (std::sin(high) - std::sin(low)) * cap.e1 +
@@ -487,9 +539,13 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
                        cap.point(0.5 * (low + high)) });
     }
   }
-  // Corners: from the arc ending at a vertex to the arc leaving it.
-  std::vector<std::size_t>& leaving = work.leaving; // per vertex, the first arc leaving it
-  leaving.assign(vertices.size(), SIZE_MAX);
+}
+
+void UnitArrangement::turn_at_corners()
+{
+  std::vector<ExposedArc>& arcs = this->work_.arcs;
+  std::vector<std::size_t>& leaving = this->work_.leaving; // per vertex, the first arc leaving it
+  leaving.assign(this->work_.vertices.size(), SIZE_MAX);
   for (std::size_t k = 0; k < arcs.size(); ++k)
   {
     if (leaving[arcs[k].start] == SIZE_MAX)
@@ -497,32 +553,41 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
       leaving[arcs[k].start] = k;
     }
   }
-  UnionFind chains(work.chains, vertices.size());
   for (ExposedArc& arc : arcs)
   {
-    chains.join(arc.start, arc.end);
     if (leaving[arc.end] == SIZE_MAX)
     {
       continue; // a degenerate crossing (three circles through a point): no corner counted
     }
     const ExposedArc& out = arcs[leaving[arc.end]];
-    const Vec& p = vertices[arc.end];
-    const Vec in_direction = caps[arc.cap].tangent(arc.end_azimuth);
-    const Vec out_direction = caps[out.cap].tangent(out.start_azimuth);
+    const Vec& p = this->work_.vertices[arc.end];
+    const Vec in_direction = this->caps_[arc.cap].tangent(arc.end_azimuth);
+    const Vec out_direction = this->caps_[out.cap].tangent(out.start_azimuth);
     const double corner =
       std::atan2(p.dot(in_direction.cross(out_direction)), in_direction.dot(out_direction));
-    turning += corner;
+    this->turning_ += corner;
     arc.turning += corner;
   }
-  std::vector<std::size_t>& loop_of_root = work.loop_of_root;
-  loop_of_root.assign(vertices.size(), SIZE_MAX);
+}
+
+void UnitArrangement::close_loops()
+{
+  const std::vector<ExposedArc>& arcs = this->work_.arcs;
+  UnitPieces* const pieces = this->pieces_;
+  UnionFind chains(this->work_.chains, this->work_.vertices.size());
+  for (const ExposedArc& arc : arcs)
+  {
+    chains.join(arc.start, arc.end);
+  }
+  std::vector<std::size_t>& loop_of_root = this->work_.loop_of_root;
+  loop_of_root.assign(this->work_.vertices.size(), SIZE_MAX);
   for (const ExposedArc& arc : arcs)
   {
     const std::size_t root = chains.find(arc.start);
     if (loop_of_root[root] == SIZE_MAX)
     {
       loop_of_root[root] = pieces ? pieces->loops.size() : 0;
-      ++loops;
+      ++this->loops_;
       if (pieces)
       {
         pieces->loops.push_back({ 0.0, Vec::Zero(), arc.middle });
@@ -535,10 +600,308 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
       loop.normal_integral += arc.normal_integral;
     }
   }
+}
+
+/// The exposed area of the unit sphere under `caps` (times R^2 by the caller), and in
+/// `normal_integral` the integral of the outward unit normal over it (for the volume). With
+/// `pieces`, also the arcs and corners that bound it. `caps` sorted by sort_larger_first().
+double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPieces* pieces,
+                         UnitWorkspace& work)
+{
+  normal_integral = Vec::Zero();
+  drop_nested_caps(caps, work.kept);
+  set_circle_frames(caps);
+  if (caps.empty())
+  {
+    return 4.0 * pi;
+  }
+  const CapSets overlapping = overlapping_caps(caps, work.overlapping);
+  const std::size_t unions = overlapping.components(work.seen, work.frontier);
+  UnitArrangement arrangement(caps, overlapping, pieces, work);
+  arrangement.find_corners();
+  arrangement.trace_arcs(normal_integral);
+  arrangement.turn_at_corners();
+  arrangement.close_loops();
   // Gauss-Bonnet on the unit sphere: area = 2 pi chi - turning, with chi = loops + 2 - 2 unions
   // (the exposed part and the caps' union share their loops and together make the sphere).
-  const double chi = double(loops) + 2.0 - 2.0 * double(unions);
-  return std::clamp(2.0 * pi * chi - turning, 0.0, 4.0 * pi);
+  const double chi = double(arrangement.loops()) + 2.0 - 2.0 * double(unions);
+  return std::clamp(2.0 * pi * chi - arrangement.turning(), 0.0, 4.0 * pi);
+}
+
+/// The largest radius; throws InvalidInput for lists of different lengths, a non-finite
+/// centre or radius, or a radius that is not positive.
+double check_spheres(const std::vector<std::array<double, 3>>& centres,
+                     const std::vector<double>& radii)
+{
+  const std::size_t n = centres.size();
+  if (radii.size() != n)
+  {
+    throw InvalidInput("the sphere union needs one radius per centre: " + std::to_string(n) +
+                       " centres, " + std::to_string(radii.size()) + " radii");
+  }
+  double largest = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    if (!std::isfinite(centres[i][0]) || !std::isfinite(centres[i][1]) ||
+        !std::isfinite(centres[i][2]) || !std::isfinite(radii[i]) || !(radii[i] > 0))
+    {
+      throw InvalidInput("sphere " + std::to_string(i) +
+                         " has a non-finite centre or a radius that is not positive");
+    }
+    largest = std::max(largest, radii[i]);
+  }
+  return largest;
+}
+
+/// The spheres in cubic cells (grid_cell_key()) of the largest diameter: overlapping ones are
+/// in neighbouring cells.
+struct SphereCells
+{
+  double cell = 0;
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> spheres;
+
+  SphereCells(const std::vector<std::array<double, 3>>& centres, double largest)
+    : cell(2.0 * largest)
+  {
+    for (std::size_t i = 0; i < centres.size(); ++i)
+    {
+      this->spheres[grid_cell_key(grid_cell(centres[i], this->cell))].push_back(
+        static_cast<std::uint32_t>(i));
+    }
+  }
+};
+
+/// Each sphere's pieces of the boundary, the arcs and vertices it reports (those whose other
+/// spheres come after it) and its loops, until they are gathered in order.
+struct PiecesBySphere
+{
+  std::vector<std::vector<SasArc>> arcs;
+  std::vector<std::vector<SasVertex>> vertices;
+  std::vector<std::vector<SasLoop>> loops;
+  std::vector<std::size_t> degenerate;
+
+  explicit PiecesBySphere(std::size_t count)
+    : arcs(count)
+    , vertices(count)
+    , loops(count)
+    , degenerate(count, 0)
+  {
+  }
+};
+
+/// The spheres and their cells: what each sphere's stage reads.
+struct Spheres
+{
+  const std::vector<std::array<double, 3>>& centres;
+  const std::vector<double>& radii;
+  SphereCells cells;
+};
+
+/// The buffers one range of spheres reuses.
+struct SphereWork
+{
+  std::vector<Cap> caps;
+  std::vector<PowerPlane> planes;
+  std::vector<char> bounding;
+  PowerCellWork cell_work;
+  UnitPieces pieces;
+  UnitWorkspace unit;
+};
+
+/// The caps that sphere i's neighbours cut from it (into `caps`, unsorted); true when one of
+/// them holds it whole (buried: then `caps` is left incomplete).
+bool neighbour_caps(std::size_t i, const Spheres& spheres, std::vector<Cap>& caps)
+{
+  const std::vector<std::array<double, 3>>& centres = spheres.centres;
+  const std::vector<double>& radii = spheres.radii;
+  const SphereCells& cells = spheres.cells;
+  const Vec c(centres[i][0], centres[i][1], centres[i][2]);
+  const double r = radii[i];
+  const GridCell home = grid_cell(centres[i], cells.cell);
+  caps.clear();
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dz = -1; dz <= 1; ++dz)
+      {
+        const auto found = cells.spheres.find(grid_cell_key(home, dx, dy, dz));
+        if (found == cells.spheres.end())
+        {
+          continue;
+        }
+        for (const std::uint32_t j : found->second)
+        {
+          if (j == i)
+          {
+            continue;
+          }
+          const double rj = radii[j];
+          const Vec offset = Vec(centres[j][0], centres[j][1], centres[j][2]) - c;
+          const double d = offset.norm();
+          if (d >= r + rj)
+          {
+            continue; // apart
+          }
+          if (d + r <= rj && !(d == 0 && rj == r && j > i))
+          {
+            return true; // inside j (of coincident equal spheres the first stays)
+          }
+          if (d + rj <= r)
+          {
+            continue; // j inside this sphere
+          }
+          Cap cap;
+          cap.neighbour = j;
+          cap.axis = offset / d;
+          cap.height = std::clamp((r * r + d * d - rj * rj) / (2.0 * r * d), -1.0, 1.0);
+          cap.sine = std::sqrt(std::max(0.0, 1.0 - cap.height * cap.height));
+          caps.push_back(cap);
+        }
+      }
+  return false;
+}
+
+/// Keeps the caps of the neighbours bounding the sphere's power cell alone (sorted largest
+/// first): only they can bound its exposed part, the sphere's points in its cell. False when
+/// the cell holds no point of the sphere (buried).
+bool keep_power_cell_caps(SphereWork& work)
+{
+  std::vector<Cap>& caps = work.caps;
+  work.planes.clear();
+  for (const Cap& cap : caps)
+  {
+    work.planes.push_back({ cap.axis, cap.height });
+  }
+  const int cell = power_cell_faces(work.planes, work.bounding, work.cell_work);
+  if (cell == 0)
+  {
+    return false; // no point of it outside every neighbour
+  }
+  if (cell == 1)
+  {
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < caps.size(); ++k)
+    {
+      if (work.bounding[k])
+      {
+        caps[kept++] = caps[k];
+      }
+    }
+    caps.resize(kept);
+  }
+  return true;
+}
+
+/// Sphere i's (centre c, radius r) pieces from those of its unit sphere: the arcs and vertices
+/// it reports (the lower sphere reports each), and its loops.
+void scale_pieces(std::size_t i, const Vec& c, double r, const UnitPieces& pieces,
+                  PiecesBySphere& out)
+{
+  const std::uint32_t self = static_cast<std::uint32_t>(i);
+  for (const UnitPieces::Arc& piece : pieces.arcs)
+  {
+    if (piece.cap.neighbour < self)
+    {
+      continue; // the lower sphere reports it
+    }
+    SasArc arc;
+    arc.first = self;
+    arc.second = piece.cap.neighbour;
+    arc.centre = c + r * piece.cap.height * piece.cap.axis;
+    arc.axis = piece.cap.axis;
+    arc.e1 = piece.cap.e1;
+    arc.e2 = piece.cap.e2;
+    arc.radius = r * piece.cap.sine;
+    arc.start = piece.low;
+    arc.span = piece.high - piece.low;
+    out.arcs[i].push_back(arc);
+  }
+  for (const UnitPieces::Corner& corner : pieces.corners)
+  {
+    if (corner.neighbour_a < self || corner.neighbour_b < self)
+    {
+      continue;
+    }
+    SasVertex vertex;
+    vertex.spheres = { self, std::min(corner.neighbour_a, corner.neighbour_b),
+                       std::max(corner.neighbour_a, corner.neighbour_b) };
+    vertex.position = c + r * corner.direction;
+    out.vertices[i].push_back(vertex);
+  }
+  out.degenerate[i] = pieces.degenerate_corners;
+  for (const UnitPieces::Loop& loop : pieces.loops)
+  {
+    out.loops[i].push_back(
+      { self, loop.turning, r * r * loop.normal_integral, c + r * loop.sample });
+  }
+}
+
+/// Sphere i's neighbours (result.neighbours), exposed area and normal integral, and with
+/// `with_pieces` the pieces of the boundary on it (into `by_sphere`).
+void expose_sphere(std::size_t i, const Spheres& spheres, bool with_pieces, SphereWork& work,
+                   SasBoundary& result, PiecesBySphere& by_sphere)
+{
+  std::vector<Cap>& caps = work.caps;
+  bool buried = neighbour_caps(i, spheres, caps);
+  // The largest caps first (ties to the lower index): the power cell shrinks fastest, and
+  // coverage tests that scan the neighbours find a covering one sooner.
+  sort_larger_first(caps, work.unit.keys, work.unit.sorted);
+  if (!buried && caps.size() > power_cell_caps)
+  {
+    buried = !keep_power_cell_caps(work);
+  }
+  auto& neighbours = result.neighbours[i];
+  neighbours.reserve(caps.size());
+  for (const Cap& cap : caps)
+  {
+    neighbours.push_back(cap.neighbour);
+  }
+  if (buried)
+  {
+    return;
+  }
+  const Vec c(spheres.centres[i][0], spheres.centres[i][1], spheres.centres[i][2]);
+  const double r = spheres.radii[i];
+  Vec normal_integral = Vec::Zero();
+  work.pieces.clear();
+  const double solid_angle =
+    exposed_unit_area(caps, normal_integral, with_pieces ? &work.pieces : nullptr, work.unit);
+  result.area[i] = r * r * solid_angle;
+  result.normal_integral[i] = r * r * normal_integral;
+  if (with_pieces)
+  {
+    scale_pieces(i, c, r, work.pieces, by_sphere);
+  }
+}
+
+/// The spheres' pieces side by side in sphere order: their places first, then copied.
+void gather_pieces(PiecesBySphere& by_sphere, SasBoundary& result, const ParallelFor& parallel_for)
+{
+  const std::size_t listed = by_sphere.arcs.size();
+  std::vector<std::size_t> arc_at(listed + 1, 0), vertex_at(listed + 1, 0), loop_at(listed + 1, 0);
+  for (std::size_t i = 0; i < listed; ++i)
+  {
+    arc_at[i + 1] = arc_at[i] + by_sphere.arcs[i].size();
+    vertex_at[i + 1] = vertex_at[i] + by_sphere.vertices[i].size();
+    loop_at[i + 1] = loop_at[i] + by_sphere.loops[i].size();
+    result.degenerate_vertices += by_sphere.degenerate[i];
+  }
+  result.arcs.resize(arc_at[listed]);
+  result.vertices.resize(vertex_at[listed]);
+  result.loops.resize(loop_at[listed]);
+  run_parallel(parallel_for, listed, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t i = begin; i < end; ++i)
+    {
+      auto& arcs = by_sphere.arcs[i];
+      auto& vertices = by_sphere.vertices[i];
+      auto& loops = by_sphere.loops[i];
+      std::copy(arcs.begin(), arcs.end(), result.arcs.begin() + arc_at[i]);
+      std::copy(vertices.begin(), vertices.end(), result.vertices.begin() + vertex_at[i]);
+      std::copy(loops.begin(), loops.end(), result.loops.begin() + loop_at[i]);
+      arcs = {};
+      vertices = {};
+      loops = {};
+    }
+  });
 }
 } // namespace
 
@@ -606,208 +969,25 @@ SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
                          const ParallelFor& parallel_for)
 {
   const std::size_t n = centres.size();
-  if (radii.size() != n)
-  {
-    throw InvalidInput("the sphere union needs one radius per centre: " + std::to_string(n) +
-                       " centres, " + std::to_string(radii.size()) + " radii");
-  }
-  double largest = 0;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    if (!std::isfinite(centres[i][0]) || !std::isfinite(centres[i][1]) ||
-        !std::isfinite(centres[i][2]) || !std::isfinite(radii[i]) || !(radii[i] > 0))
-    {
-      throw InvalidInput("sphere " + std::to_string(i) +
-                         " has a non-finite centre or a radius that is not positive");
-    }
-    largest = std::max(largest, radii[i]);
-  }
+  const double largest = check_spheres(centres, radii);
   SasBoundary result;
   result.area.assign(n, 0.0);
   result.normal_integral.assign(n, Vec::Zero());
   result.neighbours.assign(n, {});
-  std::vector<std::vector<SasArc>> arcs_of(with_pieces ? n : 0);
-  std::vector<std::vector<SasVertex>> vertices_of(with_pieces ? n : 0);
-  std::vector<std::vector<SasLoop>> loops_of(with_pieces ? n : 0);
-  std::vector<std::size_t> degenerate_of(with_pieces ? n : 0, 0);
+  PiecesBySphere by_sphere(with_pieces ? n : 0);
   if (n == 0)
   {
     return result;
   }
-  // Spheres in cells of the largest diameter: overlapping ones are in neighbouring cells.
-  const double cell = 2.0 * largest;
-  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    cells[grid_cell_key(grid_cell(centres[i], cell))].push_back(static_cast<std::uint32_t>(i));
-  }
+  const Spheres spheres{ centres, radii, SphereCells(centres, largest) };
   run_parallel(parallel_for, n, [&](std::size_t begin, std::size_t end) {
-    std::vector<Cap> caps; // these buffers are reused by the spheres of this range
-    std::vector<PowerPlane> planes;
-    std::vector<char> bounding;
-    PowerCellWork cell_work;
-    UnitPieces pieces;
-    UnitWorkspace work;
+    SphereWork work; // reused by the spheres of this range
     for (std::size_t i = begin; i < end; ++i)
     {
-      const Vec c(centres[i][0], centres[i][1], centres[i][2]);
-      const double r = radii[i];
-      const GridCell home = grid_cell(centres[i], cell);
-      caps.clear();
-      bool buried = false;
-      for (int dx = -1; dx <= 1 && !buried; ++dx)
-        for (int dy = -1; dy <= 1 && !buried; ++dy)
-          for (int dz = -1; dz <= 1 && !buried; ++dz)
-          {
-            const auto found = cells.find(grid_cell_key(home, dx, dy, dz));
-            if (found == cells.end())
-            {
-              continue;
-            }
-            for (const std::uint32_t j : found->second)
-            {
-              if (j == i)
-              {
-                continue;
-              }
-              const double rj = radii[j];
-              const Vec offset = Vec(centres[j][0], centres[j][1], centres[j][2]) - c;
-              const double d = offset.norm();
-              if (d >= r + rj)
-              {
-                continue; // apart
-              }
-              if (d + r <= rj && !(d == 0 && rj == r && j > i))
-              {
-                buried = true; // inside j (of coincident equal spheres the first stays)
-                break;
-              }
-              if (d + rj <= r)
-              {
-                continue; // j inside this sphere
-              }
-              Cap cap;
-              cap.neighbour = j;
-              cap.axis = offset / d;
-              cap.height = std::clamp((r * r + d * d - rj * rj) / (2.0 * r * d), -1.0, 1.0);
-              cap.sine = std::sqrt(std::max(0.0, 1.0 - cap.height * cap.height));
-              caps.push_back(cap);
-            }
-          }
-      // The largest caps first (ties to the lower index): the power cell shrinks fastest, and
-      // coverage tests that scan the neighbours find a covering one sooner.
-      sort_larger_first(caps, work.keys, work.sorted);
-      if (!buried && caps.size() > power_cell_caps)
-      {
-        // Only the neighbours bounding the sphere's power cell can bound its exposed part (the
-        // exposed points are those of the sphere in its cell): the others are dropped.
-        planes.clear();
-        for (const Cap& cap : caps)
-        {
-          planes.push_back({ cap.axis, cap.height });
-        }
-        const int cell = power_cell_faces(planes, bounding, cell_work);
-        if (cell == 0)
-        {
-          buried = true; // no point of it outside every neighbour
-        }
-        else if (cell == 1)
-        {
-          std::size_t kept = 0;
-          for (std::size_t k = 0; k < caps.size(); ++k)
-          {
-            if (bounding[k])
-            {
-              caps[kept++] = caps[k];
-            }
-          }
-          caps.resize(kept);
-        }
-      }
-      auto& neighbours = result.neighbours[i];
-      neighbours.reserve(caps.size());
-      for (const Cap& cap : caps)
-      {
-        neighbours.push_back(cap.neighbour);
-      }
-      if (buried)
-      {
-        continue;
-      }
-      Vec normal_integral = Vec::Zero();
-      pieces.clear();
-      const double solid_angle =
-        exposed_unit_area(caps, normal_integral, with_pieces ? &pieces : nullptr, work);
-      result.area[i] = r * r * solid_angle;
-      result.normal_integral[i] = r * r * normal_integral;
-      if (!with_pieces)
-      {
-        continue;
-      }
-      const std::uint32_t self = static_cast<std::uint32_t>(i);
-      for (const UnitPieces::Arc& piece : pieces.arcs)
-      {
-        if (piece.cap.neighbour < self)
-        {
-          continue; // the lower sphere reports it
-        }
-        SasArc arc;
-        arc.first = self;
-        arc.second = piece.cap.neighbour;
-        arc.centre = c + r * piece.cap.height * piece.cap.axis;
-        arc.axis = piece.cap.axis;
-        arc.e1 = piece.cap.e1;
-        arc.e2 = piece.cap.e2;
-        arc.radius = r * piece.cap.sine;
-        arc.start = piece.low;
-        arc.span = piece.high - piece.low;
-        arcs_of[i].push_back(arc);
-      }
-      for (const UnitPieces::Corner& corner : pieces.corners)
-      {
-        if (corner.neighbour_a < self || corner.neighbour_b < self)
-        {
-          continue;
-        }
-        SasVertex vertex;
-        vertex.spheres = { self, std::min(corner.neighbour_a, corner.neighbour_b),
-                           std::max(corner.neighbour_a, corner.neighbour_b) };
-        vertex.position = c + r * corner.direction;
-        vertices_of[i].push_back(vertex);
-      }
-      degenerate_of[i] = pieces.degenerate_corners;
-      for (const UnitPieces::Loop& loop : pieces.loops)
-      {
-        loops_of[i].push_back(
-          { self, loop.turning, r * r * loop.normal_integral, c + r * loop.sample });
-      }
+      expose_sphere(i, spheres, with_pieces, work, result, by_sphere);
     }
   });
-  // Each sphere's pieces in order: their places first, then copied side by side.
-  const std::size_t listed = arcs_of.size();
-  std::vector<std::size_t> arc_at(listed + 1, 0), vertex_at(listed + 1, 0), loop_at(listed + 1, 0);
-  for (std::size_t i = 0; i < listed; ++i)
-  {
-    arc_at[i + 1] = arc_at[i] + arcs_of[i].size();
-    vertex_at[i + 1] = vertex_at[i] + vertices_of[i].size();
-    loop_at[i + 1] = loop_at[i] + loops_of[i].size();
-    result.degenerate_vertices += degenerate_of[i];
-  }
-  result.arcs.resize(arc_at[listed]);
-  result.vertices.resize(vertex_at[listed]);
-  result.loops.resize(loop_at[listed]);
-  run_parallel(parallel_for, listed, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t i = begin; i < end; ++i)
-    {
-      std::copy(arcs_of[i].begin(), arcs_of[i].end(), result.arcs.begin() + arc_at[i]);
-      std::copy(vertices_of[i].begin(), vertices_of[i].end(),
-                result.vertices.begin() + vertex_at[i]);
-      std::copy(loops_of[i].begin(), loops_of[i].end(), result.loops.begin() + loop_at[i]);
-      arcs_of[i] = {};
-      vertices_of[i] = {};
-      loops_of[i] = {};
-    }
-  });
+  gather_pieces(by_sphere, result, parallel_for);
   return result;
 }
 

@@ -142,9 +142,10 @@ def main():
     for actor in (ribbon_actor, ligand_actor, surface_actor):
         renderer.AddActor(actor)
     renderer.SetBackground(1, 1, 1)
-    renderer.SetUseDepthPeeling(True)
-    renderer.SetMaximumNumberOfPeels(8)
-    renderer.SetOcclusionRatio(0.0)
+    passes = mesolens.vtkMesoRenderPasses()
+    passes.DepthPeelingOn()
+    passes.SetMaximumNumberOfPeels(8)
+    passes.Apply(renderer)
     renderer.ResetCamera()
     renderer.GetActiveCamera().Elevation(-60)
     renderer.GetActiveCamera().OrthogonalizeViewUp()

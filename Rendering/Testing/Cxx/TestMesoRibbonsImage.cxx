@@ -16,6 +16,7 @@
 #include "mesolens_test_protein.h"
 #include "vtkMesoAtomMapper.h"
 #include "vtkMesoMolecularSurface.h"
+#include "vtkMesoRenderPasses.h"
 #include "vtkMesoRibbons.h"
 #include "vtkMesoSecondaryStructure.h"
 #include "vtkMesoStructureReader.h"
@@ -207,9 +208,10 @@ vtkSmartPointer<vtkRenderWindow> styles()
   renderer->AddActor(keep->Actor);
   renderer->AddActor(ligand_actor);
   renderer->AddActor(surface_actor);
-  renderer->SetUseDepthPeeling(true);
-  renderer->SetMaximumNumberOfPeels(8);
-  renderer->SetOcclusionRatio(0.0);
+  vtkNew<vtkMesoRenderPasses> passes;
+  passes->DepthPeelingOn();
+  passes->SetMaximumNumberOfPeels(8);
+  passes->Apply(renderer);
   renderer->ResetCamera();
   renderer->GetActiveCamera()->Elevation(-60);
   renderer->GetActiveCamera()->OrthogonalizeViewUp();

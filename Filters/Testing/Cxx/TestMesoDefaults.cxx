@@ -1,0 +1,51 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+// Every filter parameter that a Core parameter struct holds starts at that struct's default
+// (Core is the one place defaults are written), and the filter's setter, which may clamp,
+// keeps it.
+#include "vtkMesoGeodesicDisk.h"
+#include "vtkMesoMembraneMapping.h"
+
+#include "mesolens/mapping/geodesic_disk.h"
+#include "mesolens/mapping/membrane_mapper.h"
+
+#include <vtkNew.h>
+
+#include <gtest/gtest.h>
+
+// filter->Get<name>() equals `core_default` (in the getter's type), before and after
+// filter->Set<name>() of it: a default outside the setter's clamp range fails too.
+#define EXPECT_CORE_DEFAULT(filter, name, core_default)                                            \
+  do                                                                                               \
+  {                                                                                                \
+    using Value = decltype((filter)->Get##name());                                                 \
+    EXPECT_EQ((filter)->Get##name(), static_cast<Value>(core_default)) << #name;                   \
+    (filter)->Set##name((filter)->Get##name());                                                    \
+    EXPECT_EQ((filter)->Get##name(), static_cast<Value>(core_default))                             \
+      << #name << " is clamped away from its default";                                             \
+  } while (false)
+
+TEST(MesoDefaults, MembraneMapping)
+{
+  vtkNew<vtkMesoMembraneMapping> filter;
+  const mesolens::MapRequest defaults;
+  EXPECT_CORE_DEFAULT(filter, MappingMethod, defaults.mapping.method);
+  EXPECT_CORE_DEFAULT(filter, Tiles, defaults.mapping.tiles);
+  EXPECT_CORE_DEFAULT(filter, MembraneToMeshScale, defaults.mapping.scale);
+  EXPECT_CORE_DEFAULT(filter, LayerHalfThickness, defaults.mapping.layer_half_thickness);
+  EXPECT_CORE_DEFAULT(filter, PolynomialSamples, defaults.mapping.samples);
+  EXPECT_CORE_DEFAULT(filter, MaximumPolynomialResidual, defaults.mapping.max_polynomial_residual);
+  EXPECT_CORE_DEFAULT(filter, OutputAtoms, defaults.mapping.map_atoms);
+  EXPECT_CORE_DEFAULT(filter, RadiusFactor, defaults.radius_factor);
+  EXPECT_CORE_DEFAULT(filter, MaximumStretch, defaults.max_stretch);
+  EXPECT_CORE_DEFAULT(filter, MinimumDiskTriangles, defaults.min_disk_triangles);
+  EXPECT_CORE_DEFAULT(filter, MaximumDiskTriangles, defaults.max_disk_triangles);
+  EXPECT_CORE_DEFAULT(filter, MapWhatFits, defaults.fit_what_fits);
+}
+
+TEST(MesoDefaults, GeodesicDisk)
+{
+  vtkNew<vtkMesoGeodesicDisk> filter;
+  const mesolens::GeodesicDiskParams defaults;
+  EXPECT_CORE_DEFAULT(filter, MinimumTriangles, defaults.min_triangles);
+  EXPECT_CORE_DEFAULT(filter, MaximumTriangles, defaults.max_triangles);
+}

@@ -4,9 +4,12 @@
 // keeps it.
 #include "vtkMesoGeodesicDisk.h"
 #include "vtkMesoMembraneMapping.h"
+#include "vtkMesoMolecularSurface.h"
+#include "vtkMesoSurfaceArea.h"
 
 #include "mesolens/mapping/geodesic_disk.h"
 #include "mesolens/mapping/membrane_mapper.h"
+#include "mesolens/surface/molecular_surface.h"
 
 #include <vtkNew.h>
 
@@ -48,4 +51,26 @@ TEST(MesoDefaults, GeodesicDisk)
   const mesolens::GeodesicDiskParams defaults;
   EXPECT_CORE_DEFAULT(filter, MinimumTriangles, defaults.min_triangles);
   EXPECT_CORE_DEFAULT(filter, MaximumTriangles, defaults.max_triangles);
+}
+
+TEST(MesoDefaults, MolecularSurface)
+{
+  vtkNew<vtkMesoMolecularSurface> filter;
+  const mesolens::MolecularSurfaceParams defaults;
+  EXPECT_CORE_DEFAULT(filter, SurfaceType, defaults.kind);
+  EXPECT_CORE_DEFAULT(filter, ProbeRadius, defaults.probe_radius);
+  EXPECT_CORE_DEFAULT(filter, Tolerance, defaults.tolerance);
+  EXPECT_CORE_DEFAULT(filter, ComputeExactFigures, defaults.exact_figures);
+  EXPECT_CORE_DEFAULT(filter, KeepCavities, defaults.keep_cavities);
+  // The surface types are Core's kinds.
+  EXPECT_EQ(vtkMesoMolecularSurface::SOLVENT_EXCLUDED, int(mesolens::SurfaceKind::SolventExcluded));
+  EXPECT_EQ(vtkMesoMolecularSurface::SOLVENT_ACCESSIBLE,
+            int(mesolens::SurfaceKind::SolventAccessible));
+  EXPECT_EQ(vtkMesoMolecularSurface::VAN_DER_WAALS, int(mesolens::SurfaceKind::VanDerWaals));
+}
+
+TEST(MesoDefaults, SurfaceArea)
+{
+  vtkNew<vtkMesoSurfaceArea> filter;
+  EXPECT_CORE_DEFAULT(filter, ProbeRadius, mesolens::MolecularSurfaceParams().probe_radius);
 }

@@ -5,10 +5,14 @@
 #include "vtkMesoGeodesicDisk.h"
 #include "vtkMesoMembraneMapping.h"
 #include "vtkMesoMolecularSurface.h"
+#include "vtkMesoRibbons.h"
+#include "vtkMesoSecondaryStructure.h"
 #include "vtkMesoSurfaceArea.h"
 
 #include "mesolens/mapping/geodesic_disk.h"
 #include "mesolens/mapping/membrane_mapper.h"
+#include "mesolens/protein/dssp.h"
+#include "mesolens/protein/ribbon_geometry.h"
 #include "mesolens/surface/molecular_surface.h"
 
 #include <vtkNew.h>
@@ -73,4 +77,30 @@ TEST(MesoDefaults, SurfaceArea)
 {
   vtkNew<vtkMesoSurfaceArea> filter;
   EXPECT_CORE_DEFAULT(filter, ProbeRadius, mesolens::MolecularSurfaceParams().probe_radius);
+}
+
+TEST(MesoDefaults, SecondaryStructure)
+{
+  vtkNew<vtkMesoSecondaryStructure> filter;
+  const mesolens::DsspParams defaults;
+  EXPECT_CORE_DEFAULT(filter, PiHelixPriority, defaults.pi_helix_priority);
+  EXPECT_CORE_DEFAULT(filter, PolyprolineStretch, defaults.polyproline_stretch);
+  EXPECT_CORE_DEFAULT(filter, Bulges, defaults.bulges);
+  EXPECT_CORE_DEFAULT(filter, UseFileHydrogens, defaults.file_hydrogens);
+}
+
+TEST(MesoDefaults, Ribbons)
+{
+  vtkNew<vtkMesoRibbons> filter;
+  const mesolens::RibbonParams defaults;
+  EXPECT_CORE_DEFAULT(filter, Subdivisions, defaults.subdivisions);
+  EXPECT_CORE_DEFAULT(filter, TubeSides, defaults.tube_sides);
+  EXPECT_CORE_DEFAULT(filter, HelixAsCylinder, defaults.helix_as_cylinder);
+  EXPECT_CORE_DEFAULT(filter, HelixWidth, defaults.helix_width);
+  EXPECT_CORE_DEFAULT(filter, StrandWidth, defaults.strand_width);
+  EXPECT_CORE_DEFAULT(filter, RibbonThickness, defaults.ribbon_thickness);
+  EXPECT_CORE_DEFAULT(filter, CoilRadius, defaults.coil_radius);
+  EXPECT_CORE_DEFAULT(filter, NucleicRadius, defaults.nucleic_radius);
+  EXPECT_CORE_DEFAULT(filter, CylinderRadius, defaults.cylinder_radius);
+  EXPECT_CORE_DEFAULT(filter, ArrowWidthFactor, defaults.arrow_width_factor);
 }

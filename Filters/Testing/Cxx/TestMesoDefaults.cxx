@@ -7,8 +7,11 @@
 #include "vtkMesoMolecularSurface.h"
 #include "vtkMesoRibbons.h"
 #include "vtkMesoSecondaryStructure.h"
+#include "vtkMesoStructuredCutaway.h"
 #include "vtkMesoSurfaceArea.h"
 
+#include "mesolens/cutaway/structure_mesh.h"
+#include "mesolens/cutaway/structured_cutaway.h"
 #include "mesolens/mapping/geodesic_disk.h"
 #include "mesolens/mapping/membrane_mapper.h"
 #include "mesolens/protein/dssp.h"
@@ -103,4 +106,19 @@ TEST(MesoDefaults, Ribbons)
   EXPECT_CORE_DEFAULT(filter, NucleicRadius, defaults.nucleic_radius);
   EXPECT_CORE_DEFAULT(filter, CylinderRadius, defaults.cylinder_radius);
   EXPECT_CORE_DEFAULT(filter, ArrowWidthFactor, defaults.arrow_width_factor);
+}
+
+TEST(MesoDefaults, StructuredCutaway)
+{
+  vtkNew<vtkMesoStructuredCutaway> filter;
+  const mesolens::CutawayParams cut;
+  EXPECT_CORE_DEFAULT(filter, K, cut.k);
+  EXPECT_CORE_DEFAULT(filter, FractionHidden, cut.fraction_hidden);
+  EXPECT_CORE_DEFAULT(filter, Inverted, cut.inverted);
+  EXPECT_CORE_DEFAULT(filter, RandomOrder, cut.random);
+  EXPECT_CORE_DEFAULT(filter, ProbabilisticOrder, cut.probabilistic);
+  EXPECT_CORE_DEFAULT(filter, Seed, cut.seed);
+  const mesolens::StructureMeshParams structure;
+  EXPECT_CORE_DEFAULT(filter, StructureVertices, structure.vertices);
+  EXPECT_CORE_DEFAULT(filter, StructureMidSurfaceRadius, structure.mid_surface_radius);
 }

@@ -7,11 +7,14 @@
 #include "vtkMesoMolecularSurface.h"
 #include "vtkMesoRibbons.h"
 #include "vtkMesoSecondaryStructure.h"
+#include "vtkMesoStructureReader.h"
 #include "vtkMesoStructuredCutaway.h"
 #include "vtkMesoSurfaceArea.h"
+#include "vtkMesoTrajectoryReader.h"
 
 #include "mesolens/cutaway/structure_mesh.h"
 #include "mesolens/cutaway/structured_cutaway.h"
+#include "mesolens/io/structure_file.h"
 #include "mesolens/mapping/geodesic_disk.h"
 #include "mesolens/mapping/membrane_mapper.h"
 #include "mesolens/protein/dssp.h"
@@ -121,4 +124,38 @@ TEST(MesoDefaults, StructuredCutaway)
   const mesolens::StructureMeshParams structure;
   EXPECT_CORE_DEFAULT(filter, StructureVertices, structure.vertices);
   EXPECT_CORE_DEFAULT(filter, StructureMidSurfaceRadius, structure.mid_surface_radius);
+}
+
+namespace {
+/// The options every atom reader shares (vtkMesoAtomReader) start at Core's defaults. A float
+/// default compares as a float: the reader's double holds the float's decimal.
+void ExpectAtomReaderDefaults(vtkMesoAtomReader* reader)
+{
+  const mesolens::StructureReadParams defaults;
+  EXPECT_CORE_DEFAULT(reader, RemoveWaters, defaults.remove_waters);
+  EXPECT_CORE_DEFAULT(reader, PerceiveBonds, defaults.perceive_bonds);
+  EXPECT_CORE_DEFAULT(reader, ForceCoarseGrained, defaults.force_coarse_grained);
+  EXPECT_EQ(static_cast<float>(reader->GetBondTolerance()), defaults.bonds.tolerance);
+  EXPECT_EQ(static_cast<float>(reader->GetCoarseGrainedBeadCutoff()), defaults.bonds.bead_cutoff);
+  reader->SetBondTolerance(reader->GetBondTolerance());
+  reader->SetCoarseGrainedBeadCutoff(reader->GetCoarseGrainedBeadCutoff());
+  EXPECT_EQ(static_cast<float>(reader->GetBondTolerance()), defaults.bonds.tolerance);
+  EXPECT_EQ(static_cast<float>(reader->GetCoarseGrainedBeadCutoff()), defaults.bonds.bead_cutoff);
+}
+} // namespace
+
+TEST(MesoDefaults, StructureReader)
+{
+  vtkNew<vtkMesoStructureReader> reader;
+  ExpectAtomReaderDefaults(reader);
+  const mesolens::StructureReadParams defaults;
+  EXPECT_CORE_DEFAULT(reader, KeepAllAlternateLocations,
+                      defaults.alt_locs == mesolens::AltLocPolicy::KeepAll);
+  EXPECT_CORE_DEFAULT(reader, RemoveHydrogens, defaults.remove_hydrogens);
+}
+
+TEST(MesoDefaults, TrajectoryReader)
+{
+  vtkNew<vtkMesoTrajectoryReader> reader;
+  ExpectAtomReaderDefaults(reader);
 }

@@ -24,35 +24,38 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// Drop water molecules (HOH, WAT, SOL, TIP3, ...) from the output. Default: false.
+  /// Drop water molecules (HOH, WAT, SOL, TIP3, ...) from the output; see
+  /// mesolens::StructureReadParams::remove_waters.
   vtkSetMacro(RemoveWaters, bool);
   vtkGetMacro(RemoveWaters, bool);
   vtkBooleanMacro(RemoveWaters, bool);
   ///@}
 
   ///@{
-  /// Perceive covalent bonds from distances (explicit records are always used). Default: true.
+  /// Perceive covalent bonds from distances (explicit records are always used); see
+  /// mesolens::StructureReadParams::perceive_bonds.
   vtkSetMacro(PerceiveBonds, bool);
   vtkGetMacro(PerceiveBonds, bool);
   vtkBooleanMacro(PerceiveBonds, bool);
   ///@}
 
   ///@{
-  /// Tolerance (Å) added to the sum of covalent radii. Range [0, 1]; default 0.45 (the value of
-  /// Open Babel and Jmol).
+  /// Tolerance added to the sum of covalent radii; see
+  /// mesolens::BondPerceptionParams::tolerance.
   vtkSetClampMacro(BondTolerance, double, 0.0, 1.0);
   vtkGetMacro(BondTolerance, double);
   ///@}
 
   ///@{
-  /// Bond cutoff between coarse-grained beads of one molecule (Å). Range [0.5, 10]; default 5
-  /// (Martini bonds are 3-4.8 Å).
+  /// Bond cutoff between coarse-grained beads of one molecule; see
+  /// mesolens::BondPerceptionParams::bead_cutoff (the filter takes at least 0.5).
   vtkSetClampMacro(CoarseGrainedBeadCutoff, double, 0.5, 10.0);
   vtkGetMacro(CoarseGrainedBeadCutoff, double);
   ///@}
 
   ///@{
-  /// Treat the particles as coarse-grained beads even when they do not look so. Default: false.
+  /// Treat the particles as coarse-grained beads even when they do not look so; see
+  /// mesolens::StructureReadParams::force_coarse_grained.
   vtkSetMacro(ForceCoarseGrained, bool);
   vtkGetMacro(ForceCoarseGrained, bool);
   vtkBooleanMacro(ForceCoarseGrained, bool);
@@ -62,11 +65,12 @@ protected:
   vtkMesoAtomReader();
   ~vtkMesoAtomReader() override = default;
 
-  bool RemoveWaters = false;
-  bool PerceiveBonds = true;
-  double BondTolerance = 0.45;
-  double CoarseGrainedBeadCutoff = 5.0;
-  bool ForceCoarseGrained = false;
+  // Set by the constructor from mesolens::StructureReadParams' defaults.
+  bool RemoveWaters;
+  bool PerceiveBonds;
+  double BondTolerance;
+  double CoarseGrainedBeadCutoff;
+  bool ForceCoarseGrained;
 
 private:
   vtkMesoAtomReader(const vtkMesoAtomReader&) = delete;

@@ -10,9 +10,9 @@
  * conformal) and `AreaDistortion` (area ratio over the disk's mean, 1 = equiareal), and field
  * data `ParameterizationRadius`, `FlippedTriangles` and `Bijective` (1 when no triangle flipped).
  *
- * Radius <= 0 (the default) takes the input's field data `GeodesicRadius` (from
- * vtkMesoGeodesicDisk). A mesh that is not a topological disk, or has no radius, is an error:
- * vtkErrorMacro, empty output, failed update.
+ * Radius <= 0 takes the input's field data `GeodesicRadius` (from vtkMesoGeodesicDisk). A mesh
+ * that is not a topological disk, or has no radius, is an error: vtkErrorMacro, empty output,
+ * failed update.
  */
 #ifndef vtkMesoDiskParameterization_h
 #define vtkMesoDiskParameterization_h

@@ -22,6 +22,9 @@ struct vtkMesoGeodesicDisk::Cache
 vtkMesoGeodesicDisk::vtkMesoGeodesicDisk()
   : Solver(new Cache)
 {
+  const mesolens::GeodesicDiskParams defaults;
+  this->MinimumTriangles = static_cast<int>(defaults.min_triangles);
+  this->MaximumTriangles = static_cast<int>(defaults.max_triangles);
 }
 
 vtkMesoGeodesicDisk::~vtkMesoGeodesicDisk() = default;

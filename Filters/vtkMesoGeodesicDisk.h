@@ -49,20 +49,21 @@ public:
 
   ///@{
   /// How far SeedPoint may be from the surface (mesh units); <= 0: 2 % of the surface's
-  /// bounding-box diagonal. Default 0.
+  /// bounding-box diagonal (mesolens::MembraneMapper::seed_near). Default 0.
   vtkSetMacro(SeedTolerance, double);
   vtkGetMacro(SeedTolerance, double);
   ///@}
 
   ///@{
-  /// Geodesic radius r (mesh units); must be > 0. Default 1.
+  /// Geodesic radius r (mesh units); must be > 0 (mesolens::GeodesicDiskParams::radius, which
+  /// has no default). Default 1.
   vtkSetMacro(Radius, double);
   vtkGetMacro(Radius, double);
   ///@}
 
   ///@{
-  /// Refine coarse triangles so that the disk holds at least about this many; 0: never.
-  /// Default 2000.
+  /// Refine coarse triangles so that the disk holds at least about this many; see
+  /// mesolens::GeodesicDiskParams::min_triangles.
   vtkSetClampMacro(MinimumTriangles, int, 0, VTK_INT_MAX);
   vtkGetMacro(MinimumTriangles, int);
   ///@}
@@ -70,7 +71,7 @@ public:
   ///@{
   /// On meshes of more than 16 000 triangles, a disk over more than this many of them is grown
   /// on a coarser copy of the mesh (its vertices are input vertices; OriginalPointId says
-  /// which); 0: always on the input's triangles. Default 16000.
+  /// which); see mesolens::GeodesicDiskParams::max_triangles.
   vtkSetClampMacro(MaximumTriangles, int, 0, VTK_INT_MAX);
   vtkGetMacro(MaximumTriangles, int);
   ///@}
@@ -81,11 +82,13 @@ protected:
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  // Set by the constructor from mesolens::GeodesicDiskParams' defaults.
+  int MinimumTriangles;
+  int MaximumTriangles;
+  // The filter's own.
   double SeedPoint[3] = { 0, 0, 0 };
   double SeedTolerance = 0;
   double Radius = 1;
-  int MinimumTriangles = 2000;
-  int MaximumTriangles = 16000;
 
 private:
   vtkMesoGeodesicDisk(const vtkMesoGeodesicDisk&) = delete;

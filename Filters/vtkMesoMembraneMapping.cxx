@@ -271,6 +271,43 @@ void build_atoms(vtkPolyData* atoms, const PatchData& data, const mesolens::Mapp
   output->GetCellData()->AddArray(change);
 }
 
+/// Outputs 1 and 2: the parameterized disk and, when lattice_edge > 0, the lattice of that edge
+/// laid on it.
+void build_chart_outputs(const mesolens::MappingChart& chart, double lattice_edge,
+                         vtkPolyData* disk_output, vtkPolyData* lattice_output)
+{
+  vtkMesoSurfaceConversion::FromTriangleMesh(chart.disk.mesh, disk_output);
+  vtkMesoSurfaceConversion::AddDiskArrays(chart.disk, chart.radius, disk_output);
+  vtkMesoSurfaceConversion::AddParameterizationArrays(chart.parameterization, chart.radius,
+                                                      disk_output);
+  if (lattice_edge > 0)
+  {
+    vtkMesoSurfaceConversion::FromTriangleMesh(
+      mesolens::chart_lattice(chart.chart, chart.parameterization.uv, lattice_edge),
+      lattice_output);
+  }
+}
+
+/// What the filter's settings ask of the mapper (centre_uv and cut_to_disk are the mapper's).
+mesolens::MapRequest map_request(vtkMesoMembraneMapping* filter)
+{
+  mesolens::MapRequest request;
+  mesolens::MappingParams& mapping = request.mapping;
+  mapping.method = static_cast<mesolens::MappingMethod>(filter->GetMappingMethod());
+  mapping.tiles = filter->GetTiles();
+  mapping.scale = filter->GetMembraneToMeshScale();
+  mapping.layer_half_thickness = filter->GetLayerHalfThickness();
+  mapping.samples = filter->GetPolynomialSamples();
+  mapping.max_polynomial_residual = filter->GetMaximumPolynomialResidual();
+  mapping.map_atoms = filter->GetOutputAtoms();
+  request.radius_factor = filter->GetRadiusFactor();
+  request.max_stretch = filter->GetMaximumStretch();
+  request.min_disk_triangles = static_cast<std::size_t>(filter->GetMinimumDiskTriangles());
+  request.max_disk_triangles = static_cast<std::size_t>(filter->GetMaximumDiskTriangles());
+  request.fit_what_fits = filter->GetMapWhatFits();
+  return request;
+}
+
 } // namespace
 
 struct vtkMesoMembraneMapping::State
@@ -282,6 +319,19 @@ struct vtkMesoMembraneMapping::State
 vtkMesoMembraneMapping::vtkMesoMembraneMapping()
   : Internal(new State)
 {
+  const mesolens::MapRequest defaults;
+  this->MappingMethod = static_cast<int>(defaults.mapping.method);
+  this->Tiles = defaults.mapping.tiles;
+  this->MembraneToMeshScale = defaults.mapping.scale;
+  this->LayerHalfThickness = defaults.mapping.layer_half_thickness;
+  this->PolynomialSamples = defaults.mapping.samples;
+  this->MaximumPolynomialResidual = defaults.mapping.max_polynomial_residual;
+  this->OutputAtoms = defaults.mapping.map_atoms;
+  this->RadiusFactor = defaults.radius_factor;
+  this->MaximumStretch = defaults.max_stretch;
+  this->MinimumDiskTriangles = static_cast<int>(defaults.min_disk_triangles);
+  this->MaximumDiskTriangles = static_cast<int>(defaults.max_disk_triangles);
+  this->MapWhatFits = defaults.fit_what_fits;
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(3);
 }
@@ -335,19 +385,7 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
     const mesolens::MembraneMapper& mapper =
       this->Internal->Mapper.For(surface, surface->GetMTime());
     this->UpdateProgress(0.2);
-    mesolens::MapRequest request;
-    request.mapping.method = static_cast<mesolens::MappingMethod>(this->MappingMethod);
-    request.mapping.tiles = this->Tiles;
-    request.mapping.scale = this->MembraneToMeshScale;
-    request.mapping.layer_half_thickness = this->LayerHalfThickness;
-    request.mapping.samples = this->PolynomialSamples;
-    request.mapping.max_polynomial_residual = this->MaximumPolynomialResidual;
-    request.mapping.map_atoms = this->OutputAtoms;
-    request.radius_factor = this->RadiusFactor;
-    request.max_stretch = this->MaximumStretch;
-    request.min_disk_triangles = static_cast<std::size_t>(this->MinimumDiskTriangles);
-    request.max_disk_triangles = static_cast<std::size_t>(this->MaximumDiskTriangles);
-    request.fit_what_fits = this->MapWhatFits;
+    const mesolens::MapRequest request = map_request(this);
     const mesolens::SurfacePoint seed = mapper.seed_near(
       { this->SeedPoint[0], this->SeedPoint[1], this->SeedPoint[2] }, this->SeedTolerance);
     const mesolens::MapResult result =
@@ -358,13 +396,12 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
       vtkWarningMacro("" << result.note);
     }
     const mesolens::MappedMembrane& mapped = result.mapped;
-    const mesolens::MappingChart& chart = *result.chart;
-    const double scale = this->MembraneToMeshScale;
     if (!mapped.positions.empty())
     {
-      build_atoms(atoms, data, mapped,
-                  mesolens::bond_length_changes(data.patch, mapped, data.bonds, scale),
-                  this->Internal->MappedArrays, output);
+      build_atoms(
+        atoms, data, mapped,
+        mesolens::bond_length_changes(data.patch, mapped, data.bonds, request.mapping.scale),
+        this->Internal->MappedArrays, output);
     }
     vtkMesoMembraneWarp::Write(mesolens::membrane_warp(result, data.patch, request),
                                output->GetFieldData());
@@ -373,16 +410,7 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
       output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(),
                                     atoms->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP()));
     }
-    vtkMesoSurfaceConversion::FromTriangleMesh(chart.disk.mesh, disk_output);
-    vtkMesoSurfaceConversion::AddDiskArrays(chart.disk, chart.radius, disk_output);
-    vtkMesoSurfaceConversion::AddParameterizationArrays(chart.parameterization, chart.radius,
-                                                        disk_output);
-    if (this->LatticeEdge > 0)
-    {
-      vtkMesoSurfaceConversion::FromTriangleMesh(
-        mesolens::chart_lattice(chart.chart, chart.parameterization.uv, this->LatticeEdge),
-        lattice_output);
-    }
+    build_chart_outputs(*result.chart, this->LatticeEdge, disk_output, lattice_output);
   }
   catch (const mesolens::Error& e)
   {

@@ -11,8 +11,8 @@
  * The patch's cell (a, b from PeriodicBoxVectors, or the atoms' x-y bounding box when there is
  * none) is repeated k x k times (Tiles); the tiled region is d x d with d = k x the cell width,
  * scaled by MembraneToMeshScale (mesh units per membrane unit: 1e-4 for Å onto µm). Around the
- * surface point closest to SeedPoint a geodesic disk of radius r = RadiusFactor x d (2, as in
- * the paper) is grown (see vtkMesoGeodesicDisk; coarse regions are refined on the smooth surface
+ * surface point closest to SeedPoint a geodesic disk of radius r = RadiusFactor x d (the paper
+ * uses 2) is grown (see vtkMesoGeodesicDisk; coarse regions are refined on the smooth surface
  * through the input's vertices, which every mapped point lies on) and parameterized onto the
  * planar disk of radius r (vtkMesoDiskParameterization); the patch goes
  * to (u, v) = the seed's plus the atom's (x, y) offset, its heights (z minus the bilayer centre,
@@ -26,7 +26,7 @@
  *   split into 2 x 2 (then 4 x 4) pieces with a polynomial each; a tile still above it has its
  *   atoms mapped by displacement (`PolynomialFallbackTiles`).
  *
- * Every click maps what fits (MapWhatFits, on by default): when the asked k x k tiles do not fit
+ * Every click maps what fits (MapWhatFits): when the asked k x k tiles do not fit
  * (their disk wraps a handle, meets the mesh's boundary or covers the whole component, the
  * tiles leave it, or flattening it would stretch them more than MaximumStretch), the largest k
  * that fits is mapped, and if not even one tile fits, one tile
@@ -98,7 +98,7 @@ public:
   };
 
   ///@{
-  /// How atoms are carried onto the surface. Default DISPLACEMENT.
+  /// How atoms are carried onto the surface; see mesolens::MappingParams::method.
   vtkSetClampMacro(MappingMethod, int, DISPLACEMENT, POLYNOMIAL);
   vtkGetMacro(MappingMethod, int);
   void SetMappingMethodToDisplacement()
@@ -116,47 +116,47 @@ public:
   ///@}
 
   ///@{
-  /// The picked point on the surface (mesh units). Default (0, 0, 0).
+  /// The picked point on the surface (mesh units); the patch is centred at the closest surface
+  /// point. Default (0, 0, 0).
   vtkSetVector3Macro(SeedPoint, double);
   vtkGetVector3Macro(SeedPoint, double);
   ///@}
 
   ///@{
   /// How far SeedPoint may be from the surface (mesh units); <= 0: 2 % of the surface's
-  /// bounding-box diagonal. Default 0.
+  /// bounding-box diagonal (mesolens::MembraneMapper::seed_near). Default 0.
   vtkSetMacro(SeedTolerance, double);
   vtkGetMacro(SeedTolerance, double);
   ///@}
 
   ///@{
-  /// k, the patch is repeated k x k times; must be >= 1. Default 1.
+  /// k: the patch is repeated k x k times; see mesolens::MappingParams::tiles.
   vtkSetMacro(Tiles, int);
   vtkGetMacro(Tiles, int);
   ///@}
 
   ///@{
-  /// Mesh units per membrane unit (1e-4 maps Å onto a mesh in µm, 0.1 onto nm); > 0.
-  /// Default 1.
+  /// Mesh units per membrane unit; see mesolens::MappingParams::scale.
   vtkSetMacro(MembraneToMeshScale, double);
   vtkGetMacro(MembraneToMeshScale, double);
   ///@}
 
   ///@{
-  /// Geodesic radius over the tiled width d (the paper uses r = 2 d). Range [0.8, 10];
-  /// default 2.
+  /// The geodesic disk's radius over the tiled width d; see mesolens::MapRequest::radius_factor.
   vtkSetClampMacro(RadiusFactor, double, 0.8, 10.0);
   vtkGetMacro(RadiusFactor, double);
   ///@}
 
   ///@{
-  /// POLYNOMIAL: half the distance between the outer sample layers, membrane units. > 0;
-  /// default 25 (about half a bilayer in Å).
+  /// POLYNOMIAL: half the distance between the outer sample layers; see
+  /// mesolens::MappingParams::layer_half_thickness.
   vtkSetMacro(LayerHalfThickness, double);
   vtkGetMacro(LayerHalfThickness, double);
   ///@}
 
   ///@{
-  /// POLYNOMIAL: samples per tile edge. Range [3, 32]; default 6 (the paper's 6 x 6).
+  /// POLYNOMIAL: samples per tile edge; see mesolens::MappingParams::samples (the filter takes
+  /// at most 32).
   vtkSetClampMacro(PolynomialSamples, int, 3, 32);
   vtkGetMacro(PolynomialSamples, int);
   ///@}
@@ -169,25 +169,25 @@ public:
   ///@}
 
   ///@{
-  /// Map every atom into output 0 (on, default), or (off) leave output 0 without atoms and
+  /// Map every atom into output 0 (on), or (off) leave output 0 without atoms and
   /// bonds, holding only the field data: for POLYNOMIAL and MOLECULE_INSTANCING, whose
   /// coefficients or matrices vtkMesoAtomMapper evaluates on the GPU (its warp input).
-  /// DISPLACEMENT always maps the atoms.
+  /// DISPLACEMENT always maps the atoms. See mesolens::MappingParams::map_atoms.
   vtkSetMacro(OutputAtoms, bool);
   vtkGetMacro(OutputAtoms, bool);
   vtkBooleanMacro(OutputAtoms, bool);
   ///@}
 
   ///@{
-  /// POLYNOMIAL: the largest fit residual accepted in a tile, membrane units (Å); beyond it
-  /// the tile is split, then displaced. <= 0: no bound. Default 1.
+  /// POLYNOMIAL: the largest fit residual accepted in a tile; beyond it the tile is split,
+  /// then displaced. See mesolens::MappingParams::max_polynomial_residual.
   vtkSetMacro(MaximumPolynomialResidual, double);
   vtkGetMacro(MaximumPolynomialResidual, double);
   ///@}
 
   ///@{
   /// Refine coarse surface triangles (on the smooth surface through the input's vertices) so
-  /// that the disk holds at least about this many; 0: never. Default 2000.
+  /// that the disk holds at least about this many; see mesolens::MapRequest::min_disk_triangles.
   vtkSetClampMacro(MinimumDiskTriangles, int, 0, VTK_INT_MAX);
   vtkGetMacro(MinimumDiskTriangles, int);
   ///@}
@@ -195,22 +195,22 @@ public:
   ///@{
   /// On meshes of more than 16 000 triangles, a disk over more than this many of them is grown
   /// on a coarser copy of the mesh and its points are placed on the input (fast re-maps on fine
-  /// meshes); 0: always on the input's triangles. Default 16000.
+  /// meshes); see mesolens::MapRequest::max_disk_triangles.
   vtkSetClampMacro(MaximumDiskTriangles, int, 0, VTK_INT_MAX);
   vtkGetMacro(MaximumDiskTriangles, int);
   ///@}
 
   ///@{
   /// The largest factor by which the flattened disk may stretch or shrink lengths where the
-  /// tiles lie; a disk that distorts them more does not fit (fewer tiles are mapped). Range
-  /// [1.01, 100]; default 1.5.
+  /// tiles lie; a disk that distorts them more does not fit (fewer tiles are mapped). See
+  /// mesolens::MapRequest::max_stretch; clamped to [1.01, 100].
   vtkSetClampMacro(MaximumStretch, double, 1.01, 100.0);
   vtkGetMacro(MaximumStretch, double);
   ///@}
 
   ///@{
   /// Map the largest k x k (or one tile cut to a disk) that fits when the asked tiles do not
-  /// (on), or fail (off). Default on.
+  /// (on), or fail (off); see mesolens::MapRequest::fit_what_fits.
   vtkSetMacro(MapWhatFits, bool);
   vtkGetMacro(MapWhatFits, bool);
   vtkBooleanMacro(MapWhatFits, bool);
@@ -224,20 +224,22 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
-  int MappingMethod = DISPLACEMENT;
+  // Set by the constructor from mesolens::MapRequest's defaults.
+  int MappingMethod;
+  int Tiles;
+  double MembraneToMeshScale;
+  double RadiusFactor;
+  double LayerHalfThickness;
+  int PolynomialSamples;
+  double MaximumPolynomialResidual;
+  int MinimumDiskTriangles;
+  int MaximumDiskTriangles;
+  double MaximumStretch;
+  bool MapWhatFits;
+  bool OutputAtoms;
+  // The filter's own.
   double SeedPoint[3] = { 0, 0, 0 };
   double SeedTolerance = 0;
-  int Tiles = 1;
-  double MembraneToMeshScale = 1;
-  double RadiusFactor = 2;
-  double LayerHalfThickness = 25;
-  int PolynomialSamples = 6;
-  double MaximumPolynomialResidual = 1;
-  int MinimumDiskTriangles = 2000;
-  int MaximumDiskTriangles = 16000;
-  double MaximumStretch = 1.5;
-  bool MapWhatFits = true;
-  bool OutputAtoms = true;
   double LatticeEdge = 0;
 
 private:

@@ -32,7 +32,15 @@
 
 vtkStandardNewMacro(vtkMesoMolecularSurface);
 
-vtkMesoMolecularSurface::vtkMesoMolecularSurface() = default;
+vtkMesoMolecularSurface::vtkMesoMolecularSurface()
+{
+  const mesolens::MolecularSurfaceParams defaults;
+  this->SurfaceType = static_cast<int>(defaults.kind);
+  this->ProbeRadius = defaults.probe_radius;
+  this->Tolerance = defaults.tolerance;
+  this->ComputeExactFigures = defaults.exact_figures;
+  this->KeepCavities = defaults.keep_cavities;
+}
 
 vtkMesoMolecularSurface::~vtkMesoMolecularSurface()
 {

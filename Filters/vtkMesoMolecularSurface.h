@@ -47,7 +47,7 @@ public:
   vtkTypeMacro(vtkMesoMolecularSurface, vtkPolyDataAlgorithm);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// The surface types.
+  /// The surface types, mesolens::SurfaceKind's values.
   enum SurfaceTypes
   {
     SOLVENT_EXCLUDED = 0,
@@ -56,7 +56,7 @@ public:
   };
 
   ///@{
-  /// Which surface; default SOLVENT_EXCLUDED.
+  /// Which surface; see mesolens::MolecularSurfaceParams::kind.
   vtkSetClampMacro(SurfaceType, int, SOLVENT_EXCLUDED, VAN_DER_WAALS);
   vtkGetMacro(SurfaceType, int);
   void SetSurfaceTypeToSolventExcluded()
@@ -74,35 +74,33 @@ public:
   ///@}
 
   ///@{
-  /// Radius of the solvent probe, Å, (0, 20]; default 1.4 (water). Not used by the van der
-  /// Waals surface.
+  /// Radius of the solvent probe; see mesolens::MolecularSurfaceParams::probe_radius (the
+  /// filter takes at least 0.01).
   vtkSetClampMacro(ProbeRadius, double, 0.01, 20.0);
   vtkGetMacro(ProbeRadius, double);
   ///@}
 
   ///@{
   /// Largest distance between a triangle and the exact surface on its smooth patches (chord
-  /// error), Å, [0.005, 1]; default 0.1 (interaction: the mesh area 0.3-0.6 % below the
-  /// exact one on proteins). 0.01 to 0.02 suit figures. Where the surface has creases (the van
-  /// der Waals and accessible surfaces' seams, the SES's singular cusps and rims) the error
-  /// stays within the spacing of the lattice the mesh is refined from (field GridSpacing).
+  /// error); see mesolens::MolecularSurfaceParams::tolerance. Where the surface has creases
+  /// (the van der Waals and accessible surfaces' seams, the SES's singular cusps and rims) the
+  /// error stays within the spacing of the lattice the mesh is refined from (field
+  /// GridSpacing).
   vtkSetClampMacro(Tolerance, double, 0.005, 1.0);
   vtkGetMacro(Tolerance, double);
   ///@}
 
   ///@{
-  /// Compute the exact Area and Volume; default on. For the solvent-excluded surface they take
-  /// a quarter to a third of the time on large proteins: off gives the mesh alone (e.g. while
-  /// only the Tolerance changes), without the field arrays Area, Volume, ConvexArea,
-  /// ToroidalArea, ConcaveArea and SingularPatchCount. The other surfaces' figures cost nothing
-  /// and are always there.
+  /// Compute the exact Area and Volume; see mesolens::MolecularSurfaceParams::exact_figures.
+  /// Off gives the mesh without the field arrays Area, Volume, ConvexArea, ToroidalArea,
+  /// ConcaveArea and SingularPatchCount.
   vtkSetMacro(ComputeExactFigures, bool);
   vtkGetMacro(ComputeExactFigures, bool);
   vtkBooleanMacro(ComputeExactFigures, bool);
   ///@}
   ///@{
-  /// Keep the closed surfaces of cavities inside the molecule; default on. Off drops them from
-  /// the mesh and from Area and Volume.
+  /// Keep the closed surfaces of cavities inside the molecule; see
+  /// mesolens::MolecularSurfaceParams::keep_cavities.
   vtkSetMacro(KeepCavities, bool);
   vtkGetMacro(KeepCavities, bool);
   vtkBooleanMacro(KeepCavities, bool);
@@ -128,11 +126,13 @@ protected:
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
                   vtkInformationVector* outputVector) override;
 
-  int SurfaceType = SOLVENT_EXCLUDED;
-  double ProbeRadius = 1.4;
-  double Tolerance = 0.1;
-  bool ComputeExactFigures = true;
-  bool KeepCavities = true;
+  // Set by the constructor from mesolens::MolecularSurfaceParams' defaults.
+  int SurfaceType;
+  double ProbeRadius;
+  double Tolerance;
+  bool ComputeExactFigures;
+  bool KeepCavities;
+  // The filter's own.
   char* RadiusArrayName = nullptr;
   double BeadRadius = 2.35;
 

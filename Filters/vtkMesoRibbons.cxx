@@ -53,6 +53,17 @@ struct vtkMesoRibbons::Internals
 vtkMesoRibbons::vtkMesoRibbons()
   : Internal(std::make_unique<Internals>())
 {
+  const mesolens::RibbonParams defaults;
+  this->Subdivisions = defaults.subdivisions;
+  this->TubeSides = defaults.tube_sides;
+  this->HelixAsCylinder = defaults.helix_as_cylinder;
+  this->HelixWidth = defaults.helix_width;
+  this->StrandWidth = defaults.strand_width;
+  this->RibbonThickness = defaults.ribbon_thickness;
+  this->CoilRadius = defaults.coil_radius;
+  this->NucleicRadius = defaults.nucleic_radius;
+  this->CylinderRadius = defaults.cylinder_radius;
+  this->ArrowWidthFactor = defaults.arrow_width_factor;
 }
 
 vtkMesoRibbons::~vtkMesoRibbons()

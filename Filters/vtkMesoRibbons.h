@@ -19,7 +19,7 @@
  * from that atom (`BFactor`, `ResidueNumber`, `MoleculeId`, ...): any of them colours the
  * ribbon through a vtkPolyDataMapper.
  *
- * Level of detail: Subdivisions samples per residue (2 coarse, 6 default, 12 for figures), or
+ * Level of detail: Subdivisions samples per residue (2 coarse, 12 for figures), or
  * per piece of chain from SetSegmentSubdivisions (one count per piece, in the order of the
  * output's field data `SegmentBounds`, 6 values per piece, and `SegmentResidueCounts`):
  * vtkMesoRibbonLevelOfDetail (rendering module) sets them from each piece's size on screen and
@@ -47,28 +47,33 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// Spline samples per residue, [1, 32]; default 6.
+  /// Spline samples per residue; see mesolens::RibbonParams::subdivisions (the filter takes at
+  /// most 32).
   vtkSetClampMacro(Subdivisions, int, 1, 32);
   vtkGetMacro(Subdivisions, int);
   ///@}
 
   ///@{
-  /// Vertices around each cross-section, [3, 64]; default 8.
+  /// Vertices around each cross-section; see mesolens::RibbonParams::tube_sides (the filter
+  /// takes at most 64).
   vtkSetClampMacro(TubeSides, int, 3, 64);
   vtkGetMacro(TubeSides, int);
   ///@}
 
   ///@{
-  /// Helices of 4 or more residues as straight cylinders instead of wide ribbons. Default off.
+  /// Helices of 4 or more residues as straight cylinders instead of wide ribbons; see
+  /// mesolens::RibbonParams::helix_as_cylinder.
   vtkSetMacro(HelixAsCylinder, bool);
   vtkGetMacro(HelixAsCylinder, bool);
   vtkBooleanMacro(HelixAsCylinder, bool);
   ///@}
 
   ///@{
-  /// Shape, Å: helix and strand ribbon widths (2.4, 2.0), ribbon thickness (0.5), coil tube
-  /// radius (0.35), nucleic-acid tube radius (0.8), helix cylinder radius (2.3); each in
-  /// [0.01, 20]. Arrowhead width as a multiple of the strand width, [1, 4], default 1.5.
+  /// Shape: helix and strand ribbon widths, ribbon thickness, coil tube radius, nucleic-acid
+  /// tube radius, helix cylinder radius and the arrowhead's width over the strand width; see
+  /// mesolens::RibbonParams' helix_width, strand_width, ribbon_thickness, coil_radius,
+  /// nucleic_radius, cylinder_radius and arrow_width_factor (the filter takes lengths in
+  /// [0.01, 20] and arrowheads up to 4).
   vtkSetClampMacro(HelixWidth, double, 0.01, 20.0);
   vtkGetMacro(HelixWidth, double);
   vtkSetClampMacro(StrandWidth, double, 0.01, 20.0);
@@ -102,16 +107,18 @@ protected:
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
                   vtkInformationVector* outputVector) override;
 
-  int Subdivisions = 6;
-  int TubeSides = 8;
-  bool HelixAsCylinder = false;
-  double HelixWidth = 2.4;
-  double StrandWidth = 2.0;
-  double RibbonThickness = 0.5;
-  double CoilRadius = 0.35;
-  double NucleicRadius = 0.8;
-  double CylinderRadius = 2.3;
-  double ArrowWidthFactor = 1.5;
+  // Set by the constructor from mesolens::RibbonParams' defaults.
+  int Subdivisions;
+  int TubeSides;
+  bool HelixAsCylinder;
+  double HelixWidth;
+  double StrandWidth;
+  double RibbonThickness;
+  double CoilRadius;
+  double NucleicRadius;
+  double CylinderRadius;
+  double ArrowWidthFactor;
+  // The filter's own.
   vtkIntArray* SegmentSubdivisions = nullptr;
 
 private:

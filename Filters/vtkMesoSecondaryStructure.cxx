@@ -167,6 +167,11 @@ void add_residue_classes(const std::vector<mesolens::SecondaryStructure>& classe
 vtkMesoSecondaryStructure::vtkMesoSecondaryStructure()
   : Internal(std::make_unique<Internals>())
 {
+  const mesolens::DsspParams defaults;
+  this->PiHelixPriority = defaults.pi_helix_priority;
+  this->PolyprolineStretch = defaults.polyproline_stretch;
+  this->Bulges = defaults.bulges;
+  this->UseFileHydrogens = defaults.file_hydrogens;
 }
 
 vtkMesoSecondaryStructure::~vtkMesoSecondaryStructure() = default;

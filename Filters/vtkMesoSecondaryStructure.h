@@ -20,7 +20,7 @@
  * order), `ResidueIndexOfAssignment` (int, their `ResidueIndex`), `HydrogenBonds`.
  *
  * KeepFileRecords keeps the file's HELIX/SHEET classes (the input's `SecondaryStructure`) when
- * it has any; the default recomputes. HysteresisFrames > 1 keeps a trajectory's cartoon from
+ * it has any, instead of recomputing them. HysteresisFrames > 1 keeps a trajectory's cartoon from
  * flickering: while the filter is updated for later and later time steps, a residue changes
  * class only once the new class has held for that many frames (a jump back in time starts
  * over).
@@ -52,7 +52,7 @@ public:
 
   ///@{
   /// pi helices before alpha helices (DSSP 4, mkdssp 4.x). Off: the classic order (DSSP 2).
-  /// Default on.
+  /// See mesolens::DsspParams::pi_helix_priority.
   vtkSetMacro(PiHelixPriority, bool);
   vtkGetMacro(PiHelixPriority, bool);
   vtkBooleanMacro(PiHelixPriority, bool);
@@ -60,22 +60,22 @@ public:
 
   ///@{
   /// Residues in a row with polyproline II angles for a polyproline helix; 0: none (DSSP 2).
-  /// Range [0, 10]; default 3 (DSSP 4).
+  /// See mesolens::DsspParams::polyproline_stretch (the filter takes at most 10).
   vtkSetClampMacro(PolyprolineStretch, int, 0, 10);
   vtkGetMacro(PolyprolineStretch, int);
   ///@}
 
   ///@{
   /// Join ladders across beta bulges (DSSP). Off: each ladder alone (PyDSSP, MDAnalysis).
-  /// Default on.
+  /// See mesolens::DsspParams::bulges.
   vtkSetMacro(Bulges, bool);
   vtkGetMacro(Bulges, bool);
   vtkBooleanMacro(Bulges, bool);
   ///@}
 
   ///@{
-  /// Use the file's amide hydrogens where present. Default off: placed as DSSP does, so files
-  /// with and without hydrogens agree.
+  /// Use the file's amide hydrogens where present; off: placed as DSSP does, so files with and
+  /// without hydrogens agree. See mesolens::DsspParams::file_hydrogens.
   vtkSetMacro(UseFileHydrogens, bool);
   vtkGetMacro(UseFileHydrogens, bool);
   vtkBooleanMacro(UseFileHydrogens, bool);
@@ -95,11 +95,13 @@ protected:
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
                   vtkInformationVector* outputVector) override;
 
+  // Set by the constructor from mesolens::DsspParams' defaults.
+  bool PiHelixPriority;
+  int PolyprolineStretch;
+  bool Bulges;
+  bool UseFileHydrogens;
+  // The filter's own.
   bool KeepFileRecords = false;
-  bool PiHelixPriority = true;
-  int PolyprolineStretch = 3;
-  bool Bulges = true;
-  bool UseFileHydrogens = false;
   int HysteresisFrames = 1;
 
 private:

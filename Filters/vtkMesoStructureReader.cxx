@@ -34,6 +34,9 @@ struct vtkMesoStructureReader::Cache
 vtkMesoStructureReader::vtkMesoStructureReader()
   : Parsed(new Cache)
 {
+  const mesolens::StructureReadParams defaults;
+  this->KeepAllAlternateLocations = defaults.alt_locs == mesolens::AltLocPolicy::KeepAll;
+  this->RemoveHydrogens = defaults.remove_hydrogens;
 }
 
 vtkMesoStructureReader::~vtkMesoStructureReader() = default;

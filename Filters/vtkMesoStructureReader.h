@@ -62,15 +62,15 @@ public:
   static int CanReadFile(const char* fileName);
 
   ///@{
-  /// Keep every alternate location instead of the highest-occupancy conformer of each residue.
-  /// Default: false.
+  /// Keep every alternate location instead of the highest-occupancy conformer of each residue;
+  /// see mesolens::StructureReadParams::alt_locs (on: KeepAll).
   vtkSetMacro(KeepAllAlternateLocations, bool);
   vtkGetMacro(KeepAllAlternateLocations, bool);
   vtkBooleanMacro(KeepAllAlternateLocations, bool);
   ///@}
 
   ///@{
-  /// Drop hydrogen (and deuterium) atoms. Default: false.
+  /// Drop hydrogen (and deuterium) atoms; see mesolens::StructureReadParams::remove_hydrogens.
   vtkSetMacro(RemoveHydrogens, bool);
   vtkGetMacro(RemoveHydrogens, bool);
   vtkBooleanMacro(RemoveHydrogens, bool);
@@ -92,9 +92,11 @@ protected:
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  // Set by the constructor from mesolens::StructureReadParams' defaults.
+  bool KeepAllAlternateLocations;
+  bool RemoveHydrogens;
+  // The reader's own.
   std::string FileName;
-  bool KeepAllAlternateLocations = false;
-  bool RemoveHydrogens = false;
 
 private:
   vtkMesoStructureReader(const vtkMesoStructureReader&) = delete;

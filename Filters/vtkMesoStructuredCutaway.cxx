@@ -521,6 +521,16 @@ vtkMesoStructuredCutaway::vtkMesoStructuredCutaway()
 {
   this->SetNumberOfInputPorts(2);
   this->SetNumberOfOutputPorts(2);
+  const mesolens::CutawayParams cut;
+  this->K = cut.k;
+  this->FractionHidden = cut.fraction_hidden;
+  this->Inverted = cut.inverted;
+  this->RandomOrder = cut.random;
+  this->ProbabilisticOrder = cut.probabilistic;
+  this->Seed = static_cast<int>(cut.seed);
+  const mesolens::StructureMeshParams structure;
+  this->StructureVertices = static_cast<int>(structure.vertices);
+  this->StructureMidSurfaceRadius = structure.mid_surface_radius;
 }
 
 vtkMesoStructuredCutaway::~vtkMesoStructuredCutaway()

@@ -82,43 +82,47 @@ public:
   ///@}
 
   ///@{
-  /// The sigmoid's k in [-0.99, 0.99]; default 0 (the barycentric coordinate as it is).
+  /// The removal priority's sigmoid k; see mesolens::CutawayParams::k (the filter takes
+  /// [-0.99, 0.99]).
   vtkSetClampMacro(K, double, -0.99, 0.99);
   vtkGetMacro(K, double);
   ///@}
 
   ///@{
-  /// Fraction of the molecules in the cut that are hidden, [0, 1]; default 0.5.
+  /// Fraction of the molecules in the cut that are hidden; see
+  /// mesolens::CutawayParams::fraction_hidden.
   vtkSetClampMacro(FractionHidden, double, 0.0, 1.0);
   vtkGetMacro(FractionHidden, double);
   ///@}
 
   ///@{
-  /// Hide molecules on the mesh's edges first (patches instead of a wireframe). Default off.
+  /// Hide molecules on the mesh's edges first (patches instead of a wireframe); see
+  /// mesolens::CutawayParams::inverted.
   vtkSetMacro(Inverted, bool);
   vtkGetMacro(Inverted, bool);
   vtkBooleanMacro(Inverted, bool);
   ///@}
 
   ///@{
-  /// Use the priorities as probabilities (a seeded weighted random order, see
-  /// mesolens::CutawayParams::probabilistic): K then blends from two classes (towards -1)
-  /// through 3x (0) to nearly random (towards 1). Off (default): the strict order by priority,
-  /// the crispest wireframe, the same for every K.
+  /// Use the priorities as probabilities (a seeded weighted random order): K then blends from
+  /// two classes (towards -1) through 3x (0) to nearly random (towards 1). Off: the strict
+  /// order by priority, the crispest wireframe, the same for every K. See
+  /// mesolens::CutawayParams::probabilistic.
   vtkSetMacro(ProbabilisticOrder, bool);
   vtkGetMacro(ProbabilisticOrder, bool);
   vtkBooleanMacro(ProbabilisticOrder, bool);
   ///@}
 
   ///@{
-  /// Random removal (the Visibility Equalizer's), for comparison. Default off.
+  /// Random removal (the Visibility Equalizer's), for comparison; see
+  /// mesolens::CutawayParams::random.
   vtkSetMacro(RandomOrder, bool);
   vtkGetMacro(RandomOrder, bool);
   vtkBooleanMacro(RandomOrder, bool);
   ///@}
 
   ///@{
-  /// Seed of the per-molecule random keys; default 1.
+  /// Seed of the per-molecule random keys; see mesolens::CutawayParams::seed.
   vtkSetMacro(Seed, int);
   vtkGetMacro(Seed, int);
   ///@}
@@ -134,17 +138,16 @@ public:
   ///@}
 
   ///@{
-  /// Vertices of the structure mesh made from the molecules when no structure is connected:
-  /// [4, 1e6]; default 500.
+  /// Vertices of the structure mesh made from the molecules when no structure is connected;
+  /// see mesolens::StructureMeshParams::vertices.
   vtkSetClampMacro(StructureVertices, int, 4, 1000000);
   vtkGetMacro(StructureVertices, int);
   ///@}
 
   ///@{
-  /// How far (atom units, e.g. Å) along the local normal the made structure looks for a
-  /// bilayer's other leaflet when it pairs the leaflets onto their middle sheet: more than the
-  /// distance between the two leaflets' molecule centres (lipid centres about 20 Å apart, head
-  /// groups alone about 40 Å). 0 (default): up to 8 times the centres' median spacing.
+  /// How far along the local normal the made structure looks for a bilayer's other leaflet
+  /// when it pairs the leaflets onto their middle sheet; see
+  /// mesolens::StructureMeshParams::mid_surface_radius (the filter takes [0, 1e6]).
   vtkSetClampMacro(StructureMidSurfaceRadius, double, 0.0, 1e6);
   vtkGetMacro(StructureMidSurfaceRadius, double);
   ///@}
@@ -181,15 +184,18 @@ protected:
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
                   vtkInformationVector* outputVector) override;
 
+  // Set by the constructor from mesolens::CutawayParams' and mesolens::StructureMeshParams'
+  // defaults.
+  double K;
+  double FractionHidden;
+  bool Inverted;
+  bool RandomOrder;
+  bool ProbabilisticOrder;
+  int Seed;
+  int StructureVertices;
+  double StructureMidSurfaceRadius;
+  // The filter's own.
   vtkImplicitFunction* CutFunction = nullptr;
-  double K = 0;
-  double FractionHidden = 0.5;
-  bool Inverted = false;
-  bool RandomOrder = false;
-  bool ProbabilisticOrder = false;
-  int Seed = 1;
-  int StructureVertices = 500;
-  double StructureMidSurfaceRadius = 0;
   bool MakeAssemblyWhole = true;
   bool ExtractVisibleAtoms = false;
 

@@ -8,6 +8,7 @@
 #include "vtkMesoParallelFor.h"
 
 #include "mesolens/common/errors.h"
+#include "mesolens/surface/molecular_surface.h"
 #include "mesolens/surface/sphere_union_area.h"
 
 #include <vtkFloatArray.h>
@@ -22,7 +23,10 @@
 
 vtkStandardNewMacro(vtkMesoSurfaceArea);
 
-vtkMesoSurfaceArea::vtkMesoSurfaceArea() = default;
+vtkMesoSurfaceArea::vtkMesoSurfaceArea()
+{
+  this->ProbeRadius = mesolens::MolecularSurfaceParams().probe_radius;
+}
 
 vtkMesoSurfaceArea::~vtkMesoSurfaceArea()
 {

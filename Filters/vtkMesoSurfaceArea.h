@@ -33,8 +33,9 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// Radius of the solvent probe, Å, [0, 10]; default 1.4 (water). 0: the van der Waals
-  /// surface.
+  /// Radius of the solvent probe, Å, [0, 10]; 0: the van der Waals surface. Default: the
+  /// molecular surface's, mesolens::MolecularSurfaceParams::probe_radius (water), so both
+  /// filters describe the same accessible surface.
   vtkSetClampMacro(ProbeRadius, double, 0.0, 10.0);
   vtkGetMacro(ProbeRadius, double);
   ///@}
@@ -59,7 +60,7 @@ protected:
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
                   vtkInformationVector* outputVector) override;
 
-  double ProbeRadius = 1.4;
+  double ProbeRadius; // set by the constructor
   char* RadiusArrayName = nullptr;
   double BeadRadius = 2.35;
 

@@ -16,11 +16,11 @@
  * `FrameIndex`, `Step` and `PeriodicBoxVectors` (9 doubles in the output length unit, rows a, b,
  * c; orthorhombic or triclinic).
  *
- * Periodic boundaries: with MakeMoleculesWhole (default on), atoms split across the box are
- * moved by box vectors so every molecule is whole; with KeepMoleculesContinuous (default on),
- * a molecule is additionally kept from jumping across the box between frames (its centroid
- * stays at the image closest to that of the previous frame; frames up to the requested one are
- * visited once, in order, the first time they are needed).
+ * Periodic boundaries: with MakeMoleculesWhole, atoms split across the box are moved by box
+ * vectors so every molecule is whole; with KeepMoleculesContinuous, a molecule is additionally
+ * kept from jumping across the box between frames (its centroid stays at the image closest to
+ * that of the previous frame; frames up to the requested one are visited once, in order, the
+ * first time they are needed).
  *
  * Errors (missing/empty/garbage file, truncated trajectory, atom-count mismatch between
  * topology and trajectory, non-finite coordinates) are reported with vtkErrorMacro naming the

@@ -37,8 +37,9 @@ constexpr double structure_mesh_max_angle = 120.0;
 /// Settings of structure_mesh().
 struct StructureMeshParams
 {
-  /// About how many vertices the mesh has, [4, 1e6] (used when edge_length <= 0; expect within
-  /// about 15 %, and for a handful of vertices the nearest count the shape allows).
+  /// About how many vertices the mesh has, [4, 1e6]; default 500 (used when edge_length <= 0;
+  /// expect within about 15 %, and for a handful of vertices the nearest count the shape
+  /// allows).
   std::size_t vertices = 500;
   /// The target edge length in mesh units; <= 0 (default): from `vertices`.
   double edge_length = 0;

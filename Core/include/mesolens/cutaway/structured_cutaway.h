@@ -50,15 +50,16 @@ struct CutRegion
 /// How much a cut removes, and in which order.
 struct CutawayParams
 {
-  /// The sigmoid's k, -1 < k < 1 (0: the minimal barycentric coordinate as it is).
+  /// The sigmoid's k (tunable_sigmoid), -1 < k < 1; default 0 (the minimal barycentric
+  /// coordinate as it is).
   double k = 0;
-  /// Fraction of the molecules inside the cut that are hidden, [0, 1].
+  /// Fraction of the molecules inside the cut that are hidden, [0, 1]; default 0.5.
   double fraction_hidden = 0.5;
-  /// Per molecule type, a fraction instead of fraction_hidden, [0, 1].
+  /// Per molecule type, a fraction instead of fraction_hidden, [0, 1]. Default: none.
   std::map<int, double> fraction_by_type;
-  /// Hide molecules on the mesh's edges first (patches instead of a wireframe).
+  /// Hide molecules on the mesh's edges first (patches instead of a wireframe). Default false.
   bool inverted = false;
-  /// The Visibility Equalizer's order: by a random key alone (for comparison).
+  /// The Visibility Equalizer's order: by a random key alone (for comparison). Default false.
   bool random = false;
   /// The priorities as probabilities instead of a strict order: a weighted random order
   /// (Efraimidis-Spirakis: key u^(1 / p) from the seeded uniform u), so a molecule of priority
@@ -68,7 +69,7 @@ struct CutawayParams
   /// but not their order, so every k gives the same mask.
   bool probabilistic = false;
   /// Seed of the per-molecule random keys that break ties (and order the random mode): the same
-  /// seed gives the same order, frame after frame.
+  /// seed gives the same order, frame after frame. Any value; default 1.
   std::uint64_t seed = 1;
 };
 

@@ -25,17 +25,21 @@ enum class AltLocPolicy
 /// Parameters of read_structure().
 struct StructureReadParams
 {
+  /// Which alternate locations are kept. Default HighestOccupancy.
   AltLocPolicy alt_locs = AltLocPolicy::HighestOccupancy;
   /// Drop water residues (is_water_residue()), as the membrane-mapping paper does on import.
+  /// Default false.
   bool remove_waters = false;
-  /// Drop hydrogen and deuterium atoms.
+  /// Drop hydrogen and deuterium atoms. Default false.
   bool remove_hydrogens = false;
   /// Perceive covalent bonds from distances (explicit CONECT/LINK/SSBOND/struct_conn bonds are
-  /// always added).
+  /// always added). Default true.
   bool perceive_bonds = true;
   /// Bond perception; coarse_grained is decided per file by looks_coarse_grained() unless
   /// force_coarse_grained is set.
   BondPerceptionParams bonds;
+  /// Treat the particles as coarse-grained beads even when looks_coarse_grained() says they
+  /// are atoms. Default false.
   bool force_coarse_grained = false;
   /// Runs the data-parallel loops (bond perception); empty: the calling thread only.
   ParallelFor parallel_for;

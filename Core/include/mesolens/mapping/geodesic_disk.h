@@ -17,7 +17,8 @@ namespace mesolens {
 /// Parameters of geodesic_disk().
 struct GeodesicDiskParams
 {
-  /// Geodesic radius r, mesh units. Must be > 0 and finite.
+  /// Geodesic radius r, mesh units. Must be > 0 and finite; no default (0, the initial value,
+  /// is rejected).
   double radius = 0;
   /// Resolution: triangles of the surface that come within r of the seed and are longer than
   /// the edge giving about this many triangles in a flat disk of radius r (r sqrt(4 pi / n)) are

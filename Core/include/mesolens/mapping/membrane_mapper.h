@@ -50,10 +50,11 @@ struct MapRequest
   /// lie: a disk that distorts them more (say, one that covers most of a small organelle and
   /// squeezes its far side into the rim) does not fit. > 1; default 1.5.
   double max_stretch = 1.5;
-  /// Resolution of the disk (GeodesicDiskParams::min_triangles). Default 2000.
+  /// Resolution of the disk (GeodesicDiskParams::min_triangles): refine coarse surface
+  /// triangles until the disk holds at least about this many. 0: no refinement. Default 2000.
   std::size_t min_disk_triangles = 2000;
-  /// Disks over more triangles than this grow on a coarser copy of the surface
-  /// (GeodesicDiskParams::max_triangles). Default 16000.
+  /// Disks over more of the input's triangles than this grow on a coarser copy of the surface
+  /// (GeodesicDiskParams::max_triangles). 0: always the input's triangles. Default 16000.
   std::size_t max_disk_triangles = 16000;
   /// When the asked k x k tiles do not fit (their disk wraps a handle, meets the mesh's
   /// boundary, covers the whole component, or the tiles leave it), map the largest k that fits,

@@ -32,17 +32,20 @@ struct MembranePatch
 /// Parameters of map_membrane().
 struct MappingParams
 {
+  /// How atoms are carried onto the surface. Default Displacement.
   MappingMethod method = MappingMethod::Displacement;
   /// k: the patch is repeated k x k times (by its cell vectors). Range >= 1; default 1.
   int tiles = 1;
-  /// Mesh units per membrane unit (e.g. 1e-4 for Å onto a mesh in µm). > 0; default 1.
+  /// Mesh units per membrane unit (e.g. 1e-4 for Å onto a mesh in µm, 0.1 for Å onto nm).
+  /// > 0; default 1.
   double scale = 1;
   /// (u, v) where the centre of the tiled region goes: the picked point's. Default (0, 0).
   std::array<double, 2> centre_uv{ { 0, 0 } };
   /// Polynomial: the fit samples heights -e, 0, +e (membrane units). > 0; default 25 Å (about
   /// half a bilayer).
   double layer_half_thickness = 25;
-  /// Polynomial: samples per tile edge (samples x samples per layer). Range >= 3; default 6.
+  /// Polynomial: samples per tile edge (samples x samples per layer). Range >= 3; default 6
+  /// (the paper's 6 x 6).
   int samples = 6;
   /// Polynomial: the largest fit residual accepted in a tile, membrane units (Å for Å patches).
   /// A tile whose largest sample residual exceeds it is split into 2 x 2 pieces, each with its

@@ -14,14 +14,17 @@ namespace mesolens {
 /// Parameters of perceive_bonds().
 struct BondPerceptionParams
 {
-  /// Two atoms bond when their distance is below r_cov(a) + r_cov(b) + tolerance, Å. The
-  /// default is the value of Open Babel and Jmol. Range [0, 1].
+  /// Two atoms bond when their distance is below r_cov(a) + r_cov(b) + tolerance, Å (covalent
+  /// radii of Cordero 2008). Range [0, 1]; default 0.45 (the value of Open Babel and Jmol).
   float tolerance = 0.45f;
   /// Pairs closer than this (Å) are overlapping atoms (alternate sites, bad models), not bonds.
+  /// >= 0; default 0.4.
   float minimum_distance = 0.4f;
   /// Coarse-grained mode: beads of one molecule closer than bead_cutoff bond (radii ignored).
+  /// Default false.
   bool coarse_grained = false;
-  /// Bead bond cutoff in Å for coarse-grained files; Martini bonds are 3.0-4.8 Å. Range (0, 10].
+  /// Bead bond cutoff in Å for coarse-grained files; Martini bonds are 3.0-4.8 Å. Range (0, 10];
+  /// default 5.
   float bead_cutoff = 5.0f;
 };
 

@@ -18,13 +18,13 @@ namespace mesolens {
 struct DsspParams
 {
   /// pi helices before alpha helices where both apply (DSSP 4 and mkdssp 4.x); false: the
-  /// classic order (DSSP 2), alpha first.
+  /// classic order (DSSP 2), alpha first. Default true.
   bool pi_helix_priority = true;
   /// Residues in a row with polyproline II angles (phi -75 +- 29 degrees, psi 145 +- 29) for a
-  /// kappa helix (DSSP 4: 3); 0: none are assigned (DSSP 2).
+  /// kappa (polyproline) helix; 0: none are assigned (DSSP 2). Range >= 0; default 3 (DSSP 4).
   int polyproline_stretch = 3;
   /// Join ladders across beta bulges into one strand (DSSP); false: every ladder alone, as
-  /// PyDSSP and MDAnalysis' DSSP assign.
+  /// PyDSSP and MDAnalysis' DSSP assign. Default true.
   bool bulges = true;
   /// Use the file's amide hydrogens where present; false (default): place every amide H as DSSP
   /// does, 1 Å from N opposite the previous residue's C=O, so that files with and without

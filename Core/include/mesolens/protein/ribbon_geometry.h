@@ -58,7 +58,7 @@ struct RibbonResidue
 /// Shape and level of detail of ribbon_mesh(). Lengths in Å.
 struct RibbonParams
 {
-  /// Spline samples per residue (level of detail), >= 1: 2 is coarse, 6 the default, 12 fine.
+  /// Spline samples per residue (level of detail), >= 1: 2 is coarse, 12 fine; default 6.
   /// The triangle count grows linearly with it.
   int subdivisions = 6;
   /// Per segment (in the order ribbon_segments() lists them), a subdivision count >= 1 that
@@ -87,7 +87,8 @@ struct RibbonParams
   /// Consecutive amino acids whose Cα are farther apart than this are not bonded: the ribbon
   /// breaks there. > 0; default 4.2 (a trans peptide is 3.8).
   double protein_break_distance = 4.2;
-  /// The same for consecutive nucleotides' P atoms (5.5-7.5 apart when bonded). Default 8.0.
+  /// The same for consecutive nucleotides' P atoms (5.5-7.5 apart when bonded). > 0; default
+  /// 8.0.
   double nucleic_break_distance = 8.0;
 };
 

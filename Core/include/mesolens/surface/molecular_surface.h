@@ -38,20 +38,23 @@ enum class SurfacePatch : std::uint8_t
 /// Parameters of molecular_surface().
 struct MolecularSurfaceParams
 {
+  /// Which surface. Default SolventExcluded.
   SurfaceKind kind = SurfaceKind::SolventExcluded;
   /// Radius of the solvent probe, Å (length units of the input), (0, 20]; default 1.4 (water).
+  /// Not used by the van der Waals surface.
   double probe_radius = 1.4;
   /// Largest distance between a triangle and the exact surface it stands for (chord error) on
-  /// smooth patches, Å, [0.005, 1]: edges are split until their middles lie within three
-  /// quarters of it (the triangles' centres within it). Triangles spanning creases (the SAS and
-  /// vdW seams, the SES's cusps and rims where probes meet) stay as the lattice made them,
-  /// within its chord error: six times the tolerance, at most 0.56 Å, the SES's lattice points
-  /// at most 0.9 probe radii from any point so that every cavity holds one (see grid_spacing).
+  /// smooth patches, Å, [0.005, 1]; default 0.1. Edges are split until their middles lie
+  /// within three quarters of it (the triangles' centres within it). Triangles spanning creases
+  /// (the SAS and vdW seams, the SES's cusps and rims where probes meet) stay as the lattice
+  /// made them, within its chord error: six times the tolerance, at most 0.56 Å, the SES's
+  /// lattice points at most 0.9 probe radii from any point so that every cavity holds one (see
+  /// grid_spacing).
   /// On proteins the mesh area lies below the exact one by 0.3-0.6 % at 0.1 (0.9-1.3 % at 0.15,
   /// 2.3-2.9 % at 0.3), which suits interaction; 0.01-0.02 suits figures (0.14-0.27 % at 0.02).
   double tolerance = 0.1;
   /// Keep the surfaces of cavities inside the molecule (closed components whose normals face
-  /// inwards). Default true.
+  /// inwards); false drops them from the mesh and from the area and volume. Default true.
   bool keep_cavities = true;
   /// Build the triangle mesh; false gives the exact area and volume alone. Default true.
   bool tessellate = true;

@@ -50,8 +50,7 @@ struct MolecularSurfaceParams
   /// made them, within its chord error: six times the tolerance, at most 0.56 Å, the SES's
   /// lattice points at most 0.9 probe radii from any point so that every cavity holds one (see
   /// grid_spacing).
-  /// On proteins the mesh area lies below the exact one by 0.3-0.6 % at 0.1 (0.9-1.3 % at 0.15,
-  /// 2.3-2.9 % at 0.3), which suits interaction; 0.01-0.02 suits figures (0.14-0.27 % at 0.02).
+  /// 0.1 suits interaction, 0.01-0.02 figures (the mesh areas each gives: docs/performance.md).
   double tolerance = 0.1;
   /// Keep the surfaces of cavities inside the molecule (closed components whose normals face
   /// inwards); false drops them from the mesh and from the area and volume. Default true.

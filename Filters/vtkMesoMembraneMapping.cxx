@@ -319,6 +319,8 @@ struct vtkMesoMembraneMapping::State
 vtkMesoMembraneMapping::vtkMesoMembraneMapping()
   : Internal(new State)
 {
+  this->SetNumberOfInputPorts(2);
+  this->SetNumberOfOutputPorts(3);
   const mesolens::MapRequest defaults;
   this->MappingMethod = static_cast<int>(defaults.mapping.method);
   this->Tiles = defaults.mapping.tiles;
@@ -332,8 +334,6 @@ vtkMesoMembraneMapping::vtkMesoMembraneMapping()
   this->MinimumDiskTriangles = static_cast<int>(defaults.min_disk_triangles);
   this->MaximumDiskTriangles = static_cast<int>(defaults.max_disk_triangles);
   this->MapWhatFits = defaults.fit_what_fits;
-  this->SetNumberOfInputPorts(2);
-  this->SetNumberOfOutputPorts(3);
 }
 
 vtkMesoMembraneMapping::~vtkMesoMembraneMapping() = default;

@@ -26,12 +26,12 @@
  *   split into 2 x 2 (then 4 x 4) pieces with a polynomial each; a tile still above it has its
  *   atoms mapped by displacement (`PolynomialFallbackTiles`).
  *
- * Every click maps what fits (MapWhatFits): when the asked k x k tiles do not fit
- * (their disk wraps a handle, meets the mesh's boundary or covers the whole component, the
- * tiles leave it, or flattening it would stretch them more than MaximumStretch), the largest k
- * that fits is mapped, and if not even one tile fits, one tile
- * cut to the largest disk there is (molecules leaving it are dropped). A warning, field data
- * `TilesRequested`, `TilesMapped`, `CutToDisk` and the text `MappingNote` say what was mapped.
+ * Every click maps what fits (MapWhatFits): when the asked k x k tiles do not fit (their disk
+ * wraps a handle, meets the mesh's boundary or covers the whole component, the tiles leave it,
+ * or flattening it would stretch them more than MaximumStretch), the largest k that fits is
+ * mapped, and if not even one tile fits, one tile cut to the largest disk there is (molecules
+ * leaving it are dropped). A warning, field data `TilesRequested`, `TilesMapped`, `CutToDisk`
+ * and the text `MappingNote` say what was mapped.
  *
  * Output 0, the mapped atoms (unless OutputAtoms is off): k^2 copies of the patch (tile t = j k + i
  * holds atoms [t n, (t+1) n), less those a cut tile drops), one vertex per atom and the patch's
@@ -169,10 +169,10 @@ public:
   ///@}
 
   ///@{
-  /// Map every atom into output 0 (on), or (off) leave output 0 without atoms and
-  /// bonds, holding only the field data: for POLYNOMIAL and MOLECULE_INSTANCING, whose
-  /// coefficients or matrices vtkMesoAtomMapper evaluates on the GPU (its warp input).
-  /// DISPLACEMENT always maps the atoms. See mesolens::MappingParams::map_atoms.
+  /// Map every atom into output 0 (on), or (off) leave output 0 without atoms and bonds,
+  /// holding only the field data: for POLYNOMIAL and MOLECULE_INSTANCING, whose coefficients or
+  /// matrices vtkMesoAtomMapper evaluates on the GPU (its warp input). DISPLACEMENT always maps
+  /// the atoms. See mesolens::MappingParams::map_atoms.
   vtkSetMacro(OutputAtoms, bool);
   vtkGetMacro(OutputAtoms, bool);
   vtkBooleanMacro(OutputAtoms, bool);
@@ -203,7 +203,7 @@ public:
   ///@{
   /// The largest factor by which the flattened disk may stretch or shrink lengths where the
   /// tiles lie; a disk that distorts them more does not fit (fewer tiles are mapped). See
-  /// mesolens::MapRequest::max_stretch; clamped to [1.01, 100].
+  /// mesolens::MapRequest::max_stretch (the filter takes [1.01, 100]).
   vtkSetClampMacro(MaximumStretch, double, 1.01, 100.0);
   vtkGetMacro(MaximumStretch, double);
   ///@}

@@ -19,9 +19,9 @@
  * from that atom (`BFactor`, `ResidueNumber`, `MoleculeId`, ...): any of them colours the
  * ribbon through a vtkPolyDataMapper.
  *
- * Level of detail: Subdivisions samples per residue (2 coarse, 12 for figures), or
- * per piece of chain from SetSegmentSubdivisions (one count per piece, in the order of the
- * output's field data `SegmentBounds`, 6 values per piece, and `SegmentResidueCounts`):
+ * Level of detail: Subdivisions samples per residue (2 coarse, 12 for figures), or per piece
+ * of chain from SetSegmentSubdivisions (one count per piece, in the order of the output's field
+ * data `SegmentBounds`, 6 values per piece, and `SegmentResidueCounts`):
  * vtkMesoRibbonLevelOfDetail (rendering module) sets them from each piece's size on screen and
  * the frame time, as BioBrowser did.
  *

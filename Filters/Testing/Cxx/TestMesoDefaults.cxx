@@ -25,16 +25,16 @@
 
 #include <gtest/gtest.h>
 
-// filter->Get<name>() equals `core_default` (in the getter's type), before and after
-// filter->Set<name>() of it: a default outside the setter's clamp range fails too.
+// filter->Get<name>() equals `core_default` (in the getter's type), and filter->Set<name>() of
+// it keeps it: a default outside the setter's clamp range fails too.
 #define EXPECT_CORE_DEFAULT(filter, name, core_default)                                            \
   do                                                                                               \
   {                                                                                                \
     using Value = decltype((filter)->Get##name());                                                 \
-    EXPECT_EQ((filter)->Get##name(), static_cast<Value>(core_default)) << #name;                   \
-    (filter)->Set##name((filter)->Get##name());                                                    \
-    EXPECT_EQ((filter)->Get##name(), static_cast<Value>(core_default))                             \
-      << #name << " is clamped away from its default";                                             \
+    const Value initial = (filter)->Get##name();                                                   \
+    EXPECT_EQ(initial, static_cast<Value>(core_default)) << #name " is not Core's default";        \
+    (filter)->Set##name(initial);                                                                  \
+    EXPECT_EQ((filter)->Get##name(), initial) << "Set" #name " clamps its default away";           \
   } while (false)
 
 TEST(MesoDefaults, MembraneMapping)
@@ -137,10 +137,12 @@ void ExpectAtomReaderDefaults(vtkMesoAtomReader* reader)
   EXPECT_CORE_DEFAULT(reader, ForceCoarseGrained, defaults.force_coarse_grained);
   EXPECT_EQ(static_cast<float>(reader->GetBondTolerance()), defaults.bonds.tolerance);
   EXPECT_EQ(static_cast<float>(reader->GetCoarseGrainedBeadCutoff()), defaults.bonds.bead_cutoff);
-  reader->SetBondTolerance(reader->GetBondTolerance());
-  reader->SetCoarseGrainedBeadCutoff(reader->GetCoarseGrainedBeadCutoff());
-  EXPECT_EQ(static_cast<float>(reader->GetBondTolerance()), defaults.bonds.tolerance);
-  EXPECT_EQ(static_cast<float>(reader->GetCoarseGrainedBeadCutoff()), defaults.bonds.bead_cutoff);
+  const double tolerance = reader->GetBondTolerance();
+  const double cutoff = reader->GetCoarseGrainedBeadCutoff();
+  reader->SetBondTolerance(tolerance);
+  reader->SetCoarseGrainedBeadCutoff(cutoff);
+  EXPECT_EQ(reader->GetBondTolerance(), tolerance);
+  EXPECT_EQ(reader->GetCoarseGrainedBeadCutoff(), cutoff);
 }
 } // namespace
 

@@ -67,17 +67,25 @@ struct Molecules
   /// residue name of each molecule's first atom.
   void Group(vtkIdType atoms, vtkDataArray* ids, vtkStringArray* names)
   {
-    std::vector<int> id_values;
-    if (ids)
+    // The ids as ints: the array's own memory when it holds them (the readers' and the
+    // mapping's MoleculeId do), else a copy.
+    const int* id_values = nullptr;
+    std::vector<int> id_copy;
+    auto* int_ids = vtkIntArray::FastDownCast(ids);
+    if (int_ids && int_ids->GetNumberOfComponents() == 1)
     {
-      id_values.resize(static_cast<std::size_t>(atoms));
+      id_values = int_ids->GetPointer(0);
+    }
+    else if (ids)
+    {
+      id_copy.resize(static_cast<std::size_t>(atoms));
       for (vtkIdType a = 0; a < atoms; ++a)
       {
-        id_values[static_cast<std::size_t>(a)] = static_cast<int>(ids->GetComponent(a, 0));
+        id_copy[static_cast<std::size_t>(a)] = static_cast<int>(ids->GetComponent(a, 0));
       }
+      id_values = id_copy.data();
     }
-    this->Groups =
-      mesolens::group_molecules(ids ? id_values.data() : nullptr, static_cast<std::size_t>(atoms));
+    this->Groups = mesolens::group_molecules(id_values, static_cast<std::size_t>(atoms));
     this->Types.clear();
     this->TypeNames.clear();
     std::unordered_map<std::string, int> type_index;

@@ -93,7 +93,11 @@ CellSurface::CellSurface(TriangleMesh mesh)
   input->anchor_triangle.resize(mesh.vertex_count());
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v)
   {
-    input->anchor_triangle[v] = input->adjacency.vertex_triangles[input->adjacency.vertex_start[v]];
+    // A vertex no triangle uses (a mesh may have some) has none: -1.
+    const std::size_t first = std::size_t(input->adjacency.vertex_start[v]);
+    input->anchor_triangle[v] = first < std::size_t(input->adjacency.vertex_start[v + 1])
+      ? input->adjacency.vertex_triangles[first]
+      : -1;
   }
   input->smooth = std::make_shared<const SmoothSurface>(std::move(mesh));
   input->measure();

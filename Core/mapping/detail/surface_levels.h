@@ -24,7 +24,7 @@ struct SurfaceLevel
   std::shared_ptr<const SmoothSurface> smooth;
   MeshAdjacency adjacency;
   std::vector<std::int64_t> input_vertex;    ///< per vertex: the input vertex it is
-  std::vector<std::int64_t> anchor_triangle; ///< per vertex: an input triangle at it
+  std::vector<std::int64_t> anchor_triangle; ///< per vertex: an input triangle at it (-1: none)
   double mean_triangle_area = 0;             ///< mesh units squared
 
   const TriangleMesh& mesh() const

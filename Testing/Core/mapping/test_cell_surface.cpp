@@ -46,6 +46,29 @@ TEST(CellSurface, AdjacencyOfAClosedMesh)
   EXPECT_NEAR(surface.bounding_diagonal(), 2 * std::sqrt(3.0), 1e-12); // vertices on the axes
 }
 
+TEST(CellSurface, VerticesNoTriangleUsesHaveNoAnchor)
+{
+  // Meshes may carry points no triangle uses (the mesh report counts them, the mapping accepts
+  // them): one before and one after the mesh's own.
+  auto mesh = mesolens_test::icosphere(1.0, 1);
+  const std::size_t first_own = 1;
+  for (std::int64_t& v : mesh.triangles)
+  {
+    v += std::int64_t(first_own);
+  }
+  mesh.points.insert(mesh.points.begin(), { 5.0, 5.0, 5.0 });
+  mesh.points.insert(mesh.points.end(), { -5.0, 5.0, 5.0 });
+  const mesolens::CellSurface surface(mesh);
+  const auto& anchors = surface.level(0).anchor_triangle;
+  ASSERT_EQ(anchors.size(), mesh.vertex_count());
+  EXPECT_EQ(anchors.front(), -1);
+  EXPECT_EQ(anchors.back(), -1);
+  for (std::size_t v = first_own; v + 1 < anchors.size(); ++v)
+  {
+    EXPECT_GE(anchors[v], 0) << v;
+  }
+}
+
 TEST(CellSurface, CoarserCopiesKeepTopologyBoundaryAndShape)
 {
   // A fine torus (genus 1, 57 600 triangles): each copy has about a quarter of the vertices,

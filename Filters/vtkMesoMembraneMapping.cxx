@@ -36,6 +36,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 vtkStandardNewMacro(vtkMesoMembraneMapping);
@@ -388,8 +389,7 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
     const mesolens::MapRequest request = map_request(this);
     const mesolens::SurfacePoint seed = mapper.seed_near(
       { this->SeedPoint[0], this->SeedPoint[1], this->SeedPoint[2] }, this->SeedTolerance);
-    const mesolens::MapResult result =
-      mapper.map(seed, data.patch, request, vtkMesoParallelFor::Get());
+    mesolens::MapResult result = mapper.map(seed, data.patch, request, vtkMesoParallelFor::Get());
     this->UpdateProgress(0.8);
     if (!result.note.empty())
     {
@@ -403,14 +403,15 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
         mesolens::bond_length_changes(data.patch, mapped, data.bonds, request.mapping.scale),
         this->Internal->MappedArrays, output);
     }
-    vtkMesoMembraneWarp::Write(mesolens::membrane_warp(result, data.patch, request),
+    const std::shared_ptr<const mesolens::MappingChart> chart = result.chart;
+    vtkMesoMembraneWarp::Write(mesolens::membrane_warp(std::move(result), data.patch, request),
                                output->GetFieldData());
     if (atoms->GetInformation()->Has(vtkDataObject::DATA_TIME_STEP()))
     {
       output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(),
                                     atoms->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP()));
     }
-    build_chart_outputs(*result.chart, this->LatticeEdge, disk_output, lattice_output);
+    build_chart_outputs(*chart, this->LatticeEdge, disk_output, lattice_output);
   }
   catch (const mesolens::Error& e)
   {

@@ -15,7 +15,7 @@
 namespace names = vtkMesoArrayNames;
 
 namespace {
-template <typename Values>
+template<typename Values>
 void add(vtkFieldData* fields, const char* name, const Values& values, int components = 1)
 {
   vtkNew<vtkDoubleArray> array;
@@ -44,7 +44,7 @@ const double* tuple(vtkFieldData* fields, const char* name, int components)
 
 /// Every value of an array with `components` components (empty when absent or shaped
 /// otherwise), converted to T.
-template <typename T>
+template<typename T>
 std::vector<T> values(vtkFieldData* fields, const char* name, int components = 1)
 {
   vtkDataArray* array = fields->GetArray(name);
@@ -54,10 +54,21 @@ std::vector<T> values(vtkFieldData* fields, const char* name, int components = 1
     return result;
   }
   const vtkIdType count = array->GetNumberOfTuples() * components;
+  if (auto* doubles = vtkDoubleArray::FastDownCast(array)) // as Write() writes them
+  {
+    const double* first = doubles->GetPointer(0);
+    result.reserve(static_cast<std::size_t>(count));
+    for (vtkIdType i = 0; i < count; ++i)
+    {
+      result.push_back(static_cast<T>(first[i]));
+    }
+    return result;
+  }
   result.resize(static_cast<std::size_t>(count));
   for (vtkIdType i = 0; i < count; ++i)
   {
-    result[std::size_t(i)] = static_cast<T>(array->GetComponent(i / components, int(i % components)));
+    result[std::size_t(i)] =
+      static_cast<T>(array->GetComponent(i / components, int(i % components)));
   }
   return result;
 }

@@ -55,18 +55,8 @@ void write_surface(const mesolens::MolecularSurface& surface, vtkPolyData* atoms
                    vtkPolyData* output)
 {
   const vtkIdType vertices = static_cast<vtkIdType>(surface.atom.size());
-  vtkNew<vtkFloatArray> coordinates;
-  coordinates->SetNumberOfComponents(3);
-  coordinates->SetNumberOfTuples(vertices);
-  vtkNew<vtkFloatArray> normals;
-  normals->SetName(vtkMesoArrayNames::Normals);
-  normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(vertices);
-  for (vtkIdType v = 0; v < 3 * vertices; ++v)
-  {
-    coordinates->SetValue(v, static_cast<float>(surface.points[std::size_t(v)]));
-    normals->SetValue(v, static_cast<float>(surface.normals[std::size_t(v)]));
-  }
+  vtkSmartPointer<vtkFloatArray> normals =
+    vtkMesoSurfaceConversion::SetFloatPoints(surface.points, surface.normals, output);
   vtkNew<vtkIdTypeArray> atom_ids;
   atom_ids->SetName(vtkMesoArrayNames::AtomId);
   atom_ids->SetNumberOfValues(vertices);
@@ -81,9 +71,6 @@ void write_surface(const mesolens::MolecularSurface& surface, vtkPolyData* atoms
     patches->SetValue(v, static_cast<unsigned char>(surface.patch[std::size_t(v)]));
     from->SetId(v, surface.atom[std::size_t(v)]);
   }
-  vtkNew<vtkPoints> points;
-  points->SetData(coordinates);
-  output->SetPoints(points);
   vtkMesoSurfaceConversion::SetTriangles(surface.triangles, output);
 
   // Each numeric array of the atoms, carried to the vertices through their atoms.

@@ -117,13 +117,8 @@ void write_mesh(const mesolens::RibbonMesh& mesh, const mesolens::RibbonTrace& t
                 vtkPolyData* atoms, vtkPolyData* output)
 {
   const vtkIdType vertices = vtkIdType(mesh.vertex_count());
-  vtkNew<vtkFloatArray> coordinates;
-  coordinates->SetNumberOfComponents(3);
-  coordinates->SetNumberOfTuples(vertices);
-  vtkNew<vtkFloatArray> normals;
-  normals->SetName(vtkMesoArrayNames::Normals);
-  normals->SetNumberOfComponents(3);
-  normals->SetNumberOfTuples(vertices);
+  vtkSmartPointer<vtkFloatArray> normals =
+    vtkMesoSurfaceConversion::SetFloatPoints(mesh.points, mesh.normals, output);
   vtkNew<vtkIdList> from;
   from->SetNumberOfIds(vertices);
   vtkNew<vtkIdTypeArray> atom_ids;
@@ -139,8 +134,6 @@ void write_mesh(const mesolens::RibbonMesh& mesh, const mesolens::RibbonTrace& t
   classes->SetName(vtkMesoArrayNames::SecondaryStructure);
   classes->SetNumberOfValues(vertices);
   // Straight into the arrays' memory, in parallel: the mesh can have millions of vertices.
-  float* xyz = coordinates->GetPointer(0);
-  float* nxyz = normals->GetPointer(0);
   vtkIdType* atom_of = atom_ids->GetPointer(0);
   vtkIdType* source = from->GetPointer(0);
   int* residue_of = residue_ids->GetPointer(0);
@@ -149,12 +142,6 @@ void write_mesh(const mesolens::RibbonMesh& mesh, const mesolens::RibbonTrace& t
   vtkSMPTools::For(0, vertices, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType v = begin; v < end; ++v)
     {
-      const std::size_t i = 3 * std::size_t(v);
-      for (int d = 0; d < 3; ++d)
-      {
-        xyz[i + std::size_t(d)] = static_cast<float>(mesh.points[i + std::size_t(d)]);
-        nxyz[i + std::size_t(d)] = static_cast<float>(mesh.normals[i + std::size_t(d)]);
-      }
       const auto traced = std::size_t(mesh.vertex_residue_id[std::size_t(v)]);
       atom_of[v] = trace.trace_atom[traced];
       source[v] = trace.trace_atom[traced];
@@ -164,9 +151,6 @@ void write_mesh(const mesolens::RibbonMesh& mesh, const mesolens::RibbonTrace& t
         mesolens::from_dssp_letter(mesh.vertex_secondary_structure[std::size_t(v)]));
     }
   });
-  vtkNew<vtkPoints> points;
-  points->SetData(coordinates);
-  output->SetPoints(points);
   vtkMesoSurfaceConversion::SetTriangles(mesh.triangles, output);
 
   vtkPointData* out = output->GetPointData();

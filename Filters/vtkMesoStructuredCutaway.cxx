@@ -3,6 +3,7 @@
 
 #include "vtkMesoArrayNames.h"
 
+#include "vtkMesoIntValues.h"
 #include "vtkMesoParallelFor.h"
 #include "vtkMesoStamp.h"
 #include "vtkMesoSurfaceConversion.h"
@@ -27,7 +28,6 @@
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
-#include <vtkIntArray.h>
 #include <vtkPolyData.h>
 #include <vtkSMPTools.h>
 #include <vtkSmartPointer.h>
@@ -67,24 +67,8 @@ struct Molecules
   /// residue name of each molecule's first atom.
   void Group(vtkIdType atoms, vtkDataArray* ids, vtkStringArray* names)
   {
-    // The ids as ints: the array's own memory when it holds them (the readers' and the
-    // mapping's MoleculeId do), else a copy.
-    const int* id_values = nullptr;
     std::vector<int> id_copy;
-    auto* int_ids = vtkIntArray::FastDownCast(ids);
-    if (int_ids && int_ids->GetNumberOfComponents() == 1)
-    {
-      id_values = int_ids->GetPointer(0);
-    }
-    else if (ids)
-    {
-      id_copy.resize(static_cast<std::size_t>(atoms));
-      for (vtkIdType a = 0; a < atoms; ++a)
-      {
-        id_copy[static_cast<std::size_t>(a)] = static_cast<int>(ids->GetComponent(a, 0));
-      }
-      id_values = id_copy.data();
-    }
+    const int* id_values = vtkMesoIntValues(ids, id_copy);
     this->Groups = mesolens::group_molecules(id_values, static_cast<std::size_t>(atoms));
     this->Types.clear();
     this->TypeNames.clear();

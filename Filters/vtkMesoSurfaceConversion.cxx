@@ -70,6 +70,34 @@ void FromTriangleMesh(const mesolens::TriangleMesh& mesh, vtkPolyData* output)
   SetTriangles(mesh.triangles, output);
 }
 
+vtkSmartPointer<vtkFloatArray> SetFloatPoints(const std::vector<double>& points,
+                                              const std::vector<double>& normals,
+                                              vtkPolyData* output)
+{
+  const auto vertices = static_cast<vtkIdType>(points.size() / 3);
+  vtkNew<vtkFloatArray> coordinates;
+  coordinates->SetNumberOfComponents(3);
+  coordinates->SetNumberOfTuples(vertices);
+  auto normal_array = vtkSmartPointer<vtkFloatArray>::New();
+  normal_array->SetName(vtkMesoArrayNames::Normals);
+  normal_array->SetNumberOfComponents(3);
+  normal_array->SetNumberOfTuples(vertices);
+  // Straight into the arrays' memory, in parallel: meshes can have millions of vertices.
+  float* xyz = coordinates->GetPointer(0);
+  float* nxyz = normal_array->GetPointer(0);
+  vtkSMPTools::For(0, 3 * vertices, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      xyz[i] = static_cast<float>(points[std::size_t(i)]);
+      nxyz[i] = static_cast<float>(normals[std::size_t(i)]);
+    }
+  });
+  vtkNew<vtkPoints> float_points;
+  float_points->SetData(coordinates);
+  output->SetPoints(float_points);
+  return normal_array;
+}
+
 void SetTriangles(const std::vector<std::int64_t>& triangles, vtkPolyData* output)
 {
   const vtkIdType count = static_cast<vtkIdType>(triangles.size() / 3);

@@ -9,6 +9,8 @@
 #include "mesolens/mapping/membrane_mapper.h"
 #include "mesolens/mesh/triangle_mesh.h"
 
+#include <vtkFloatArray.h>
+#include <vtkSmartPointer.h>
 #include <vtkType.h>
 
 #include <array>
@@ -26,6 +28,12 @@ mesolens::TriangleMesh ToTriangleMesh(vtkPolyData* surface);
 
 /// Fills `output` with the points (double) and triangles of `mesh`.
 void FromTriangleMesh(const mesolens::TriangleMesh& mesh, vtkPolyData* output);
+
+/// Sets the points of `output` to `points` (3 per vertex) as floats, and returns `normals` (3 per
+/// vertex) as a float array named Normals for the caller to attach; both converted in parallel.
+vtkSmartPointer<vtkFloatArray> SetFloatPoints(const std::vector<double>& points,
+                                              const std::vector<double>& normals,
+                                              vtkPolyData* output);
 
 /// Sets the polygons of `output` to `triangles` (3 vertex indices each), written in parallel
 /// straight into the cell array's memory: meshes can have millions of triangles.

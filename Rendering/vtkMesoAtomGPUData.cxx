@@ -4,6 +4,7 @@
 #include "vtkMesoArrayNames.h"
 #include "vtkMesoElementLookupTable.h"
 #include "vtkMesoMembraneWarp.h"
+#include "vtkMesoIntValues.h"
 #include "vtkMesoParallelFor.h"
 
 #include "mesolens/molecules/elements.h"
@@ -106,8 +107,8 @@ void polynomial_bounds(vtkPolyData* atoms, const mesolens::MembraneWarp& warp, d
     for (int piece = 0; piece < m * m; ++piece)
     {
       mesolens::QuadraticWarp polynomial{};
-      std::copy_n(warp.polynomial_coefficients.data() + 30 * (first[tile] + std::size_t(piece)),
-                  30, polynomial.data());
+      std::copy_n(warp.polynomial_coefficients.data() + 30 * (first[tile] + std::size_t(piece)), 30,
+                  polynomial.data());
       double s_range[2], t_range[2];
       piece_range(piece % m, m, local[0], local[1], s_range);
       piece_range(piece / m, m, local[2], local[3], t_range);
@@ -150,13 +151,9 @@ bool molecule_slots(vtkPolyData* atoms, const mesolens::MembraneWarp& warp,
     return false;
   }
   const vtkIdType n = atoms->GetNumberOfPoints();
-  std::vector<int> id_values(static_cast<std::size_t>(n));
-  for (vtkIdType a = 0; a < n; ++a)
-  {
-    id_values[static_cast<std::size_t>(a)] = static_cast<int>(ids->GetComponent(a, 0));
-  }
+  std::vector<int> id_copy;
   const mesolens::MoleculeGroups groups =
-    mesolens::group_molecules(id_values.data(), id_values.size());
+    mesolens::group_molecules(vtkMesoIntValues(ids, id_copy), static_cast<std::size_t>(n));
   slots.resize(static_cast<std::size_t>(n));
   for (std::size_t m = 0; m < groups.count(); ++m)
   {
@@ -601,7 +598,8 @@ bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp_data, vt
 double vtkMesoAtomGPUData::LargestRadius(vtkPolyData* atoms, const Style& style)
 {
   const std::vector<float> radii = StyleRadii(style);
-  vtkDataArray* numbers = atoms ? atoms->GetPointData()->GetArray(vtkMesoArrayNames::AtomicNumber) : nullptr;
+  vtkDataArray* numbers =
+    atoms ? atoms->GetPointData()->GetArray(vtkMesoArrayNames::AtomicNumber) : nullptr;
   if (!numbers)
   {
     return radii[0];

@@ -5,6 +5,7 @@
 #include "mesolens/molecules/molecule_pbc.h"
 #include "mesolens/cutaway/surface_sampling.h"
 
+#include "common/detail/disjoint_sets.h"
 #include "cutaway/detail/angle_repair.h"
 #include "cutaway/detail/mid_sheet.h"
 #include "cutaway/detail/sheet_lattice.h"
@@ -54,27 +55,19 @@ double length(const std::array<double, 3>& a, const std::array<double, 3>& b)
 
 std::size_t component_count(const TriangleMesh& mesh)
 {
-  std::vector<std::int64_t> parent(mesh.vertex_count());
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto root = [&](std::int64_t v) {
-    while (parent[std::size_t(v)] != v)
-    {
-      v = parent[std::size_t(v)] = parent[std::size_t(parent[std::size_t(v)])];
-    }
-    return v;
-  };
+  detail::DisjointSets vertices(mesh.vertex_count());
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
   {
     for (std::size_t k = 1; k < 3; ++k)
     {
-      parent[std::size_t(root(mesh.triangles[3 * t + k]))] = root(mesh.triangles[3 * t]);
+      vertices.join(std::size_t(mesh.triangles[3 * t + k]), std::size_t(mesh.triangles[3 * t]));
     }
   }
   std::size_t count = 0;
   std::vector<std::uint8_t> seen(mesh.vertex_count(), 0);
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
   {
-    const std::size_t r = std::size_t(root(mesh.triangles[3 * t]));
+    const std::size_t r = vertices.root(std::size_t(mesh.triangles[3 * t]));
     count += seen[r] ? 0 : 1;
     seen[r] = 1;
   }

@@ -2,7 +2,7 @@
 #include "mesolens/mapping/geodesic_disk.h"
 
 #include "mesolens/common/errors.h"
-#include "mapping/detail/disjoint_sets.h"
+#include "common/detail/disjoint_sets.h"
 #include "mapping/detail/edge_key.h"
 #include "mapping/detail/local_surface.h"
 #include "mapping/detail/surface_levels.h"

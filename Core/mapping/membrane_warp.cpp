@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 
 namespace mesolens {
 
@@ -19,8 +20,10 @@ MembranePatch MembraneWarp::frame() const
   return patch;
 }
 
-MembraneWarp membrane_warp(const MapResult& result, const MembranePatch& patch,
-                           const MapRequest& request)
+namespace {
+/// The warp's patch frame, tiling and place on the surface: everything but the method's arrays.
+MembraneWarp warp_without_arrays(const MapResult& result, const MembranePatch& patch,
+                                 const MapRequest& request)
 {
   MembraneWarp warp;
   const MappingParams& params = request.mapping;
@@ -46,15 +49,37 @@ MembraneWarp membrane_warp(const MapResult& result, const MembranePatch& patch,
       warp.seed_normal = frame.normal;
     }
   }
-  const MappedMembrane& mapped = result.mapped;
-  warp.polynomial_coefficients = mapped.polynomial_coefficients;
-  warp.polynomial_splits = mapped.polynomial_splits;
-  warp.polynomial_rms_residual = mapped.polynomial_rms_residual;
-  warp.polynomial_max_residual = mapped.polynomial_max_residual;
-  warp.tile_fallback = mapped.tile_fallback;
-  warp.instance_matrices = mapped.instance_matrices;
-  warp.instance_molecules = mapped.instance_molecules;
-  warp.instance_tiles = mapped.instance_tiles;
+  return warp;
+}
+
+/// The method's arrays of `mapped`, copied from an lvalue, moved from an rvalue.
+template<typename Mapped>
+void take_arrays(Mapped&& mapped, MembraneWarp& warp)
+{
+  warp.polynomial_coefficients = std::forward<Mapped>(mapped).polynomial_coefficients;
+  warp.polynomial_splits = std::forward<Mapped>(mapped).polynomial_splits;
+  warp.polynomial_rms_residual = std::forward<Mapped>(mapped).polynomial_rms_residual;
+  warp.polynomial_max_residual = std::forward<Mapped>(mapped).polynomial_max_residual;
+  warp.tile_fallback = std::forward<Mapped>(mapped).tile_fallback;
+  warp.instance_matrices = std::forward<Mapped>(mapped).instance_matrices;
+  warp.instance_molecules = std::forward<Mapped>(mapped).instance_molecules;
+  warp.instance_tiles = std::forward<Mapped>(mapped).instance_tiles;
+}
+} // namespace
+
+MembraneWarp membrane_warp(const MapResult& result, const MembranePatch& patch,
+                           const MapRequest& request)
+{
+  MembraneWarp warp = warp_without_arrays(result, patch, request);
+  take_arrays(result.mapped, warp);
+  return warp;
+}
+
+MembraneWarp membrane_warp(MapResult&& result, const MembranePatch& patch,
+                           const MapRequest& request)
+{
+  MembraneWarp warp = warp_without_arrays(result, patch, request);
+  take_arrays(std::move(result.mapped), warp);
   return warp;
 }
 
@@ -125,8 +150,7 @@ void check_drawable(const MembraneWarp& warp)
       return;
     case MappingMethod::MoleculeInstancing: {
       const std::size_t instances = warp.tile_count() * molecules_per_tile(warp);
-      if (warp.instance_molecules.size() != instances ||
-          warp.instance_tiles.size() != instances ||
+      if (warp.instance_molecules.size() != instances || warp.instance_tiles.size() != instances ||
           warp.instance_matrices.size() != 16 * instances || instances == 0)
       {
         throw InvalidInput("the instancing warp should hold " + std::to_string(instances) +

@@ -1,41 +1,18 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "mesolens/mesh/mesh_report.h"
 
+#include "common/detail/disjoint_sets.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numeric>
 #include <sstream>
 #include <unordered_map>
 
 namespace mesolens {
 
 namespace {
-class DisjointSets
-{
-public:
-  explicit DisjointSets(std::size_t count)
-    : Parent(count)
-  {
-    std::iota(this->Parent.begin(), this->Parent.end(), std::size_t(0));
-  }
-  std::size_t find(std::size_t x)
-  {
-    while (this->Parent[x] != x)
-    {
-      this->Parent[x] = this->Parent[this->Parent[x]];
-      x = this->Parent[x];
-    }
-    return x;
-  }
-  void unite(std::size_t a, std::size_t b)
-  {
-    this->Parent[this->find(a)] = this->find(b);
-  }
-
-private:
-  std::vector<std::size_t> Parent;
-};
+using detail::DisjointSets;
 
 /// One directed use of an undirected edge by a triangle.
 struct EdgeUse
@@ -218,11 +195,11 @@ EdgeLinks link_across_edges(const TriangleMeshView& mesh, const std::vector<Edge
       {
         ++report.inconsistently_oriented_edges;
       }
-      links.triangles.unite(uses[i].triangle, uses[i + 1].triangle);
-      links.corners.unite(corner(uses[i].low, uses[i].triangle),
-                          corner(uses[i].low, uses[i + 1].triangle));
-      links.corners.unite(corner(uses[i].high, uses[i].triangle),
-                          corner(uses[i].high, uses[i + 1].triangle));
+      links.triangles.join(uses[i].triangle, uses[i + 1].triangle);
+      links.corners.join(corner(uses[i].low, uses[i].triangle),
+                         corner(uses[i].low, uses[i + 1].triangle));
+      links.corners.join(corner(uses[i].high, uses[i].triangle),
+                         corner(uses[i].high, uses[i + 1].triangle));
     }
     else
     {
@@ -231,7 +208,7 @@ EdgeLinks link_across_edges(const TriangleMeshView& mesh, const std::vector<Edge
       report.vertex_is_non_manifold[std::size_t(uses[i].high)] = 1;
       for (std::size_t k = i + 1; k < j; ++k)
       {
-        links.triangles.unite(uses[i].triangle, uses[k].triangle);
+        links.triangles.join(uses[i].triangle, uses[k].triangle);
       }
     }
     i = j;
@@ -254,7 +231,7 @@ void mark_pinched_vertices(const TriangleMeshView& mesh, const std::vector<bool>
     for (std::size_t k = 0; k < 3; ++k)
     {
       const auto v = std::size_t(mesh.triangles[3 * t + k]);
-      const auto root = std::int64_t(corners.find(3 * t + k));
+      const auto root = std::int64_t(corners.root(3 * t + k));
       if (fan_of_vertex[v] < 0)
       {
         fan_of_vertex[v] = root;
@@ -281,12 +258,12 @@ std::size_t boundary_loops(const std::vector<std::pair<std::int64_t, std::int64_
   DisjointSets boundary_sets(boundary_vertex.size());
   for (const auto& edge : boundary)
   {
-    boundary_sets.unite(boundary_vertex[edge.first], boundary_vertex[edge.second]);
+    boundary_sets.join(boundary_vertex[edge.first], boundary_vertex[edge.second]);
   }
   std::size_t loops = 0;
   for (std::size_t v = 0; v < boundary_vertex.size(); ++v)
   {
-    loops += boundary_sets.find(v) == v ? 1 : 0;
+    loops += boundary_sets.root(v) == v ? 1 : 0;
   }
   return loops;
 }
@@ -304,7 +281,7 @@ void count_components(const TriangleMeshView& mesh, const std::vector<bool>& val
   report.unreferenced_vertices = mesh.point_count - referenced_count;
   for (std::size_t t = 0; t < mesh.triangle_count; ++t)
   {
-    report.components += (valid[t] && triangles.find(t) == t) ? 1 : 0;
+    report.components += (valid[t] && triangles.root(t) == t) ? 1 : 0;
   }
   report.euler_characteristic =
     long(referenced_count) - long(report.edges) + long(scan.valid_triangles);

@@ -18,6 +18,7 @@
 #include "vtkMesoStructuredCutaway.h"
 #include "vtkMesoTrajectoryReader.h"
 
+#include "mesolens/cutaway/structure_mesh.h"
 #include "mesolens/mesh/triangle_mesh.h"
 
 #include <vtkDataArray.h>
@@ -34,7 +35,6 @@
 #include <cstdio>
 #include <cstring>
 #include <dirent.h>
-#include <numeric>
 #include <set>
 #include <string>
 #include <vector>
@@ -61,33 +61,6 @@ std::vector<std::string> membrane_files(const std::string& folder)
   }
   std::sort(names.begin(), names.end());
   return names;
-}
-
-/// Connected components of the triangles (through shared vertices).
-std::size_t component_count(const mesolens::TriangleMesh& mesh)
-{
-  std::vector<std::int64_t> parent(mesh.vertex_count());
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto root = [&](std::int64_t v) {
-    while (parent[std::size_t(v)] != v)
-    {
-      v = parent[std::size_t(v)] = parent[std::size_t(parent[std::size_t(v)])];
-    }
-    return v;
-  };
-  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
-  {
-    for (int k = 1; k < 3; ++k)
-    {
-      parent[std::size_t(root(mesh.triangles[3 * t + k]))] = root(mesh.triangles[3 * t]);
-    }
-  }
-  std::set<std::int64_t> roots;
-  for (std::size_t t = 0; t < mesh.triangle_count(); ++t)
-  {
-    roots.insert(root(mesh.triangles[3 * t]));
-  }
-  return roots.size();
 }
 
 /// The triangles of a polydata as a Core mesh.
@@ -176,7 +149,7 @@ void measure(const std::string& label, vtkPolyData* atoms, int vertices, int rep
               "file (%.3f s)\n",
               static_cast<long long>(structure->GetNumberOfPoints()),
               double(structure->GetNumberOfPoints()) / vertices, field(vtkMesoArrayNames::MinAngle),
-              field(vtkMesoArrayNames::MaxAngle), component_count(mesh),
+              field(vtkMesoArrayNames::MaxAngle), mesolens::mesh_quality(mesh).components,
               mesolens::boundary_loops(mesh).size(), bounds[1] - bounds[0], bounds[3] - bounds[2],
               bounds[5] - bounds[4], molecules, seconds, seconds / read_seconds, read_seconds);
 }

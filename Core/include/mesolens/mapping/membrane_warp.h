@@ -69,8 +69,12 @@ struct MembraneWarp
   MembranePatch frame() const;
 };
 
-/// The warp of a mapping: `patch` is the patch that was mapped, `request` what was asked.
+/// The warp of a mapping: `patch` is the patch that was mapped, `request` what was asked. From
+/// an rvalue result the method's arrays (matrices, coefficients) are moved, not copied: a
+/// mapping for the GPU hands them on once per frame.
 MembraneWarp membrane_warp(const MapResult& result, const MembranePatch& patch,
+                           const MapRequest& request);
+MembraneWarp membrane_warp(MapResult&& result, const MembranePatch& patch,
                            const MapRequest& request);
 
 /// Per tile of a polynomial warp, the index of its first piece, and the total number of pieces

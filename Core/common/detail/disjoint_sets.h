@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Union-find over 0 .. n - 1 (private).
+// Union-find over 0 .. n - 1 (private to MesoLensCore; any subsystem may use it).
 #pragma once
 
 #include <cstddef>

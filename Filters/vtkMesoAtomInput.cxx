@@ -31,13 +31,13 @@ bool vtkMesoAtomInput::ReadLayout(vtkPolyData* atoms)
   return true;
 }
 
-const float* vtkMesoAtomInput::Positions(vtkPolyData* atoms)
+mesolens::PointSpan<const float> vtkMesoAtomInput::Positions(vtkPolyData* atoms)
 {
+  const vtkIdType n = atoms->GetNumberOfPoints();
   if (auto* floats = vtkFloatArray::FastDownCast(atoms->GetPoints()->GetData()))
   {
-    return floats->GetPointer(0);
+    return { floats->GetPointer(0), std::size_t(n) };
   }
-  const vtkIdType n = atoms->GetNumberOfPoints();
   this->PositionCopy.resize(3 * std::size_t(n));
   for (vtkIdType a = 0; a < n; ++a)
   {
@@ -48,7 +48,7 @@ const float* vtkMesoAtomInput::Positions(vtkPolyData* atoms)
       this->PositionCopy[3 * std::size_t(a) + std::size_t(d)] = static_cast<float>(p[d]);
     }
   }
-  return this->PositionCopy.data();
+  return this->PositionCopy;
 }
 
 const std::uint8_t* vtkMesoAtomInput::Bytes(vtkPolyData* atoms, const char* name)

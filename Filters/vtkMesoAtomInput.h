@@ -6,6 +6,7 @@
 
 #include "vtkMesoStamp.h"
 
+#include "mesolens/common/point_span.h"
 #include "mesolens/molecules/atom_table.h"
 
 #include <array>
@@ -30,9 +31,9 @@ public:
     return this->Table;
   }
 
-  /// This frame's positions, 3 floats per atom: the points' own memory when they are floats,
-  /// else a copy held here until the next call.
-  const float* Positions(vtkPolyData* atoms);
+  /// This frame's positions, one per atom: the points' own memory when they are floats, else a
+  /// copy held here until the next call.
+  mesolens::PointSpan<const float> Positions(vtkPolyData* atoms);
 
   /// The point array `name` as one byte per atom (the array's memory when it holds unsigned
   /// chars, else a copy held here until the next call); nullptr when absent.

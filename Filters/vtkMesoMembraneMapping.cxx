@@ -80,8 +80,7 @@ PatchData read_patch(vtkPolyData* atoms)
     height += p[2] / double(n);
   }
   mesolens::MembranePatch& patch = data.patch;
-  patch.positions = data.positions.data();
-  patch.atom_count = static_cast<std::size_t>(n);
+  patch.positions = data.positions;
   patch.centre_height = height;
   vtkDataArray* box = atoms->GetFieldData()->GetArray(vtkMesoArrayNames::PeriodicBoxVectors);
   if (box && box->GetNumberOfComponents() == 9)

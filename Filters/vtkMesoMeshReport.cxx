@@ -60,8 +60,7 @@ bool vtkMesoMeshReport::Analyze(vtkPolyData* mesh)
     }
   }
   mesolens::TriangleMeshView view;
-  view.points = points.data();
-  view.point_count = static_cast<std::size_t>(point_count);
+  view.points = points;
   view.triangles = triangles.data();
   view.triangle_count = triangles.size() / 3;
   const mesolens::MeshReport report = mesolens::mesh_report(view);

@@ -121,7 +121,8 @@ struct Molecules
   {
     if (auto* floats = vtkFloatArray::SafeDownCast(points->GetData()))
     {
-      this->Centres = mesolens::molecule_centres(this->Groups, floats->GetPointer(0));
+      this->Centres = mesolens::molecule_centres(
+        this->Groups, { floats->GetPointer(0), std::size_t(points->GetNumberOfPoints()) });
     }
     else
     {
@@ -130,7 +131,7 @@ struct Molecules
       {
         points->GetPoint(a, coordinates.data() + 3 * a);
       }
-      this->Centres = mesolens::molecule_centres(this->Groups, coordinates.data());
+      this->Centres = mesolens::molecule_centres(this->Groups, coordinates);
     }
     this->Shifts.clear();
     if (box)
@@ -430,7 +431,7 @@ struct vtkMesoStructuredCutaway::Internals
           double x[3] = { p[0], p[1], p[2] };
           return cut && cut->FunctionValue(x) <= 0;
         },
-        settings, this->Groups.Centres.data());
+        settings, this->Groups.Centres);
       this->OrderFrom = order_from;
       this->HasOrder = true;
       ++this->Orderings;

@@ -64,8 +64,8 @@ struct vtkMesoTrajectoryReader::State
     }
     if (make_whole)
     {
-      mesolens::make_molecules_whole(frame.positions.data(), this->Topology.molecule_ids.data(),
-                                     this->Topology.size(), frame.box);
+      mesolens::make_molecules_whole(frame.positions, this->Topology.molecule_ids.data(),
+                                     frame.box);
     }
     return frame;
   }
@@ -82,7 +82,7 @@ struct vtkMesoTrajectoryReader::State
       for (std::size_t k = this->Continuity->known_frames(); k < index; ++k)
       {
         mesolens::TrajectoryFrame earlier = this->WholeFrame(k, make_whole);
-        this->Continuity->add_frame(k, earlier.positions.data(), earlier.box);
+        this->Continuity->add_frame(k, earlier.positions, earlier.box);
         if (!visited(k))
         {
           return false;
@@ -94,11 +94,11 @@ struct vtkMesoTrajectoryReader::State
     {
       if (this->Continuity->known_frames() == index)
       {
-        this->Continuity->add_frame(index, frame.positions.data(), frame.box);
+        this->Continuity->add_frame(index, frame.positions, frame.box);
       }
       else
       {
-        this->Continuity->apply(index, frame.positions.data(), frame.box);
+        this->Continuity->apply(index, frame.positions, frame.box);
       }
     }
     return true;
@@ -136,8 +136,7 @@ mesolens::AtomTable load_topology(const std::string& path,
   mesolens::assign_residues(table);
   mesolens::assign_molecules(table);
   mesolens::AtomTable whole = table;
-  mesolens::make_molecules_whole(whole.positions.data(), whole.molecule_ids.data(), whole.size(),
-                                 whole.box);
+  mesolens::make_molecules_whole(whole.positions, whole.molecule_ids.data(), whole.box);
   const bool elements_given = mesolens::file_extension(path) != "gro";
   mesolens::build_connectivity(whole, explicit_bonds, params, elements_given);
   table.bonds = whole.bonds;

@@ -262,7 +262,7 @@ bool vtkMesoTrajectoryRefinement::LoadKeyFrames(std::size_t frame, vtkInformatio
     vtkErrorMacro("Cannot refine frame " << frame << ": " << e.what());
     return false;
   }
-  const std::vector<float>* previous = nullptr; // neighbour towards the nearest key frame
+  const std::vector<float>* previous = nullptr;        // neighbour towards the nearest key frame
   std::unique_ptr<mesolens::MoleculeGroups> molecules; // by MoleculeId, when the input has one
   const std::vector<std::size_t> order = loading_order(frames.Stencil);
   for (std::size_t step = 0; step < order.size(); ++step)
@@ -307,8 +307,7 @@ bool vtkMesoTrajectoryRefinement::LoadKeyFrames(std::size_t frame, vtkInformatio
       {
         previous = &frames.Positions[order[0]]; // the first frame before the nearest one
       }
-      mesolens::unwrap_to_reference(p.data(), previous->data(), p.size() / 3, periodic_box(input),
-                                    molecules.get(),
+      mesolens::unwrap_to_reference(p, *previous, periodic_box(input), molecules.get(),
                                     vtkMesoParallelFor::Get());
     }
     previous = &p;

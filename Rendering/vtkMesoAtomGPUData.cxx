@@ -331,19 +331,19 @@ bool vtkMesoAtomGPUData::UpdatePositions(vtkPolyData* atoms, vtkMapper* mapper,
   bool regroup = this->Cells.atom_of_slot.size() != n;
   if (!regroup)
   {
-    mesolens::gather_cell_positions(input, this->Cells, this->PositionStorage.data(),
+    mesolens::gather_cell_positions({ input, n }, this->Cells, this->PositionStorage,
                                     this->CellBoxes, vtkMesoParallelFor::Get());
     regroup = mesolens::total_cell_diagonal(this->CellBoxes) > 1.5 * this->GroupedDiagonal;
   }
   if (regroup)
   {
-    this->Cells = mesolens::group_atoms_into_cells(input, n, atoms_per_cell);
+    this->Cells = mesolens::group_atoms_into_cells({ input, n }, atoms_per_cell);
     this->SlotOfAtom.resize(n);
     for (std::size_t slot = 0; slot < n; ++slot)
     {
       this->SlotOfAtom[this->Cells.atom_of_slot[slot]] = static_cast<std::uint32_t>(slot);
     }
-    mesolens::gather_cell_positions(input, this->Cells, this->PositionStorage.data(),
+    mesolens::gather_cell_positions({ input, n }, this->Cells, this->PositionStorage,
                                     this->CellBoxes, vtkMesoParallelFor::Get());
     this->GroupedDiagonal = mesolens::total_cell_diagonal(this->CellBoxes);
     ++this->CellsVersion;

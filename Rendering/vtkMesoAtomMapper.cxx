@@ -750,8 +750,9 @@ void vtkMesoAtomMapper::DrawVisibleCells(vtkRenderer* ren, vtkActor* act, vtkSha
     in.Pyramid.Build(nullptr, 0, 0);
   }
   const mesolens::CellVisibility found = mesolens::test_atom_visibility(
-    in.Pyramid, view, data.PositionData, data.Types.data(), 2, data.Radii.data(), data.Cells,
-    data.CellBoxes, cells, padding, history.Flags, vtkMesoParallelFor::Get());
+    in.Pyramid, view, { data.PositionData, std::size_t(data.AtomCount) }, data.Types.data(), 2,
+    data.Radii.data(), data.Cells, data.CellBoxes, cells, padding, history.Flags,
+    vtkMesoParallelFor::Get());
   in.DrawAtoms(window, spheres, 1, history.Flags, mesolens::NEWLY_SEEN, cells, found.newly_seen);
   in.LastDrawnAtoms = static_cast<vtkIdType>(found.drawn_first + found.drawn_after);
   history.Seen = found.seen;

@@ -74,12 +74,12 @@ std::size_t component_count(const TriangleMesh& mesh)
   return count;
 }
 
-void require_valid(const std::vector<double>& points, const StructureMeshParams& params)
+void require_valid(PointSpan<const double> points, const StructureMeshParams& params)
 {
-  if (points.size() % 3 != 0 || points.size() < 12)
+  if (points.size() < 4)
   {
-    throw InvalidInput("a structure mesh needs at least 4 points (3 coordinates each); got " +
-                       std::to_string(points.size()) + " values");
+    throw InvalidInput("a structure mesh needs at least 4 points; got " +
+                       std::to_string(points.size()));
   }
   if (params.edge_length < 0 || !std::isfinite(params.edge_length) ||
       !std::isfinite(params.mid_surface_radius) ||
@@ -90,9 +90,9 @@ void require_valid(const std::vector<double>& points, const StructureMeshParams&
                        std::to_string(params.vertices) + " vertices, edge length " +
                        std::to_string(params.edge_length));
   }
-  for (std::size_t i = 0; i < points.size(); ++i)
+  for (std::size_t i = 0; i < points.value_count(); ++i)
   {
-    if (!std::isfinite(points[i]))
+    if (!std::isfinite(points.data()[i]))
     {
       throw InvalidInput("point " + std::to_string(i / 3) + " of the structure is not finite");
     }
@@ -462,12 +462,12 @@ MeshQuality mesh_quality(const TriangleMesh& mesh)
   return quality;
 }
 
-TriangleMesh structure_mesh(const std::vector<double>& points, const StructureMeshParams& params,
+TriangleMesh structure_mesh(PointSpan<const double> points, const StructureMeshParams& params,
                             MeshQuality* quality, const ParallelFor& parallel_for)
 {
   require_valid(points, params);
   // A membrane split by the box along its normal (or a vesicle by its faces) in one piece.
-  std::vector<double> whole = points;
+  std::vector<double> whole(points.data(), points.data() + points.value_count());
   if (params.box.is_set())
   {
     const auto shifts = assembly_shifts(points, params.box);

@@ -91,18 +91,16 @@ bool CutRegion::contains(const std::array<double, 3>& point) const
   return false;
 }
 
-StructuredCutaway::StructuredCutaway(const TriangleMesh& structure,
-                                     const std::vector<double>& centres, std::vector<int> types,
-                                     const ParallelFor& parallel_for)
-  : Centres(centres)
+StructuredCutaway::StructuredCutaway(const TriangleMesh& structure, PointSpan<const double> centres,
+                                     std::vector<int> types, const ParallelFor& parallel_for)
+  : Centres(centres.data(), centres.data() + centres.value_count())
   , Types(std::move(types))
 {
-  if (centres.empty() || centres.size() % 3 != 0)
+  if (centres.empty())
   {
-    throw InvalidInput("the cutaway needs molecule centres (3 coordinates each); got " +
-                       std::to_string(centres.size()) + " values");
+    throw InvalidInput("the cutaway needs molecule centres; got none");
   }
-  const std::size_t count = centres.size() / 3;
+  const std::size_t count = centres.size();
   if (!this->Types.empty() && this->Types.size() != count)
   {
     throw InvalidInput("the cutaway got " + std::to_string(this->Types.size()) +
@@ -112,9 +110,9 @@ StructuredCutaway::StructuredCutaway(const TriangleMesh& structure,
   {
     this->Types.assign(count, 0);
   }
-  for (std::size_t i = 0; i < centres.size(); ++i)
+  for (std::size_t i = 0; i < centres.value_count(); ++i)
   {
-    if (!std::isfinite(centres[i]))
+    if (!std::isfinite(centres.data()[i]))
     {
       throw InvalidInput("molecule " + std::to_string(i / 3) + " has a non-finite centre");
     }
@@ -128,8 +126,7 @@ StructuredCutaway::StructuredCutaway(const TriangleMesh& structure,
     for (std::size_t m = begin; m < end; ++m)
     {
       const SurfacePoint nearest =
-        locator.closest_point({ centres[3 * m], centres[3 * m + 1], centres[3 * m + 2] },
-                              m > begin ? &previous : nullptr);
+        locator.closest_point(centres.point(m), m > begin ? &previous : nullptr);
       previous = nearest;
       const auto& b = nearest.barycentric;
       this->MinimalBarycentric[m] = std::clamp(std::min({ b[0], b[1], b[2] }), 0.0, 1.0 / 3.0);
@@ -150,7 +147,7 @@ std::vector<double> StructuredCutaway::priorities(double k) const
 
 std::vector<std::uint8_t> StructuredCutaway::visibility(const CutRegion& cut,
                                                         const CutawayParams& settings,
-                                                        const double* centres) const
+                                                        PointSpan<const double> centres) const
 {
   return this->visibility([&cut](const std::array<double, 3>& p) { return cut.contains(p); },
                           settings, centres);
@@ -158,7 +155,7 @@ std::vector<std::uint8_t> StructuredCutaway::visibility(const CutRegion& cut,
 
 std::vector<std::uint8_t> StructuredCutaway::visibility(
   const std::function<bool(const std::array<double, 3>&)>& inside_cut,
-  const CutawayParams& settings, const double* centres) const
+  const CutawayParams& settings, PointSpan<const double> centres) const
 {
   require_fractions(settings);
   return this->visibility(this->removal_order(inside_cut, settings, centres), settings);
@@ -166,11 +163,17 @@ std::vector<std::uint8_t> StructuredCutaway::visibility(
 
 RemovalOrder StructuredCutaway::removal_order(
   const std::function<bool(const std::array<double, 3>&)>& inside_cut,
-  const CutawayParams& settings, const double* centres) const
+  const CutawayParams& settings, PointSpan<const double> centres) const
 {
   const std::vector<double> priority = this->priorities(settings.k);
-  const double* at = centres ? centres : this->Centres.data();
   const std::size_t count = this->molecule_count();
+  if (!centres.empty() && centres.size() != count)
+  {
+    throw InvalidInput("the cutaway got " + std::to_string(centres.size()) +
+                       " molecule centres for " + std::to_string(count) + " molecules");
+  }
+  const PointSpan<const double> at =
+    centres.empty() ? PointSpan<const double>(this->Centres) : centres;
 
   // Sort keys made once, smallest first: the priority negated (1 - priority when inverted;
   // none when random; a weighted random key when probabilistic), then the seeded random key,
@@ -192,7 +195,7 @@ RemovalOrder StructuredCutaway::removal_order(
   std::map<int, std::vector<Key>> inside;
   for (std::size_t m = 0; m < count; ++m)
   {
-    if (inside_cut({ at[3 * m], at[3 * m + 1], at[3 * m + 2] }))
+    if (inside_cut(at.point(m)))
     {
       const std::uint64_t random = random_key(settings.seed, m);
       const double chance = settings.inverted ? 1.0 - priority[m] : priority[m];

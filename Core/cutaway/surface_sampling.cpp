@@ -35,15 +35,15 @@ const std::array<std::array<int, 3>, 27> neighbour_offsets = [] {
 class PointGrid
 {
 public:
-  PointGrid(const std::vector<double>& points, double cell_size)
+  PointGrid(PointSpan<const double> points, double cell_size)
     : Points(points)
     , Size(cell_size)
   {
-    const std::size_t n = points.size() / 3;
+    const std::size_t n = points.size();
     std::vector<std::pair<std::uint64_t, std::uint32_t>> keyed(n);
     for (std::size_t i = 0; i < n; ++i)
     {
-      keyed[i] = { grid_cell_key(this->cell_of(&points[3 * i])), static_cast<std::uint32_t>(i) };
+      keyed[i] = { grid_cell_key(this->cell_of(points[i])), static_cast<std::uint32_t>(i) };
     }
     std::sort(keyed.begin(), keyed.end());
     this->Order.resize(n);
@@ -81,7 +81,7 @@ public:
           for (std::size_t k = found->second.first; k < found->second.second; ++k)
           {
             const std::uint32_t i = this->Order[k];
-            const double* q = &this->Points[3 * i];
+            const double* q = this->Points[i];
             const double d2 = (p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
               (p[2] - q[2]) * (p[2] - q[2]);
             visit(i, d2);
@@ -90,23 +90,22 @@ public:
   }
 
 private:
-  const std::vector<double>& Points;
+  PointSpan<const double> Points;
   double Size;
   std::vector<std::uint32_t> Order;
   std::unordered_map<std::uint64_t, std::pair<std::size_t, std::size_t>> Ranges;
 };
 
-void require_cloud(const std::vector<double>& points, std::size_t minimum)
+void require_cloud(PointSpan<const double> points, std::size_t minimum)
 {
-  if (points.size() % 3 != 0 || points.size() / 3 < minimum)
+  if (points.size() < minimum)
   {
     throw InvalidInput("the point cloud needs at least " + std::to_string(minimum) +
-                       " points of 3 coordinates; got " + std::to_string(points.size()) +
-                       " values");
+                       " points; got " + std::to_string(points.size()));
   }
-  for (std::size_t i = 0; i < points.size(); ++i)
+  for (std::size_t i = 0; i < points.value_count(); ++i)
   {
-    if (!std::isfinite(points[i]))
+    if (!std::isfinite(points.data()[i]))
     {
       throw InvalidInput("point " + std::to_string(i / 3) + " of the cloud is not finite");
     }
@@ -114,22 +113,22 @@ void require_cloud(const std::vector<double>& points, std::size_t minimum)
 }
 } // namespace
 
-double median_spacing(const std::vector<double>& points, std::size_t probes)
+double median_spacing(PointSpan<const double> points, std::size_t probes)
 {
   require_cloud(points, 2);
-  const std::size_t n = points.size() / 3;
+  const std::size_t n = points.size();
   // A first cell size from the bounding box as if the points covered its largest face evenly.
   std::array<double, 3> low{}, high{};
   for (int d = 0; d < 3; ++d)
   {
-    low[d] = high[d] = points[d];
+    low[d] = high[d] = points[0][d];
   }
   for (std::size_t i = 0; i < n; ++i)
   {
     for (int d = 0; d < 3; ++d)
     {
-      low[d] = std::min(low[d], points[3 * i + d]);
-      high[d] = std::max(high[d], points[3 * i + d]);
+      low[d] = std::min(low[d], points[i][d]);
+      high[d] = std::max(high[d], points[i][d]);
     }
   }
   std::array<double, 3> extent{ high[0] - low[0], high[1] - low[1], high[2] - low[2] };
@@ -150,7 +149,7 @@ double median_spacing(const std::vector<double>& points, std::size_t probes)
     // Widen the search until a neighbour is found and every closer one is surely seen.
     for (int reach = 1; reach <= 8; reach *= 2)
     {
-      grid.for_each_near(&points[3 * i], reach, [&](std::uint32_t j, double d2) {
+      grid.for_each_near(points[i], reach, [&](std::uint32_t j, double d2) {
         if (j != i && d2 > 0)
         {
           best = std::min(best, d2);
@@ -174,7 +173,7 @@ double median_spacing(const std::vector<double>& points, std::size_t probes)
   return nearest[nearest.size() / 2];
 }
 
-std::vector<double> poisson_disk_subset(const std::vector<double>& points, double spacing)
+std::vector<double> poisson_disk_subset(PointSpan<const double> points, double spacing)
 {
   require_cloud(points, 0);
   if (!(spacing > 0) || !std::isfinite(spacing))
@@ -185,9 +184,9 @@ std::vector<double> poisson_disk_subset(const std::vector<double>& points, doubl
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells;
   std::vector<double> kept;
   const double limit = spacing * spacing;
-  for (std::size_t i = 0; i < points.size(); i += 3)
+  for (std::size_t i = 0; i < points.size(); ++i)
   {
-    const double* p = &points[i];
+    const double* p = points[i];
     const Cell c = grid_cell({ p[0], p[1], p[2] }, spacing);
     bool free = true;
     for (std::size_t o = 0; o < neighbour_offsets.size() && free; ++o)
@@ -219,7 +218,7 @@ std::vector<double> poisson_disk_subset(const std::vector<double>& points, doubl
   return kept;
 }
 
-std::vector<double> mid_surface_points(const std::vector<double>& points, double spacing,
+std::vector<double> mid_surface_points(PointSpan<const double> points, double spacing,
                                        double radius, int iterations,
                                        const ParallelFor& parallel_for)
 {
@@ -244,9 +243,9 @@ std::vector<double> mid_surface_points(const std::vector<double>& points, double
         grid.for_each_near(p, 1, [&](std::uint32_t i, double d2) {
           if (d2 <= limit)
           {
-            sum[0] += points[3 * i];
-            sum[1] += points[3 * i + 1];
-            sum[2] += points[3 * i + 2];
+            sum[0] += points[i][0];
+            sum[1] += points[i][1];
+            sum[2] += points[i][2];
             count += 1;
           }
         });

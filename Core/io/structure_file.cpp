@@ -449,11 +449,10 @@ bool build_connectivity(AtomTable& table, const std::vector<Bond>& explicit_bond
   assign_residues(table);
   assign_molecules(table);
   BondPerceptionInput input;
-  input.positions = table.positions.data();
+  input.positions = table.positions;
   input.atomic_numbers = table.atomic_numbers.data();
   input.molecule_ids = table.molecule_ids.data();
   input.alt_locs = table.alt_locs.data();
-  input.atom_count = table.size();
   BondPerceptionParams bond_params = params.bonds;
   bond_params.coarse_grained = params.force_coarse_grained;
   std::vector<Bond> perceived;

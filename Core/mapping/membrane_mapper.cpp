@@ -37,7 +37,7 @@ struct ChartFailure
 double molecule_footprint(const MembranePatch& patch)
 {
   const std::size_t molecules =
-    patch.molecule_ids ? group_molecules(patch.molecule_ids, patch.atom_count).count() : 0;
+    patch.molecule_ids ? group_molecules(patch.molecule_ids, patch.atom_count()).count() : 0;
   const double area = std::abs(patch.a[0] * patch.b[1] - patch.a[1] * patch.b[0]);
   const double per_leaflet = std::max<double>(1.0, double(molecules) / 2);
   // Without molecule ids: a typical lipid's 60 Å^2 if the patch is in Å, capped by the cell.
@@ -291,7 +291,7 @@ void check_request(const MembranePatch& patch, const MapRequest& request)
     throw InvalidInput("the largest stretch accepted must exceed 1, got " +
                        format_number(request.max_stretch));
   }
-  if (patch.atom_count == 0)
+  if (patch.atom_count() == 0)
   {
     throw InvalidInput("the membrane patch has no atoms");
   }

@@ -110,13 +110,13 @@ void check_params(const MembranePatch& patch, const MappingParams& params)
   {
     throw InvalidInput("the mapping centre is not finite");
   }
-  if (patch.atom_count > 0 && !patch.positions)
+  if (patch.atom_count() > 0 && !patch.positions.data())
   {
     throw InvalidInput("the membrane patch has no positions");
   }
-  for (std::size_t i = 0; i < 3 * patch.atom_count; ++i)
+  for (std::size_t i = 0; i < patch.positions.value_count(); ++i)
   {
-    if (!std::isfinite(patch.positions[i]))
+    if (!std::isfinite(patch.positions.data()[i]))
     {
       throw InvalidInput("membrane atom " + std::to_string(i / 3) + " has a non-finite coordinate");
     }
@@ -133,7 +133,7 @@ struct PatchMolecules
 
 PatchMolecules patch_molecules(const MembranePatch& patch)
 {
-  for (std::size_t i = 0; patch.molecule_ids && i < patch.atom_count; ++i)
+  for (std::size_t i = 0; patch.molecule_ids && i < patch.atom_count(); ++i)
   {
     if (patch.molecule_ids[i] < 0)
     {
@@ -141,7 +141,7 @@ PatchMolecules patch_molecules(const MembranePatch& patch)
     }
   }
   PatchMolecules molecules;
-  molecules.groups = group_molecules(patch.molecule_ids, patch.atom_count);
+  molecules.groups = group_molecules(patch.molecule_ids, patch.atom_count());
   molecules.centres = molecule_centres(molecules.groups, patch.positions, patch.masses);
   return molecules;
 }
@@ -189,13 +189,13 @@ public:
   {
     const int i = int(tile % std::size_t(this->Params.tiles));
     const int j = int(tile / std::size_t(this->Params.tiles));
-    const std::size_t n = this->Patch.atom_count;
+    const std::size_t n = this->Patch.atom_count();
     double* out = this->Out.positions.data() + 3 * n * tile;
     SurfaceFrame frame;
     std::array<double, 3> x{};
     for (std::size_t a = 0; a < n; ++a)
     {
-      const float* p = this->Patch.positions + 3 * a;
+      const float* p = this->Patch.positions[a];
       const auto uv = this->Layout.uv(p[0], p[1], i, j);
       if (!displaced(this->Chart, uv, this->Params.scale * (p[2] - this->Patch.centre_height), x,
                      frame))
@@ -216,7 +216,7 @@ public:
   {
     const int i = int(tile % std::size_t(this->Params.tiles));
     const int j = int(tile / std::size_t(this->Params.tiles));
-    const std::size_t n = this->Patch.atom_count;
+    const std::size_t n = this->Patch.atom_count();
     const double scale = this->Params.scale;
     SurfaceFrame frame;
     std::array<double, 3> x{};
@@ -266,7 +266,7 @@ public:
       double* out = this->Out.positions.data() + 3 * n * tile;
       for (const std::uint32_t a : groups.atoms_of(m))
       {
-        const float* p = this->Patch.positions + 3 * a;
+        const float* p = this->Patch.positions[a];
         for (int r = 0; r < 3; ++r)
         {
           out[3 * a + std::size_t(r)] = matrix[4 * r] * p[0] + matrix[4 * r + 1] * p[1] +
@@ -390,14 +390,14 @@ public:
     const int i = int(tile % std::size_t(this->Params.tiles));
     const int j = int(tile / std::size_t(this->Params.tiles));
     const int m = this->Out.polynomial_splits[tile];
-    const std::size_t n = this->Patch.atom_count;
+    const std::size_t n = this->Patch.atom_count();
     const double* coefficients = this->Out.polynomial_coefficients.data() +
       3 * quadratic_terms * this->Out.polynomial_first_piece[tile];
     double* out = this->Out.positions.data() + 3 * n * tile;
     SurfacePoint located;
     for (std::size_t a = 0; a < n; ++a)
     {
-      const float* p = this->Patch.positions + 3 * a;
+      const float* p = this->Patch.positions[a];
       const auto y = evaluate_tile_polynomial(this->Patch, this->Params.layer_half_thickness, m,
                                               coefficients, p);
       std::copy(y.begin(), y.end(), out + 3 * a);
@@ -472,7 +472,7 @@ private:
     {
       return;
     }
-    const std::size_t n = this->Patch.atom_count;
+    const std::size_t n = this->Patch.atom_count();
     double* out = this->Out.positions.data() + 3 * n * tile;
     std::uint8_t* mapped = this->Out.atom_mapped.data() + n * tile;
     for (std::size_t m = 0; m < this->Molecules.groups.count(); ++m)
@@ -549,9 +549,9 @@ double tiled_extent(const MembranePatch& patch, int tiles)
 {
   // Fractional cell coordinates of the atoms; tiles shift them by whole cells.
   double low[2] = { 0, 0 }, high[2] = { 1, 1 };
-  for (std::size_t a = 0; a < patch.atom_count; ++a)
+  for (std::size_t a = 0; a < patch.atom_count(); ++a)
   {
-    const auto local = polynomial_coordinates(patch, 1.0, patch.positions + 3 * a);
+    const auto local = polynomial_coordinates(patch, 1.0, patch.positions[a]);
     for (int d = 0; d < 2; ++d)
     {
       low[d] = std::min(low[d], (local[std::size_t(d)] + 1) / 2);
@@ -577,7 +577,7 @@ MappedMembrane map_membrane(const SurfaceChart& chart, const MembranePatch& patc
 {
   check_params(patch, params);
   const std::size_t tile_count = std::size_t(params.tiles) * std::size_t(params.tiles);
-  const std::size_t n = patch.atom_count;
+  const std::size_t n = patch.atom_count();
   MappedMembrane mapped;
   TileMapper mapper(chart, patch, params, mapped);
   mapper.MapAtoms = params.map_atoms || params.method == MappingMethod::Displacement;
@@ -633,7 +633,7 @@ std::vector<double> bond_length_changes(const MembranePatch& patch, const Mapped
                                         const std::vector<std::array<std::uint32_t, 2>>& bonds,
                                         double scale)
 {
-  const std::size_t n = patch.atom_count;
+  const std::size_t n = patch.atom_count();
   const std::size_t tiles = n == 0 ? 0 : mapped.positions.size() / (3 * n);
   std::vector<double> changes(tiles * bonds.size());
   auto length = [](const auto* p, const auto* q) {
@@ -651,7 +651,7 @@ std::vector<double> bond_length_changes(const MembranePatch& patch, const Mapped
       {
         throw InvalidInput("bond " + std::to_string(b) + " names an atom outside the patch");
       }
-      const double original = scale * length(patch.positions + 3 * i, patch.positions + 3 * j);
+      const double original = scale * length(patch.positions[i], patch.positions[j]);
       changes[t * bonds.size() + b] =
         original > 0 ? length(tile + 3 * i, tile + 3 * j) / original - 1 : 0.0;
     }

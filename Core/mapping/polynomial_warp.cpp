@@ -30,8 +30,7 @@ std::array<double, 3> evaluate_quadratic(const QuadraticWarp& warp, double s, do
   return x;
 }
 
-QuadraticFit fit_quadratic(const std::vector<std::array<double, 3>>& parameters,
-                           const std::vector<std::array<double, 3>>& targets)
+QuadraticFit fit_quadratic(PointSpan<const double> parameters, PointSpan<const double> targets)
 {
   if (parameters.size() != targets.size() || parameters.size() < quadratic_terms)
   {

@@ -207,18 +207,24 @@ void combine_frames(const std::vector<const float*>& frames, const std::vector<d
   });
 }
 
-void unwrap_to_reference(float* positions, const float* reference, std::size_t atom_count,
+void unwrap_to_reference(PointSpan<float> positions, PointSpan<const float> reference,
                          const PeriodicBox& box, const MoleculeGroups* molecules,
                          const ParallelFor& parallel_for)
 {
+  const std::size_t atom_count = positions.size();
+  if (reference.size() != atom_count)
+  {
+    throw InvalidInput("unwrap_to_reference: " + std::to_string(atom_count) + " positions but " +
+                       std::to_string(reference.size()) + " reference positions");
+  }
   if (!box.is_set() || atom_count == 0)
   {
     return;
   }
   const MinimumImage minimum_image(box);
   auto displacement = [&](std::size_t i) {
-    const float* p = positions + 3 * i;
-    const float* r = reference + 3 * i;
+    const float* p = positions[i];
+    const float* r = reference[i];
     return std::array<double, 3>{ double(p[0]) - r[0], double(p[1]) - r[1], double(p[2]) - r[2] };
   };
   auto shift_of = [&](const std::array<double, 3>& d) {
@@ -230,7 +236,7 @@ void unwrap_to_reference(float* positions, const float* reference, std::size_t a
     {
       for (std::size_t k = 0; k < 3; ++k)
       {
-        positions[3 * i + k] = float(double(positions[3 * i + k]) + shift[k]);
+        positions[i][k] = float(double(positions[i][k]) + shift[k]);
       }
     }
   };

@@ -58,8 +58,8 @@ ValidTriangles check_indices(const TriangleMeshView& mesh, MeshReport& report)
     const std::int64_t* tri = mesh.triangles + 3 * t;
     for (int k = 0; k < 3; ++k)
     {
-      if (tri[k] < 0 || std::size_t(tri[k]) >= mesh.point_count ||
-          !finite_point(mesh.points + 3 * tri[k]))
+      if (tri[k] < 0 || std::size_t(tri[k]) >= mesh.points.size() ||
+          !finite_point(mesh.points[tri[k]]))
       {
         valid[t] = false;
       }
@@ -72,8 +72,8 @@ ValidTriangles check_indices(const TriangleMeshView& mesh, MeshReport& report)
     }
     for (int k = 0; k < 3; ++k)
     {
-      const double* p = mesh.points + 3 * tri[k];
-      const double* q = mesh.points + 3 * tri[(k + 1) % 3];
+      const double* p = mesh.points[tri[k]];
+      const double* q = mesh.points[tri[(k + 1) % 3]];
       edge_length_sum += std::sqrt((p[0] - q[0]) * (p[0] - q[0]) + (p[1] - q[1]) * (p[1] - q[1]) +
                                    (p[2] - q[2]) * (p[2] - q[2]));
       ++edge_length_count;
@@ -98,7 +98,7 @@ TriangleScan scan_valid_triangles(const TriangleMeshView& mesh, const std::vecto
 {
   TriangleScan scan;
   scan.uses.reserve(3 * mesh.triangle_count);
-  scan.referenced.assign(mesh.point_count, false);
+  scan.referenced.assign(mesh.points.size(), false);
   for (std::size_t t = 0; t < mesh.triangle_count; ++t)
   {
     if (!valid[t])
@@ -109,8 +109,8 @@ TriangleScan scan_valid_triangles(const TriangleMeshView& mesh, const std::vecto
     const std::int64_t* tri = mesh.triangles + 3 * t;
     const bool repeated = tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2];
     if (repeated ||
-        triangle_area(mesh.points + 3 * tri[0], mesh.points + 3 * tri[1],
-                      mesh.points + 3 * tri[2]) <= area_threshold)
+        triangle_area(mesh.points[tri[0]], mesh.points[tri[1]], mesh.points[tri[2]]) <=
+          area_threshold)
     {
       ++report.degenerate_triangles;
       report.triangle_is_degenerate[t] = 1;
@@ -221,7 +221,7 @@ EdgeLinks link_across_edges(const TriangleMeshView& mesh, const std::vector<Edge
 void mark_pinched_vertices(const TriangleMeshView& mesh, const std::vector<bool>& valid,
                            DisjointSets& corners, MeshReport& report)
 {
-  std::vector<std::int64_t> fan_of_vertex(mesh.point_count, -1);
+  std::vector<std::int64_t> fan_of_vertex(mesh.points.size(), -1);
   for (std::size_t t = 0; t < mesh.triangle_count; ++t)
   {
     if (!valid[t])
@@ -274,11 +274,11 @@ void count_components(const TriangleMeshView& mesh, const std::vector<bool>& val
                       const TriangleScan& scan, DisjointSets& triangles, MeshReport& report)
 {
   std::size_t referenced_count = 0;
-  for (std::size_t v = 0; v < mesh.point_count; ++v)
+  for (std::size_t v = 0; v < mesh.points.size(); ++v)
   {
     referenced_count += scan.referenced[v] ? 1 : 0;
   }
-  report.unreferenced_vertices = mesh.point_count - referenced_count;
+  report.unreferenced_vertices = mesh.points.size() - referenced_count;
   for (std::size_t t = 0; t < mesh.triangle_count; ++t)
   {
     report.components += (valid[t] && triangles.root(t) == t) ? 1 : 0;
@@ -333,14 +333,14 @@ std::string MeshReport::describe_defects() const
 MeshReport mesh_report(const TriangleMeshView& mesh, double area_epsilon)
 {
   MeshReport report;
-  report.vertices = mesh.point_count;
+  report.vertices = mesh.points.size();
   report.triangles = mesh.triangle_count;
   report.triangle_is_degenerate.assign(mesh.triangle_count, 0);
-  report.vertex_is_non_manifold.assign(mesh.point_count, 0);
+  report.vertex_is_non_manifold.assign(mesh.points.size(), 0);
   const ValidTriangles checked = check_indices(mesh, report);
   TriangleScan scan = scan_valid_triangles(
     mesh, checked.valid, area_epsilon * checked.mean_edge * checked.mean_edge, report);
-  sort_edge_uses(scan.uses, mesh.point_count);
+  sort_edge_uses(scan.uses, mesh.points.size());
   EdgeLinks links = link_across_edges(mesh, scan.uses, report);
   mark_pinched_vertices(mesh, checked.valid, links.corners, report);
   report.boundary_loops = boundary_loops(links.boundary);

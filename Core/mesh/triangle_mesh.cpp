@@ -14,8 +14,7 @@ namespace mesolens {
 TriangleMeshView TriangleMesh::view() const
 {
   TriangleMeshView view;
-  view.points = this->points.data();
-  view.point_count = this->vertex_count();
+  view.points = this->points;
   view.triangles = this->triangles.data();
   view.triangle_count = this->triangle_count();
   return view;

@@ -236,11 +236,12 @@ std::vector<Bond> sorted_bonds(const std::vector<Bond>& bonds, std::size_t atom_
 
 void check_input(const BondPerceptionInput& input)
 {
-  if (input.atom_count > 0 && (!input.positions || !input.atomic_numbers || !input.molecule_ids))
+  if (input.atom_count() > 0 &&
+      (!input.positions.data() || !input.atomic_numbers || !input.molecule_ids))
   {
     throw InvalidInput("bond perception needs positions, atomic numbers and molecule ids");
   }
-  if (input.atom_count >= std::numeric_limits<std::uint32_t>::max())
+  if (input.atom_count() >= std::numeric_limits<std::uint32_t>::max())
   {
     throw InvalidInput("bond perception supports at most 2^32 - 1 atoms");
   }
@@ -263,7 +264,7 @@ std::vector<Bond> perceive_bonds(const BondPerceptionInput& input,
     throw InvalidInput("bead cutoff must lie in (0, 10] Å, got " +
                        std::to_string(params.bead_cutoff));
   }
-  const std::size_t n = input.atom_count;
+  const std::size_t n = input.atom_count();
   // Atoms alone in their molecule (ions, crystal waters) cannot bond: leave them out of the grid
   // and out of the cell size, which the largest radius sets.
   std::vector<std::uint8_t> has_partner(n, 0);
@@ -291,7 +292,7 @@ std::vector<Bond> perceive_bonds(const BondPerceptionInput& input,
   const double reach = params.coarse_grained
     ? double(params.bead_cutoff)
     : 2.0 * double(largest_radius) + double(params.tolerance);
-  const UniformGrid grid(input.positions, n, reach, has_partner);
+  const UniformGrid grid(input.positions.data(), n, reach, has_partner);
   const float min2 = params.minimum_distance * params.minimum_distance;
   const float bead2 = params.bead_cutoff * params.bead_cutoff;
 
@@ -344,7 +345,7 @@ bool looks_coarse_grained(const BondPerceptionInput& input,
                           const std::vector<Bond>& atomistic_bonds)
 {
   check_input(input);
-  const std::size_t n = input.atom_count;
+  const std::size_t n = input.atom_count();
   std::vector<int> molecule_size;
   for (std::size_t i = 0; i < n; ++i)
   {

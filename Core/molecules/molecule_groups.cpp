@@ -58,10 +58,16 @@ MoleculeGroups group_molecules(const int* ids, std::size_t atom_count)
 }
 
 namespace {
-template <typename Coordinate>
-std::vector<double> centres_of(const MoleculeGroups& groups, const Coordinate* positions,
+template<typename Coordinate>
+std::vector<double> centres_of(const MoleculeGroups& groups, PointSpan<const Coordinate> positions,
                                const float* masses)
 {
+  if (positions.size() != groups.of_atom.size())
+  {
+    throw InvalidInput("molecule centres need one position per grouped atom (" +
+                       std::to_string(groups.of_atom.size()) + "); got " +
+                       std::to_string(positions.size()));
+  }
   std::vector<double> centres(3 * groups.count(), 0.0);
   for (std::size_t m = 0; m < groups.count(); ++m)
   {
@@ -75,7 +81,7 @@ std::vector<double> centres_of(const MoleculeGroups& groups, const Coordinate* p
       const double w = masses ? double(masses[a]) : 1.0;
       for (std::size_t d = 0; d < 3; ++d)
       {
-        const double p = double(positions[3 * a + d]);
+        const double p = double(positions[a][d]);
         if (!std::isfinite(p))
         {
           throw InvalidInput("atom " + std::to_string(a) + " has a non-finite position");
@@ -95,14 +101,14 @@ std::vector<double> centres_of(const MoleculeGroups& groups, const Coordinate* p
 }
 } // namespace
 
-std::vector<double> molecule_centres(const MoleculeGroups& groups, const float* positions,
+std::vector<double> molecule_centres(const MoleculeGroups& groups, PointSpan<const float> positions,
                                      const float* masses)
 {
   return centres_of(groups, positions, masses);
 }
 
-std::vector<double> molecule_centres(const MoleculeGroups& groups, const double* positions,
-                                     const float* masses)
+std::vector<double> molecule_centres(const MoleculeGroups& groups,
+                                     PointSpan<const double> positions, const float* masses)
 {
   return centres_of(groups, positions, masses);
 }

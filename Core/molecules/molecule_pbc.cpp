@@ -28,9 +28,10 @@ Eigen::Matrix3d box_columns(const PeriodicBox& box)
 
 } // namespace
 
-void make_molecules_whole(float* positions, const int* molecule_ids, std::size_t atom_count,
+void make_molecules_whole(PointSpan<float> positions, const int* molecule_ids,
                           const PeriodicBox& box)
 {
+  const std::size_t atom_count = positions.size();
   if (!box.is_set() || atom_count == 0)
   {
     return;
@@ -43,8 +44,8 @@ void make_molecules_whole(float* positions, const int* molecule_ids, std::size_t
     const std::uint32_t* atom = molecules.atoms.data() + molecules.first[m];
     for (std::size_t k = 1; k < molecules.size_of(m); ++k)
     {
-      float* p = positions + 3 * std::size_t(atom[k]);
-      const float* q = positions + 3 * std::size_t(atom[k - 1]);
+      float* p = positions[atom[k]];
+      const float* q = positions[atom[k - 1]];
       const std::array<double, 3> d =
         minimum_image({ double(p[0]) - q[0], double(p[1]) - q[1], double(p[2]) - q[2] });
       for (int c = 0; c < 3; ++c)
@@ -61,8 +62,10 @@ MoleculeContinuity::MoleculeContinuity(const std::vector<int>& molecule_ids)
   this->CurrentShifts.assign(3 * this->Molecules.count(), 0);
 }
 
-void MoleculeContinuity::add_frame(std::size_t frame, float* positions, const PeriodicBox& box)
+void MoleculeContinuity::add_frame(std::size_t frame, PointSpan<float> positions,
+                                   const PeriodicBox& box)
 {
+  this->require_atom_count(positions);
   if (frame != this->Changes.size())
   {
     throw InvalidInput("MoleculeContinuity::add_frame: frames must be added in order (expected " +
@@ -120,8 +123,10 @@ std::vector<std::int32_t> MoleculeContinuity::shifts_of(std::size_t frame) const
   return shifts;
 }
 
-void MoleculeContinuity::apply(std::size_t frame, float* positions, const PeriodicBox& box) const
+void MoleculeContinuity::apply(std::size_t frame, PointSpan<float> positions,
+                               const PeriodicBox& box) const
 {
+  this->require_atom_count(positions);
   if (frame >= this->Changes.size())
   {
     throw InvalidInput("MoleculeContinuity::apply: frame " + std::to_string(frame) +
@@ -130,8 +135,18 @@ void MoleculeContinuity::apply(std::size_t frame, float* positions, const Period
   this->shift_atoms(this->shifts_of(frame), positions, box);
 }
 
-void MoleculeContinuity::shift_atoms(const std::vector<std::int32_t>& shifts, float* positions,
-                                     const PeriodicBox& box) const
+void MoleculeContinuity::require_atom_count(PointSpan<const float> positions) const
+{
+  if (positions.size() != this->Molecules.of_atom.size())
+  {
+    throw InvalidInput("MoleculeContinuity tracks " +
+                       std::to_string(this->Molecules.of_atom.size()) + " atoms; got " +
+                       std::to_string(positions.size()) + " positions");
+  }
+}
+
+void MoleculeContinuity::shift_atoms(const std::vector<std::int32_t>& shifts,
+                                     PointSpan<float> positions, const PeriodicBox& box) const
 {
   if (!box.is_set())
   {
@@ -148,15 +163,15 @@ void MoleculeContinuity::shift_atoms(const std::vector<std::int32_t>& shifts, fl
         offset +=
           double(shifts[3 * mol + std::size_t(v)]) * box.vectors[std::size_t(v)][std::size_t(k)];
       }
-      positions[3 * i + std::size_t(k)] = float(positions[3 * i + std::size_t(k)] + offset);
+      positions[i][k] = float(positions[i][k] + offset);
     }
   }
 }
 
-std::vector<std::array<double, 3>> assembly_shifts(const std::vector<double>& centres,
+std::vector<std::array<double, 3>> assembly_shifts(PointSpan<const double> centres,
                                                    const PeriodicBox& box)
 {
-  const std::size_t count = centres.size() / 3;
+  const std::size_t count = centres.size();
   std::vector<std::array<double, 3>> shifts(count, { 0, 0, 0 });
   if (!box.is_set() || count == 0)
   {
@@ -178,8 +193,7 @@ std::vector<std::array<double, 3>> assembly_shifts(const std::vector<double>& ce
   constexpr double turn = 2 * 3.14159265358979323846;
   for (std::size_t m = 0; m < count; ++m)
   {
-    fractional[m] =
-      to_fractional * Eigen::Vector3d(centres[3 * m], centres[3 * m + 1], centres[3 * m + 2]);
+    fractional[m] = to_fractional * Eigen::Vector3d(centres[m][0], centres[m][1], centres[m][2]);
     for (int d = 0; d < 3; ++d)
     {
       sines[d] += std::sin(turn * fractional[m][d]);

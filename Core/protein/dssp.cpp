@@ -787,7 +787,7 @@ DsspResult assign_secondary_structure(const std::vector<BackboneResidue>& residu
   return result;
 }
 
-std::vector<SecondaryStructure> assign_from_ca(const std::vector<std::array<double, 3>>& ca,
+std::vector<SecondaryStructure> assign_from_ca(PointSpan<const double> ca,
                                                const std::vector<int>& chain)
 {
   const std::size_t n = ca.size();
@@ -797,13 +797,13 @@ std::vector<SecondaryStructure> assign_from_ca(const std::vector<std::array<doub
   }
   for (std::size_t i = 0; i < n; ++i)
   {
-    require_finite(ca[i], i, "CA");
+    require_finite(ca.point(i), i, "CA");
   }
   // Consecutive Cα of one chain are 3.8 Å apart; farther is a break.
   auto linked = [&](std::size_t a, std::size_t b) {
     for (std::size_t i = a + 1; i <= b; ++i)
     {
-      if (chain[i] != chain[i - 1] || distance(ca[i], ca[i - 1]) > 4.2)
+      if (chain[i] != chain[i - 1] || distance(ca.point(i), ca.point(i - 1)) > 4.2)
       {
         return false;
       }
@@ -819,9 +819,9 @@ std::vector<SecondaryStructure> assign_from_ca(const std::vector<std::array<doub
     {
       continue;
     }
-    const double tau = angle(ca[i - 1], ca[i], ca[i + 1]);
-    const double alpha = dihedral(ca[i - 1], ca[i], ca[i + 1], ca[i + 2]);
-    const double d3 = distance(ca[i - 1], ca[i + 2]);
+    const double tau = angle(ca.point(i - 1), ca.point(i), ca.point(i + 1));
+    const double alpha = dihedral(ca.point(i - 1), ca.point(i), ca.point(i + 1), ca.point(i + 2));
+    const double d3 = distance(ca.point(i - 1), ca.point(i + 2));
     helical[i] =
       std::abs(tau - 89.0) <= 12.0 && std::abs(alpha - 50.0) <= 20.0 && d3 >= 4.5 && d3 <= 6.0 ? 1
                                                                                                : 0;
@@ -847,7 +847,7 @@ std::vector<SecondaryStructure> assign_from_ca(const std::vector<std::array<doub
     for (std::size_t j = 0; j < n && !paired[i]; ++j)
     {
       const std::size_t gap = i > j ? i - j : j - i;
-      if (gap >= 3 && extended[j] && distance(ca[i], ca[j]) <= 5.5)
+      if (gap >= 3 && extended[j] && distance(ca.point(i), ca.point(j)) <= 5.5)
       {
         paired[i] = 1;
       }

@@ -105,7 +105,7 @@ ProteinBackbone protein_backbone(const AtomTable& atoms)
   return backbone;
 }
 
-void ProteinBackbone::update_positions(const float* positions)
+void ProteinBackbone::update_positions(PointSpan<const float> positions)
 {
   for (std::size_t r = 0; r < this->residues.size(); ++r)
   {
@@ -115,10 +115,14 @@ void ProteinBackbone::update_positions(const float* positions)
     for (int k = 0; k < 5; ++k)
     {
       const std::int64_t row = this->atom_rows[r][std::size_t(k)];
+      if (row >= std::int64_t(positions.size()))
+      {
+        throw InvalidInput("the backbone needs " + std::to_string(row + 1) +
+                           " or more atom positions; got " + std::to_string(positions.size()));
+      }
       if (row >= 0)
       {
-        const float* p = positions + 3 * row;
-        *targets[std::size_t(k)] = { p[0], p[1], p[2] };
+        *targets[std::size_t(k)] = positions.point(std::size_t(row));
       }
     }
   }

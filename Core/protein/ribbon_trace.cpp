@@ -95,18 +95,21 @@ RibbonTrace ribbon_trace(const AtomTable& table)
   return trace;
 }
 
-void RibbonTrace::update(const float* positions, const std::uint8_t* classes)
+void RibbonTrace::update(PointSpan<const float> positions, const std::uint8_t* classes)
 {
   for (std::size_t r = 0; r < this->residues.size(); ++r)
   {
-    RibbonResidue& residue = this->residues[r];
     const auto t = std::size_t(this->trace_atom[r]);
-    residue.trace = { positions[3 * t], positions[3 * t + 1], positions[3 * t + 2] };
+    if (t >= positions.size() || this->oxygen_atom[r] >= std::int64_t(positions.size()))
+    {
+      throw InvalidInput("the ribbon trace needs " + std::to_string(t + 1) +
+                         " or more atom positions; got " + std::to_string(positions.size()));
+    }
+    RibbonResidue& residue = this->residues[r];
+    residue.trace = positions.point(t);
     if (this->oxygen_atom[r] >= 0)
     {
-      const auto o = std::size_t(this->oxygen_atom[r]);
-      residue.carbonyl_oxygen =
-        std::array<double, 3>{ positions[3 * o], positions[3 * o + 1], positions[3 * o + 2] };
+      residue.carbonyl_oxygen = positions.point(std::size_t(this->oxygen_atom[r]));
     }
     residue.secondary_structure =
       classes ? dssp_letter(static_cast<SecondaryStructure>(classes[t])) : ' ';

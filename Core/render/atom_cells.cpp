@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <utility>
 
 namespace mesolens {
@@ -73,11 +74,12 @@ Grid grid_of_edge(const std::array<double, 6>& bounds, double edge)
 }
 } // namespace
 
-AtomCells group_atoms_into_cells(const float* xyz, std::size_t atom_count,
-                                 std::size_t atoms_per_cell)
+AtomCells group_atoms_into_cells(PointSpan<const float> atoms, std::size_t atoms_per_cell)
 {
+  const float* xyz = atoms.data();
+  const std::size_t atom_count = atoms.size();
   AtomCells cells;
-  if (atom_count == 0 || !xyz)
+  if (atom_count == 0)
   {
     return cells;
   }
@@ -138,9 +140,17 @@ AtomCells group_atoms_into_cells(const float* xyz, std::size_t atom_count,
   return cells;
 }
 
-void gather_cell_positions(const float* xyz, const AtomCells& cells, float* slot_xyz,
-                           std::vector<float>& boxes, const ParallelFor& parallel_for)
+void gather_cell_positions(PointSpan<const float> xyz, const AtomCells& cells,
+                           PointSpan<float> slot_xyz, std::vector<float>& boxes,
+                           const ParallelFor& parallel_for)
 {
+  if (xyz.size() != cells.atom_of_slot.size() || slot_xyz.size() != cells.atom_of_slot.size())
+  {
+    throw InvalidInput("gather_cell_positions: the cells hold " +
+                       std::to_string(cells.atom_of_slot.size()) + " atoms; got " +
+                       std::to_string(xyz.size()) + " positions and " +
+                       std::to_string(slot_xyz.size()) + " slots");
+  }
   const std::size_t count = cells.cell_count();
   boxes.assign(6 * count, 0.0f);
   run_parallel(parallel_for, count, [&](std::size_t begin, std::size_t end) {
@@ -151,8 +161,8 @@ void gather_cell_positions(const float* xyz, const AtomCells& cells, float* slot
                        std::numeric_limits<float>::lowest(), std::numeric_limits<float>::lowest() };
       for (std::uint32_t slot = cells.cell_start[c]; slot < cells.cell_start[c + 1]; ++slot)
       {
-        const float* p = xyz + 3 * std::size_t(cells.atom_of_slot[slot]);
-        float* q = slot_xyz + 3 * std::size_t(slot);
+        const float* p = xyz[cells.atom_of_slot[slot]];
+        float* q = slot_xyz[slot];
         for (int d = 0; d < 3; ++d)
         {
           q[d] = p[d];

@@ -421,13 +421,11 @@ bool DepthPyramid::SphereHidden(const ScreenFootprint& footprint, const EyeSpher
   return true;
 }
 
-CellVisibility test_atom_visibility(const DepthPyramid& pyramid, const ViewTransform& view,
-                                    const float* slot_xyz, const std::uint8_t* element_of_slot,
-                                    std::size_t element_stride, const float* radius_of_element,
-                                    const AtomCells& cells, const std::vector<float>& boxes,
-                                    const std::vector<CellInView>& in_view, double padding,
-                                    std::vector<std::uint8_t>& flags,
-                                    const ParallelFor& parallel_for)
+CellVisibility test_atom_visibility(
+  const DepthPyramid& pyramid, const ViewTransform& view, PointSpan<const float> slot_xyz,
+  const std::uint8_t* element_of_slot, std::size_t element_stride, const float* radius_of_element,
+  const AtomCells& cells, const std::vector<float>& boxes, const std::vector<CellInView>& in_view,
+  double padding, std::vector<std::uint8_t>& flags, const ParallelFor& parallel_for)
 {
   const std::size_t cell_count = cells.cell_count();
   CellVisibility result;
@@ -469,7 +467,7 @@ CellVisibility test_atom_visibility(const DepthPyramid& pyramid, const ViewTrans
         bool visible = mode == 2;
         if (mode == 1)
         {
-          const float* p = slot_xyz + 3 * std::size_t(slot);
+          const float* p = slot_xyz[slot];
           const double r = radius_of_element[element_of_slot[slot * element_stride]];
           // Behind everything drawn over its cell's footprint: hidden, without its outline.
           const double* m = view.model_to_view;

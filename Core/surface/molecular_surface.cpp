@@ -55,8 +55,8 @@ constexpr double spacing_per_reach = 4.0 / 2.23606797749979;
 /// billion instructions.)
 constexpr double hint_reach = 0.6;
 
-void check_input(const std::vector<std::array<double, 3>>& centres,
-                 const std::vector<double>& radii, const MolecularSurfaceParams& options)
+void check_input(PointSpan<const double> centres, const std::vector<double>& radii,
+                 const MolecularSurfaceParams& options)
 {
   if (radii.size() != centres.size())
   {
@@ -171,7 +171,7 @@ struct SurfaceInput
   double probe = 0;
 };
 
-SurfaceInput surface_input(const std::vector<std::array<double, 3>>& centre_list,
+SurfaceInput surface_input(PointSpan<const double> centre_list,
                            const std::vector<double>& atom_radii,
                            const MolecularSurfaceParams& options)
 {
@@ -664,7 +664,7 @@ void copy_mesh(ContourMesh& mesh, const Components& components, bool keep_all,
 }
 } // namespace
 
-MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& centre_list,
+MolecularSurface molecular_surface(PointSpan<const double> centre_list,
                                    const std::vector<double>& atom_radii,
                                    const MolecularSurfaceParams& options,
                                    const ParallelFor& parallel_for, const SurfaceProgress& progress)

@@ -7,8 +7,8 @@
 
 namespace mesolens {
 
-SphereUnionArea sphere_union_area(const std::vector<std::array<double, 3>>& centres,
-                                  const std::vector<double>& radii, const ParallelFor& parallel_for)
+SphereUnionArea sphere_union_area(PointSpan<const double> centres, const std::vector<double>& radii,
+                                  const ParallelFor& parallel_for)
 {
   const SasBoundary boundary = sas_boundary(centres, radii, false, parallel_for);
   SphereUnionArea result;

@@ -512,8 +512,7 @@ struct Membrane
   mesolens::MembranePatch patch() const
   {
     mesolens::MembranePatch p;
-    p.positions = this->table.positions.data();
-    p.atom_count = this->table.size();
+    p.positions = this->table.positions;
     p.molecule_ids = this->table.molecule_ids.data();
     p.a = { this->table.box.vectors[0][0], this->table.box.vectors[0][1] };
     p.b = { this->table.box.vectors[1][0], this->table.box.vectors[1][1] };
@@ -524,8 +523,7 @@ struct Membrane
   mesolens::MembranePatch mid_sheet() const
   {
     mesolens::MembranePatch p = this->patch();
-    p.positions = this->mid_sheet_points.data();
-    p.atom_count = this->mid_sheet_points.size() / 3;
+    p.positions = this->mid_sheet_points;
     p.molecule_ids = nullptr;
     return p;
   }
@@ -571,8 +569,7 @@ Membrane read_membrane(const std::string& path)
   membrane.atoms_read = table.size();
   mesolens::assign_residues(table);
   mesolens::assign_molecules(table);
-  mesolens::make_molecules_whole(table.positions.data(), table.molecule_ids.data(), table.size(),
-                                 table.box);
+  mesolens::make_molecules_whole(table.positions, table.molecule_ids.data(), table.box);
   mesolens::build_connectivity(table, {}, mesolens::StructureReadParams{}, false);
   std::map<int, std::size_t> atoms_of;
   for (const int id : table.molecule_ids)
@@ -928,9 +925,9 @@ std::array<double, 2> mid_sheet_distances(const Click& click, const mesolens::Ma
     {
       continue;
     }
-    for (std::size_t a = 0; a < grid.atom_count; ++a)
+    for (std::size_t a = 0; a < grid.atom_count(); ++a)
     {
-      const double* q = on_surface.positions.data() + 3 * (t * grid.atom_count + a);
+      const double* q = on_surface.positions.data() + 3 * (t * grid.atom_count() + a);
       if (!std::isfinite(q[0]))
       {
         continue;
@@ -942,7 +939,7 @@ std::array<double, 2> mid_sheet_distances(const Click& click, const mesolens::Ma
                                                result.mapped.polynomial_splits[t],
                                                result.mapped.polynomial_coefficients.data() +
                                                  30 * result.mapped.polynomial_first_piece[t],
-                                               grid.positions + 3 * a);
+                                               grid.positions[a]);
       }
       double from_input = 0;
       click.mapper.surface().closest_point(p, &from_input);

@@ -132,8 +132,7 @@ struct Membrane
   mesolens::MembranePatch patch() const
   {
     mesolens::MembranePatch p;
-    p.positions = this->table.positions.data();
-    p.atom_count = this->table.size();
+    p.positions = this->table.positions;
     p.molecule_ids = this->table.molecule_ids.data();
     p.masses = this->masses.data();
     p.a = { this->table.box.vectors[0][0], this->table.box.vectors[0][1] };
@@ -244,8 +243,7 @@ void trajectory_report(const std::string& mesh_path, const std::string& gro, con
   for (std::size_t f = 0; f < frames.frame_count(); ++f)
   {
     mesolens::TrajectoryFrame frame = frames.read_frame(f);
-    mesolens::make_molecules_whole(frame.positions.data(), membrane.table.molecule_ids.data(),
-                                   membrane.table.size(), frame.box);
+    mesolens::make_molecules_whole(frame.positions, membrane.table.molecule_ids.data(), frame.box);
     membrane.table.positions = frame.positions;
     membrane.table.box = frame.box;
     mesolens::MappingParams params;
@@ -481,7 +479,7 @@ void remap_on_two_million(const Membrane& yiip, bool smoke)
   const double atoms = double(mapped.positions.size() / 3);
   std::printf("BENCH cpu-evaluation input=15x15 tiles x %zu atoms = %.0f atoms (polynomial, %s "
               "pieces per tile) | %.0f ms, %.1f Matoms/s (single thread)\n",
-              patch.atom_count, atoms, pieces_of(mapped).c_str(), 1e3 * evaluation,
+              patch.atom_count(), atoms, pieces_of(mapped).c_str(), 1e3 * evaluation,
               atoms / evaluation / 1e6);
 }
 

@@ -20,8 +20,7 @@ struct SyntheticPatch
   mesolens::MembranePatch view() const
   {
     mesolens::MembranePatch patch;
-    patch.positions = this->positions.data();
-    patch.atom_count = this->molecule_ids.size();
+    patch.positions = this->positions;
     patch.molecule_ids = this->molecule_ids.data();
     patch.origin = { -10, -10 };
     patch.a = { 20, 0 };

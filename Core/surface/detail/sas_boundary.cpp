@@ -630,8 +630,7 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
 
 /// The largest radius; throws InvalidInput for lists of different lengths, a non-finite
 /// centre or radius, or a radius that is not positive.
-double check_spheres(const std::vector<std::array<double, 3>>& centres,
-                     const std::vector<double>& radii)
+double check_spheres(PointSpan<const double> centres, const std::vector<double>& radii)
 {
   const std::size_t n = centres.size();
   if (radii.size() != n)
@@ -660,12 +659,12 @@ struct SphereCells
   double cell = 0;
   std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> spheres;
 
-  SphereCells(const std::vector<std::array<double, 3>>& centres, double largest)
+  SphereCells(PointSpan<const double> centres, double largest)
     : cell(2.0 * largest)
   {
     for (std::size_t i = 0; i < centres.size(); ++i)
     {
-      this->spheres[grid_cell_key(grid_cell(centres[i], this->cell))].push_back(
+      this->spheres[grid_cell_key(grid_cell(centres.point(i), this->cell))].push_back(
         static_cast<std::uint32_t>(i));
     }
   }
@@ -692,7 +691,7 @@ struct PiecesBySphere
 /// The spheres and their cells: what each sphere's stage reads.
 struct Spheres
 {
-  const std::vector<std::array<double, 3>>& centres;
+  PointSpan<const double> centres;
   const std::vector<double>& radii;
   SphereCells cells;
 };
@@ -712,12 +711,12 @@ struct SphereWork
 /// them holds it whole (buried: then `caps` is left incomplete).
 bool neighbour_caps(std::size_t i, const Spheres& spheres, std::vector<Cap>& caps)
 {
-  const std::vector<std::array<double, 3>>& centres = spheres.centres;
+  PointSpan<const double> centres = spheres.centres;
   const std::vector<double>& radii = spheres.radii;
   const SphereCells& cells = spheres.cells;
   const Vec c(centres[i][0], centres[i][1], centres[i][2]);
   const double r = radii[i];
-  const GridCell home = grid_cell(centres[i], cells.cell);
+  const GridCell home = grid_cell(centres.point(i), cells.cell);
   caps.clear();
   for (int dx = -1; dx <= 1; ++dx)
     for (int dy = -1; dy <= 1; ++dy)
@@ -964,9 +963,8 @@ bool uncovered_unit_area(const std::vector<UnitCap>& unit_caps, double& area,
   return true;
 }
 
-SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
-                         const std::vector<double>& radii, bool with_pieces,
-                         const ParallelFor& parallel_for)
+SasBoundary sas_boundary(PointSpan<const double> centres, const std::vector<double>& radii,
+                         bool with_pieces, const ParallelFor& parallel_for)
 {
   const std::size_t n = centres.size();
   const double largest = check_spheres(centres, radii);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "mesolens/common/parallel_for.h"
+#include "mesolens/common/point_span.h"
 
 #include <Eigen/Core>
 
@@ -89,8 +90,7 @@ bool uncovered_unit_area(const std::vector<UnitCap>& caps, double& area,
 /// The exposed parts of each sphere (see sphere_union_area() for the method and the input
 /// checks), and with `with_pieces` the exposed arcs and vertices, each once, ordered by their
 /// lowest sphere, and every sphere's loops (deterministic whatever `parallel_for`).
-SasBoundary sas_boundary(const std::vector<std::array<double, 3>>& centres,
-                         const std::vector<double>& radii, bool with_pieces,
-                         const ParallelFor& parallel_for);
+SasBoundary sas_boundary(PointSpan<const double> centres, const std::vector<double>& radii,
+                         bool with_pieces, const ParallelFor& parallel_for);
 
 } // namespace mesolens

@@ -255,8 +255,9 @@ TEST(StructureMesh, AnOpenPatchKeepsItsBorder)
 TEST(StructureMesh, BadInputs)
 {
   EXPECT_THROW(mesolens::structure_mesh({}, { 100, 0 }), mesolens::InvalidInput);
-  EXPECT_THROW(mesolens::structure_mesh({ 0, 0, 0, 1, 0, 0, 0, 1, 0 }, { 100, 0 }),
-               mesolens::InvalidInput);
+  EXPECT_THROW(
+    mesolens::structure_mesh(std::vector<double>{ 0, 0, 0, 1, 0, 0, 0, 1, 0 }, { 100, 0 }),
+    mesolens::InvalidInput);
   auto points = sphere_points(200, 1.0);
   EXPECT_THROW(mesolens::structure_mesh(points, { 3, 0 }), mesolens::InvalidInput);
   EXPECT_THROW(mesolens::structure_mesh(points, { 1000001, 0 }), mesolens::InvalidInput);

@@ -327,19 +327,27 @@ TEST(StructuredCutaway, SeedsTypesAndLaterFrames)
     moved[i] += 100;
   settings.fraction_by_type.clear();
   settings.fraction_hidden = 1.0;
-  EXPECT_EQ(hidden_count(cutaway.visibility(everything(), settings, moved.data())), 0u);
+  EXPECT_EQ(hidden_count(cutaway.visibility(everything(), settings, moved)), 0u);
 }
 
 TEST(StructuredCutaway, BadInputs)
 {
   const auto mesh = icosahedron();
-  EXPECT_THROW(mesolens::StructuredCutaway(mesh, {}), mesolens::InvalidInput);
-  EXPECT_THROW(mesolens::StructuredCutaway(mesh, { 1, 2 }), mesolens::InvalidInput);
-  EXPECT_THROW(mesolens::StructuredCutaway(mesh, { 1, std::nan(""), 2 }), mesolens::InvalidInput);
-  EXPECT_THROW(mesolens::StructuredCutaway(mesh, { 1, 2, 3 }, { 1, 2 }), mesolens::InvalidInput);
-  EXPECT_THROW(mesolens::StructuredCutaway(mesolens::TriangleMesh(), { 1, 2, 3 }),
+  using Flat = std::vector<double>;
+  EXPECT_THROW(mesolens::StructuredCutaway(mesh, Flat{}), mesolens::InvalidInput);
+  EXPECT_THROW(mesolens::StructuredCutaway(mesh, Flat{ 1, 2 }), mesolens::InvalidInput);
+  EXPECT_THROW(mesolens::StructuredCutaway(mesh, Flat{ 1, std::nan(""), 2 }),
                mesolens::InvalidInput);
-  const mesolens::StructuredCutaway cutaway(mesh, molecules_over(mesh));
+  EXPECT_THROW(mesolens::StructuredCutaway(mesh, Flat{ 1, 2, 3 }, { 1, 2 }),
+               mesolens::InvalidInput);
+  EXPECT_THROW(mesolens::StructuredCutaway(mesolens::TriangleMesh(), Flat{ 1, 2, 3 }),
+               mesolens::InvalidInput);
+  const Flat centres = molecules_over(mesh);
+  const mesolens::StructuredCutaway cutaway(mesh, centres);
+  // Later centres of another number of molecules are refused.
+  const Flat fewer(centres.begin(), centres.end() - 3);
+  EXPECT_THROW(cutaway.visibility(everything(), mesolens::CutawayParams{}, fewer),
+               mesolens::InvalidInput);
   CutawayParams settings;
   settings.k = 1.0;
   EXPECT_THROW(cutaway.visibility(everything(), settings), mesolens::InvalidInput);

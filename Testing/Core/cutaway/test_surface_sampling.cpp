@@ -89,14 +89,17 @@ TEST(SurfaceSampling, TwoLeafletsMeetOnTheirMiddleSheet)
 
 TEST(SurfaceSampling, BadInputs)
 {
-  EXPECT_THROW(mesolens::median_spacing({ 1, 2, 3 }), mesolens::InvalidInput);
-  EXPECT_THROW(mesolens::median_spacing({ 1, 2, 3, 1, 2, 3, 1, 2, 3 }), mesolens::InvalidInput);
-  EXPECT_THROW(mesolens::median_spacing({ 1, 2, 3, 1, 2 }), mesolens::InvalidInput);
-  EXPECT_THROW(mesolens::median_spacing({ 0, 0, 0, std::nan(""), 1, 1 }), mesolens::InvalidInput);
-  EXPECT_THROW(mesolens::poisson_disk_subset({ 0, 0, 0 }, 0.0), mesolens::InvalidInput);
-  EXPECT_THROW(mesolens::poisson_disk_subset({ 0, 0, 0 }, std::nan("")), mesolens::InvalidInput);
-  EXPECT_TRUE(mesolens::poisson_disk_subset({}, 1.0).empty());
-  EXPECT_THROW(mesolens::mid_surface_points({}, 1.0, 1.0), mesolens::InvalidInput);
-  EXPECT_THROW(mesolens::mid_surface_points({ 0, 0, 0 }, 1.0, -1.0), mesolens::InvalidInput);
-  EXPECT_THROW(mesolens::mid_surface_points({ 0, 0, 0 }, 1.0, 1.0, -1), mesolens::InvalidInput);
+  using Flat = std::vector<double>;
+  EXPECT_THROW(mesolens::median_spacing(Flat{ 1, 2, 3 }), mesolens::InvalidInput);
+  EXPECT_THROW(mesolens::median_spacing(Flat{ 1, 2, 3, 1, 2, 3, 1, 2, 3 }), mesolens::InvalidInput);
+  EXPECT_THROW(mesolens::median_spacing(Flat{ 1, 2, 3, 1, 2 }), mesolens::InvalidInput);
+  EXPECT_THROW(mesolens::median_spacing(Flat{ 0, 0, 0, std::nan(""), 1, 1 }),
+               mesolens::InvalidInput);
+  EXPECT_THROW(mesolens::poisson_disk_subset(Flat{ 0, 0, 0 }, 0.0), mesolens::InvalidInput);
+  EXPECT_THROW(mesolens::poisson_disk_subset(Flat{ 0, 0, 0 }, std::nan("")),
+               mesolens::InvalidInput);
+  EXPECT_TRUE(mesolens::poisson_disk_subset(Flat{}, 1.0).empty());
+  EXPECT_THROW(mesolens::mid_surface_points(Flat{}, 1.0, 1.0), mesolens::InvalidInput);
+  EXPECT_THROW(mesolens::mid_surface_points(Flat{ 0, 0, 0 }, 1.0, -1.0), mesolens::InvalidInput);
+  EXPECT_THROW(mesolens::mid_surface_points(Flat{ 0, 0, 0 }, 1.0, 1.0, -1), mesolens::InvalidInput);
 }

@@ -318,16 +318,16 @@ TEST(MembraneMapper, PoorPolynomialFitsAreSplit)
     {
       continue;
     }
-    for (std::size_t a = 0; a < view.atom_count; a += 7)
+    for (std::size_t a = 0; a < view.atom_count(); a += 7)
     {
       const auto x =
         mesolens::evaluate_tile_polynomial(view, 15, m[tile],
                                            split.mapped.polynomial_coefficients.data() +
                                              30 * split.mapped.polynomial_first_piece[tile],
-                                           view.positions + 3 * a);
+                                           view.positions[a]);
       for (std::size_t d = 0; d < 3; ++d)
       {
-        EXPECT_DOUBLE_EQ(split.mapped.positions[3 * (tile * view.atom_count + a) + d], x[d]);
+        EXPECT_DOUBLE_EQ(split.mapped.positions[3 * (tile * view.atom_count() + a) + d], x[d]);
       }
     }
   }

@@ -231,7 +231,7 @@ TEST(TemporalSubdivision, UnwrapToReference)
   box.vectors = { { { 10, 0, 0 }, { 0, 10, 0 }, { 0, 0, 10 } } };
   const std::vector<float> reference = { 9.5f, 5, 5, 1, 1, 1 };
   std::vector<float> moved = { 1.5f, 5, 5, 1.25f, 1, 9.75f }; // crossed +x, then -z
-  mesolens::unwrap_to_reference(moved.data(), reference.data(), 2, box);
+  mesolens::unwrap_to_reference(moved, reference, box);
   EXPECT_FLOAT_EQ(moved[0], 11.5f);
   EXPECT_FLOAT_EQ(moved[3], 1.25f);
   EXPECT_FLOAT_EQ(moved[5], -0.25f);
@@ -242,7 +242,7 @@ TEST(TemporalSubdivision, UnwrapToReference)
   const std::vector<float> pair_frame = pair;
   const std::vector<int> ids = { 0, 0, 1 };
   const auto molecules = mesolens::group_molecules(ids.data(), 3);
-  mesolens::unwrap_to_reference(pair.data(), pair_reference.data(), 3, box, &molecules);
+  mesolens::unwrap_to_reference(pair, pair_reference, box, &molecules);
   EXPECT_FLOAT_EQ(pair[0], 10.0f);
   EXPECT_FLOAT_EQ(pair[3], 11.0f);
   EXPECT_FLOAT_EQ(pair[6], 2.5f);
@@ -250,15 +250,17 @@ TEST(TemporalSubdivision, UnwrapToReference)
   const std::vector<int> sparse = { -7, -7, 2000000000 };
   const auto sparse_molecules = mesolens::group_molecules(sparse.data(), 3);
   std::vector<float> again = pair_frame;
-  mesolens::unwrap_to_reference(again.data(), pair_reference.data(), 3, box, &sparse_molecules);
+  mesolens::unwrap_to_reference(again, pair_reference, box, &sparse_molecules);
   EXPECT_EQ(again, pair);
   // Molecules of another number of atoms are refused.
   const auto two = mesolens::group_molecules(ids.data(), 2);
-  EXPECT_THROW(mesolens::unwrap_to_reference(again.data(), pair_reference.data(), 3, box, &two),
+  EXPECT_THROW(mesolens::unwrap_to_reference(again, pair_reference, box, &two),
                mesolens::InvalidInput);
+  // Reference positions of another number of atoms are refused.
+  EXPECT_THROW(mesolens::unwrap_to_reference(again, reference, box), mesolens::InvalidInput);
   // Unset box: no-op.
   std::vector<float> same = { 1.5f, 5, 5, 1.25f, 1, 9.75f };
-  mesolens::unwrap_to_reference(same.data(), reference.data(), 2, mesolens::PeriodicBox{});
+  mesolens::unwrap_to_reference(same, reference, mesolens::PeriodicBox{});
   EXPECT_FLOAT_EQ(same[0], 1.5f);
 }
 

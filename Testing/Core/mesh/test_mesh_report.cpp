@@ -18,8 +18,7 @@ struct Mesh
   mesolens::MeshReport report() const
   {
     mesolens::TriangleMeshView view;
-    view.points = points.data();
-    view.point_count = points.size() / 3;
+    view.points = points;
     view.triangles = triangles.data();
     view.triangle_count = triangles.size() / 3;
     return mesolens::mesh_report(view);

@@ -30,11 +30,10 @@ struct Atoms
   mesolens::BondPerceptionInput input() const
   {
     mesolens::BondPerceptionInput in;
-    in.positions = positions.data();
+    in.positions = positions;
     in.atomic_numbers = elements.data();
     in.molecule_ids = molecules.data();
     in.alt_locs = alt_locs.data();
-    in.atom_count = elements.size();
     return in;
   }
 };
@@ -156,8 +155,8 @@ TEST(BondPerception, RejectsBadParameters)
   params = {};
   params.bead_cutoff = 0;
   EXPECT_THROW(mesolens::perceive_bonds(atoms.input(), params), mesolens::InvalidInput);
-  mesolens::BondPerceptionInput missing;
-  missing.atom_count = 3;
+  mesolens::BondPerceptionInput missing = atoms.input();
+  missing.atomic_numbers = nullptr;
   EXPECT_THROW(mesolens::perceive_bonds(missing), mesolens::InvalidInput);
 }
 

@@ -44,14 +44,13 @@ TEST(MoleculeGroups, CentresAreMeansOrCentresOfMass)
   const std::vector<int> ids = { 1, 2, 1 };
   const auto groups = mesolens::group_molecules(ids.data(), ids.size());
   const std::vector<float> positions = { 0, 0, 0, 5, 5, 5, 2, 4, 6 };
-  EXPECT_EQ(mesolens::molecule_centres(groups, positions.data()),
+  EXPECT_EQ(mesolens::molecule_centres(groups, positions),
             (std::vector<double>{ 1, 2, 3, 5, 5, 5 }));
   const std::vector<float> masses = { 3, 1, 1 };
-  EXPECT_EQ(mesolens::molecule_centres(groups, positions.data(), masses.data()),
+  EXPECT_EQ(mesolens::molecule_centres(groups, positions, masses.data()),
             (std::vector<double>{ 0.5, 1, 1.5, 5, 5, 5 }));
   const std::vector<double> doubles(positions.begin(), positions.end());
-  EXPECT_EQ(mesolens::molecule_centres(groups, doubles.data()),
-            (std::vector<double>{ 1, 2, 3, 5, 5, 5 }));
+  EXPECT_EQ(mesolens::molecule_centres(groups, doubles), (std::vector<double>{ 1, 2, 3, 5, 5, 5 }));
 }
 
 TEST(MoleculeGroups, NonFinitePositionsAreNamed)
@@ -60,13 +59,20 @@ TEST(MoleculeGroups, NonFinitePositionsAreNamed)
   const std::vector<float> positions = { 0, 0, 0, 1, std::nanf(""), 1 };
   try
   {
-    mesolens::molecule_centres(groups, positions.data());
+    mesolens::molecule_centres(groups, positions);
     ADD_FAILURE() << "a NaN coordinate was accepted";
   }
   catch (const mesolens::InvalidInput& e)
   {
     EXPECT_NE(std::string(e.what()).find("atom 1"), std::string::npos) << e.what();
   }
+}
+
+TEST(MoleculeGroups, CentresNeedOnePositionPerGroupedAtom)
+{
+  const auto groups = mesolens::group_molecules(nullptr, 3);
+  const std::vector<float> two_atoms = { 0, 0, 0, 1, 1, 1 };
+  EXPECT_THROW(mesolens::molecule_centres(groups, two_atoms), mesolens::InvalidInput);
 }
 
 } // namespace

@@ -21,7 +21,7 @@ TEST(MoleculePbc, MakesSplitMoleculeWhole)
   // A three-atom chain wrapped around x = 0 of a 30 Å box, then a second molecule.
   std::vector<float> p = { 29.0f, 5, 5, 0.5f, 5, 5, 2.0f, 5, 5, 15, 15, 15 };
   const std::vector<int> molecules = { 0, 0, 0, 1 };
-  mesolens::make_molecules_whole(p.data(), molecules.data(), 4, cube(30));
+  mesolens::make_molecules_whole(p, molecules.data(), cube(30));
   EXPECT_FLOAT_EQ(p[0], 29.0f);
   EXPECT_FLOAT_EQ(p[3], 30.5f);
   EXPECT_FLOAT_EQ(p[6], 32.0f);
@@ -38,7 +38,7 @@ TEST(MoleculePbc, TriclinicBoxWhole)
     p[3 + k] = float(p[3 + k] + box.vectors[2][k]);
   }
   const std::vector<int> molecules = { 0, 0 };
-  mesolens::make_molecules_whole(p.data(), molecules.data(), 2, box);
+  mesolens::make_molecules_whole(p, molecules.data(), box);
   EXPECT_NEAR(p[3], 2.0f, 1e-4);
   EXPECT_NEAR(p[4], 1.0f, 1e-4);
   EXPECT_NEAR(p[5], 1.0f, 1e-4);
@@ -48,7 +48,7 @@ TEST(MoleculePbc, UnsetBoxIsNoOp)
 {
   std::vector<float> p = { 29.0f, 5, 5, 0.5f, 5, 5 };
   const std::vector<int> molecules = { 0, 0 };
-  mesolens::make_molecules_whole(p.data(), molecules.data(), 2, mesolens::PeriodicBox{});
+  mesolens::make_molecules_whole(p, molecules.data(), mesolens::PeriodicBox{});
   EXPECT_FLOAT_EQ(p[3], 0.5f);
 }
 
@@ -67,15 +67,17 @@ TEST(MoleculePbc, ContinuityUndoesBoxCrossings)
   for (std::size_t f = 0; f < frames.size(); ++f)
   {
     std::vector<float> p = frames[f];
-    continuity.add_frame(f, p.data(), box);
+    continuity.add_frame(f, p, box);
     EXPECT_NEAR(p[0], 1.0 + 4.0 * f, 1e-4) << f;
   }
   // Random access afterwards gives the same continuous positions.
   std::vector<float> p = frames[3];
-  continuity.apply(3, p.data(), box);
+  continuity.apply(3, p, box);
   EXPECT_NEAR(p[0], 13.0, 1e-4);
-  EXPECT_THROW(continuity.apply(9, p.data(), box), mesolens::InvalidInput);
-  EXPECT_THROW(continuity.add_frame(9, p.data(), box), mesolens::InvalidInput);
+  EXPECT_THROW(continuity.apply(9, p, box), mesolens::InvalidInput);
+  EXPECT_THROW(continuity.add_frame(9, p, box), mesolens::InvalidInput);
+  std::vector<float> three_atoms(9, 0.0f);
+  EXPECT_THROW(continuity.apply(3, three_atoms, box), mesolens::InvalidInput);
 }
 
 TEST(MoleculePbc, ContinuityAcrossCheckpoints)
@@ -91,12 +93,12 @@ TEST(MoleculePbc, ContinuityAcrossCheckpoints)
   for (std::size_t f = 0; f < 200; ++f)
   {
     std::vector<float> p = wrapped_frame(f);
-    continuity.add_frame(f, p.data(), box);
+    continuity.add_frame(f, p, box);
   }
   for (std::size_t f : { 199u, 0u, 64u, 65u, 130u, 63u })
   {
     std::vector<float> p = wrapped_frame(f);
-    continuity.apply(f, p.data(), box);
+    continuity.apply(f, p, box);
     EXPECT_NEAR(p[0], 1.0 + 3.0 * double(f), 1e-3) << f;
     EXPECT_FLOAT_EQ(p[3], 5.0f);
   }
@@ -166,6 +168,7 @@ TEST(AssemblyShifts, GathersAVesicleSplitByTheBoxFaces)
     }
   }
   // No box: no shifts.
-  const auto none = mesolens::assembly_shifts({ 1, 2, 3 }, mesolens::PeriodicBox());
+  const auto none =
+    mesolens::assembly_shifts(std::vector<double>{ 1, 2, 3 }, mesolens::PeriodicBox());
   EXPECT_EQ(none[0][0], 0.0);
 }

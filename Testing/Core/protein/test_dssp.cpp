@@ -2,6 +2,7 @@
 #include "mesolens/protein/dssp.h"
 #include "mesolens/common/errors.h"
 #include "mesolens/io/structure_file.h"
+#include "mesolens/protein/ribbon_trace.h"
 #include "mesolens_test_data.h"
 #include "mesolens_test_threads.h"
 
@@ -473,7 +474,8 @@ TEST(Dssp, BadInputs)
   negative.polyproline_stretch = -1;
   EXPECT_THROW(mesolens::assign_secondary_structure(ideal_backbone(5, -57.0, -47.0), negative),
                mesolens::InvalidInput);
-  EXPECT_THROW(mesolens::assign_from_ca({ { 0, 0, 0 } }, {}), mesolens::InvalidInput);
+  EXPECT_THROW(mesolens::assign_from_ca(std::vector<std::array<double, 3>>{ { 0, 0, 0 } }, {}),
+               mesolens::InvalidInput);
   // No residue with any backbone atom: all coil, nothing from Cα.
   std::vector<mesolens::BackboneResidue> empty_residues(4);
   const auto nothing = mesolens::assign_secondary_structure(empty_residues);
@@ -481,4 +483,30 @@ TEST(Dssp, BadInputs)
   // A nucleic acid has no amino-acid residues.
   const auto dna = mesolens::read_structure(mesolens_test::data_file("proteins/1bna.pdb"));
   EXPECT_TRUE(mesolens::protein_backbone(dna.models[0]).residues.empty());
+}
+
+TEST(Dssp, NewFramesOfTheSameAtomsUpdateTheBackboneAndTheRibbonTrace)
+{
+  // Trp-cage's models are frames of the same atoms: model 0's backbone and trace take model 1's
+  // positions and equal model 1's own.
+  const auto file = mesolens::read_structure(mesolens_test::data_file("proteins/1l2y.pdb"));
+  auto backbone = mesolens::protein_backbone(file.models[0]);
+  const auto second = mesolens::protein_backbone(file.models[1]);
+  backbone.update_positions(file.models[1].positions);
+  ASSERT_EQ(backbone.residues.size(), second.residues.size());
+  for (std::size_t r = 0; r < second.residues.size(); ++r)
+  {
+    EXPECT_EQ(backbone.residues[r].ca, second.residues[r].ca) << r;
+    EXPECT_EQ(backbone.residues[r].o, second.residues[r].o) << r;
+  }
+  auto trace = mesolens::ribbon_trace(file.models[0]);
+  trace.update(file.models[1].positions, nullptr);
+  const auto second_trace = mesolens::ribbon_trace(file.models[1]);
+  ASSERT_EQ(trace.residues.size(), second_trace.residues.size());
+  EXPECT_EQ(trace.residues.back().trace, second_trace.residues.back().trace);
+  // Positions that lack atoms the backbone or the trace uses are refused.
+  const mesolens::PointSpan<const float> all = file.models[1].positions;
+  const auto fewer = all.subspan(0, all.size() - 20);
+  EXPECT_THROW(backbone.update_positions(fewer), mesolens::InvalidInput);
+  EXPECT_THROW(trace.update(fewer, nullptr), mesolens::InvalidInput);
 }

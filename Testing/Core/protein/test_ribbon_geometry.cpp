@@ -14,9 +14,9 @@
 
 namespace {
 using mesolens::RibbonMesh;
+using mesolens::RibbonParams;
 using mesolens::RibbonPiece;
 using mesolens::RibbonResidue;
-using mesolens::RibbonParams;
 using Point = std::array<double, 3>;
 using Chain = std::vector<RibbonResidue>;
 
@@ -190,7 +190,7 @@ void expect_closed_pieces(const RibbonMesh& mesh, bool check_face_normals = true
       volume += dot(corner[0], cross(corner[1], corner[2])) / 6.0;
     }
     const mesolens::MeshReport report = mesolens::mesh_report(
-      { points.data(), piece.vertex_count, triangles.data(), piece.triangle_count });
+      { { points.data(), piece.vertex_count }, triangles.data(), piece.triangle_count });
     EXPECT_TRUE(report.is_closed_manifold()) << report.describe_defects();
     EXPECT_EQ(report.components, 1u);
     EXPECT_EQ(report.euler_characteristic, 2);
@@ -199,7 +199,7 @@ void expect_closed_pieces(const RibbonMesh& mesh, bool check_face_normals = true
     EXPECT_GT(volume, 0);
   }
   const mesolens::MeshReport whole = mesolens::mesh_report(
-    { mesh.points.data(), mesh.vertex_count(), mesh.triangles.data(), mesh.triangle_count() });
+    { { mesh.points.data(), mesh.vertex_count() }, mesh.triangles.data(), mesh.triangle_count() });
   EXPECT_EQ(whole.components, mesh.pieces.size());
 }
 

@@ -37,7 +37,7 @@ TEST(AtomCells, EveryAtomHasOneSlotAndCellsAreCompact)
 {
   const std::vector<float> xyz = shuffled_lattice(40, 7); // 64000 atoms
   const std::size_t n = xyz.size() / 3;
-  const auto cells = mesolens::group_atoms_into_cells(xyz.data(), n, 500);
+  const auto cells = mesolens::group_atoms_into_cells(xyz, 500);
   ASSERT_EQ(cells.atom_of_slot.size(), n);
   std::vector<std::uint32_t> sorted = cells.atom_of_slot;
   std::sort(sorted.begin(), sorted.end());
@@ -52,7 +52,7 @@ TEST(AtomCells, EveryAtomHasOneSlotAndCellsAreCompact)
 
   std::vector<float> slot_xyz(xyz.size());
   std::vector<float> boxes;
-  mesolens::gather_cell_positions(xyz.data(), cells, slot_xyz.data(), boxes);
+  mesolens::gather_cell_positions(xyz, cells, slot_xyz, boxes);
   ASSERT_EQ(boxes.size(), 6 * cells.cell_count());
   double largest_extent = 0;
   for (std::size_t c = 0; c < cells.cell_count(); ++c)
@@ -94,7 +94,7 @@ TEST(AtomCells, EveryAtomHasOneSlotAndCellsAreCompact)
     1e-3);
 
   // Same input, same grouping.
-  const auto again = mesolens::group_atoms_into_cells(xyz.data(), n, 500);
+  const auto again = mesolens::group_atoms_into_cells(xyz, 500);
   EXPECT_EQ(again.atom_of_slot, cells.atom_of_slot);
   EXPECT_EQ(again.cell_start, cells.cell_start);
 }
@@ -114,7 +114,7 @@ TEST(AtomCells, SparseSheetKeepsTheCellSize)
       xyz.push_back(100.0f * v / length);
     }
   }
-  const auto cells = mesolens::group_atoms_into_cells(xyz.data(), 20000, 200);
+  const auto cells = mesolens::group_atoms_into_cells(xyz, 200);
   const double mean = 20000.0 / double(cells.cell_count());
   EXPECT_GT(mean, 200.0 / 1.6);
   EXPECT_LT(mean, 200.0 * 1.6);
@@ -122,18 +122,26 @@ TEST(AtomCells, SparseSheetKeepsTheCellSize)
 
 TEST(AtomCells, DegenerateInputs)
 {
-  EXPECT_EQ(mesolens::group_atoms_into_cells(nullptr, 0, 100).cell_count(), 0u);
+  EXPECT_EQ(mesolens::group_atoms_into_cells({}, 100).cell_count(), 0u);
   const std::vector<float> same(30, 2.5f); // ten coincident atoms
-  const auto one = mesolens::group_atoms_into_cells(same.data(), 10, 4);
+  const auto one = mesolens::group_atoms_into_cells(same, 4);
   ASSERT_EQ(one.cell_count(), 1u);
   EXPECT_EQ(one.atom_of_slot.size(), 10u);
+  // Positions or slots of another count than the cells' atoms are refused.
+  std::vector<float> slots(30);
+  std::vector<float> boxes;
+  const std::vector<float> nine(27, 2.5f);
+  EXPECT_THROW(mesolens::gather_cell_positions(nine, one, slots, boxes), mesolens::InvalidInput);
+  std::vector<float> eleven_slots(33);
+  EXPECT_THROW(mesolens::gather_cell_positions(same, one, eleven_slots, boxes),
+               mesolens::InvalidInput);
   // A line of atoms (flat in two axes) and a cell size of 1.
   std::vector<float> line;
   for (int i = 0; i < 50; ++i)
   {
     line.insert(line.end(), { float(i), 0.0f, 0.0f });
   }
-  const auto singles = mesolens::group_atoms_into_cells(line.data(), 50, 1);
+  const auto singles = mesolens::group_atoms_into_cells(line, 1);
   EXPECT_GE(singles.cell_count(), 34u);
   EXPECT_EQ(singles.cell_start.back(), 50u);
 }

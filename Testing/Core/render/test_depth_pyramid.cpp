@@ -207,12 +207,12 @@ TEST(DepthPyramid, AtomsBehindAWallAreHiddenOthersStay)
   cells.cell_start = { 0, 2, 4 }; // two cells of two atoms
   std::vector<float> slot_xyz(12);
   std::vector<float> boxes;
-  mesolens::gather_cell_positions(xyz.data(), cells, slot_xyz.data(), boxes);
+  mesolens::gather_cell_positions(xyz, cells, slot_xyz, boxes);
   const auto in_view = mesolens::cells_in_view(boxes, 1.2, m.data());
   ASSERT_EQ(in_view.size(), 2u);
   std::vector<std::uint8_t> flags = { 0, 0, 0, mesolens::SEEN };
-  const auto result = mesolens::test_atom_visibility(
-    pyramid, view, slot_xyz.data(), elements.data(), 1, radii, cells, boxes, in_view, 1.2, flags);
+  const auto result = mesolens::test_atom_visibility(pyramid, view, slot_xyz, elements.data(), 1,
+                                                     radii, cells, boxes, in_view, 1.2, flags);
   EXPECT_EQ(flags[0], 0);
   EXPECT_EQ(flags[1], mesolens::SEEN | mesolens::NEWLY_SEEN);
   EXPECT_EQ(flags[2], mesolens::SEEN | mesolens::NEWLY_SEEN);
@@ -224,19 +224,19 @@ TEST(DepthPyramid, AtomsBehindAWallAreHiddenOthersStay)
 
   // A whole cell behind the wall: hidden by its box, its atoms cleared.
   const std::vector<float> hidden_xyz = { -6, 0, -8, -4, 1, -9, 5, 0, -8, 5, 5, -8 };
-  mesolens::gather_cell_positions(hidden_xyz.data(), cells, slot_xyz.data(), boxes);
+  mesolens::gather_cell_positions(hidden_xyz, cells, slot_xyz, boxes);
   flags = { mesolens::SEEN, mesolens::SEEN, 0, 0 };
-  const auto behind = mesolens::test_atom_visibility(
-    pyramid, view, slot_xyz.data(), elements.data(), 1, radii, cells, boxes,
-    mesolens::cells_in_view(boxes, 1.2, m.data()), 1.2, flags);
+  const auto behind =
+    mesolens::test_atom_visibility(pyramid, view, slot_xyz, elements.data(), 1, radii, cells, boxes,
+                                   mesolens::cells_in_view(boxes, 1.2, m.data()), 1.2, flags);
   EXPECT_EQ(flags[0], 0);
   EXPECT_EQ(flags[1], 0);
   EXPECT_EQ(behind.seen[0], 0);
   // A cell out of view loses its flags.
   flags = { mesolens::SEEN, mesolens::SEEN, mesolens::SEEN, mesolens::SEEN };
   std::vector<mesolens::CellInView> only_first = { { 0, 0.5, false } };
-  mesolens::test_atom_visibility(pyramid, view, slot_xyz.data(), elements.data(), 1, radii, cells,
-                                 boxes, only_first, 1.2, flags);
+  mesolens::test_atom_visibility(pyramid, view, slot_xyz, elements.data(), 1, radii, cells, boxes,
+                                 only_first, 1.2, flags);
   EXPECT_EQ(flags[2], 0);
   EXPECT_EQ(flags[3], 0);
 }

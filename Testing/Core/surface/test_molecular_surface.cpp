@@ -55,8 +55,7 @@ MeshFigures mesh_figures(const MolecularSurface& s)
 mesolens::MeshReport report_of(const MolecularSurface& s)
 {
   mesolens::TriangleMeshView view;
-  view.points = s.points.data();
-  view.point_count = s.points.size() / 3;
+  view.points = s.points;
   view.triangles = s.triangles.data();
   view.triangle_count = s.triangles.size() / 3;
   return mesolens::mesh_report(view);
@@ -618,8 +617,9 @@ TEST(MolecularSurface, TheMeshAloneIsTheSameMeshWithoutFigures)
 TEST(MolecularSurface, ProgressRisesToOne)
 {
   std::vector<double> fractions;
-  const MolecularSurface s = mesolens::molecular_surface(
-    { { 0, 0, 0 }, { 2, 0, 0 } }, { 1.5, 1.5 }, {}, {}, [&](double f) { fractions.push_back(f); });
+  const MolecularSurface s =
+    mesolens::molecular_surface(Centres{ { 0, 0, 0 }, { 2, 0, 0 } }, { 1.5, 1.5 }, {}, {},
+                                [&](double f) { fractions.push_back(f); });
   ASSERT_FALSE(fractions.empty());
   EXPECT_TRUE(std::is_sorted(fractions.begin(), fractions.end()));
   EXPECT_DOUBLE_EQ(fractions.back(), 1.0);
@@ -670,7 +670,7 @@ TEST(MolecularSurface, BadInputsAreRefused)
   EXPECT_NEAR(apart.area, 2 * 4 * pi * 1.5 * 1.5, 1e-9);
   EXPECT_EQ(apart.component_count, 2u);
   // No atoms: an empty surface.
-  const MolecularSurface none = mesolens::molecular_surface({}, {});
+  const MolecularSurface none = mesolens::molecular_surface(Centres{}, {});
   EXPECT_TRUE(none.points.empty());
   EXPECT_EQ(none.area, 0.0);
   // Coincident atoms count once; one huge atom swallows its neighbours.

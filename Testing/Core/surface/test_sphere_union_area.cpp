@@ -13,6 +13,7 @@
 #include <sstream>
 
 namespace {
+using Centres = std::vector<std::array<double, 3>>;
 constexpr double pi = 3.14159265358979323846;
 
 /// The exposed area of each sphere estimated by sampling its surface (`samples` points on a
@@ -49,22 +50,22 @@ std::vector<double> sampled_areas(const std::vector<std::array<double, 3>>& cent
 
 TEST(SphereUnionArea, OneSphereAndTwoOverlapping)
 {
-  const auto one = mesolens::sphere_union_area({ { 1, 2, 3 } }, { 1.7 });
+  const auto one = mesolens::sphere_union_area(Centres{ { 1, 2, 3 } }, { 1.7 });
   EXPECT_NEAR(one.total, 4 * pi * 1.7 * 1.7, 1e-12);
   // Two spheres: each loses a cap of height r - (r^2 + d^2 - r'^2) / 2d.
   const double r1 = 1.8, r2 = 1.3, d = 2.1;
-  const auto two = mesolens::sphere_union_area({ { 0, 0, 0 }, { d, 0, 0 } }, { r1, r2 });
+  const auto two = mesolens::sphere_union_area(Centres{ { 0, 0, 0 }, { d, 0, 0 } }, { r1, r2 });
   const double h1 = (r1 * r1 + d * d - r2 * r2) / (2 * r1 * d);
   const double h2 = (r2 * r2 + d * d - r1 * r1) / (2 * r2 * d);
   EXPECT_NEAR(two.per_sphere[0], 2 * pi * r1 * r1 * (1 + h1), 1e-9);
   EXPECT_NEAR(two.per_sphere[1], 2 * pi * r2 * r2 * (1 + h2), 1e-9);
   // Apart, nested, coincident.
-  EXPECT_NEAR(mesolens::sphere_union_area({ { 0, 0, 0 }, { 5, 0, 0 } }, { 1, 2 }).total, 4 * pi * 5,
-              1e-9);
-  const auto nested = mesolens::sphere_union_area({ { 0, 0, 0 }, { 0.5, 0, 0 } }, { 3, 1 });
+  EXPECT_NEAR(mesolens::sphere_union_area(Centres{ { 0, 0, 0 }, { 5, 0, 0 } }, { 1, 2 }).total,
+              4 * pi * 5, 1e-9);
+  const auto nested = mesolens::sphere_union_area(Centres{ { 0, 0, 0 }, { 0.5, 0, 0 } }, { 3, 1 });
   EXPECT_NEAR(nested.per_sphere[0], 4 * pi * 9, 1e-9);
   EXPECT_EQ(nested.per_sphere[1], 0.0);
-  const auto same = mesolens::sphere_union_area({ { 1, 1, 1 }, { 1, 1, 1 } }, { 2, 2 });
+  const auto same = mesolens::sphere_union_area(Centres{ { 1, 1, 1 }, { 1, 1, 1 } }, { 2, 2 });
   EXPECT_NEAR(same.total, 4 * pi * 4, 1e-9);
   // Volumes: a ball, and two less their lens, r1 + r2 - d deep.
   EXPECT_NEAR(one.volume, 4.0 / 3.0 * pi * std::pow(1.7, 3), 1e-9);
@@ -80,7 +81,7 @@ TEST(SphereUnionArea, ThreeInARowAndAClusterAgreeWithSampling)
   // Three in a row: the middle one loses two disjoint caps (closed form).
   const double r = 1.5, d = 2.0;
   const auto row =
-    mesolens::sphere_union_area({ { -d, 0, 0 }, { 0, 0, 0 }, { d, 0, 0 } }, { r, r, r });
+    mesolens::sphere_union_area(Centres{ { -d, 0, 0 }, { 0, 0, 0 }, { d, 0, 0 } }, { r, r, r });
   const double h = d / (2 * r);
   const double lens = pi * std::pow(2 * r - d, 2) * (d * d + 4 * d * r) / (12 * d);
   EXPECT_NEAR(row.volume, 3 * 4.0 / 3.0 * pi * r * r * r - 2 * lens, 1e-9);
@@ -220,11 +221,14 @@ TEST(SphereUnionArea, SolventAccessibleAreaOfUbiquitinAsFreeSasa)
 
 TEST(SphereUnionArea, BadInputs)
 {
-  EXPECT_EQ(mesolens::sphere_union_area({}, {}).total, 0.0);
-  EXPECT_THROW(mesolens::sphere_union_area({ { 0, 0, 0 } }, {}), mesolens::InvalidInput);
-  EXPECT_THROW(mesolens::sphere_union_area({ { 0, 0, 0 } }, { 0.0 }), mesolens::InvalidInput);
-  EXPECT_THROW(mesolens::sphere_union_area({ { 0, 0, 0 } }, { -1.0 }), mesolens::InvalidInput);
-  EXPECT_THROW(mesolens::sphere_union_area({ { std::nan(""), 0, 0 } }, { 1.0 }),
+  EXPECT_EQ(mesolens::sphere_union_area(Centres{}, {}).total, 0.0);
+  EXPECT_THROW(mesolens::sphere_union_area(Centres{ { 0, 0, 0 } }, {}), mesolens::InvalidInput);
+  EXPECT_THROW(mesolens::sphere_union_area(Centres{ { 0, 0, 0 } }, { 0.0 }),
                mesolens::InvalidInput);
-  EXPECT_THROW(mesolens::sphere_union_area({ { 0, 0, 0 } }, { INFINITY }), mesolens::InvalidInput);
+  EXPECT_THROW(mesolens::sphere_union_area(Centres{ { 0, 0, 0 } }, { -1.0 }),
+               mesolens::InvalidInput);
+  EXPECT_THROW(mesolens::sphere_union_area(Centres{ { std::nan(""), 0, 0 } }, { 1.0 }),
+               mesolens::InvalidInput);
+  EXPECT_THROW(mesolens::sphere_union_area(Centres{ { 0, 0, 0 } }, { INFINITY }),
+               mesolens::InvalidInput);
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "mesolens/common/parallel_for.h"
+#include "mesolens/common/point_span.h"
 #include "mesolens/molecules/periodic_box.h"
 #include "mesolens/mesh/triangle_mesh.h"
 
@@ -52,7 +53,7 @@ struct StructureMeshParams
   PeriodicBox box;
 };
 
-/// A sheet through the middle of `points` (3 coordinates each: the centres of a membrane's
+/// A sheet through the middle of `points` (the centres of a membrane's
 /// lipids, both leaflets, or their head groups alone; no water or ions, see
 /// structure_molecules()).
 ///
@@ -78,7 +79,7 @@ struct StructureMeshParams
 /// length, or points that all coincide; TopologyError when the points describe no surface (all
 /// on a line, for instance) or when the angle bound cannot be met everywhere (the message says
 /// where).
-TriangleMesh structure_mesh(const std::vector<double>& points, const StructureMeshParams& params,
+TriangleMesh structure_mesh(PointSpan<const double> points, const StructureMeshParams& params,
                             MeshQuality* quality = nullptr, const ParallelFor& parallel_for = {});
 
 /// True for the residue names of water and of monatomic ions in common force fields and in the

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "mesolens/common/parallel_for.h"
+#include "mesolens/common/point_span.h"
 #include "mesolens/mesh/triangle_mesh.h"
 
 #include <array>
@@ -88,11 +89,11 @@ struct RemovalOrder
 class StructuredCutaway
 {
 public:
-  /// `structure`: the structure's triangle mesh; `centres`: 3 coordinates per molecule (the
-  /// molecules' centres, same units); `types`: one type per molecule, or empty (all type 0).
+  /// `structure`: the structure's triangle mesh; `centres`: one per molecule (the molecules'
+  /// centres, the mesh's units); `types`: one type per molecule, or empty (all type 0).
   /// Throws InvalidInput for an empty or non-finite set of centres, a types list of another
   /// length, or a mesh without triangles. `parallel_for` runs the closest-point searches.
-  StructuredCutaway(const TriangleMesh& structure, const std::vector<double>& centres,
+  StructuredCutaway(const TriangleMesh& structure, PointSpan<const double> centres,
                     std::vector<int> types = {}, const ParallelFor& parallel_for = {});
 
   std::size_t molecule_count() const
@@ -117,25 +118,25 @@ public:
   /// sigmoid and x the minimal barycentric coordinate (1 at triangle centres, 0 on edges).
   std::vector<double> priorities(double k) const;
 
-  /// Per molecule, 1 visible or 0 hidden: of the molecules whose centre (`centres`, 3 per
-  /// molecule, e.g. a later trajectory frame; nullptr: the centres given at construction) lies
+  /// Per molecule, 1 visible or 0 hidden: of the molecules whose centre (`centres`, one per
+  /// molecule, e.g. a later trajectory frame; empty: the centres given at construction) lies
   /// in `cut`, the round(fraction x count) of highest priority (lowest when inverted; in
   /// random order in random mode) are hidden, per type; molecules outside the cut stay. Throws
-  /// InvalidInput for settings out of range.
+  /// InvalidInput for settings out of range or centres of another count.
   std::vector<std::uint8_t> visibility(const CutRegion& cut, const CutawayParams& settings,
-                                       const double* centres = nullptr) const;
+                                       PointSpan<const double> centres = {}) const;
 
   /// The same with the cut given as a test of a point (true: inside the cut).
   std::vector<std::uint8_t> visibility(
     const std::function<bool(const std::array<double, 3>&)>& inside_cut,
-    const CutawayParams& settings, const double* centres = nullptr) const;
+    const CutawayParams& settings, PointSpan<const double> centres = {}) const;
 
   /// The first, costlier half of visibility(): which molecules are in the cut and in which
   /// order they go (all settings but the fractions count). Keep it while only the fractions
   /// change (a slider): visibility(order, settings) is then O(molecules).
   RemovalOrder removal_order(const std::function<bool(const std::array<double, 3>&)>& inside_cut,
                              const CutawayParams& settings,
-                             const double* centres = nullptr) const;
+                             PointSpan<const double> centres = {}) const;
 
   /// The mask for `order` with the fractions of `settings` (the rest of the settings are those
   /// the order was made with). Throws InvalidInput for fractions out of [0, 1] or an order

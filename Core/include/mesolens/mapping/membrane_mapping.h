@@ -4,6 +4,7 @@
 #pragma once
 
 #include "mesolens/common/parallel_for.h"
+#include "mesolens/common/point_span.h"
 #include "mesolens/mapping/mapping_method.h"
 #include "mesolens/mapping/polynomial_warp.h"
 #include "mesolens/mapping/surface_chart.h"
@@ -19,14 +20,18 @@ namespace mesolens {
 /// b from `origin` (membrane units, e.g. Å); heights are measured from the bilayer centre.
 struct MembranePatch
 {
-  const float* positions = nullptr; ///< 3 per atom, membrane units
-  std::size_t atom_count = 0;
+  PointSpan<const float> positions;  ///< one per atom, membrane units
   const int* molecule_ids = nullptr; ///< per atom, >= 0; needed by MoleculeInstancing
   const float* masses = nullptr;     ///< per atom; null: centroids instead of centres of mass
   std::array<double, 2> origin{ { 0, 0 } };
   std::array<double, 2> a{ { 0, 0 } }; ///< first cell vector (x, y), membrane units
   std::array<double, 2> b{ { 0, 0 } }; ///< second cell vector (x, y), membrane units
   double centre_height = 0;            ///< z of the bilayer centre, membrane units
+
+  std::size_t atom_count() const
+  {
+    return this->positions.size();
+  }
 };
 
 /// Parameters of map_membrane().

@@ -4,6 +4,8 @@
 // this is its reference implementation.
 #pragma once
 
+#include "mesolens/common/point_span.h"
+
 #include <array>
 #include <cstddef>
 #include <vector>
@@ -34,7 +36,6 @@ struct QuadraticFit
 /// equations are solved by Cholesky decomposition (Eigen's LLT), as in the paper. Needs at
 /// least 10 samples in general position (e.g. a 6 x 6 grid on 3 layers); throws InvalidInput
 /// for mismatched or too few samples and SolverFailure for a singular system.
-QuadraticFit fit_quadratic(const std::vector<std::array<double, 3>>& parameters,
-                           const std::vector<std::array<double, 3>>& targets);
+QuadraticFit fit_quadratic(PointSpan<const double> parameters, PointSpan<const double> targets);
 
 } // namespace mesolens

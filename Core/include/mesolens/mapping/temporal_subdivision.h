@@ -4,6 +4,7 @@
 #pragma once
 
 #include "mesolens/common/parallel_for.h"
+#include "mesolens/common/point_span.h"
 #include "mesolens/molecules/molecule_groups.h"
 #include "mesolens/molecules/periodic_box.h"
 
@@ -79,9 +80,9 @@ void combine_frames(const std::vector<const float*>& frames, const std::vector<d
 /// image, so molecules that are whole in both frames stay whole. Correct while atoms
 /// (molecules) moved less than half the shortest box height between the two frames.
 /// Coordinates not moved stay bit-identical; no-op when the box is not set. positions,
-/// reference: 3 floats per atom (same length unit as the box, e.g. Å). Throws InvalidInput when
-/// `molecules` groups another number of atoms.
-void unwrap_to_reference(float* positions, const float* reference, std::size_t atom_count,
+/// reference: one per atom (same length unit as the box, e.g. Å). Throws InvalidInput when
+/// they differ in length or `molecules` groups another number of atoms.
+void unwrap_to_reference(PointSpan<float> positions, PointSpan<const float> reference,
                          const PeriodicBox& box, const MoleculeGroups* molecules = nullptr,
                          const ParallelFor& parallel_for = {});
 

@@ -2,6 +2,8 @@
 // Topological and geometric sanity report of a triangle mesh.
 #pragma once
 
+#include "mesolens/common/point_span.h"
+
 #include <array>
 #include <cstddef>
 #include <cstdint>
@@ -10,12 +12,10 @@
 
 namespace mesolens {
 
-/// Read-only view of a triangle mesh: vertex positions (3 doubles each) and triangles
-/// (3 vertex indices each).
+/// Read-only view of a triangle mesh: vertex positions and triangles (3 vertex indices each).
 struct TriangleMeshView
 {
-  const double* points = nullptr;
-  std::size_t point_count = 0;
+  PointSpan<const double> points;
   const std::int64_t* triangles = nullptr;
   std::size_t triangle_count = 0;
 };

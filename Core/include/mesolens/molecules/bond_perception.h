@@ -2,6 +2,7 @@
 // Distance-based bond perception in O(n) with a uniform spatial grid.
 #pragma once
 
+#include "mesolens/common/point_span.h"
 #include "mesolens/molecules/atom_table.h"
 #include "mesolens/common/parallel_for.h"
 
@@ -31,11 +32,15 @@ struct BondPerceptionParams
 /// Read-only view over the atoms that bond perception looks at.
 struct BondPerceptionInput
 {
-  const float* positions = nullptr;             ///< 3 per atom, Å; non-finite atoms never bond
+  PointSpan<const float> positions;             ///< one per atom, Å; non-finite atoms never bond
   const std::uint8_t* atomic_numbers = nullptr; ///< per atom (0 = unknown: radius 0.5 Å)
   const int* molecule_ids = nullptr;            ///< per atom; only atoms of one molecule bond
   const char* alt_locs = nullptr; ///< optional; different non-blank altlocs never bond
-  std::size_t atom_count = 0;
+
+  std::size_t atom_count() const
+  {
+    return this->positions.size();
+  }
 };
 
 /// Bonds between atoms of the same molecule by distance, sorted by (first, second), unique.

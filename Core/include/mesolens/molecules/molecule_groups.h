@@ -3,6 +3,8 @@
 // the mapping, the cutaway, the trajectory's unwrapping and the atom mapper share.
 #pragma once
 
+#include "mesolens/common/point_span.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -13,11 +15,11 @@ namespace mesolens {
 /// each with its id and its atoms in increasing order.
 struct MoleculeGroups
 {
-  std::vector<std::uint32_t> of_atom;      ///< per atom: its molecule
-  std::vector<int> ids;                    ///< per molecule: its id
-  std::vector<std::size_t> first;          ///< per molecule, and the total at the end: where
-                                           ///< its atoms start in `atoms`
-  std::vector<std::uint32_t> atoms;        ///< molecule m's atoms: [first[m], first[m + 1])
+  std::vector<std::uint32_t> of_atom; ///< per atom: its molecule
+  std::vector<int> ids;               ///< per molecule: its id
+  std::vector<std::size_t> first;     ///< per molecule, and the total at the end: where
+                                      ///< its atoms start in `atoms`
+  std::vector<std::uint32_t> atoms;   ///< molecule m's atoms: [first[m], first[m + 1])
 
   std::size_t count() const
   {
@@ -55,12 +57,13 @@ struct MoleculeGroups
 MoleculeGroups group_molecules(const int* ids, std::size_t atom_count);
 
 /// Per molecule, 3 values: the mean position of its atoms, or with `masses` (per atom) the
-/// centre of mass (an all-zero mass molecule: the mean). `positions` holds 3 per atom, summed
-/// in atom order in double precision. Throws InvalidInput naming the first atom with a
-/// non-finite coordinate.
-std::vector<double> molecule_centres(const MoleculeGroups& groups, const float* positions,
+/// centre of mass (an all-zero mass molecule: the mean). `positions`: one per grouped atom,
+/// summed in atom order in double precision. Throws InvalidInput for another number of
+/// positions, or naming the first atom with a non-finite coordinate.
+std::vector<double> molecule_centres(const MoleculeGroups& groups, PointSpan<const float> positions,
                                      const float* masses = nullptr);
-std::vector<double> molecule_centres(const MoleculeGroups& groups, const double* positions,
+std::vector<double> molecule_centres(const MoleculeGroups& groups,
+                                     PointSpan<const double> positions,
                                      const float* masses = nullptr);
 
 } // namespace mesolens

@@ -2,6 +2,7 @@
 // Making molecules whole across periodic boundaries, and keeping them continuous in time.
 #pragma once
 
+#include "mesolens/common/point_span.h"
 #include "mesolens/molecules/molecule_groups.h"
 #include "mesolens/molecules/periodic_box.h"
 
@@ -14,11 +15,12 @@ namespace mesolens {
 
 /// Moves atoms by box vectors so that every molecule is whole: each atom is placed at the
 /// minimum image of its displacement from the previous atom of the same molecule (atoms of a
-/// molecule are contiguous or not; order within the molecule is file order; ids any values). Correct whenever
-/// consecutive atoms of a molecule are closer than half the shortest box height, which holds for
-/// lipids, proteins and nucleic acids in any sensible box. No-op when the box is not set.
-/// positions: 3 per atom, same length unit as the box. molecule_ids: per atom, >= 0.
-void make_molecules_whole(float* positions, const int* molecule_ids, std::size_t atom_count,
+/// molecule are contiguous or not; order within the molecule is file order; ids any values).
+/// Correct whenever consecutive atoms of a molecule are closer than half the shortest box height,
+/// which holds for lipids, proteins and nucleic acids in any sensible box. No-op when the box is
+/// not set. positions: one per atom, same length unit as the box. molecule_ids: per atom, any
+/// values.
+void make_molecules_whole(PointSpan<float> positions, const int* molecule_ids,
                           const PeriodicBox& box);
 
 /// Keeps molecules from jumping across the box between frames: the centroid of each molecule
@@ -40,11 +42,13 @@ public:
   }
 
   /// Records frame `frame` (must equal known_frames()), whose molecules are already whole, and
-  /// applies its shifts to `positions` in place.
-  void add_frame(std::size_t frame, float* positions, const PeriodicBox& box);
+  /// applies its shifts to `positions` (one per atom) in place. Throws InvalidInput for another
+  /// frame or another number of positions.
+  void add_frame(std::size_t frame, PointSpan<float> positions, const PeriodicBox& box);
 
-  /// Applies the remembered shifts of a known frame to whole positions in place.
-  void apply(std::size_t frame, float* positions, const PeriodicBox& box) const;
+  /// Applies the remembered shifts of a known frame to whole positions in place. Throws
+  /// InvalidInput for a frame not added yet or another number of positions.
+  void apply(std::size_t frame, PointSpan<float> positions, const PeriodicBox& box) const;
 
   /// Frames between two full shift tables.
   static constexpr std::size_t checkpoint_interval = 64;
@@ -57,7 +61,8 @@ private:
     std::array<std::int32_t, 3> shift;
   };
   std::vector<std::int32_t> shifts_of(std::size_t frame) const;
-  void shift_atoms(const std::vector<std::int32_t>& shifts, float* positions,
+  void require_atom_count(PointSpan<const float> positions) const;
+  void shift_atoms(const std::vector<std::int32_t>& shifts, PointSpan<float> positions,
                    const PeriodicBox& box) const;
 
   MoleculeGroups Molecules;
@@ -67,13 +72,13 @@ private:
   std::vector<double> PreviousCentroids;              ///< shifted centroids, last known frame
 };
 
-/// Whole box-vector shifts (Å, one per point) that gather `centres` (3 per point, Å) into one
+/// Whole box-vector shifts (Å, one per point) that gather `centres` (Å) into one
 /// piece around their periodic (circular) mean in each fractional coordinate of `box`: for an
 /// assembly split by the box's faces, such as a vesicle, that spans less than the box in every
 /// direction. The largest group of points keeps its place (an assembly already whole does not
 /// move); along an axis that the points spread over (mean resultant length below 0.25, e.g. a
 /// flat membrane crossing the box) nothing moves. Zero shifts when the box is not set.
-std::vector<std::array<double, 3>> assembly_shifts(const std::vector<double>& centres,
+std::vector<std::array<double, 3>> assembly_shifts(PointSpan<const double> centres,
                                                    const PeriodicBox& box);
 
 } // namespace mesolens

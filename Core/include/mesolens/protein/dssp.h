@@ -3,6 +3,7 @@
 // and from Cα atoms alone where a chain has nothing else.
 #pragma once
 
+#include "mesolens/common/point_span.h"
 #include "mesolens/molecules/atom_table.h"
 #include "mesolens/protein/protein_backbone.h"
 #include "mesolens/common/parallel_for.h"
@@ -69,7 +70,7 @@ DsspResult assign_secondary_structure(const std::vector<BackboneResidue>& residu
 /// strands (E) where three or more in a row are extended (angle 124 +- 14, |dihedral| over
 /// 120 degrees) and lie within 5.5 Å of an extended residue at least 3 apart (a paired
 /// strand); the rest coil. After P-SEA (Labesse et al. 1997) with DSSP's classes.
-std::vector<SecondaryStructure> assign_from_ca(const std::vector<std::array<double, 3>>& ca,
+std::vector<SecondaryStructure> assign_from_ca(PointSpan<const double> ca,
                                                const std::vector<int>& chain);
 
 /// The assignment as DSSP letters, '-' for coil.

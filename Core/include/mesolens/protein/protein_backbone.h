@@ -3,6 +3,7 @@
 // need them.
 #pragma once
 
+#include "mesolens/common/point_span.h"
 #include "mesolens/molecules/atom_table.h"
 
 #include <array>
@@ -39,8 +40,9 @@ struct ProteinBackbone
   /// frame of the same atoms only needs update_positions().
   std::vector<std::array<std::int64_t, 5>> atom_rows;
 
-  /// Takes every present atom's position from `positions` (3 floats per table row, Å).
-  void update_positions(const float* positions);
+  /// Takes every present atom's position from `positions` (one per table row, Å). Throws
+  /// InvalidInput when `positions` lacks a row the backbone uses.
+  void update_positions(PointSpan<const float> positions);
 };
 
 /// The amino-acid residues of `atoms` (standard and modified amino acids by name, or any

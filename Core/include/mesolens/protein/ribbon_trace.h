@@ -2,6 +2,7 @@
 // Which residues a ribbon is traced through, and through which of their atoms.
 #pragma once
 
+#include "mesolens/common/point_span.h"
 #include "mesolens/molecules/atom_table.h"
 #include "mesolens/protein/ribbon_geometry.h"
 
@@ -19,9 +20,10 @@ struct RibbonTrace
   std::vector<std::int64_t> oxygen_atom; ///< per residue: the row of its carbonyl O, -1: none
   std::vector<int> residue_index;        ///< per residue: AtomTable::residue_indices
 
-  /// Takes the residues' trace and oxygen positions from `positions` (3 floats per table row,
-  /// Å) and their classes from `classes` (a SecondaryStructure per row; nullptr: coil, ' ').
-  void update(const float* positions, const std::uint8_t* classes);
+  /// Takes the residues' trace and oxygen positions from `positions` (one per table row, Å) and
+  /// their classes from `classes` (a SecondaryStructure per row; nullptr: coil, ' '). Throws
+  /// InvalidInput when `positions` lacks a row the trace uses.
+  void update(PointSpan<const float> positions, const std::uint8_t* classes);
 };
 
 /// Amino acids traced through their Cα (oriented by their carbonyl O when present) and

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "mesolens/common/parallel_for.h"
+#include "mesolens/common/point_span.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -27,17 +28,18 @@ struct AtomCells
 
 /// Groups atoms into the occupied cells of a uniform cubic grid whose edge is chosen so that an
 /// occupied cell holds about `atoms_per_cell` atoms (the edge shrinks for sparse sets, such as a
-/// membrane curved over a large box, so that the occupied cells keep that size). `xyz` holds 3
-/// finite coordinates per atom; `atoms_per_cell` >= 1. Deterministic: cells in grid order, atoms
-/// in input order within a cell. No atoms: no cells.
-AtomCells group_atoms_into_cells(const float* xyz, std::size_t atom_count,
-                                 std::size_t atoms_per_cell);
+/// membrane curved over a large box, so that the occupied cells keep that size). `xyz`: finite
+/// positions, one per atom; `atoms_per_cell` >= 1. Deterministic: cells in grid order, atoms in
+/// input order within a cell. No atoms: no cells.
+AtomCells group_atoms_into_cells(PointSpan<const float> xyz, std::size_t atoms_per_cell);
 
-/// Copies the positions into slot order (`slot_xyz`, 3 per atom) and computes each cell's box of
-/// atom centres (`boxes`, 6 per cell: min x, y, z, max x, y, z). For a new time step of the same
-/// atoms the grouping stays and only this runs.
-void gather_cell_positions(const float* xyz, const AtomCells& cells, float* slot_xyz,
-                           std::vector<float>& boxes, const ParallelFor& parallel_for = {});
+/// Copies the positions (`xyz`, one per atom) into slot order (`slot_xyz`, one per slot) and
+/// computes each cell's box of atom centres (`boxes`, 6 per cell: min x, y, z, max x, y, z). For
+/// a new time step of the same atoms the grouping stays and only this runs. Throws InvalidInput
+/// when `xyz` or `slot_xyz` has another length than the cells' atoms.
+void gather_cell_positions(PointSpan<const float> xyz, const AtomCells& cells,
+                           PointSpan<float> slot_xyz, std::vector<float>& boxes,
+                           const ParallelFor& parallel_for = {});
 
 /// The summed box diagonals: how spread the cells are (it grows as the atoms of a trajectory
 /// drift from the cells they were grouped into).

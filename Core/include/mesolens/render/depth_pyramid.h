@@ -5,6 +5,7 @@
 // depth image; it may call some hidden things visible.
 #pragma once
 
+#include "mesolens/common/point_span.h"
 #include "mesolens/render/atom_cells.h"
 #include "mesolens/common/parallel_for.h"
 
@@ -124,18 +125,16 @@ struct CellVisibility
   std::size_t drawn_after = 0; ///< atoms now NEWLY_SEEN
 };
 
-/// Tests every atom of the cells in view (atoms in slot order: `slot_xyz` 3 floats each, radius
+/// Tests every atom of the cells in view (atoms in slot order: `slot_xyz` one per slot, radius
 /// `radius_of_element[element_of_slot[slot * element_stride]]`) against the pyramid and
 /// rewrites `flags` (one per slot; the SEEN bit on entry says what was drawn first this frame):
 /// SEEN when not hidden, NEWLY_SEEN when not hidden and not drawn first. Atoms of cells that are
 /// not in view, or whose box (grown by `padding`) is hidden, get 0. Cells in view that reach
 /// the eye keep all their atoms SEEN (NEWLY_SEEN unless drawn first).
-CellVisibility test_atom_visibility(const DepthPyramid& pyramid, const ViewTransform& view,
-                                    const float* slot_xyz, const std::uint8_t* element_of_slot,
-                                    std::size_t element_stride, const float* radius_of_element,
-                                    const AtomCells& cells, const std::vector<float>& boxes,
-                                    const std::vector<CellInView>& in_view, double padding,
-                                    std::vector<std::uint8_t>& flags,
-                                    const ParallelFor& parallel_for = {});
+CellVisibility test_atom_visibility(
+  const DepthPyramid& pyramid, const ViewTransform& view, PointSpan<const float> slot_xyz,
+  const std::uint8_t* element_of_slot, std::size_t element_stride, const float* radius_of_element,
+  const AtomCells& cells, const std::vector<float>& boxes, const std::vector<CellInView>& in_view,
+  double padding, std::vector<std::uint8_t>& flags, const ParallelFor& parallel_for = {});
 
 } // namespace mesolens

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "mesolens/common/parallel_for.h"
+#include "mesolens/common/point_span.h"
 
 #include <array>
 #include <cstddef>
@@ -124,7 +125,7 @@ using SurfaceProgress = std::function<void(double)>;
 /// triangles, or atoms spread so far apart (thousands of Å along each axis) that the search
 /// grid would need more than about 12 GB. No atoms give an empty surface. Deterministic
 /// whatever `parallel_for`.
-MolecularSurface molecular_surface(const std::vector<std::array<double, 3>>& centres,
+MolecularSurface molecular_surface(PointSpan<const double> centres,
                                    const std::vector<double>& radii,
                                    const MolecularSurfaceParams& options = {},
                                    const ParallelFor& parallel_for = {},

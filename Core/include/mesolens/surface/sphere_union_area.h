@@ -4,6 +4,7 @@
 #pragma once
 
 #include "mesolens/common/parallel_for.h"
+#include "mesolens/common/point_span.h"
 
 #include <array>
 #include <vector>
@@ -28,8 +29,7 @@ struct SphereUnionArea
 /// another have no exposed area; coincident equal spheres count once (the first). Throws
 /// InvalidInput for lists of different lengths, a non-finite centre or radius, or a radius <= 0.
 /// Deterministic whatever `parallel_for`; time about O(n k^2) for k neighbours per sphere.
-SphereUnionArea sphere_union_area(const std::vector<std::array<double, 3>>& centres,
-                                  const std::vector<double>& radii,
+SphereUnionArea sphere_union_area(PointSpan<const double> centres, const std::vector<double>& radii,
                                   const ParallelFor& parallel_for = {});
 
 } // namespace mesolens

@@ -16,6 +16,11 @@
 
 vtkStandardNewMacro(vtkMesoAtomProperties);
 
+vtkMesoAtomProperties::vtkMesoAtomProperties()
+  : BeadRadius(mesolens::bead_radius)
+{
+}
+
 int vtkMesoAtomProperties::RequestData(vtkInformation*, vtkInformationVector** inputVector,
                                        vtkInformationVector* outputVector)
 {

@@ -30,20 +30,19 @@ public:
 
   ///@{
   /// Radius of atoms with unknown element and of coarse-grained beads, in Å (scaled by
-  /// LengthScale). Martini beads are about 2.35 Å (van der Waals radius of a 0.47 nm bead).
-  /// Range [0.1, 10]; default 2.35.
+  /// LengthScale), [0.1, 10]; default mesolens::bead_radius (a Martini bead).
   vtkSetClampMacro(BeadRadius, double, 0.1, 10.0);
   vtkGetMacro(BeadRadius, double);
   ///@}
 
 protected:
-  vtkMesoAtomProperties() = default;
+  vtkMesoAtomProperties();
   ~vtkMesoAtomProperties() override = default;
 
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   double LengthScale = 1.0;
-  double BeadRadius = 2.35;
+  double BeadRadius; // set by the constructor
 
 private:
   vtkMesoAtomProperties(const vtkMesoAtomProperties&) = delete;

@@ -9,6 +9,7 @@
 #include "vtkMesoParallelFor.h"
 
 #include "mesolens/common/errors.h"
+#include "mesolens/molecules/elements.h"
 #include "mesolens/surface/molecular_surface.h"
 
 #include <vtkDataArray.h>
@@ -40,6 +41,7 @@ vtkMesoMolecularSurface::vtkMesoMolecularSurface()
   this->Tolerance = defaults.tolerance;
   this->ComputeExactFigures = defaults.exact_figures;
   this->KeepCavities = defaults.keep_cavities;
+  this->BeadRadius = mesolens::bead_radius;
 }
 
 vtkMesoMolecularSurface::~vtkMesoMolecularSurface()

@@ -113,8 +113,8 @@ public:
   ///@}
 
   ///@{
-  /// Radius of atoms without an element (AtomicNumber 0: beads), Å, [0.1, 10]; default 2.35
-  /// (a Martini bead).
+  /// Radius of atoms without an element (AtomicNumber 0: beads), Å, [0.1, 10]; default
+  /// mesolens::bead_radius (a Martini bead).
   vtkSetClampMacro(BeadRadius, double, 0.1, 10.0);
   vtkGetMacro(BeadRadius, double);
   ///@}
@@ -134,7 +134,7 @@ protected:
   bool KeepCavities;
   // The filter's own.
   char* RadiusArrayName = nullptr;
-  double BeadRadius = 2.35;
+  double BeadRadius; // set by the constructor
 
 private:
   vtkMesoMolecularSurface(const vtkMesoMolecularSurface&) = delete;

@@ -8,6 +8,7 @@
 #include "vtkMesoParallelFor.h"
 
 #include "mesolens/common/errors.h"
+#include "mesolens/molecules/elements.h"
 #include "mesolens/surface/molecular_surface.h"
 #include "mesolens/surface/sphere_union_area.h"
 
@@ -26,6 +27,7 @@ vtkStandardNewMacro(vtkMesoSurfaceArea);
 vtkMesoSurfaceArea::vtkMesoSurfaceArea()
 {
   this->ProbeRadius = mesolens::MolecularSurfaceParams().probe_radius;
+  this->BeadRadius = mesolens::bead_radius;
 }
 
 vtkMesoSurfaceArea::~vtkMesoSurfaceArea()

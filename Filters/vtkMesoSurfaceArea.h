@@ -47,8 +47,8 @@ public:
   ///@}
 
   ///@{
-  /// Radius of atoms without an element (AtomicNumber 0: beads), Å, [0.1, 10]; default 2.35
-  /// (a Martini bead).
+  /// Radius of atoms without an element (AtomicNumber 0: beads), Å, [0.1, 10]; default
+  /// mesolens::bead_radius (a Martini bead).
   vtkSetClampMacro(BeadRadius, double, 0.1, 10.0);
   vtkGetMacro(BeadRadius, double);
   ///@}
@@ -62,7 +62,7 @@ protected:
 
   double ProbeRadius; // set by the constructor
   char* RadiusArrayName = nullptr;
-  double BeadRadius = 2.35;
+  double BeadRadius; // set by the constructor
 
 private:
   vtkMesoSurfaceArea(const vtkMesoSurfaceArea&) = delete;

@@ -9,6 +9,7 @@
 #include "vtkMesoSecondaryStructure.h"
 #include "vtkMesoStructureReader.h"
 #include "vtkMesoStructuredCutaway.h"
+#include "vtkMesoAtomProperties.h"
 #include "vtkMesoSurfaceArea.h"
 #include "vtkMesoTrajectoryReader.h"
 
@@ -19,6 +20,7 @@
 #include "mesolens/mapping/membrane_mapper.h"
 #include "mesolens/protein/dssp.h"
 #include "mesolens/protein/ribbon_geometry.h"
+#include "mesolens/molecules/elements.h"
 #include "mesolens/surface/molecular_surface.h"
 
 #include <vtkNew.h>
@@ -72,6 +74,7 @@ TEST(MesoDefaults, MolecularSurface)
   EXPECT_CORE_DEFAULT(filter, Tolerance, defaults.tolerance);
   EXPECT_CORE_DEFAULT(filter, ComputeExactFigures, defaults.exact_figures);
   EXPECT_CORE_DEFAULT(filter, KeepCavities, defaults.keep_cavities);
+  EXPECT_CORE_DEFAULT(filter, BeadRadius, mesolens::bead_radius);
   // The surface types are Core's kinds.
   EXPECT_EQ(vtkMesoMolecularSurface::SOLVENT_EXCLUDED, int(mesolens::SurfaceKind::SolventExcluded));
   EXPECT_EQ(vtkMesoMolecularSurface::SOLVENT_ACCESSIBLE,
@@ -83,6 +86,13 @@ TEST(MesoDefaults, SurfaceArea)
 {
   vtkNew<vtkMesoSurfaceArea> filter;
   EXPECT_CORE_DEFAULT(filter, ProbeRadius, mesolens::MolecularSurfaceParams().probe_radius);
+  EXPECT_CORE_DEFAULT(filter, BeadRadius, mesolens::bead_radius);
+}
+
+TEST(MesoDefaults, AtomProperties)
+{
+  vtkNew<vtkMesoAtomProperties> filter;
+  EXPECT_CORE_DEFAULT(filter, BeadRadius, mesolens::bead_radius);
 }
 
 TEST(MesoDefaults, SecondaryStructure)

@@ -24,6 +24,10 @@ float covalent_radius(int atomic_number);
 /// Van der Waals radius in Å (Bondi 1964 / Alvarez 2013); 1.0 Å for unknown (0).
 float van_der_waals_radius(int atomic_number);
 
+/// The radius given to atoms without an element (coarse-grained beads), Å: a Martini bead's
+/// (van der Waals radius of a 0.47 nm bead). Filters take it as their BeadRadius default.
+constexpr double bead_radius = 2.35;
+
 /// Standard atomic weight in daltons (gemmi's table); 1 for unknown (0) and for coarse-grained
 /// beads, so their centres of mass are centroids.
 float atomic_mass(int atomic_number);

@@ -159,9 +159,19 @@ bool vtkMesoTrajectoryReader::OpenIfNeeded()
     return true;
   }
   state = State{};
-  if (this->TopologyFileName.empty())
+  std::string topology = this->TopologyFileName;
+  if (topology.empty() && !this->TrajectoryFileName.empty())
   {
-    vtkErrorMacro("No TopologyFileName was set.");
+    topology = mesolens::topology_beside(this->TrajectoryFileName);
+  }
+  if (topology.empty())
+  {
+    vtkErrorMacro(
+      "No TopologyFileName was set"
+      << (this->TrajectoryFileName.empty()
+            ? std::string(".")
+            : ", and no topology lies beside " + this->TrajectoryFileName +
+              " (a .gro, .pdb or .cif of the same name, or the only one in its folder)."));
     return false;
   }
   const mesolens::StructureReadParams params = vtkMesoAtomReaderParameters(this);
@@ -170,12 +180,12 @@ bool vtkMesoTrajectoryReader::OpenIfNeeded()
     : mesolens::TrajectoryFile::IncompleteFrames::Reject;
   try
   {
-    state.Topology = load_topology(this->TopologyFileName, params);
+    state.Topology = load_topology(topology, params);
     this->UpdateProgress(0.5);
     std::string trajectory = this->TrajectoryFileName;
-    if (trajectory.empty() && mesolens::file_extension(this->TopologyFileName) == "gro")
+    if (trajectory.empty() && mesolens::file_extension(topology) == "gro")
     {
-      trajectory = this->TopologyFileName;
+      trajectory = topology;
       state.TrajectoryIsTopology = true;
     }
     if (!trajectory.empty())
@@ -185,7 +195,7 @@ bool vtkMesoTrajectoryReader::OpenIfNeeded()
       {
         vtkErrorMacro("Atom count mismatch: trajectory "
                       << trajectory << " has " << state.File->atom_count()
-                      << " atoms per frame but topology " << this->TopologyFileName << " has "
+                      << " atoms per frame but topology " << topology << " has "
                       << state.Topology.size() << " atoms.");
         state = State{};
         return false;
@@ -199,8 +209,7 @@ bool vtkMesoTrajectoryReader::OpenIfNeeded()
   }
   catch (const mesolens::Error& e)
   {
-    vtkErrorMacro("Cannot read " << this->TopologyFileName
-                                 << (this->TrajectoryFileName.empty() ? "" : " + ")
+    vtkErrorMacro("Cannot read " << topology << (this->TrajectoryFileName.empty() ? "" : " + ")
                                  << this->TrajectoryFileName << ": " << e.what());
     state = State{};
     return false;

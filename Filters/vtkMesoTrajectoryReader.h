@@ -43,7 +43,9 @@ public:
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
   ///@{
-  /// Topology: a .gro, .pdb or .cif file whose atoms match the trajectory's. Default: none.
+  /// Topology: a .gro, .pdb or .cif file whose atoms match the trajectory's. Default: none,
+  /// which takes the topology beside the trajectory (mesolens::topology_beside: the same name
+  /// with a topology extension, or the only topology file in its folder).
   vtkSetStdStringFromCharMacro(TopologyFileName);
   vtkGetCharFromStdStringMacro(TopologyFileName);
   ///@}

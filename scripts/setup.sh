@@ -8,8 +8,11 @@ set -eu
 cd "$(dirname "$0")/.."
 BUILD_DIR=${BUILD_DIR:-build}
 
+# ParaView 5.11 brings the VTK 9.2 everything builds on (and vtkmodules for /usr/bin/python3);
+# it replaces Debian's separate VTK 9.1 packages, which cannot be installed beside it.
 packages="cmake g++ make pkg-config zlib1g-dev
-  libvtk9-dev python3-vtk9 python3-numpy libeigen3-dev libcgal-dev libopenmesh-dev
+  paraview-dev python3-paraview libglew-dev libfreetype-dev openmpi-bin
+  python3-numpy libeigen3-dev libcgal-dev libopenmesh-dev
   libgtest-dev gemmi-dev tao-pegtl-dev libgromacs-dev dssp freesasa edtsurf python3-pymol
   xvfb xauth mesa-utils libgl1-mesa-dri"
 missing=""

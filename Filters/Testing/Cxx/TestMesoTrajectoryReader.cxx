@@ -18,6 +18,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <map>
 
 using mesolens_test::data_file;
@@ -178,6 +180,35 @@ TEST(vtkMesoTrajectoryReader, PdbTopology)
   reader->Update();
   EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 327);
   EXPECT_EQ(reader->GetOutput()->GetNumberOfLines(), 337);
+}
+
+TEST(vtkMesoTrajectoryReader, TakesTheTopologyBesideTheTrajectory)
+{
+  vtkNew<vtkMesoTrajectoryReader> named;
+  named->SetTopologyFileName(data_file("membranes/yiip_popepopg.gro").c_str());
+  named->SetTrajectoryFileName(data_file("membranes/yiip_popepopg.xtc").c_str());
+  named->Update();
+  vtkNew<vtkMesoTrajectoryReader> beside;
+  beside->SetTrajectoryFileName(data_file("membranes/yiip_popepopg.xtc").c_str());
+  beside->Update();
+  ASSERT_GT(named->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_EQ(beside->GetOutput()->GetNumberOfPoints(), named->GetOutput()->GetNumberOfPoints());
+  EXPECT_EQ(beside->GetOutput()->GetNumberOfLines(), named->GetOutput()->GetNumberOfLines());
+  EXPECT_EQ(beside->GetNumberOfFrames(), named->GetNumberOfFrames());
+  // No topology set and none beside: a clear error naming the trajectory.
+  const std::string lonely = mesolens_test::output_file("lonely_trajectory");
+  std::filesystem::create_directories(lonely);
+  std::filesystem::copy_file(data_file("membranes/yiip_popepopg.xtc"), lonely + "/run.xtc",
+                             std::filesystem::copy_options::overwrite_existing);
+  std::ofstream(lonely + "/a.gro") << "";
+  std::ofstream(lonely + "/b.gro") << "";
+  vtkNew<vtkMesoTrajectoryReader> reader;
+  mesolens_test::EventRecorder events(reader);
+  reader->SetTrajectoryFileName((lonely + "/run.xtc").c_str());
+  EXPECT_EQ(reader->GetExecutive()->Update(), 0);
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_NE(events.AllErrors().find("no topology lies beside"), std::string::npos)
+    << events.AllErrors();
 }
 
 TEST(vtkMesoTrajectoryReader, BadInputsFailCleanly)

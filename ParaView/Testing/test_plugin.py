@@ -1,0 +1,136 @@
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""The ParaView plugin under pvbatch: it loads, its readers open every file type they claim
+(chosen by ParaView's reader factory), report their time steps, and every filter runs from
+paraview.simple with its defaults, giving what the same VTK class gives without ParaView.
+
+Run by ctest as: pvbatch test_plugin.py PLUGIN_LIBRARY (environment from mesolens_add_python_test).
+"""
+import os
+import sys
+
+from paraview import servermanager
+from paraview import simple
+
+import mesolens
+
+DATA = os.environ["MESOLENS_DATA_DIR"]
+failures = []
+
+
+def check(condition, message):
+    if not condition:
+        failures.append(message)
+        print("FAIL:", message)
+
+
+def data(relative):
+    return os.path.join(DATA, relative)
+
+
+def points_of(proxy, port=0):
+    proxy.UpdatePipeline()
+    return proxy.GetDataInformation(port).GetNumberOfPoints()
+
+
+def cells_of(proxy, port=0):
+    proxy.UpdatePipeline()
+    return proxy.GetDataInformation(port).GetNumberOfCells()
+
+
+def vtk_output(algorithm, port=0):
+    algorithm.Update()
+    return algorithm.GetOutputDataObject(port)
+
+
+# paraview.simple names a proxy's function after its label.
+simple.LoadPlugin(sys.argv[1], remote=False)
+for name in ("MesoLensStructureReader", "MesoLensGROReader", "MesoLensTrajectoryReader",
+             "MesoLensMeshReader", "SecondaryStructureDSSP", "Ribbons", "MolecularSurface",
+             "SolventAccessibleArea", "AtomProperties", "MembraneMapping", "GeodesicDisk",
+             "DiskParameterization", "StructuredCutaway", "TrajectoryRefinement", "MeshReport"):
+    check(hasattr(simple, name), f"the plugin defines {name}")
+
+# The reader factory offers our readers for their file types.
+factory = servermanager.vtkSMProxyManager.GetProxyManager().GetReaderFactory()
+session = servermanager.ActiveConnection.Session
+for path, reader in ((data("proteins/1crn.pdb"), "MesoLensStructureReader"),
+                     (data("proteins/1crn.cif"), "MesoLensStructureReader"),
+                     (data("membranes/yiip_popepopg.gro"), "MesoLensGroReader"),
+                     (data("membranes/yiip_popepopg.xtc"), "MesoLensTrajectoryReader"),
+                     (data("meshes/cgal_mesh_with_border.off"), "MesoLensMeshReader")):
+    offered = factory.GetReaders(path, session)
+    names = [offered.GetString(i) for i in range(1, offered.GetNumberOfStrings(), 3)]
+    check(reader in names, f"{reader} is offered for {os.path.basename(path)} (offered {names})")
+
+# Readers: the same atoms as the VTK classes, time steps in ParaView's animation.
+crambin = simple.MesoLensStructureReader(FileName=data("proteins/1crn.pdb"))
+plain = mesolens.vtkMesoStructureReader()
+plain.SetFileName(data("proteins/1crn.pdb"))
+expected = vtk_output(plain)
+check(points_of(crambin) == expected.GetNumberOfPoints() > 0, "1crn.pdb atoms")
+check(cells_of(crambin) == expected.GetNumberOfCells(), "1crn.pdb bonds")
+
+trajectory = simple.MesoLensTrajectoryReader(FileName=data("membranes/yiip_popepopg.xtc"))
+trajectory.UpdatePipelineInformation()
+plain = mesolens.vtkMesoTrajectoryReader()
+plain.SetTrajectoryFileName(data("membranes/yiip_popepopg.xtc"))
+plain.UpdateInformation()
+times = list(trajectory.TimestepValues)
+check(len(times) == plain.GetNumberOfFrames() > 1, f"trajectory time steps {times}")
+check(points_of(trajectory) == 43480, "the xtc's topology was found beside it")
+scene = simple.GetAnimationScene()
+scene.UpdateAnimationUsingDataTimeSteps()
+check(list(scene.TimeKeeper.TimestepValues) == times, "the animation has the trajectory's times")
+
+gro = simple.MesoLensGROReader(FileName=data("membranes/dppc128_slipids_323K.gro"))
+check(points_of(gro) == 28160, "gro atoms")
+mesh = simple.MesoLensMeshReader(FileName=data("meshes/cgal_mesh_with_border.off"))
+check(cells_of(mesh) > 0, "off mesh triangles")
+
+# Filters with their defaults: the same output as the VTK classes.
+structure = simple.SecondaryStructureDSSP(Input=crambin)
+ribbons = simple.Ribbons(Input=structure)
+reader = mesolens.vtkMesoStructureReader()
+reader.SetFileName(data("proteins/1crn.pdb"))
+dssp = mesolens.vtkMesoSecondaryStructure()
+dssp.SetInputConnection(reader.GetOutputPort())
+plain_ribbons = mesolens.vtkMesoRibbons()
+plain_ribbons.SetInputConnection(dssp.GetOutputPort())
+check(cells_of(ribbons) == vtk_output(plain_ribbons).GetNumberOfCells() > 0, "ribbons")
+
+surface = simple.MolecularSurface(Input=crambin)
+plain_surface = mesolens.vtkMesoMolecularSurface()
+plain_surface.SetInputConnection(reader.GetOutputPort())
+check(cells_of(surface) == vtk_output(plain_surface).GetNumberOfCells() > 0, "molecular surface")
+
+area = simple.SolventAccessibleArea(Input=crambin)
+check(points_of(area) == expected.GetNumberOfPoints(), "surface area keeps the atoms")
+properties = simple.AtomProperties(Input=crambin)
+check(points_of(properties) == expected.GetNumberOfPoints(), "atom properties")
+
+organelle = simple.MesoLensMeshReader(FileName=data("meshes/mito5_outer_membrane.obj"))
+report = simple.MeshReport(Input=organelle)
+check(cells_of(report) > 0, "mesh report")
+membrane = simple.MesoLensGROReader(FileName=data("membranes/dppc128_slipids_323K.gro"))
+mapping = simple.MembraneMapping(Surface=organelle, Membrane=membrane)
+mapping.SeedPoint = list(simple.servermanager.Fetch(organelle).GetPoint(1000))
+mapping.Tiles = 2
+mapping.MembraneToMeshScale = 1e-4
+check(points_of(mapping) == 4 * 28160, f"membrane mapping of 2 x 2 tiles ({points_of(mapping)})")
+disk = simple.GeodesicDisk(Input=organelle)
+disk.SeedPoint = mapping.SeedPoint
+disk.Radius = 0.2
+check(cells_of(disk) > 0, "geodesic disk")
+chart = simple.DiskParameterization(Input=disk)
+check(points_of(chart) == points_of(disk), "disk parameterization")
+
+cutaway = simple.StructuredCutaway(Input=membrane)
+check(points_of(cutaway) == 28160, "structured cutaway keeps the atoms")
+refinement = simple.TrajectoryRefinement(Input=trajectory)
+refinement.UpdatePipelineInformation()
+check(len(refinement.TimestepValues) > len(times), "trajectory refinement adds time steps")
+
+if failures:
+    print(f"{len(failures)} check(s) failed")
+    sys.exit(1)
+print("all plugin checks passed")

@@ -29,7 +29,6 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
-#include <vtkSMPTools.h>
 #include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
@@ -139,7 +138,7 @@ void write_mesh(const mesolens::RibbonMesh& mesh, const mesolens::RibbonTrace& t
   int* residue_of = residue_ids->GetPointer(0);
   int* chain_of = chain_ids->GetPointer(0);
   unsigned char* class_of = classes->GetPointer(0);
-  vtkSMPTools::For(0, vertices, [&](vtkIdType begin, vtkIdType end) {
+  vtkMesoParallelFor::For(0, vertices, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType v = begin; v < end; ++v)
     {
       const auto traced = std::size_t(mesh.vertex_residue_id[std::size_t(v)]);

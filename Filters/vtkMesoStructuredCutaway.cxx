@@ -29,7 +29,6 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
-#include <vtkSMPTools.h>
 #include <vtkSmartPointer.h>
 #include <vtkStringArray.h>
 #include <vtkUnsignedCharArray.h>
@@ -157,7 +156,7 @@ struct Molecules
     auto moved = vtkSmartPointer<vtkPoints>::New();
     moved->SetDataTypeToFloat();
     moved->SetNumberOfPoints(atoms->GetNumberOfPoints());
-    vtkSMPTools::For(0, atoms->GetNumberOfPoints(), [&](vtkIdType begin, vtkIdType end) {
+    vtkMesoParallelFor::For(0, atoms->GetNumberOfPoints(), [&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType a = begin; a < end; ++a)
       {
         double p[3];
@@ -455,7 +454,7 @@ struct vtkMesoStructuredCutaway::Internals
       this->AtomPriority->SetNumberOfValues(n);
       float* out = this->AtomPriority->GetPointer(0);
       const std::vector<double>& priority = this->MoleculePriority;
-      vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+      vtkMesoParallelFor::For(0, n, [&](vtkIdType begin, vtkIdType end) {
         for (vtkIdType a = begin; a < end; ++a)
         {
           out[a] = static_cast<float>(priority[of_atom[static_cast<std::size_t>(a)]]);
@@ -467,7 +466,7 @@ struct vtkMesoStructuredCutaway::Internals
     visible_atoms->SetName(vtkMesoArrayNames::Visible);
     visible_atoms->SetNumberOfValues(n);
     unsigned char* mask = visible_atoms->GetPointer(0);
-    vtkSMPTools::For(0, n, [&](vtkIdType begin, vtkIdType end) {
+    vtkMesoParallelFor::For(0, n, [&](vtkIdType begin, vtkIdType end) {
       for (vtkIdType a = begin; a < end; ++a)
       {
         mask[a] = visible[of_atom[static_cast<std::size_t>(a)]];

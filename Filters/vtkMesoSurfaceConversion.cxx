@@ -15,7 +15,7 @@
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
-#include <vtkSMPTools.h>
+#include "vtkMesoParallelFor.h"
 
 #include <algorithm>
 #include <cmath>
@@ -85,7 +85,7 @@ vtkSmartPointer<vtkFloatArray> SetFloatPoints(const std::vector<double>& points,
   // Straight into the arrays' memory, in parallel: meshes can have millions of vertices.
   float* xyz = coordinates->GetPointer(0);
   float* nxyz = normal_array->GetPointer(0);
-  vtkSMPTools::For(0, 3 * vertices, [&](vtkIdType begin, vtkIdType end) {
+  vtkMesoParallelFor::For(0, 3 * vertices, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType i = begin; i < end; ++i)
     {
       xyz[i] = static_cast<float>(points[std::size_t(i)]);
@@ -106,7 +106,7 @@ void SetTriangles(const std::vector<std::int64_t>& triangles, vtkPolyData* outpu
   connectivity->SetNumberOfValues(3 * count);
   vtkIdType* offset = offsets->GetPointer(0);
   vtkIdType* corner = connectivity->GetPointer(0);
-  vtkSMPTools::For(0, count, [&](vtkIdType begin, vtkIdType end) {
+  vtkMesoParallelFor::For(0, count, [&](vtkIdType begin, vtkIdType end) {
     for (vtkIdType t = begin; t < end; ++t)
     {
       offset[t] = 3 * t;

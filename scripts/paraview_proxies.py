@@ -189,6 +189,13 @@ def proxy_xml(spec, source_dir, core, mesolens):
     for path in headers:
         for name, kind, value_type, doc, enums in properties_of(path, skip):
             parts.append(xml_property(instance, name, kind, value_type, doc, enums, spec, core))
+    for name, choices in spec.get("implicit_functions", {}).items():
+        doc = next((d for path in headers for d, body in header_blocks(path)
+                    if f"Set{name}(" in body), "")
+        entries = "".join(f'<Proxy group="implicit_functions" name="{c}"/>' for c in choices)
+        parts.append(f'<ProxyProperty name="{name}" command="Set{name}">'
+                     f'<ProxyListDomain name="proxy_list">{entries}</ProxyListDomain>'
+                     f"<Documentation>{escape(core.explain(doc))}</Documentation></ProxyProperty>")
     if spec.get("time"):
         parts.append('<DoubleVectorProperty name="TimestepValues" repeatable="1" '
                      'information_only="1"><TimeStepsInformationHelper/>'

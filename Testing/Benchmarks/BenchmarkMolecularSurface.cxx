@@ -12,6 +12,7 @@
 //
 //   BenchmarkMolecularSurface [--repeats N]
 #include "vtkMesoArrayNames.h"
+#include "vtkMesoParallelFor.h"
 #include "mesolens_benchmark_timing.h"
 #include "mesolens_test_data.h"
 #include "mesolens_test_protein.h"
@@ -209,7 +210,7 @@ Baseline pymol(const std::string& path)
 int main(int argc, char* argv[])
 {
   const int repeats = mesolens_test::count_argument(argc, argv, "--repeats", 3);
-  std::printf("BENCH ses threads: %d\n", vtkSMPTools::GetEstimatedNumberOfThreads());
+  std::printf("BENCH ses threads: %d\n", vtkMesoParallelFor::ThreadCount());
   const bool have_edtsurf = mesolens_test::program_available("command -v EDTSurf");
   const bool have_pymol = mesolens_test::program_available("/usr/bin/python3 -c 'import pymol'");
   if (!have_edtsurf || !have_pymol)

@@ -5,6 +5,7 @@
 //
 //   BenchmarkRibbons [--repeats N]
 #include "mesolens_benchmark_timing.h"
+#include "vtkMesoParallelFor.h"
 #include "mesolens_test_data.h"
 #include "vtkMesoRibbons.h"
 #include "vtkMesoSecondaryStructure.h"
@@ -28,7 +29,7 @@ using mesolens_test::median_seconds;
 int main(int argc, char* argv[])
 {
   const int repeats = mesolens_test::count_argument(argc, argv, "--repeats", 5);
-  std::printf("BENCH ribbons threads: %d\n", vtkSMPTools::GetEstimatedNumberOfThreads());
+  std::printf("BENCH ribbons threads: %d\n", vtkMesoParallelFor::ThreadCount());
 
   // 1. The proteasome, from a GRO file (no records: DSSP needed).
   const std::string gro = mesolens_test::shared_file("proteins/3l5q.gro");

@@ -6,6 +6,7 @@
 //
 //   BenchmarkSecondaryStructure [--repeats N]
 #include "mesolens_benchmark_timing.h"
+#include "vtkMesoParallelFor.h"
 #include "mesolens_test_data.h"
 #include "vtkMesoSecondaryStructure.h"
 #include "vtkMesoStructureReader.h"
@@ -63,7 +64,7 @@ void write_pdb_for_mkdssp(const mesolens::AtomTable& table, const std::string& p
 int main(int argc, char* argv[])
 {
   const int repeats = mesolens_test::count_argument(argc, argv, "--repeats", 5);
-  std::printf("BENCH dssp threads: %d\n", vtkSMPTools::GetEstimatedNumberOfThreads());
+  std::printf("BENCH dssp threads: %d\n", vtkMesoParallelFor::ThreadCount());
 
   // 1. 4jsv.pdb against mkdssp.
   const std::string pdb = mesolens_test::shared_file("proteins/4jsv.pdb");

@@ -12,6 +12,7 @@
 //
 // --smoke (CI): N = 500 only, one run each.
 #include "vtkMesoArrayNames.h"
+#include "vtkMesoParallelFor.h"
 #include "mesolens_benchmark_timing.h"
 #include "mesolens_test_data.h"
 #include "mesolens_vtk_test_utilities.h"
@@ -166,7 +167,7 @@ int main(int argc, char* argv[])
   const std::vector<int> counts =
     smoke ? std::vector<int>{ 500 } : std::vector<int>{ 20, 150, 500, 2000 };
   std::printf("BENCH structure-mesh: %d threads, median of %d runs\n",
-              vtkSMPTools::GetEstimatedNumberOfThreads(), repeats);
+              vtkMesoParallelFor::ThreadCount(), repeats);
 
   // Each file name once: the repository's copy first, the shared folder's others after.
   std::vector<std::string> paths;

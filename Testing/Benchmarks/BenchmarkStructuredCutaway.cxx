@@ -11,6 +11,7 @@
 //
 //   BenchmarkStructuredCutaway [--seeds N] [--repeats N]
 #include "vtkMesoArrayNames.h"
+#include "vtkMesoParallelFor.h"
 #include "mesolens_benchmark_timing.h"
 #include "mesolens_test_data.h"
 #include "vtkMesoMembraneMapping.h"
@@ -117,7 +118,7 @@ int main(int argc, char* argv[])
               "the Martini DPPC/CHOL "
               "bilayer: %lld beads, up to %ld lipids (built in %.1f s); %d threads\n",
               vesicle_radius, seeds, static_cast<long long>(vesicle->GetNumberOfPoints()), lipids,
-              build, vtkSMPTools::GetEstimatedNumberOfThreads());
+              build, vtkMesoParallelFor::ThreadCount());
 
   vtkNew<vtkPlane> plane; // the half facing +x is cut
   plane->SetOrigin(0, 0, 0);

@@ -6,6 +6,7 @@
 //
 //   BenchmarkSurfaceArea [--repeats N]
 #include "vtkMesoArrayNames.h"
+#include "vtkMesoParallelFor.h"
 #include "mesolens_benchmark_timing.h"
 #include "mesolens_test_data.h"
 #include "vtkMesoStructureReader.h"
@@ -29,7 +30,7 @@ using mesolens_test::median_seconds;
 int main(int argc, char* argv[])
 {
   const int repeats = mesolens_test::count_argument(argc, argv, "--repeats", 5);
-  std::printf("BENCH sas threads: %d\n", vtkSMPTools::GetEstimatedNumberOfThreads());
+  std::printf("BENCH sas threads: %d\n", vtkMesoParallelFor::ThreadCount());
   const bool freesasa = mesolens_test::program_available("freesasa --version");
   if (!freesasa)
   {

@@ -289,7 +289,24 @@ void GatherAtomArrays(vtkPointData* atoms, vtkIdList* from, vtkPointData* out,
     gathered->SetName(name);
     gathered->SetNumberOfComponents(array->GetNumberOfComponents());
     gathered->SetNumberOfTuples(count);
-    gathered->InsertTuples(to, from, array);
+    if (array->HasStandardMemoryLayout())
+    {
+      // Tuples as bytes: VTK's generic InsertTuples goes value by value through virtual calls
+      // where its dispatch does not cover the array type (ParaView's VTK), 5x slower.
+      const std::size_t bytes =
+        std::size_t(array->GetDataTypeSize()) * std::size_t(array->GetNumberOfComponents());
+      const auto* source = static_cast<const unsigned char*>(array->GetVoidPointer(0));
+      auto* target = static_cast<unsigned char*>(gathered->GetVoidPointer(0));
+      for (vtkIdType v = 0; v < count; ++v)
+      {
+        std::memcpy(target + std::size_t(v) * bytes, source + std::size_t(from->GetId(v)) * bytes,
+                    bytes);
+      }
+    }
+    else
+    {
+      gathered->InsertTuples(to, from, array);
+    }
     out->AddArray(gathered);
   }
 }

@@ -21,6 +21,7 @@
 #include "mesolens/render/atom_cells.h"
 #include "mesolens/render/depth_pyramid.h"
 
+#include <vtkFloatArray.h>
 #include <vtkOpenGLActor.h>
 #include <vtkOpenGLState.h>
 #include <vtkAlgorithmOutput.h>
@@ -791,7 +792,22 @@ void vtkMesoAtomMapper::ComputeBounds()
     std::copy(in.Bounds, in.Bounds + 6, this->Bounds);
     return;
   }
-  this->Superclass::ComputeBounds();
+  auto* floats = atoms && atoms->GetPoints()
+    ? vtkFloatArray::FastDownCast(atoms->GetPoints()->GetData())
+    : nullptr;
+  if (floats && floats->GetNumberOfComponents() == 3)
+  {
+    // Every atom, in parallel: VTK 9.2's polydata bounds take only points used by cells (an
+    // unbonded ion would be left out) and one slow thread.
+    const auto box =
+      mesolens::point_bounds({ floats->GetPointer(0), std::size_t(floats->GetNumberOfTuples()) },
+                             vtkMesoParallelFor::Get());
+    std::copy(box.begin(), box.end(), this->Bounds);
+  }
+  else
+  {
+    this->Superclass::ComputeBounds();
+  }
   if (!atoms)
   {
     return;

@@ -196,6 +196,10 @@ def proxy_xml(spec, source_dir, core, mesolens):
         parts.append(f'<ProxyProperty name="{name}" command="Set{name}">'
                      f'<ProxyListDomain name="proxy_list">{entries}</ProxyListDomain>'
                      f"<Documentation>{escape(core.explain(doc))}</Documentation></ProxyProperty>")
+    for name, label in spec.get("point_widgets", {}).items():
+        # A handle in the render view that sets the point: drag it to move the lens.
+        parts.append(f'<PropertyGroup label={quoteattr(label)} panel_widget="InteractiveHandle">'
+                     f'<Property function="WorldPosition" name="{name}"/></PropertyGroup>')
     if spec.get("time"):
         parts.append('<DoubleVectorProperty name="TimestepValues" repeatable="1" '
                      'information_only="1"><TimeStepsInformationHelper/>'

@@ -175,6 +175,44 @@ void gather_cell_positions(PointSpan<const float> xyz, const AtomCells& cells,
   });
 }
 
+std::array<double, 6> point_bounds(PointSpan<const float> xyz, const ParallelFor& parallel_for)
+{
+  constexpr std::size_t block = 65536;
+  const std::size_t blocks = (xyz.size() + block - 1) / block;
+  std::vector<std::array<float, 6>> partial(blocks);
+  run_parallel(parallel_for, blocks, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t b = begin; b < end; ++b)
+    {
+      std::array<float, 6> box = {
+        std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest(),
+        std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest(),
+        std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest()
+      };
+      for (std::size_t i = b * block; i < std::min(xyz.size(), (b + 1) * block); ++i)
+      {
+        for (int d = 0; d < 3; ++d)
+        {
+          box[2 * d] = std::min(box[2 * d], xyz[i][d]);
+          box[2 * d + 1] = std::max(box[2 * d + 1], xyz[i][d]);
+        }
+      }
+      partial[b] = box;
+    }
+  });
+  std::array<double, 6> bounds = { 1, -1, 1, -1, 1, -1 };
+  for (std::size_t b = 0; b < blocks; ++b)
+  {
+    for (int d = 0; d < 3; ++d)
+    {
+      bounds[2 * d] =
+        b == 0 ? partial[b][2 * d] : std::min<double>(bounds[2 * d], partial[b][2 * d]);
+      bounds[2 * d + 1] =
+        b == 0 ? partial[b][2 * d + 1] : std::max<double>(bounds[2 * d + 1], partial[b][2 * d + 1]);
+    }
+  }
+  return bounds;
+}
+
 double total_cell_diagonal(const std::vector<float>& boxes)
 {
   double total = 0;

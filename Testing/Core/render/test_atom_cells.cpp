@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "mesolens/render/atom_cells.h"
 
+#include "mesolens_test_threads.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <random>
@@ -171,4 +174,20 @@ TEST(AtomCells, ViewKeepsCellsInTheVolumeNearestFirst)
   // The padding brings the side box in: its nearest x is 3 - 2.5 = 0.5.
   const auto padded = mesolens::cells_in_view(boxes, 2.5, m.data());
   EXPECT_EQ(padded.size(), 5u);
+}
+
+TEST(AtomCells, PointBoundsTakeEveryPointWhateverTheThreads)
+{
+  const std::vector<float> xyz = shuffled_lattice(40, 7); // 64000 atoms, 40 per side
+  const auto bounds = mesolens::point_bounds(xyz);
+  std::array<double, 6> expected = { 1e300, -1e300, 1e300, -1e300, 1e300, -1e300 };
+  for (std::size_t i = 0; i < xyz.size(); ++i)
+  {
+    const std::size_t d = i % 3;
+    expected[2 * d] = std::min<double>(expected[2 * d], xyz[i]);
+    expected[2 * d + 1] = std::max<double>(expected[2 * d + 1], xyz[i]);
+  }
+  EXPECT_EQ(bounds, expected);
+  EXPECT_EQ(mesolens::point_bounds(xyz, mesolens_test::two_threads()), expected);
+  EXPECT_EQ(mesolens::point_bounds({}), (std::array<double, 6>{ 1, -1, 1, -1, 1, -1 }));
 }

@@ -41,6 +41,12 @@ void gather_cell_positions(PointSpan<const float> xyz, const AtomCells& cells,
                            PointSpan<float> slot_xyz, std::vector<float>& boxes,
                            const ParallelFor& parallel_for = {});
 
+/// The box of all points, VTK's layout (min x, max x, min y, max y, min z, max z); for no points
+/// (1, -1, 1, -1, 1, -1). Every point counts, used by a cell or not. Deterministic whatever
+/// `parallel_for`: fixed blocks, reduced in order.
+std::array<double, 6> point_bounds(PointSpan<const float> xyz,
+                                   const ParallelFor& parallel_for = {});
+
 /// The summed box diagonals: how spread the cells are (it grows as the atoms of a trajectory
 /// drift from the cells they were grouped into).
 double total_cell_diagonal(const std::vector<float>& boxes);

@@ -130,6 +130,36 @@ refinement = simple.TrajectoryRefinement(Input=trajectory)
 refinement.UpdatePipelineInformation()
 check(len(refinement.TimestepValues) > len(times), "trajectory refinement adds time steps")
 
+# Every property starts where the VTK class starts (its default comes from the class itself).
+def same(proxy_value, class_value):
+    if isinstance(class_value, (tuple, list)):
+        return all(same(p, c) for p, c in zip(proxy_value, class_value))
+    if isinstance(class_value, bool) or isinstance(proxy_value, bool):
+        return bool(proxy_value) == bool(class_value)
+    if isinstance(class_value, (int, float)) and isinstance(proxy_value, (int, float)):
+        return abs(proxy_value - class_value) <= 1e-12 * max(1.0, abs(class_value))
+    return (proxy_value or "") == (class_value or "")
+
+
+checked = 0
+for proxy in (crambin, trajectory, gro, mesh, structure, ribbons, surface, area, properties,
+              report, cutaway):
+    instance = getattr(mesolens, proxy.SMProxy.GetVTKClassName())()
+    for name in proxy.ListProperties():
+        prop = proxy.GetProperty(name)
+        getter = getattr(instance, "Get" + name, None)
+        if (getter is None or prop.SMProperty.GetInformationOnly() or name == "FileName" or
+                prop.SMProperty.IsA("vtkSMProxyProperty")):
+            continue  # inputs and cut functions are proxies, not values
+        value = proxy.GetPropertyValue(name)
+        if prop.SMProperty.FindDomain("vtkSMEnumerationDomain"):
+            value = prop.SMProperty.GetElement(0)  # the value, not the entry's text
+        check(same(value, getter()), f"{proxy.SMProxy.GetXMLName()}.{name} starts at the class's "
+              f"default ({value!r} against {getter()!r})")
+        checked += 1
+check(checked > 40, f"defaults compared for {checked} properties")
+print(f"defaults compared for {checked} properties")
+
 if failures:
     print(f"{len(failures)} check(s) failed")
     sys.exit(1)

@@ -25,6 +25,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <numeric>
 #include <type_traits>
 
 namespace vtkMesoAtomTableConversion {
@@ -270,12 +271,6 @@ void GatherAtomArrays(vtkPointData* atoms, vtkIdList* from, vtkPointData* out,
                       std::initializer_list<const char*> skip)
 {
   const vtkIdType count = from->GetNumberOfIds();
-  vtkNew<vtkIdList> to;
-  to->SetNumberOfIds(count);
-  for (vtkIdType v = 0; v < count; ++v)
-  {
-    to->SetId(v, v);
-  }
   for (int a = 0; a < atoms->GetNumberOfArrays(); ++a)
   {
     vtkDataArray* array = atoms->GetArray(a);
@@ -305,6 +300,9 @@ void GatherAtomArrays(vtkPointData* atoms, vtkIdList* from, vtkPointData* out,
     }
     else
     {
+      vtkNew<vtkIdList> to; // rows 0, 1, ... of the gathered array
+      to->SetNumberOfIds(count);
+      std::iota(to->begin(), to->end(), vtkIdType(0));
       gathered->InsertTuples(to, from, array);
     }
     out->AddArray(gathered);

@@ -104,8 +104,7 @@ def xml_property(instance, name, kind, value_type, doc, enum_names, hints, core)
     getter = getattr(instance, "Get" + name)
     value = getter()
     documentation = f"<Documentation>{escape(core.explain(doc))}</Documentation>"
-    label = hints.get("labels", {}).get(name)
-    attributes = f'name="{name}" command="Set{name}"' + (f" label={quoteattr(label)}" if label else "")
+    attributes = f'name="{name}" command="Set{name}"'
     if name in hints.get("advanced", []):
         attributes += ' panel_visibility="advanced"'
     if value_type == "string":
@@ -114,8 +113,8 @@ def xml_property(instance, name, kind, value_type, doc, enum_names, hints, core)
             # The arrays of the input to choose from; NoDefault keeps "" (none) until one is.
             return (f'<StringVectorProperty {attributes} number_of_elements="1" default_values="">'
                     f'<ArrayListDomain name="array_list" input_domain_name="{array}_arrays">'
-                    f'<RequiredProperties><Property name="{hints.get("array_input", "Input")}" '
-                    f'function="Input"/></RequiredProperties></ArrayListDomain>'
+                    f'<RequiredProperties><Property name="Input" function="Input"/>'
+                    f"</RequiredProperties></ArrayListDomain>"
                     f"<Hints><NoDefault/></Hints>{documentation}</StringVectorProperty>")
         files = '<FileListDomain name="files"/>' if name in hints.get("files", []) else ""
         return (f'<StringVectorProperty {attributes} number_of_elements="1" '

@@ -199,15 +199,18 @@ std::array<double, 6> point_bounds(PointSpan<const float> xyz, const ParallelFor
       partial[b] = box;
     }
   });
-  std::array<double, 6> bounds = { 1, -1, 1, -1, 1, -1 };
-  for (std::size_t b = 0; b < blocks; ++b)
+  if (blocks == 0)
+  {
+    return { 1, -1, 1, -1, 1, -1 };
+  }
+  std::array<double, 6> bounds{};
+  std::copy(partial[0].begin(), partial[0].end(), bounds.begin());
+  for (const auto& box : partial)
   {
     for (int d = 0; d < 3; ++d)
     {
-      bounds[2 * d] =
-        b == 0 ? partial[b][2 * d] : std::min<double>(bounds[2 * d], partial[b][2 * d]);
-      bounds[2 * d + 1] =
-        b == 0 ? partial[b][2 * d + 1] : std::max<double>(bounds[2 * d + 1], partial[b][2 * d + 1]);
+      bounds[2 * d] = std::min<double>(bounds[2 * d], box[2 * d]);
+      bounds[2 * d + 1] = std::max<double>(bounds[2 * d + 1], box[2 * d + 1]);
     }
   }
   return bounds;

@@ -145,7 +145,8 @@ std::vector<vtkIdType> kept_atoms(const mesolens::MappedMembrane& mapped, vtkIdT
 }
 
 /// The mapped atoms' point arrays: the patch's, once per tile, with TileId, and MoleculeId made
-/// unique over the tiles (tile t's molecule m becomes t (largest id + 1) + m). Kept, the same
+/// unique over the tiles (tile t's molecule m becomes t (largest id + 1) + m), t counted over
+/// every process's tiles. Kept, the same
 /// array objects, while the patch's arrays, the tiles and the kept atoms stay: a new frame then
 /// changes only the positions, and what groups atoms by their arrays downstream (the cutaway)
 /// keeps its work.
@@ -153,10 +154,11 @@ struct TileArrays
 {
   std::vector<vtkMesoStamp> From;
   std::vector<vtkIdType> Kept;
+  vtkIdType FirstTile = 0;
   vtkSmartPointer<vtkPointData> Arrays;
 
   vtkPointData* For(vtkPolyData* atoms, const PatchData& data, const std::vector<vtkIdType>& kept,
-                    vtkIdType total)
+                    vtkIdType total, vtkIdType first_tile)
   {
     vtkPointData* in = atoms->GetPointData();
     std::vector<vtkMesoStamp> from;
@@ -164,7 +166,7 @@ struct TileArrays
     {
       from.push_back(vtkMesoStamp::Of(in->GetAbstractArray(a)));
     }
-    if (this->Arrays && from == this->From && kept == this->Kept)
+    if (this->Arrays && from == this->From && kept == this->Kept && first_tile == this->FirstTile)
     {
       return this->Arrays;
     }
@@ -181,7 +183,7 @@ struct TileArrays
       if (kept[std::size_t(i)] >= 0)
       {
         out->CopyData(in, i % n, kept[std::size_t(i)]);
-        tile_ids->SetValue(kept[std::size_t(i)], static_cast<int>(i / n));
+        tile_ids->SetValue(kept[std::size_t(i)], static_cast<int>(first_tile + i / n));
       }
     }
     out->AddArray(tile_ids);
@@ -196,7 +198,7 @@ struct TileArrays
         if (kept[std::size_t(i)] >= 0)
         {
           molecules->SetValue(kept[std::size_t(i)],
-                              static_cast<int>(i / n) * stride +
+                              static_cast<int>(first_tile + i / n) * stride +
                                 data.molecule_ids[std::size_t(i % n)]);
         }
       }
@@ -209,12 +211,13 @@ struct TileArrays
     }
     this->From = std::move(from);
     this->Kept = kept;
+    this->FirstTile = first_tile;
     return out;
   }
 };
 
-/// Output 0: the mapped atoms, bonds and arrays, k^2 copies of the patch (atoms a cut tile
-/// dropped left out), with each bond's BondLengthChange (0 for the atoms' vertices).
+/// Output 0: the mapped atoms, bonds and arrays, k^2 copies of the patch (or this piece's share
+/// of them; atoms a cut tile dropped left out), with each bond's BondLengthChange (0 for the atoms' vertices).
 void build_atoms(vtkPolyData* atoms, const PatchData& data, const mesolens::MappedMembrane& mapped,
                  const std::vector<double>& bond_changes, TileArrays& arrays, vtkPolyData* output)
 {
@@ -255,7 +258,8 @@ void build_atoms(vtkPolyData* atoms, const PatchData& data, const mesolens::Mapp
     }
   }
   output->SetLines(lines);
-  output->GetPointData()->ShallowCopy(arrays.For(atoms, data, kept, total));
+  output->GetPointData()->ShallowCopy(
+    arrays.For(atoms, data, kept, total, static_cast<vtkIdType>(mapped.first_atom_tile)));
 
   vtkNew<vtkFloatArray> change;
   change->SetName(vtkMesoArrayNames::BondLengthChange);
@@ -352,12 +356,30 @@ int vtkMesoMembraneMapping::RequestInformation(vtkInformation*, vtkInformationVe
   for (int port = 0; port < 3; ++port)
   {
     vtkInformation* out = outputVector->GetInformationObject(port);
+    // Pieces share the tiles' atoms; each reads the whole surface and patch.
+    out->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
     out->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
     out->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
     if (port == 0 && membrane && membrane->Has(vtkStreamingDemandDrivenPipeline::TIME_STEPS()))
     {
       out->CopyEntry(membrane, vtkStreamingDemandDrivenPipeline::TIME_STEPS());
       out->CopyEntry(membrane, vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+    }
+  }
+  return 1;
+}
+
+int vtkMesoMembraneMapping::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
+                                                vtkInformationVector*)
+{
+  // Every piece needs the whole surface and the whole patch (both are small).
+  for (int port = 0; port < 2; ++port)
+  {
+    if (vtkInformation* in = inputVector[port]->GetInformationObject(0))
+    {
+      in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
+      in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+      in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
     }
   }
   return 1;
@@ -385,7 +407,20 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
     const mesolens::MembraneMapper& mapper =
       this->Internal->Mapper.For(surface, surface->GetMTime());
     this->UpdateProgress(0.2);
-    const mesolens::MapRequest request = map_request(this);
+    mesolens::MapRequest request = map_request(this);
+    vtkInformation* out_info = outputVector->GetInformationObject(0);
+    const int piece = out_info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+      ? out_info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
+      : 0;
+    const int pieces = out_info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+      ? out_info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+      : 1;
+    if (piece > 0 && !this->OutputAtoms)
+    {
+      return 1; // the warp (for the GPU) and the chart are piece 0's
+    }
+    request.piece = std::max(0, piece);
+    request.pieces = std::max(1, pieces);
     const mesolens::SurfacePoint seed = mapper.seed_near(
       { this->SeedPoint[0], this->SeedPoint[1], this->SeedPoint[2] }, this->SeedTolerance);
     mesolens::MapResult result = mapper.map(seed, data.patch, request, vtkMesoParallelFor::Get());
@@ -410,7 +445,10 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
       output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(),
                                     atoms->GetInformation()->Get(vtkDataObject::DATA_TIME_STEP()));
     }
-    build_chart_outputs(*chart, this->LatticeEdge, disk_output, lattice_output);
+    if (request.piece == 0)
+    {
+      build_chart_outputs(*chart, this->LatticeEdge, disk_output, lattice_output);
+    }
   }
   catch (const mesolens::Error& e)
   {

@@ -53,6 +53,12 @@
  * regular triangle lattice of that edge laid on the disk (mesolens::chart_lattice), the
  * structure to cut the mapped membrane along with vtkMesoStructuredCutaway.
  *
+ * Pieces (pvbatch or pvserver on N MPI ranks): every piece reads the whole surface and patch
+ * and grows the same disk; piece p of N maps the atoms of tiles [k^2 p / N, k^2 (p + 1) / N)
+ * (TileId and MoleculeId as on one process), so the ranks share the mapping's work and output.
+ * With OutputAtoms off (the warp for the GPU) and for outputs 1 and 2, piece 0 gives everything
+ * and the other pieces are empty.
+ *
  * The surface's preparation and the most recent disks and parameterizations
  * (mesolens::MembraneMapper) are kept while the surface stays the same, so a new trajectory
  * frame (the membrane input's time steps are passed downstream) only re-maps atoms. Outputs are
@@ -222,6 +228,7 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   // Set by the constructor from mesolens::MapRequest's defaults.

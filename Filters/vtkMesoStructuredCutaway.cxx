@@ -14,6 +14,7 @@
 #include "mesolens/cutaway/structure_mesh.h"
 #include "mesolens/cutaway/structured_cutaway.h"
 
+#include <vtkAppendPolyData.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
@@ -25,11 +26,14 @@
 #include <vtkImplicitFunction.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkMultiProcessController.h>
+#include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStringArray.h>
 #include <vtkUnsignedCharArray.h>
 
@@ -252,6 +256,82 @@ void AddFieldValue(vtkFieldData* field, const char* name, double value)
   field->AddArray(array);
 }
 } // namespace
+
+/// On N processes (pvbatch or pvserver on MPI ranks, each holding a piece of the atoms): what
+/// the cutaway reads of every process's atoms (points, MoleculeId, ResidueName, the box), in
+/// rank order, the same on every process, and where this process's atoms start among them, so
+/// that every process hides the same molecules as one process would. Alone: the input itself.
+vtkSmartPointer<vtkPolyData> AtomsOfEveryProcess(vtkPolyData* atoms, int pieces, vtkIdType& first)
+{
+  first = 0;
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  if (pieces < 2 || !controller || controller->GetNumberOfProcesses() != pieces)
+  {
+    return atoms;
+  }
+  vtkNew<vtkPolyData> light;
+  if (atoms && atoms->GetPoints())
+  {
+    light->SetPoints(atoms->GetPoints());
+    for (const char* name : { vtkMesoArrayNames::MoleculeId, vtkMesoArrayNames::ResidueName })
+    {
+      if (vtkAbstractArray* array = atoms->GetPointData()->GetAbstractArray(name))
+      {
+        light->GetPointData()->AddArray(array);
+      }
+    }
+    if (vtkAbstractArray* box =
+          atoms->GetFieldData()->GetAbstractArray(vtkMesoArrayNames::PeriodicBoxVectors))
+    {
+      light->GetFieldData()->AddArray(box);
+    }
+  }
+  std::vector<vtkSmartPointer<vtkDataObject>> pieces_of_all;
+  controller->AllGather(light, pieces_of_all);
+  vtkNew<vtkAppendPolyData> append;
+  vtkAbstractArray* box = nullptr;
+  for (std::size_t rank = 0; rank < pieces_of_all.size(); ++rank)
+  {
+    auto piece = vtkPolyData::SafeDownCast(pieces_of_all[rank]);
+    if (!piece || piece->GetNumberOfPoints() == 0)
+    {
+      continue;
+    }
+    if (int(rank) < controller->GetLocalProcessId())
+    {
+      first += piece->GetNumberOfPoints();
+    }
+    box = box ? box : piece->GetFieldData()->GetAbstractArray(vtkMesoArrayNames::PeriodicBoxVectors);
+    append->AddInputData(piece);
+  }
+  auto all = vtkSmartPointer<vtkPolyData>::New();
+  if (append->GetNumberOfInputConnections(0) > 0)
+  {
+    append->Update();
+    all->ShallowCopy(append->GetOutput());
+    if (box)
+    {
+      all->GetFieldData()->AddArray(box);
+    }
+  }
+  return all;
+}
+
+/// Values [first, first + count) of an array, as a new array of the same type and name.
+template <typename Array>
+vtkSmartPointer<Array> Slice(Array* values, vtkIdType first, vtkIdType count)
+{
+  vtkSmartPointer<Array> slice;
+  slice.TakeReference(Array::SafeDownCast(values->NewInstance()));
+  slice->SetName(values->GetName());
+  slice->SetNumberOfComponents(values->GetNumberOfComponents());
+  slice->SetNumberOfTuples(count);
+  for (vtkIdType i = 0; i < count; ++i)
+  {
+    slice->SetTuple(i, first + i, values);
+  }
+  return slice;
+}
 
 /// The atom input as the stages see it.
 struct AtomInput
@@ -583,16 +663,27 @@ int vtkMesoStructuredCutaway::GetNumberOfOrderings() const
 int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector** inputVector,
                                           vtkInformationVector* outputVector)
 {
-  vtkPolyData* atoms = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* local_atoms = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* structure = vtkPolyData::GetData(inputVector[1]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* structure_output = vtkPolyData::GetData(outputVector, 1);
   output->Initialize();
   structure_output->Initialize();
+  vtkInformation* out_info = outputVector->GetInformationObject(0);
+  const int pieces = out_info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    ? out_info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
+    : 1;
+  vtkIdType first = 0;
+  vtkSmartPointer<vtkPolyData> atoms = AtomsOfEveryProcess(local_atoms, pieces, first);
   if (!atoms || atoms->GetNumberOfPoints() == 0)
   {
     vtkErrorMacro("No atoms to cut away.");
     return 0;
+  }
+  const vtkIdType local_count = local_atoms ? local_atoms->GetNumberOfPoints() : 0;
+  if (local_count == 0)
+  {
+    return 1; // another process holds the atoms
   }
   Internals& in = *this->Internal;
   try
@@ -619,15 +710,28 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
       in.Visibility(this->CutFunction, settings, order_from);
 
     vtkNew<vtkPolyData> all;
-    all->ShallowCopy(atoms);
-    if (in.MovedAtoms)
+    all->ShallowCopy(local_atoms);
+    vtkSmartPointer<vtkUnsignedCharArray> visible_atoms =
+      in.AtomArrays(this->K, visible, atoms->GetNumberOfPoints());
+    vtkSmartPointer<vtkFloatArray> priority = in.AtomPriority;
+    if (atoms != local_atoms)
+    {
+      // This process's atoms of all.
+      visible_atoms = Slice(visible_atoms.GetPointer(), first, local_count);
+      priority = Slice(priority.GetPointer(), first, local_count);
+      if (in.MovedAtoms)
+      {
+        vtkNew<vtkPoints> moved;
+        moved->SetData(Slice(in.MovedAtoms->GetData(), first, local_count));
+        all->SetPoints(moved);
+      }
+    }
+    else if (in.MovedAtoms)
     {
       all->SetPoints(in.MovedAtoms); // the same object while the input stays: no new upload
     }
-    vtkSmartPointer<vtkUnsignedCharArray> visible_atoms =
-      in.AtomArrays(this->K, visible, atoms->GetNumberOfPoints());
     all->GetPointData()->AddArray(visible_atoms);
-    all->GetPointData()->AddArray(in.AtomPriority);
+    all->GetPointData()->AddArray(priority);
     if (this->ExtractVisibleAtoms)
     {
       ExtractAtoms(all, visible_atoms, output);

@@ -1,13 +1,16 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: GPL-3.0-or-later
-"""Writes ParaView's server-manager XML for MesoLens' readers and filters from their class headers.
+"""Writes ParaView's server-manager XML for MesoLens' readers, filters and representation from their
+class headers.
 
 One source of truth: a property's name, type and documentation come from the class header
 (its ``///@{ ... ///@}`` block and the vtkSet/vtkGet macros in it, with the Core field a
 comment names as "see mesolens::X::field" appended), and its default, range and enumeration from
 the built class itself (its getters after construction, the clamp macros' GetXMinValue and
 GetXMaxValue, its SetXToY methods). The spec (ParaView/MesoLens/proxies.json) adds only what no
-header says: menus, labels, file types, inputs and which string properties name arrays.
+header says: menus, labels, file types, inputs and which string properties name arrays. The
+representation's own properties are its mapper's (same names, documentation and defaults); those
+it shares with ParaView's Surface representation (colouring, material, transform) are fixed here.
 
 Usage: paraview_proxies.py SPEC SOURCE_DIR OUTPUT.xml  (with the built `mesolens` importable)
 """
@@ -216,6 +219,98 @@ def proxy_xml(spec, source_dir, core, mesolens):
     return "\n".join(parts)
 
 
+# Properties of the representation that ParaView's Surface representation also has: linked to it,
+# so colouring, material and transform carry over when the user switches representation.
+SURFACE_PROPERTIES = """
+<InputProperty name="Input" command="SetInputConnection">
+  <DataTypeDomain name="input_type" composite_data_supported="1"><DataType value="vtkDataSet"/></DataTypeDomain>
+  <InputArrayDomain name="input_array_any" attribute_type="point" optional="1"/>
+</InputProperty>
+<IntVectorProperty name="Visibility" command="SetVisibility" number_of_elements="1" default_values="1">
+  <BooleanDomain name="bool"/>
+</IntVectorProperty>
+<StringVectorProperty name="ColorArrayName" command="SetInputArrayToProcess" element_types="0 0 0 0 2"
+    number_of_elements="5">
+  <RepresentedArrayListDomain name="array_list" input_domain_name="input_array_any">
+    <RequiredProperties><Property function="Input" name="Input"/></RequiredProperties>
+  </RepresentedArrayListDomain>
+  <Documentation>The point array to colour the atoms by; none: element colours.</Documentation>
+</StringVectorProperty>
+<ProxyProperty name="LookupTable" command="SetLookupTable">
+  <ProxyGroupDomain name="groups"><Group name="lookup_tables"/></ProxyGroupDomain>
+  <Documentation>The colour map for the colour array.</Documentation>
+</ProxyProperty>
+<DoubleVectorProperty name="Opacity" command="SetOpacity" number_of_elements="1" default_values="1">
+  <DoubleRangeDomain name="range" min="0" max="1"/>
+</DoubleVectorProperty>
+<DoubleVectorProperty name="Ambient" command="SetAmbient" number_of_elements="1" default_values="0">
+  <DoubleRangeDomain name="range" min="0" max="1"/>
+</DoubleVectorProperty>
+<DoubleVectorProperty name="Diffuse" command="SetDiffuse" number_of_elements="1" default_values="1">
+  <DoubleRangeDomain name="range" min="0" max="1"/>
+</DoubleVectorProperty>
+<DoubleVectorProperty name="Specular" command="SetSpecular" number_of_elements="1" default_values="0">
+  <DoubleRangeDomain name="range" min="0" max="1"/>
+</DoubleVectorProperty>
+<DoubleVectorProperty name="SpecularPower" command="SetSpecularPower" number_of_elements="1"
+    default_values="100">
+  <DoubleRangeDomain name="range" min="0" max="100"/>
+</DoubleVectorProperty>
+<DoubleVectorProperty name="AmbientColor" command="SetAmbientColor" number_of_elements="3"
+    default_values="1 1 1"><DoubleRangeDomain name="range" min="0 0 0" max="1 1 1"/>
+</DoubleVectorProperty>
+<DoubleVectorProperty name="DiffuseColor" command="SetDiffuseColor" number_of_elements="3"
+    default_values="1 1 1"><DoubleRangeDomain name="range" min="0 0 0" max="1 1 1"/>
+  <Documentation>Multiplies the element colours (white: as they are).</Documentation>
+</DoubleVectorProperty>
+<DoubleVectorProperty name="SpecularColor" command="SetSpecularColor" number_of_elements="3"
+    default_values="1 1 1"><DoubleRangeDomain name="range" min="0 0 0" max="1 1 1"/>
+</DoubleVectorProperty>
+<IntVectorProperty name="Pickable" command="SetPickable" number_of_elements="1" default_values="1">
+  <BooleanDomain name="bool"/>
+</IntVectorProperty>
+<DoubleVectorProperty name="Position" command="SetPosition" number_of_elements="3" default_values="0 0 0"/>
+<DoubleVectorProperty name="Orientation" command="SetOrientation" number_of_elements="3"
+    default_values="0 0 0"/>
+<DoubleVectorProperty name="Scale" command="SetScale" number_of_elements="3" default_values="1 1 1"/>
+<DoubleVectorProperty name="Origin" command="SetOrigin" number_of_elements="3" default_values="0 0 0"/>
+"""
+
+
+def representation_xml(spec, source_dir, core, mesolens):
+    """The XML of a representation proxy and the entry that adds it to ParaView's list."""
+    header = os.path.join(source_dir, spec["header"])
+    mapper_header = os.path.join(source_dir, "Rendering", spec["mapper"] + ".h")
+    mapper = getattr(mesolens, spec["mapper"])()
+    brief, details = class_brief(header)
+    wanted = spec["properties"]
+    found = {name: (kind, value_type, doc, enums) for name, kind, value_type, doc, enums
+             in properties_of(mapper_header, set())}
+    missing = [name for name in wanted if name not in found]
+    if missing:
+        raise SystemExit(f"{spec['mapper']} has no properties {missing}")
+    own = [xml_property(mapper, name, *found[name][:3], found[name][3], spec, core)
+           for name in wanted]
+    exposed = "".join(f'<Property name="{name}"/>' for name in wanted)
+    label = spec["label"]
+    return "\n".join([
+        f'<RepresentationProxy name="{spec["name"]}" class="{spec["class"]}" '
+        'processes="client|renderserver|dataserver">',
+        f"<Documentation short_help={quoteattr(brief)}>{escape(details)}</Documentation>",
+        SURFACE_PROPERTIES.strip(), *own, "</RepresentationProxy>",
+        '<Extension name="GeometryRepresentation">',
+        f'<RepresentationType subproxy="{spec["name"]}" text={quoteattr(label)}/>',
+        f'<SubProxy><Proxy name="{spec["name"]}" proxygroup="representations" '
+        f'proxyname="{spec["name"]}"/>'
+        '<ShareProperties subproxy="SurfaceRepresentation"><Exception name="Input"/>'
+        '<Exception name="Visibility"/></ShareProperties>'
+        f"<ExposedProperties><PropertyGroup label={quoteattr(label)}>{exposed}"
+        '<Hints><PropertyWidgetDecorator type="GenericDecorator" mode="visibility" '
+        f'property="Representation" value={quoteattr(label)}/></Hints></PropertyGroup>'
+        "</ExposedProperties></SubProxy>",
+        "</Extension>"])
+
+
 def main():
     if len(sys.argv) != 4:
         raise SystemExit(__doc__)
@@ -227,6 +322,11 @@ def main():
     for group in ("sources", "filters"):
         proxies = [proxy_xml(p, source_dir, core, mesolens) for p in spec.get(group, [])]
         groups.append(f'<ProxyGroup name="{group}">\n' + "\n".join(proxies) + "\n</ProxyGroup>")
+    representations = [representation_xml(r, source_dir, core, mesolens)
+                        for r in spec.get("representations", [])]
+    if representations:
+        groups.append('<ProxyGroup name="representations">\n' + "\n".join(representations)
+                      + "\n</ProxyGroup>")
     text = ("<ServerManagerConfiguration>\n<!-- Generated by scripts/paraview_proxies.py from the "
             "class headers and ParaView/MesoLens/proxies.json; do not edit. -->\n"
             + "\n".join(groups) + "\n</ServerManagerConfiguration>\n")

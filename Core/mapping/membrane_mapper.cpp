@@ -295,6 +295,11 @@ void check_request(const MembranePatch& patch, const MapRequest& request)
   {
     throw InvalidInput("the membrane patch has no atoms");
   }
+  if (request.pieces < 1 || request.piece < 0 || request.piece >= request.pieces)
+  {
+    throw InvalidInput("piece " + std::to_string(request.piece) + " of " +
+                       std::to_string(request.pieces) + " does not exist");
+  }
 }
 } // namespace
 
@@ -402,6 +407,9 @@ MapResult MembraneMapper::map(const SurfacePoint& seed, const MembranePatch& pat
     params.tiles = k;
     params.centre_uv = chart->seed_uv;
     params.cut_to_disk = cut;
+    const long long tile_count = static_cast<long long>(k) * k;
+    params.first_atom_tile = static_cast<int>(tile_count * request.piece / request.pieces);
+    params.end_atom_tile = static_cast<int>(tile_count * (request.piece + 1) / request.pieces);
     result.mapped = map_membrane(chart->chart, patch, params, parallel_for);
     result.chart = chart;
     result.tiles_mapped = k;

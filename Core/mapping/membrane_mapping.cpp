@@ -99,6 +99,14 @@ void check_params(const MembranePatch& patch, const MappingParams& params)
     throw InvalidInput(
       "the polynomial fit needs a positive layer thickness and at least 3 samples per edge");
   }
+  const long long tile_count = static_cast<long long>(params.tiles) * params.tiles;
+  const long long end = params.end_atom_tile < 0 ? tile_count : params.end_atom_tile;
+  if (params.first_atom_tile < 0 || params.first_atom_tile > end || end > tile_count)
+  {
+    throw InvalidInput("the atom tiles [" + std::to_string(params.first_atom_tile) + ", " +
+                       std::to_string(end) + ") are not within the " +
+                       std::to_string(tile_count) + " tiles");
+  }
   const int m = params.max_polynomial_splits;
   if (m < 1 || m > 8 || (m & (m - 1)) != 0 || std::isnan(params.max_polynomial_residual))
   {
@@ -177,7 +185,20 @@ public:
   }
 
   bool MapAtoms = true;
+  std::size_t FirstAtomTile = 0; ///< the atom tiles: [FirstAtomTile, EndAtomTile)
+  std::size_t EndAtomTile = 0;
   std::vector<std::string> Failures;
+
+  bool maps_atoms_of(std::size_t tile) const
+  {
+    return this->MapAtoms && tile >= this->FirstAtomTile && tile < this->EndAtomTile;
+  }
+
+  /// Where a tile's atoms go in the output (atom tiles only).
+  double* atom_block(std::size_t tile)
+  {
+    return this->Out.positions.data() + 3 * this->Patch.atom_count() * (tile - this->FirstAtomTile);
+  }
 
   /// Molecules of the patch (0 unless instancing or cutting to a disk grouped them).
   std::size_t molecule_count() const
@@ -190,7 +211,7 @@ public:
     const int i = int(tile % std::size_t(this->Params.tiles));
     const int j = int(tile / std::size_t(this->Params.tiles));
     const std::size_t n = this->Patch.atom_count();
-    double* out = this->Out.positions.data() + 3 * n * tile;
+    double* out = this->atom_block(tile);
     SurfaceFrame frame;
     std::array<double, 3> x{};
     for (std::size_t a = 0; a < n; ++a)
@@ -259,11 +280,11 @@ public:
         matrix[12] = matrix[13] = matrix[14] = 0;
         matrix[15] = 1;
       }
-      if (!this->MapAtoms)
+      if (!this->maps_atoms_of(tile))
       {
         continue;
       }
-      double* out = this->Out.positions.data() + 3 * n * tile;
+      double* out = this->atom_block(tile);
       for (const std::uint32_t a : groups.atoms_of(m))
       {
         const float* p = this->Patch.positions[a];
@@ -393,7 +414,7 @@ public:
     const std::size_t n = this->Patch.atom_count();
     const double* coefficients = this->Out.polynomial_coefficients.data() +
       3 * quadratic_terms * this->Out.polynomial_first_piece[tile];
-    double* out = this->Out.positions.data() + 3 * n * tile;
+    double* out = this->atom_block(tile);
     SurfacePoint located;
     for (std::size_t a = 0; a < n; ++a)
     {
@@ -468,13 +489,13 @@ private:
   /// Cut to the disk: a molecule with an atom outside is dropped whole.
   void drop_partial_molecules(std::size_t tile)
   {
-    if (!this->Params.cut_to_disk || !this->MapAtoms)
+    if (!this->Params.cut_to_disk || !this->maps_atoms_of(tile))
     {
       return;
     }
     const std::size_t n = this->Patch.atom_count();
-    double* out = this->Out.positions.data() + 3 * n * tile;
-    std::uint8_t* mapped = this->Out.atom_mapped.data() + n * tile;
+    double* out = this->atom_block(tile);
+    std::uint8_t* mapped = this->Out.atom_mapped.data() + n * (tile - this->FirstAtomTile);
     for (std::size_t m = 0; m < this->Molecules.groups.count(); ++m)
     {
       const auto atoms = this->Molecules.groups.atoms_of(m);
@@ -581,17 +602,23 @@ MappedMembrane map_membrane(const SurfaceChart& chart, const MembranePatch& patc
   MappedMembrane mapped;
   TileMapper mapper(chart, patch, params, mapped);
   mapper.MapAtoms = params.map_atoms || params.method == MappingMethod::Displacement;
+  mapper.FirstAtomTile = std::size_t(params.first_atom_tile);
+  mapper.EndAtomTile = params.end_atom_tile < 0 ? tile_count : std::size_t(params.end_atom_tile);
+  mapped.first_atom_tile = mapper.FirstAtomTile;
+  const std::size_t atom_tiles = mapper.EndAtomTile - mapper.FirstAtomTile;
   if (mapper.MapAtoms)
   {
-    mapped.positions.resize(3 * n * tile_count);
+    mapped.positions.resize(3 * n * atom_tiles);
     if (params.cut_to_disk)
     {
-      mapped.atom_mapped.assign(n * tile_count, 1);
+      mapped.atom_mapped.assign(n * atom_tiles, 1);
     }
   }
-  auto each_tile = [&](const std::function<void(std::size_t)>& work) {
-    run_parallel(parallel_for, tile_count, [&work](std::size_t begin, std::size_t end) {
-      for (std::size_t tile = begin; tile < end; ++tile)
+  // Over tiles [first, first + count).
+  auto each_tile = [&](const std::function<void(std::size_t)>& work, std::size_t first,
+                       std::size_t count) {
+    run_parallel(parallel_for, count, [&work, first](std::size_t begin, std::size_t end) {
+      for (std::size_t tile = first + begin; tile < first + end; ++tile)
       {
         work(tile);
       }
@@ -601,14 +628,15 @@ MappedMembrane map_membrane(const SurfaceChart& chart, const MembranePatch& patc
   switch (params.method)
   {
     case MappingMethod::Displacement:
-      each_tile([&mapper](std::size_t tile) { mapper.displacement(tile); });
+      each_tile([&mapper](std::size_t tile) { mapper.displacement(tile); }, mapper.FirstAtomTile,
+                atom_tiles);
       break;
     case MappingMethod::MoleculeInstancing: {
       const std::size_t molecules = mapper.molecule_count();
       mapped.instance_matrices.resize(16 * molecules * tile_count);
       mapped.instance_molecules.resize(molecules * tile_count);
       mapped.instance_tiles.resize(molecules * tile_count);
-      each_tile([&mapper](std::size_t tile) { mapper.instancing(tile); });
+      each_tile([&mapper](std::size_t tile) { mapper.instancing(tile); }, 0, tile_count);
       break;
     }
     case MappingMethod::Polynomial: {
@@ -617,11 +645,13 @@ MappedMembrane map_membrane(const SurfaceChart& chart, const MembranePatch& patc
       mapped.polynomial_splits.resize(tile_count);
       mapped.tile_fallback.resize(tile_count);
       const double bound = params.max_polynomial_residual * params.scale;
-      each_tile([&mapper, bound](std::size_t tile) { mapper.fit_tile(tile, bound); });
+      each_tile([&mapper, bound](std::size_t tile) { mapper.fit_tile(tile, bound); }, 0,
+                tile_count);
       mapper.gather_pieces();
       if (mapper.MapAtoms)
       {
-        each_tile([&mapper](std::size_t tile) { mapper.polynomial_atoms(tile); });
+        each_tile([&mapper](std::size_t tile) { mapper.polynomial_atoms(tile); },
+                  mapper.FirstAtomTile, atom_tiles);
       }
       break;
     }

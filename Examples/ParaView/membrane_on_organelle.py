@@ -12,7 +12,8 @@ import os
 import sys
 
 from paraview import servermanager
-from paraview.simple import (GetActiveViewOrCreate, LoadPlugin, Render, SaveScreenshot, Show)
+from paraview.simple import (ColorBy, GetActiveViewOrCreate, LoadPlugin, Render, SaveScreenshot,
+                             Show)
 from vtkmodules.vtkCommonCore import vtkMath
 from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
 
@@ -77,13 +78,11 @@ surface.DiffuseColor = [0.75, 0.75, 0.78]
 surface.SetRepresentationType("Wireframe")
 surface.AmbientColor = surface.DiffuseColor
 atoms = Show(cut, view)
-atoms.SetRepresentationType("Points")
-# Plain points: ParaView 5.11 loses part of the picture when it composites points drawn as
-# spheres across MPI ranks (docs/scaling.md).
-atoms.PointSize = 2
-atoms.ColorArrayName = ["POINTS", ""]
-atoms.AmbientColor = atoms.DiffuseColor = [0.85, 0.45, 0.2]
-atoms.Ambient, atoms.Diffuse = 1.0, 0.0  # points have no normals to light
+# MesoLens' impostors: true spheres, composited with their depth on any number of ranks. Radii
+# are in Å times RadiusScale: the scene is in µm.
+atoms.SetRepresentationType("MesoLens Atoms")
+atoms.RadiusScale = 1e-4
+ColorBy(atoms, None)  # element colours
 
 Render(view)  # the first render places the camera on everything; then ours
 # Looking down at the patch, slanted towards the cut so the bilayer's thickness shows.

@@ -1,7 +1,9 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 """The ParaView plugin under pvbatch: it loads, its readers open every file type they claim
 (chosen by ParaView's reader factory), report their time steps, and every filter runs from
-paraview.simple with its defaults, giving what the same VTK class gives without ParaView.
+paraview.simple with its defaults, giving what the same VTK class gives without ParaView. The
+"MesoLens Atoms" representation is offered, starts at the mapper's defaults, and picking a pixel
+selects the atom a ray through it meets first, with its arrays.
 
 Run by ctest as: pvbatch test_plugin.py PLUGIN_LIBRARY (environment from mesolens_add_python_test).
 """
@@ -157,8 +159,64 @@ for proxy in (crambin, trajectory, gro, mesh, structure, ribbons, surface, area,
         check(same(value, getter()), f"{proxy.SMProxy.GetXMLName()}.{name} starts at the class's "
               f"default ({value!r} against {getter()!r})")
         checked += 1
+
+# The representation: offered for atoms, its own properties at the mapper's defaults.
+view = simple.CreateRenderView()
+view.ViewSize = [300, 300]
+view.OrientationAxesVisibility = 0
+display = simple.Show(crambin, view)
+check("MesoLens Atoms" in display.GetProperty("Representation").Available,
+      "MesoLens Atoms is a representation type")
+display.SetRepresentationType("MesoLens Atoms")
+simple.ColorBy(display, None)
+mapper = mesolens.vtkMesoAtomMapper()
+for name in ("Style", "RadiusScale", "BallScale", "BondRadius", "OcclusionCulling",
+             "VisibilityArrayName"):
+    prop = display.GetProperty(name)
+    value = prop.SMProperty.GetElement(0) if name == "Style" else display.GetPropertyValue(name)
+    check(same(value, getattr(mapper, "Get" + name)()),
+          f"MesoLens Atoms.{name} starts at the mapper's default ({value!r})")
+    checked += 1
 check(checked > 40, f"defaults compared for {checked} properties")
 print(f"defaults compared for {checked} properties")
+
+# Picking: the pixel at the view's centre selects the atom the central ray meets first, and the
+# selection extracts that atom with its arrays (what the spreadsheet shows).
+simple.ResetCamera(view)
+simple.Render(view)
+camera = view.GetActiveCamera()
+eye, focus = camera.GetPosition(), camera.GetFocalPoint()
+direction = [f - e for f, e in zip(focus, eye)]
+length = sum(d * d for d in direction) ** 0.5
+direction = [d / length for d in direction]
+radii_filter = mesolens.vtkMesoAtomProperties()
+radii_filter.SetInputConnection(reader.GetOutputPort())
+atoms = vtk_output(radii_filter)
+radii = atoms.GetPointData().GetArray("VanDerWaalsRadius")
+nearest, nearest_depth = -1, float("inf")
+for atom in range(atoms.GetNumberOfPoints()):
+    offset = [p - e for p, e in zip(atoms.GetPoint(atom), eye)]
+    along = sum(o * d for o, d in zip(offset, direction))
+    across2 = sum(o * o for o in offset) - along * along
+    radius = radii.GetValue(atom)
+    if across2 < radius * radius:
+        depth = along - (radius * radius - across2) ** 0.5
+        if depth < nearest_depth:
+            nearest, nearest_depth = atom, depth
+check(nearest >= 0, "the central ray meets an atom")
+centre = [view.ViewSize[0] // 2, view.ViewSize[1] // 2]
+simple.SetActiveSource(crambin)
+simple.SelectSurfacePoints(Rectangle=centre + centre, View=view)
+picked = servermanager.Fetch(simple.ExtractSelection(Input=crambin))
+picked_ids = picked.GetPointData().GetArray("vtkOriginalPointIds") if picked else None
+ids = [int(picked_ids.GetValue(i)) for i in range(picked_ids.GetNumberOfTuples())] \
+    if picked_ids else []
+check(ids == [nearest], f"picking selects atom {nearest} (selected {ids})")
+if ids == [nearest]:
+    names = expected.GetPointData().GetAbstractArray("AtomName")
+    check(picked.GetPointData().GetAbstractArray("AtomName").GetValue(0) ==
+          names.GetValue(nearest), "the picked atom's arrays come with it")
+simple.ClearSelection(crambin)
 
 if failures:
     print(f"{len(failures)} check(s) failed")

@@ -207,6 +207,62 @@ TEST(vtkMesoMembraneMapping, TrajectoryTimeStepsPassThrough)
   EXPECT_EQ(mapping->GetOutput()->GetNumberOfPoints(), 43480);
 }
 
+TEST(vtkMesoMembraneMapping, PiecesShareTheTilesAndTogetherGiveTheWhole)
+{
+  // As on N MPI ranks: each asks for its piece; the readers upstream are read whole.
+  vtkNew<vtkMesoMeshReader> mesh;
+  mesh->SetFileName(data_file("meshes/mito5_outer_membrane.obj").c_str());
+  double seed[3];
+  outer_membrane_point(mesh, seed);
+  vtkNew<vtkMesoTrajectoryReader> membrane;
+  membrane->SetTopologyFileName(data_file("membranes/dppc128_slipids_323K.gro").c_str());
+  membrane->RemoveWatersOn();
+  vtkNew<vtkMesoMembraneMapping> mapping;
+  mapping->SetSurfaceConnection(mesh->GetOutputPort());
+  mapping->SetMembraneConnection(membrane->GetOutputPort());
+  mapping->SetSeedPoint(seed);
+  mapping->SetTiles(3);
+  mapping->SetMembraneToMeshScale(1e-4);
+  mapping->SetMappingMethodToPolynomial();
+  ASSERT_EQ(mapping->UpdatePiece(0, 1, 0), 1);
+  vtkNew<vtkPolyData> whole;
+  whole->DeepCopy(mapping->GetOutput());
+  ASSERT_EQ(whole->GetNumberOfPoints(), 9 * 16640);
+  const char* arrays[] = { vtkMesoArrayNames::TileId, vtkMesoArrayNames::MoleculeId };
+  vtkIdType offset = 0;
+  for (int piece = 0; piece < 2; ++piece)
+  {
+    SCOPED_TRACE(piece);
+    ASSERT_EQ(mapping->UpdatePiece(piece, 2, 0), 1);
+    vtkPolyData* share = mapping->GetOutput();
+    // Piece 0 maps tiles 0-3, piece 1 tiles 4-8, with their bonds; the disk is piece 0's.
+    EXPECT_EQ(share->GetNumberOfPoints(), (piece == 0 ? 4 : 5) * 16640);
+    EXPECT_EQ(share->GetNumberOfLines(), (piece == 0 ? 4 : 5) * 16512);
+    EXPECT_EQ(vtkPolyData::SafeDownCast(mapping->GetOutputDataObject(1))->GetNumberOfPolys() > 0,
+              piece == 0);
+    for (vtkIdType i = 0; i < share->GetNumberOfPoints(); i += 997)
+    {
+      double here[3], there[3];
+      share->GetPoint(i, here);
+      whole->GetPoint(offset + i, there);
+      ASSERT_EQ(std::vector<double>(here, here + 3), std::vector<double>(there, there + 3)) << i;
+      for (const char* name : arrays)
+      {
+        ASSERT_EQ(share->GetPointData()->GetArray(name)->GetComponent(i, 0),
+                  whole->GetPointData()->GetArray(name)->GetComponent(offset + i, 0))
+          << name << " " << i;
+      }
+    }
+    offset += share->GetNumberOfPoints();
+  }
+  EXPECT_EQ(offset, whole->GetNumberOfPoints());
+  // The GPU warp is piece 0's alone: other pieces draw nothing twice.
+  mapping->OutputAtomsOff();
+  ASSERT_EQ(mapping->UpdatePiece(1, 2, 0), 1);
+  EXPECT_EQ(mapping->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_EQ(mapping->GetOutput()->GetFieldData()->GetNumberOfArrays(), 0);
+}
+
 TEST(vtkMesoMembraneMapping, BadInputsFailCleanly)
 {
   vtkNew<vtkMesoTrajectoryReader> membrane;

@@ -385,3 +385,46 @@ TEST(MembraneMapper, BadRequests)
   pinched.triangles.insert(pinched.triangles.end(), { 0, 1, 2 });
   EXPECT_THROW(mesolens::MembraneMapper{ pinched }, mesolens::TopologyError);
 }
+
+TEST(MembraneMapper, PiecesMapTheirShareOfTheTilesAndTogetherTheWhole)
+{
+  const auto surface = mesolens_test::torus(120, 40, 90, 36);
+  const auto patch = mesolens_test::synthetic_patch(40);
+  const mesolens::MembraneMapper mapper(surface);
+  const auto seed = mapper.seed_near({ 0, 160, 0 });
+  for (const auto method :
+       { mesolens::MappingMethod::Displacement, mesolens::MappingMethod::MoleculeInstancing,
+         mesolens::MappingMethod::Polynomial })
+  {
+    SCOPED_TRACE(int(method));
+    auto r = request(method, 3);
+    const auto whole = mapper.map(seed, patch.view(), r);
+    const std::size_t n = patch.view().atom_count();
+    for (const int pieces : { 2, 4, 9, 12 })
+    {
+      std::vector<double> joined;
+      for (int piece = 0; piece < pieces; ++piece)
+      {
+        r.piece = piece;
+        r.pieces = pieces;
+        const auto share = mapper.map(seed, patch.view(), r);
+        EXPECT_EQ(share.mapped.first_atom_tile, std::size_t(9 * piece / pieces));
+        EXPECT_EQ(share.mapped.positions.size(), 3 * n * std::size_t(9 * (piece + 1) / pieces -
+                                                                     9 * piece / pieces));
+        // What is per tile and small is every piece's.
+        EXPECT_TRUE(same_bits(share.mapped.polynomial_coefficients,
+                              whole.mapped.polynomial_coefficients));
+        EXPECT_TRUE(same_bits(share.mapped.instance_matrices, whole.mapped.instance_matrices));
+        joined.insert(joined.end(), share.mapped.positions.begin(), share.mapped.positions.end());
+      }
+      EXPECT_TRUE(same_bits(joined, whole.mapped.positions)) << pieces << " pieces";
+    }
+  }
+  auto bad = request(mesolens::MappingMethod::Displacement, 2);
+  for (const auto& [piece, pieces] : { std::pair{ 2, 2 }, std::pair{ -1, 2 }, std::pair{ 0, 0 } })
+  {
+    bad.piece = piece;
+    bad.pieces = pieces;
+    EXPECT_THROW(mapper.map(seed, patch.view(), bad), mesolens::InvalidInput);
+  }
+}

@@ -60,6 +60,12 @@ struct MapRequest
   /// boundary, covers the whole component, or the tiles leave it), map the largest k that fits,
   /// then a single tile cut to the largest disk that fits. false: fail instead. Default true.
   bool fit_what_fits = true;
+  /// This process's share of the mapped atoms, for many processes: of the k^2 tiles actually
+  /// mapped, piece p of P maps the atoms of tiles [k^2 p / P, k^2 (p + 1) / P) (see
+  /// MappingParams::first_atom_tile); the chart, coefficients and matrices are every piece's.
+  /// 0 <= piece < pieces; default piece 0 of 1 (all atoms).
+  int piece = 0;
+  int pieces = 1;
 };
 
 /// What a click got.

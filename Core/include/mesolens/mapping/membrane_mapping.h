@@ -67,15 +67,23 @@ struct MappingParams
   /// matrices, for a renderer that evaluates them itself; positions stay empty). Displacement
   /// always maps the atoms. Default true.
   bool map_atoms = true;
+  /// The tiles whose atoms are mapped: [first_atom_tile, end_atom_tile) in tile order
+  /// (t = j k + i); end -1: through the last tile. The coefficients and matrices are computed
+  /// for every tile (they are small); only the atoms, the costly part, are limited, so that
+  /// processes can share the atoms of many tiles. 0 <= first <= end <= k^2; default all tiles.
+  int first_atom_tile = 0;
+  int end_atom_tile = -1;
 };
 
 /// The mapped atoms and what each method leaves for the renderer. Tile t = j k + i holds the
 /// patch shifted by i a + j b.
 struct MappedMembrane
 {
-  std::vector<double> positions; ///< 3 per atom per tile; tile t: atoms [t n, (t+1) n) (double:
+  std::vector<double> positions; ///< 3 per atom per tile of the atom tiles (all by default);
+                                 ///< tile first_atom_tile + t: atoms [t n, (t+1) n) (double:
                                  ///< Å-sized bonds on µm meshes need it); empty when
                                  ///< params.map_atoms is false (not for Displacement)
+  std::size_t first_atom_tile = 0; ///< the tile of the first block of positions
   std::vector<double> instance_matrices;       ///< MoleculeInstancing: 16 per instance (row-major
                                                ///< 4x4, patch coordinates to mesh coordinates)
   std::vector<int> instance_molecules;         ///< molecule id of each instance
@@ -91,7 +99,7 @@ struct MappedMembrane
   std::vector<double> polynomial_max_residual;     ///< Polynomial: per tile, mesh units
   std::vector<std::uint8_t> tile_fallback; ///< Polynomial: per tile, 1 when no polynomial met
                                            ///< the residual bound and atoms were displaced
-  std::vector<std::uint8_t> atom_mapped;   ///< cut_to_disk: per atom per tile, 0 where the
+  std::vector<std::uint8_t> atom_mapped;   ///< cut_to_disk: per atom per atom tile, 0 where the
                                            ///< atom was dropped (its position is NaN);
                                            ///< empty otherwise
 };

@@ -217,7 +217,8 @@ struct TileArrays
 };
 
 /// Output 0: the mapped atoms, bonds and arrays, k^2 copies of the patch (or this piece's share
-/// of them; atoms a cut tile dropped left out), with each bond's BondLengthChange (0 for the atoms' vertices).
+/// of them; atoms a cut tile dropped left out), with each bond's BondLengthChange (0 for the atoms'
+/// vertices).
 void build_atoms(vtkPolyData* atoms, const PatchData& data, const mesolens::MappedMembrane& mapped,
                  const std::vector<double>& bond_changes, TileArrays& arrays, vtkPolyData* output)
 {

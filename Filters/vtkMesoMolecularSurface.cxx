@@ -2,6 +2,7 @@
 #include "vtkMesoMolecularSurface.h"
 
 #include "vtkMesoArrayNames.h"
+#include "vtkMesoAtomPieces.h"
 
 #include "vtkMesoAtomInput.h"
 #include "vtkMesoAtomTableConversion.h"
@@ -129,9 +130,22 @@ void add_surface_fields(const mesolens::MolecularSurface& surface, vtkPolyData* 
 }
 } // namespace
 
+int vtkMesoMolecularSurface::RequestUpdateExtent(vtkInformation*,
+                                                 vtkInformationVector** inputVector,
+                                                 vtkInformationVector*)
+{
+  vtkMesoAtomPieces::RequestWholeInputs(inputVector, 1);
+  return 1;
+}
+
 int vtkMesoMolecularSurface::RequestData(vtkInformation*, vtkInformationVector** inputVector,
                                          vtkInformationVector* outputVector)
 {
+  if (vtkMesoAtomPieces::Requested(outputVector->GetInformationObject(0)).first > 0)
+  {
+    vtkPolyData::GetData(outputVector)->Initialize();
+    return 1; // the surface of the whole input is piece 0's
+  }
   vtkPolyData* atoms = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   output->Initialize();

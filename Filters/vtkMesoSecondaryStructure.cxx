@@ -2,6 +2,7 @@
 #include "vtkMesoSecondaryStructure.h"
 
 #include "vtkMesoArrayNames.h"
+#include "vtkMesoAtomPieces.h"
 
 #include "vtkMesoAtomInput.h"
 #include "vtkMesoAtomTableConversion.h"
@@ -215,9 +216,18 @@ std::vector<int> run_ids(const std::vector<mesolens::SecondaryStructure>& classe
 }
 } // namespace
 
+int vtkMesoSecondaryStructure::RequestUpdateExtent(vtkInformation*,
+                                                   vtkInformationVector** inputVector,
+                                                   vtkInformationVector*)
+{
+  vtkMesoAtomPieces::RequestWholeInputs(inputVector, 1);
+  return 1;
+}
+
 int vtkMesoSecondaryStructure::RequestData(vtkInformation*, vtkInformationVector** inputVector,
                                            vtkInformationVector* outputVector)
 {
+  const vtkMesoAtomPieces::PieceOnReturn keep_piece(outputVector); // atoms of this piece
   vtkPolyData* atoms = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   output->Initialize();

@@ -92,6 +92,9 @@ protected:
   vtkMesoSecondaryStructure();
   ~vtkMesoSecondaryStructure() override;
 
+  /// Every piece computes on the whole input (chains meet across pieces).
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
+                          vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
                   vtkInformationVector* outputVector) override;
 

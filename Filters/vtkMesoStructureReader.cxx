@@ -2,6 +2,7 @@
 #include "vtkMesoStructureReader.h"
 
 #include "vtkMesoArrayNames.h"
+#include "vtkMesoAtomPieces.h"
 
 #include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoAtomReaderParameters.h"
@@ -122,6 +123,7 @@ int vtkMesoStructureReader::RequestInformation(vtkInformation*, vtkInformationVe
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
   outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  outInfo->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1); // whole molecules per piece
   if (!this->ReadIfNeeded())
   {
     // The update fails here, before RequestData: do not leave an earlier result behind.
@@ -178,6 +180,8 @@ int vtkMesoStructureReader::RequestData(vtkInformation*, vtkInformationVector**,
   {
     output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(), double(model));
   }
+  const auto [piece, pieces] = vtkMesoAtomPieces::Requested(outInfo);
+  vtkMesoAtomPieces::KeepPiece(output, piece, pieces);
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -2,6 +2,7 @@
 #include "vtkMesoStructuredCutaway.h"
 
 #include "vtkMesoArrayNames.h"
+#include "vtkMesoAtomPieces.h"
 
 #include "vtkMesoIntValues.h"
 #include "vtkMesoParallelFor.h"
@@ -173,67 +174,6 @@ struct Molecules
   }
 };
 
-/// The atoms whose `visible` is non-zero, with their point data, and the vertices and bonds
-/// whose atoms are all visible, with their cell data.
-void ExtractAtoms(vtkPolyData* atoms, const vtkUnsignedCharArray* visible, vtkPolyData* output)
-{
-  const vtkIdType n = atoms->GetNumberOfPoints();
-  std::vector<vtkIdType> new_id(static_cast<std::size_t>(n), -1);
-  vtkNew<vtkIdList> kept;
-  for (vtkIdType a = 0; a < n; ++a)
-  {
-    if (visible->GetValue(a))
-    {
-      new_id[static_cast<std::size_t>(a)] = kept->GetNumberOfIds();
-      kept->InsertNextId(a);
-    }
-  }
-  vtkNew<vtkPoints> points;
-  points->SetDataType(atoms->GetPoints()->GetDataType());
-  atoms->GetPoints()->GetPoints(kept, points);
-  output->SetPoints(points);
-  vtkNew<vtkIdList> order;
-  order->SetNumberOfIds(kept->GetNumberOfIds());
-  std::iota(order->begin(), order->end(), 0);
-  output->GetPointData()->CopyAllocate(atoms->GetPointData(), kept->GetNumberOfIds());
-  output->GetPointData()->CopyData(atoms->GetPointData(), kept, order);
-  output->GetFieldData()->ShallowCopy(atoms->GetFieldData());
-  // Vertices first, then lines: the cell data of polydata is in that order.
-  output->GetCellData()->CopyAllocate(atoms->GetCellData());
-  vtkIdType cell = 0;
-  vtkIdType kept_cells = 0;
-  vtkNew<vtkIdList> ids;
-  for (vtkCellArray* source : { atoms->GetVerts(), atoms->GetLines() })
-  {
-    vtkNew<vtkCellArray> cells;
-    const vtkIdType count = source ? source->GetNumberOfCells() : 0;
-    for (vtkIdType c = 0; c < count; ++c, ++cell)
-    {
-      source->GetCellAtId(c, ids);
-      bool all = true;
-      for (vtkIdType k = 0; k < ids->GetNumberOfIds() && all; ++k)
-      {
-        const vtkIdType mapped = new_id[static_cast<std::size_t>(ids->GetId(k))];
-        all = mapped >= 0;
-        ids->SetId(k, mapped);
-      }
-      if (all)
-      {
-        cells->InsertNextCell(ids);
-        output->GetCellData()->CopyData(atoms->GetCellData(), cell, kept_cells++);
-      }
-    }
-    if (source == atoms->GetVerts())
-    {
-      output->SetVerts(cells);
-    }
-    else
-    {
-      output->SetLines(cells);
-    }
-  }
-}
-
 /// The box of `vectors` (9 components: a, b, c), or a box that is not set.
 mesolens::PeriodicBox BoxOf(vtkDataArray* vectors)
 {
@@ -301,7 +241,8 @@ vtkSmartPointer<vtkPolyData> AtomsOfEveryProcess(vtkPolyData* atoms, int pieces,
     {
       first += piece->GetNumberOfPoints();
     }
-    box = box ? box : piece->GetFieldData()->GetAbstractArray(vtkMesoArrayNames::PeriodicBoxVectors);
+    box =
+      box ? box : piece->GetFieldData()->GetAbstractArray(vtkMesoArrayNames::PeriodicBoxVectors);
     append->AddInputData(piece);
   }
   auto all = vtkSmartPointer<vtkPolyData>::New();
@@ -318,7 +259,7 @@ vtkSmartPointer<vtkPolyData> AtomsOfEveryProcess(vtkPolyData* atoms, int pieces,
 }
 
 /// Values [first, first + count) of an array, as a new array of the same type and name.
-template <typename Array>
+template<typename Array>
 vtkSmartPointer<Array> Slice(Array* values, vtkIdType first, vtkIdType count)
 {
   vtkSmartPointer<Array> slice;
@@ -734,7 +675,7 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
     all->GetPointData()->AddArray(priority);
     if (this->ExtractVisibleAtoms)
     {
-      ExtractAtoms(all, visible_atoms, output);
+      vtkMesoAtomPieces::ExtractAtoms(all, visible_atoms, output);
     }
     else
     {

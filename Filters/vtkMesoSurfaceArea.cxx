@@ -2,6 +2,7 @@
 #include "vtkMesoSurfaceArea.h"
 
 #include "vtkMesoArrayNames.h"
+#include "vtkMesoAtomPieces.h"
 
 #include "vtkMesoAtomInput.h"
 #include "vtkMesoAtomTableConversion.h"
@@ -35,9 +36,17 @@ vtkMesoSurfaceArea::~vtkMesoSurfaceArea()
   this->SetRadiusArrayName(nullptr);
 }
 
+int vtkMesoSurfaceArea::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
+                                            vtkInformationVector*)
+{
+  vtkMesoAtomPieces::RequestWholeInputs(inputVector, 1);
+  return 1;
+}
+
 int vtkMesoSurfaceArea::RequestData(vtkInformation*, vtkInformationVector** inputVector,
                                     vtkInformationVector* outputVector)
 {
+  const vtkMesoAtomPieces::PieceOnReturn keep_piece(outputVector); // atoms of this piece
   vtkPolyData* atoms = vtkPolyData::GetData(inputVector[0]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   output->Initialize();

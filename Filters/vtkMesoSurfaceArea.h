@@ -57,6 +57,9 @@ protected:
   vtkMesoSurfaceArea();
   ~vtkMesoSurfaceArea() override;
 
+  /// Every piece computes on the whole input (chains meet across pieces).
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
+                          vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
                   vtkInformationVector* outputVector) override;
 

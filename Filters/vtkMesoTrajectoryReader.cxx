@@ -2,6 +2,7 @@
 #include "vtkMesoTrajectoryReader.h"
 
 #include "vtkMesoArrayNames.h"
+#include "vtkMesoAtomPieces.h"
 
 #include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoAtomReaderParameters.h"
@@ -36,9 +37,36 @@ struct vtkMesoTrajectoryReader::State
 {
   bool Valid = false;
   vtkMTimeType OpenTime = 0;
-  mesolens::AtomTable Topology;                   // every atom, with molecules and bonds
-  std::vector<std::size_t> KeptAtoms;             // output atoms (empty: all)
-  vtkSmartPointer<vtkPolyData> Template;          // output arrays, built once
+  mesolens::AtomTable Topology;          // every atom, with molecules and bonds
+  std::vector<std::size_t> KeptAtoms;    // output atoms (empty: all)
+  vtkSmartPointer<vtkPolyData> Template; // output arrays, built once
+  // One piece of many (MPI ranks): its template and the file atoms it keeps, built once.
+  std::pair<int, int> PieceOf{ 0, 1 };
+  vtkSmartPointer<vtkPolyData> PieceTemplate;
+  std::vector<std::size_t> PieceAtoms;
+
+  /// The template and kept atoms of one piece (the whole template for one).
+  vtkPolyData* TemplateOf(int piece, int pieces)
+  {
+    if (pieces <= 1)
+    {
+      return this->Template;
+    }
+    if (!this->PieceTemplate || this->PieceOf != std::pair{ piece, pieces })
+    {
+      this->PieceTemplate = vtkSmartPointer<vtkPolyData>::New();
+      this->PieceTemplate->DeepCopy(this->Template);
+      vtkMesoAtomPieces::KeepPiece(this->PieceTemplate, piece, pieces);
+      this->PieceAtoms.clear();
+      for (const vtkIdType a : vtkMesoAtomPieces::AtomsOfPiece(this->Template, piece, pieces))
+      {
+        this->PieceAtoms.push_back(this->KeptAtoms.empty() ? std::size_t(a)
+                                                           : this->KeptAtoms[std::size_t(a)]);
+      }
+      this->PieceOf = { piece, pieces };
+    }
+    return this->PieceTemplate;
+  }
   std::unique_ptr<mesolens::TrajectoryFile> File; // null: the topology is the only frame
   bool TrajectoryIsTopology = false;              // the frames are those of the topology file
   std::vector<double> Times;                      // ps
@@ -230,6 +258,7 @@ bool vtkMesoTrajectoryReader::OpenIfNeeded()
     output_atoms.filter(keep);
   }
   state.Template = vtkSmartPointer<vtkPolyData>::New();
+  state.PieceTemplate = nullptr;
   vtkMesoAtomTableConversion::ToPolyData(output_atoms, 1.0, state.Template);
   if (this->MakeMoleculesWhole && this->KeepMoleculesContinuous && state.File)
   {
@@ -258,6 +287,7 @@ int vtkMesoTrajectoryReader::RequestInformation(vtkInformation*, vtkInformationV
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
   outInfo->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
+  outInfo->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1); // whole molecules per piece
   if (!this->OpenIfNeeded())
   {
     if (vtkPolyData* output = vtkPolyData::GetData(outInfo))
@@ -312,12 +342,19 @@ int vtkMesoTrajectoryReader::RequestData(vtkInformation*, vtkInformationVector**
   }
 
   const double scale = this->LengthUnit == NANOMETER ? 0.1 : 1.0;
-  output->CopyStructure(state.Template);
-  output->GetPointData()->PassData(state.Template->GetPointData());
+  const auto [piece, pieces] = vtkMesoAtomPieces::Requested(outInfo);
+  vtkPolyData* atoms = state.TemplateOf(piece, pieces);
+  if (pieces > 1 && state.PieceAtoms.empty())
+  {
+    return 1; // a piece without molecules (more pieces than molecules)
+  }
+  output->CopyStructure(atoms);
+  output->GetPointData()->PassData(atoms->GetPointData());
   vtkNew<vtkPoints> points;
   points->SetDataTypeToFloat();
   output->SetPoints(points);
-  vtkMesoAtomTableConversion::SetPositions(frame.positions, state.KeptAtoms, scale, output);
+  vtkMesoAtomTableConversion::SetPositions(
+    frame.positions, pieces > 1 ? state.PieceAtoms : state.KeptAtoms, scale, output);
   vtkMesoAtomTableConversion::SetPeriodicBox(frame.box, scale, output);
   vtkMesoAtomTableConversion::SetFieldValue(output, vtkMesoArrayNames::TimePs, frame.time_ps);
   vtkMesoAtomTableConversion::SetFieldValue(output, vtkMesoArrayNames::FrameIndex,

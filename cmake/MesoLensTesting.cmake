@@ -48,14 +48,14 @@ endif ()
 # Python tests run with Debian's interpreter (which has vtkmodules) and the build's package.
 set(MESOLENS_PYTHON_EXECUTABLE "/usr/bin/python3" CACHE FILEPATH "Python with vtkmodules")
 function(mesolens_add_python_test name script)
-  cmake_parse_arguments(arg "" "LABEL;INTERPRETER" "ARGS" ${ARGN})
+  cmake_parse_arguments(arg "" "LABEL" "ARGS;INTERPRETER" ${ARGN})
   if (NOT arg_LABEL)
     set(arg_LABEL python)
   endif ()
   if (NOT arg_INTERPRETER)
     set(arg_INTERPRETER "${MESOLENS_PYTHON_EXECUTABLE}")
   endif ()
-  add_test(NAME ${name} COMMAND "${arg_INTERPRETER}" "${script}" ${arg_ARGS})
+  add_test(NAME ${name} COMMAND ${arg_INTERPRETER} "${script}" ${arg_ARGS})
   set(environment
     "PYTHONPATH=${MESOLENS_PYTHONPATH}"
     "MESOLENS_DATA_DIR=${MESOLENS_DATA_DIR}"

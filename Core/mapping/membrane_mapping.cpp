@@ -104,8 +104,8 @@ void check_params(const MembranePatch& patch, const MappingParams& params)
   if (params.first_atom_tile < 0 || params.first_atom_tile > end || end > tile_count)
   {
     throw InvalidInput("the atom tiles [" + std::to_string(params.first_atom_tile) + ", " +
-                       std::to_string(end) + ") are not within the " +
-                       std::to_string(tile_count) + " tiles");
+                       std::to_string(end) + ") are not within the " + std::to_string(tile_count) +
+                       " tiles");
   }
   const int m = params.max_polynomial_splits;
   if (m < 1 || m > 8 || (m & (m - 1)) != 0 || std::isnan(params.max_polynomial_residual))

@@ -21,8 +21,7 @@
 
 vtkStandardNewMacro(vtkMesoAtomsRepresentation);
 
-namespace
-{
+namespace {
 /// A dataset as atoms: polydata as it is; any other dataset as its points and point arrays.
 vtkSmartPointer<vtkPolyData> AtomsOfDataSet(vtkDataSet* data)
 {

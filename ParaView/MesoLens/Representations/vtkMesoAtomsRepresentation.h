@@ -72,7 +72,10 @@ public:
   void SetOrigin(double x, double y, double z);
 
   /// The mapper, for tests and for settings not exposed above.
-  vtkMesoAtomMapper* GetMapper() const { return this->Mapper; }
+  vtkMesoAtomMapper* GetMapper() const
+  {
+    return this->Mapper;
+  }
 
 protected:
   vtkMesoAtomsRepresentation();

@@ -409,11 +409,11 @@ TEST(MembraneMapper, PiecesMapTheirShareOfTheTilesAndTogetherTheWhole)
         r.pieces = pieces;
         const auto share = mapper.map(seed, patch.view(), r);
         EXPECT_EQ(share.mapped.first_atom_tile, std::size_t(9 * piece / pieces));
-        EXPECT_EQ(share.mapped.positions.size(), 3 * n * std::size_t(9 * (piece + 1) / pieces -
-                                                                     9 * piece / pieces));
+        EXPECT_EQ(share.mapped.positions.size(),
+                  3 * n * std::size_t(9 * (piece + 1) / pieces - 9 * piece / pieces));
         // What is per tile and small is every piece's.
-        EXPECT_TRUE(same_bits(share.mapped.polynomial_coefficients,
-                              whole.mapped.polynomial_coefficients));
+        EXPECT_TRUE(
+          same_bits(share.mapped.polynomial_coefficients, whole.mapped.polynomial_coefficients));
         EXPECT_TRUE(same_bits(share.mapped.instance_matrices, whole.mapped.instance_matrices));
         joined.insert(joined.end(), share.mapped.positions.begin(), share.mapped.positions.end());
       }

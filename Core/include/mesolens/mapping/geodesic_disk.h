@@ -70,8 +70,8 @@ GeodesicDisk geodesic_disk(const CellSurface& surface, const SurfacePoint& seed,
 
 /// The placement (for SurfaceChart) that puts a point of `disk` on `surface`'s smooth
 /// interpolant: directly for a disk grown on the input's triangles; for one grown on a coarser
-/// copy, the copy's smooth point moved along the copy's normal onto the input. Keeps a copy of what it needs of the
-/// disk; `surface` must outlive it.
+/// copy, the copy's smooth point moved along the copy's normal onto the input. Keeps a copy of what
+/// it needs of the disk; `surface` must outlive it.
 SurfacePlacement smooth_placement(const GeodesicDisk& disk, const CellSurface& surface);
 
 } // namespace mesolens

@@ -79,10 +79,10 @@ struct MappingParams
 /// patch shifted by i a + j b.
 struct MappedMembrane
 {
-  std::vector<double> positions; ///< 3 per atom per tile of the atom tiles (all by default);
-                                 ///< tile first_atom_tile + t: atoms [t n, (t+1) n) (double:
-                                 ///< Å-sized bonds on µm meshes need it); empty when
-                                 ///< params.map_atoms is false (not for Displacement)
+  std::vector<double> positions;   ///< 3 per atom per tile of the atom tiles (all by default);
+                                   ///< tile first_atom_tile + t: atoms [t n, (t+1) n) (double:
+                                   ///< Å-sized bonds on µm meshes need it); empty when
+                                   ///< params.map_atoms is false (not for Displacement)
   std::size_t first_atom_tile = 0; ///< the tile of the first block of positions
   std::vector<double> instance_matrices;       ///< MoleculeInstancing: 16 per instance (row-major
                                                ///< 4x4, patch coordinates to mesh coordinates)

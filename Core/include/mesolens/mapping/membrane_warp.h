@@ -39,11 +39,11 @@ struct MembraneWarp
   double layer_half_thickness = 25;    ///< e of the polynomial coordinate h = (z - centre) / e
 
   // Where it lies on the surface.
-  double geodesic_radius = 0;            ///< of the disk mapped onto, mesh units
-  std::array<double, 2> seed_uv{ { 0, 0 } }; ///< the picked point in (u, v)
+  double geodesic_radius = 0;                       ///< of the disk mapped onto, mesh units
+  std::array<double, 2> seed_uv{ { 0, 0 } };        ///< the picked point in (u, v)
   std::array<double, 3> seed_normal{ { 0, 0, 0 } }; ///< the surface's unit normal there: where
                                                     ///< the patch's +z (heights) go
-  int refinement_levels = 0;             ///< the disk's triangle bisections (GeodesicDisk)
+  int refinement_levels = 0; ///< the disk's triangle bisections (GeodesicDisk)
 
   // Polynomial (see MappedMembrane): 30 per piece, pieces per side per tile, residuals per tile
   // (mesh units) and tiles whose atoms were displaced instead.

@@ -1,0 +1,171 @@
+// SPDX-License-Identifier: GPL-3.0-or-later
+#include "vtkMesoAtomPieces.h"
+
+#include "vtkMesoArrayNames.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
+#include <vtkIdList.h>
+#include <vtkInformation.h>
+#include <vtkInformationVector.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkPolyData.h>
+#include <vtkStreamingDemandDrivenPipeline.h>
+#include <vtkUnsignedCharArray.h>
+
+#include <numeric>
+#include <unordered_map>
+#include <vector>
+
+namespace vtkMesoAtomPieces {
+
+std::pair<int, int> Requested(vtkInformation* info)
+{
+  using Pipeline = vtkStreamingDemandDrivenPipeline;
+  if (!info || !info->Has(Pipeline::UPDATE_NUMBER_OF_PIECES()) ||
+      !info->Has(Pipeline::UPDATE_PIECE_NUMBER()))
+  {
+    return { 0, 1 };
+  }
+  const int pieces = info->Get(Pipeline::UPDATE_NUMBER_OF_PIECES());
+  const int piece = info->Get(Pipeline::UPDATE_PIECE_NUMBER());
+  return pieces < 1 || piece < 0 || piece >= pieces ? std::pair{ 0, 1 }
+                                                    : std::pair{ piece, pieces };
+}
+
+void RequestWholeInputs(vtkInformationVector** inputs, int ports)
+{
+  using Pipeline = vtkStreamingDemandDrivenPipeline;
+  for (int port = 0; port < ports; ++port)
+  {
+    for (int c = 0; c < inputs[port]->GetNumberOfInformationObjects(); ++c)
+    {
+      vtkInformation* in = inputs[port]->GetInformationObject(c);
+      in->Set(Pipeline::UPDATE_PIECE_NUMBER(), 0);
+      in->Set(Pipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+      in->Set(Pipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+    }
+  }
+}
+
+std::vector<vtkIdType> AtomsOfPiece(vtkPolyData* atoms, int piece, int pieces)
+{
+  const vtkIdType n = atoms ? atoms->GetNumberOfPoints() : 0;
+  std::vector<vtkIdType> kept;
+  // A molecule goes to the piece its first atom's rank among all atoms falls in; the rest of
+  // its atoms follow it.
+  vtkDataArray* ids =
+    n > 0 ? atoms->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId) : nullptr;
+  std::unordered_map<long long, int> piece_of_molecule;
+  for (vtkIdType a = 0; a < n; ++a)
+  {
+    const int first_atom_piece = static_cast<int>((static_cast<long double>(a) * pieces) / n);
+    int owner = first_atom_piece;
+    if (ids)
+    {
+      owner =
+        piece_of_molecule.emplace(static_cast<long long>(ids->GetComponent(a, 0)), first_atom_piece)
+          .first->second;
+    }
+    if (owner == piece)
+    {
+      kept.push_back(a);
+    }
+  }
+  return kept;
+}
+
+void KeepPiece(vtkPolyData* atoms, int piece, int pieces)
+{
+  if (pieces <= 1 || !atoms || atoms->GetNumberOfPoints() == 0)
+  {
+    return;
+  }
+  vtkNew<vtkUnsignedCharArray> keep;
+  keep->SetNumberOfValues(atoms->GetNumberOfPoints());
+  keep->FillValue(0);
+  for (const vtkIdType a : AtomsOfPiece(atoms, piece, pieces))
+  {
+    keep->SetValue(a, 1);
+  }
+  vtkNew<vtkPolyData> kept;
+  ExtractAtoms(atoms, keep, kept);
+  atoms->ShallowCopy(kept);
+}
+
+PieceOnReturn::PieceOnReturn(vtkInformationVector* outputs)
+  : Outputs(outputs)
+{
+}
+
+PieceOnReturn::~PieceOnReturn()
+{
+  vtkInformation* info = this->Outputs->GetInformationObject(0);
+  const auto [piece, pieces] = Requested(info);
+  KeepPiece(vtkPolyData::GetData(info), piece, pieces);
+}
+
+void ExtractAtoms(vtkPolyData* atoms, const vtkUnsignedCharArray* keep, vtkPolyData* output)
+{
+  const vtkIdType n = atoms->GetNumberOfPoints();
+  std::vector<vtkIdType> new_id(static_cast<std::size_t>(n), -1);
+  vtkNew<vtkIdList> kept;
+  for (vtkIdType a = 0; a < n; ++a)
+  {
+    if (keep->GetValue(a))
+    {
+      new_id[static_cast<std::size_t>(a)] = kept->GetNumberOfIds();
+      kept->InsertNextId(a);
+    }
+  }
+  vtkNew<vtkPoints> points;
+  points->SetDataType(atoms->GetPoints()->GetDataType());
+  atoms->GetPoints()->GetPoints(kept, points);
+  output->SetPoints(points);
+  vtkNew<vtkIdList> order;
+  order->SetNumberOfIds(kept->GetNumberOfIds());
+  std::iota(order->begin(), order->end(), 0);
+  output->GetPointData()->CopyAllocate(atoms->GetPointData(), kept->GetNumberOfIds());
+  output->GetPointData()->CopyData(atoms->GetPointData(), kept, order);
+  output->GetFieldData()->ShallowCopy(atoms->GetFieldData());
+  // Vertices first, then lines: the cell data of polydata is in that order.
+  output->GetCellData()->CopyAllocate(atoms->GetCellData());
+  vtkIdType cell = 0;
+  vtkIdType kept_cells = 0;
+  vtkNew<vtkIdList> ids;
+  for (vtkCellArray* source : { atoms->GetVerts(), atoms->GetLines() })
+  {
+    vtkNew<vtkCellArray> cells;
+    const vtkIdType count = source ? source->GetNumberOfCells() : 0;
+    for (vtkIdType c = 0; c < count; ++c, ++cell)
+    {
+      source->GetCellAtId(c, ids);
+      bool all = true;
+      for (vtkIdType k = 0; k < ids->GetNumberOfIds() && all; ++k)
+      {
+        const vtkIdType mapped = new_id[static_cast<std::size_t>(ids->GetId(k))];
+        all = mapped >= 0;
+        ids->SetId(k, mapped);
+      }
+      if (all)
+      {
+        cells->InsertNextCell(ids);
+        output->GetCellData()->CopyData(atoms->GetCellData(), cell, kept_cells++);
+      }
+    }
+    if (source == atoms->GetVerts())
+    {
+      output->SetVerts(cells);
+    }
+    else
+    {
+      output->SetLines(cells);
+    }
+  }
+}
+
+} // namespace vtkMesoAtomPieces

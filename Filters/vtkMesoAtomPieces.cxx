@@ -3,6 +3,7 @@
 
 #include "vtkMesoArrayNames.h"
 
+#include <vtkAppendPolyData.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
@@ -10,6 +11,7 @@
 #include <vtkIdList.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkMultiProcessController.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -18,6 +20,7 @@
 #include <vtkUnsignedCharArray.h>
 
 #include <numeric>
+#include <tuple>
 #include <unordered_map>
 #include <vector>
 
@@ -35,21 +38,6 @@ std::pair<int, int> Requested(vtkInformation* info)
   const int piece = info->Get(Pipeline::UPDATE_PIECE_NUMBER());
   return pieces < 1 || piece < 0 || piece >= pieces ? std::pair{ 0, 1 }
                                                     : std::pair{ piece, pieces };
-}
-
-void RequestWholeInputs(vtkInformationVector** inputs, int ports)
-{
-  using Pipeline = vtkStreamingDemandDrivenPipeline;
-  for (int port = 0; port < ports; ++port)
-  {
-    for (int c = 0; c < inputs[port]->GetNumberOfInformationObjects(); ++c)
-    {
-      vtkInformation* in = inputs[port]->GetInformationObject(c);
-      in->Set(Pipeline::UPDATE_PIECE_NUMBER(), 0);
-      in->Set(Pipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-      in->Set(Pipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
-    }
-  }
 }
 
 std::vector<vtkIdType> AtomsOfPiece(vtkPolyData* atoms, int piece, int pieces)
@@ -97,16 +85,152 @@ void KeepPiece(vtkPolyData* atoms, int piece, int pieces)
   atoms->ShallowCopy(kept);
 }
 
-PieceOnReturn::PieceOnReturn(vtkInformationVector* outputs)
-  : Outputs(outputs)
+bool Gathers(vtkInformation* info)
 {
+  const int pieces = Requested(info).second;
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  return pieces > 1 && controller && controller->GetNumberOfProcesses() == pieces;
 }
 
-PieceOnReturn::~PieceOnReturn()
+void RequestWholeInputsWhenStreaming(vtkInformationVector** inputs, int ports,
+                                     vtkInformationVector* outputs)
 {
-  vtkInformation* info = this->Outputs->GetInformationObject(0);
-  const auto [piece, pieces] = Requested(info);
-  KeepPiece(vtkPolyData::GetData(info), piece, pieces);
+  vtkInformation* out = outputs->GetInformationObject(0);
+  if (Requested(out).second < 2 || Gathers(out))
+  {
+    return;
+  }
+  using Pipeline = vtkStreamingDemandDrivenPipeline;
+  for (int port = 0; port < ports; ++port)
+  {
+    for (int c = 0; c < inputs[port]->GetNumberOfInformationObjects(); ++c)
+    {
+      vtkInformation* in = inputs[port]->GetInformationObject(c);
+      in->Set(Pipeline::UPDATE_PIECE_NUMBER(), 0);
+      in->Set(Pipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+      in->Set(Pipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+    }
+  }
+}
+
+GatheredInput::GatheredInput(vtkInformationVector* input, vtkInformationVector* outputs,
+                             Output output)
+  : Outputs(outputs)
+  , Keep(output)
+{
+  vtkPolyData* local = vtkPolyData::GetData(input);
+  this->All = local;
+  if (!this->All)
+  {
+    this->All = vtkSmartPointer<vtkPolyData>::New();
+  }
+  this->Own = this->All->GetNumberOfPoints();
+  this->Versions = local ? local->GetMTime() : 0;
+  vtkInformation* out = outputs->GetInformationObject(0);
+  std::tie(this->ThisPiece, this->Pieces) = Requested(out);
+  if (!Gathers(out))
+  {
+    return;
+  }
+  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
+  this->WasGathered = true;
+  this->ThisPiece = controller->GetLocalProcessId();
+  vtkNew<vtkPolyData> mine;
+  if (local)
+  {
+    mine->ShallowCopy(local);
+  }
+  std::vector<vtkSmartPointer<vtkDataObject>> everyone;
+  controller->AllGather(mine, everyone);
+  std::vector<long long> versions(static_cast<std::size_t>(controller->GetNumberOfProcesses()));
+  const long long version = static_cast<long long>(this->Versions);
+  controller->AllGather(&version, versions.data(), 1);
+  this->Versions = 0;
+  for (const long long v : versions)
+  {
+    this->Versions += static_cast<vtkMTimeType>(v);
+  }
+  vtkNew<vtkAppendPolyData> append;
+  vtkFieldData* fields = nullptr;
+  for (std::size_t rank = 0; rank < everyone.size(); ++rank)
+  {
+    auto piece = vtkPolyData::SafeDownCast(everyone[rank]);
+    if (!piece || piece->GetNumberOfPoints() == 0)
+    {
+      continue;
+    }
+    if (static_cast<int>(rank) < this->ThisPiece)
+    {
+      this->First += piece->GetNumberOfPoints();
+    }
+    fields = fields ? fields : piece->GetFieldData();
+    append->AddInputData(piece);
+  }
+  this->All = vtkSmartPointer<vtkPolyData>::New();
+  if (append->GetNumberOfInputConnections(0) > 0)
+  {
+    append->Update();
+    this->All->ShallowCopy(append->GetOutput());
+    this->All->GetFieldData()->ShallowCopy(fields);
+  }
+}
+
+GatheredInput::~GatheredInput()
+{
+  if (this->Keep != KeepOwn || this->Pieces < 2)
+  {
+    return;
+  }
+  vtkPolyData* output = vtkPolyData::GetData(this->Outputs, 0);
+  if (!this->WasGathered)
+  {
+    KeepPiece(output, this->ThisPiece, this->Pieces); // streaming: the whole input was asked for
+    return;
+  }
+  if (!output || output->GetNumberOfPoints() != this->All->GetNumberOfPoints())
+  {
+    return; // an error left it empty
+  }
+  vtkNew<vtkUnsignedCharArray> keep;
+  keep->SetNumberOfValues(output->GetNumberOfPoints());
+  keep->FillValue(0);
+  for (vtkIdType a = this->First; a < this->First + this->Own; ++a)
+  {
+    keep->SetValue(a, 1);
+  }
+  vtkNew<vtkPolyData> own;
+  ExtractAtoms(output, keep, own);
+  output->ShallowCopy(own);
+}
+
+vtkPolyData* GatheredInput::Whole() const
+{
+  return this->All;
+}
+
+bool GatheredInput::Gathered() const
+{
+  return this->WasGathered;
+}
+
+int GatheredInput::Piece() const
+{
+  return this->ThisPiece;
+}
+
+int GatheredInput::PieceCount() const
+{
+  return this->Pieces;
+}
+
+vtkIdType GatheredInput::FirstOwn() const
+{
+  return this->First;
+}
+
+vtkMTimeType GatheredInput::Version() const
+{
+  return this->Versions;
 }
 
 void ExtractAtoms(vtkPolyData* atoms, const vtkUnsignedCharArray* keep, vtkPolyData* output)

@@ -2,6 +2,7 @@
 #include "vtkMesoMembraneMapping.h"
 
 #include "vtkMesoArrayNames.h"
+#include "vtkMesoAtomPieces.h"
 #include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoMembraneWarp.h"
 
@@ -357,7 +358,7 @@ int vtkMesoMembraneMapping::RequestInformation(vtkInformation*, vtkInformationVe
   for (int port = 0; port < 3; ++port)
   {
     vtkInformation* out = outputVector->GetInformationObject(port);
-    // Pieces share the tiles' atoms; each reads the whole surface and patch.
+    // Pieces share the tiles' atoms; each maps from the whole surface and patch.
     out->Set(vtkAlgorithm::CAN_HANDLE_PIECE_REQUEST(), 1);
     out->Remove(vtkStreamingDemandDrivenPipeline::TIME_STEPS());
     out->Remove(vtkStreamingDemandDrivenPipeline::TIME_RANGE());
@@ -371,26 +372,22 @@ int vtkMesoMembraneMapping::RequestInformation(vtkInformation*, vtkInformationVe
 }
 
 int vtkMesoMembraneMapping::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
-                                                vtkInformationVector*)
+                                                vtkInformationVector* outputVector)
 {
-  // Every piece needs the whole surface and the whole patch (both are small).
-  for (int port = 0; port < 2; ++port)
-  {
-    if (vtkInformation* in = inputVector[port]->GetInformationObject(0))
-    {
-      in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER(), 0);
-      in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES(), 1);
-      in->Set(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
-    }
-  }
+  vtkMesoAtomPieces::RequestWholeInputsWhenStreaming(inputVector, 2, outputVector);
   return 1;
 }
 
 int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** inputVector,
                                         vtkInformationVector* outputVector)
 {
-  vtkPolyData* surface = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* atoms = vtkPolyData::GetData(inputVector[1]);
+  // On many processes every one maps from the whole surface and patch (both small), whatever
+  // pieces of them its readers gave it.
+  using Gathered = vtkMesoAtomPieces::GatheredInput;
+  const Gathered whole_surface(inputVector[0], outputVector, Gathered::KeepWhole);
+  const Gathered whole_patch(inputVector[1], outputVector, Gathered::KeepWhole);
+  vtkPolyData* surface = inputVector[0]->GetInformationObject(0) ? whole_surface.Whole() : nullptr;
+  vtkPolyData* atoms = inputVector[1]->GetInformationObject(0) ? whole_patch.Whole() : nullptr;
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* disk_output = vtkPolyData::GetData(outputVector, 1);
   vtkPolyData* lattice_output = vtkPolyData::GetData(outputVector, 2);
@@ -406,7 +403,7 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
     }
     PatchData data = read_patch(atoms);
     const mesolens::MembraneMapper& mapper =
-      this->Internal->Mapper.For(surface, surface->GetMTime());
+      this->Internal->Mapper.For(surface, whole_surface.Version());
     this->UpdateProgress(0.2);
     mesolens::MapRequest request = map_request(this);
     vtkInformation* out_info = outputVector->GetInformationObject(0);

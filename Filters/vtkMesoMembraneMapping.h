@@ -53,11 +53,11 @@
  * regular triangle lattice of that edge laid on the disk (mesolens::chart_lattice), the
  * structure to cut the mapped membrane along with vtkMesoStructuredCutaway.
  *
- * Pieces (pvbatch or pvserver on N MPI ranks): every piece reads the whole surface and patch
- * and grows the same disk; piece p of N maps the atoms of tiles [k^2 p / N, k^2 (p + 1) / N)
- * (TileId and MoleculeId as on one process), so the ranks share the mapping's work and output.
- * With OutputAtoms off (the warp for the GPU) and for outputs 1 and 2, piece 0 gives everything
- * and the other pieces are empty.
+ * Pieces (pvbatch or pvserver on N MPI ranks): every piece gathers the whole surface and
+ * patch from the pieces its inputs hold and grows the same disk; piece p of N maps the atoms of
+ * tiles [k^2 p / N, k^2 (p + 1) / N) (TileId and MoleculeId as on one process), so the ranks share
+ * the mapping's work and output. With OutputAtoms off (the warp for the GPU) and for outputs 1 and
+ * 2, piece 0 gives everything and the other pieces are empty.
  *
  * The surface's preparation and the most recent disks and parameterizations
  * (mesolens::MembraneMapper) are kept while the surface stays the same, so a new trajectory
@@ -228,7 +228,10 @@ protected:
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
   int RequestInformation(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
-  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+  /// Streaming one process's pieces: every piece computes on the whole input (see
+  /// vtkMesoAtomPieces::GatheredInput).
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
+                          vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   // Set by the constructor from mesolens::MapRequest's defaults.

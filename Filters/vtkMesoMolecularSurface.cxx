@@ -132,21 +132,24 @@ void add_surface_fields(const mesolens::MolecularSurface& surface, vtkPolyData* 
 
 int vtkMesoMolecularSurface::RequestUpdateExtent(vtkInformation*,
                                                  vtkInformationVector** inputVector,
-                                                 vtkInformationVector*)
+                                                 vtkInformationVector* outputVector)
 {
-  vtkMesoAtomPieces::RequestWholeInputs(inputVector, 1);
+  vtkMesoAtomPieces::RequestWholeInputsWhenStreaming(inputVector, 1, outputVector);
   return 1;
 }
 
 int vtkMesoMolecularSurface::RequestData(vtkInformation*, vtkInformationVector** inputVector,
                                          vtkInformationVector* outputVector)
 {
-  if (vtkMesoAtomPieces::Requested(outputVector->GetInformationObject(0)).first > 0)
+  // On many processes: the surface of every process's atoms, made once, by rank 0.
+  const vtkMesoAtomPieces::GatheredInput gathered(inputVector[0], outputVector,
+                                                  vtkMesoAtomPieces::GatheredInput::KeepWhole);
+  if (gathered.Piece() > 0)
   {
     vtkPolyData::GetData(outputVector)->Initialize();
-    return 1; // the surface of the whole input is piece 0's
+    return 1;
   }
-  vtkPolyData* atoms = vtkPolyData::GetData(inputVector[0]);
+  vtkPolyData* atoms = gathered.Whole();
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   output->Initialize();
   if (!atoms || atoms->GetNumberOfPoints() == 0)

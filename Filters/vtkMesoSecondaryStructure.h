@@ -92,7 +92,8 @@ protected:
   vtkMesoSecondaryStructure();
   ~vtkMesoSecondaryStructure() override;
 
-  /// Every piece computes on the whole input (chains meet across pieces).
+  /// Streaming one process's pieces: every piece computes on the whole input (see
+  /// vtkMesoAtomPieces::GatheredInput).
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
                           vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,

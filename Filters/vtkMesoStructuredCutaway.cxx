@@ -15,7 +15,6 @@
 #include "mesolens/cutaway/structure_mesh.h"
 #include "mesolens/cutaway/structured_cutaway.h"
 
-#include <vtkAppendPolyData.h>
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
 #include <vtkFieldData.h>
@@ -27,14 +26,12 @@
 #include <vtkImplicitFunction.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
-#include <vtkMultiProcessController.h>
 #include <vtkNew.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
-#include <vtkStreamingDemandDrivenPipeline.h>
 #include <vtkStringArray.h>
 #include <vtkUnsignedCharArray.h>
 
@@ -196,67 +193,6 @@ void AddFieldValue(vtkFieldData* field, const char* name, double value)
   field->AddArray(array);
 }
 } // namespace
-
-/// On N processes (pvbatch or pvserver on MPI ranks, each holding a piece of the atoms): what
-/// the cutaway reads of every process's atoms (points, MoleculeId, ResidueName, the box), in
-/// rank order, the same on every process, and where this process's atoms start among them, so
-/// that every process hides the same molecules as one process would. Alone: the input itself.
-vtkSmartPointer<vtkPolyData> AtomsOfEveryProcess(vtkPolyData* atoms, int pieces, vtkIdType& first)
-{
-  first = 0;
-  vtkMultiProcessController* controller = vtkMultiProcessController::GetGlobalController();
-  if (pieces < 2 || !controller || controller->GetNumberOfProcesses() != pieces)
-  {
-    return atoms;
-  }
-  vtkNew<vtkPolyData> light;
-  if (atoms && atoms->GetPoints())
-  {
-    light->SetPoints(atoms->GetPoints());
-    for (const char* name : { vtkMesoArrayNames::MoleculeId, vtkMesoArrayNames::ResidueName })
-    {
-      if (vtkAbstractArray* array = atoms->GetPointData()->GetAbstractArray(name))
-      {
-        light->GetPointData()->AddArray(array);
-      }
-    }
-    if (vtkAbstractArray* box =
-          atoms->GetFieldData()->GetAbstractArray(vtkMesoArrayNames::PeriodicBoxVectors))
-    {
-      light->GetFieldData()->AddArray(box);
-    }
-  }
-  std::vector<vtkSmartPointer<vtkDataObject>> pieces_of_all;
-  controller->AllGather(light, pieces_of_all);
-  vtkNew<vtkAppendPolyData> append;
-  vtkAbstractArray* box = nullptr;
-  for (std::size_t rank = 0; rank < pieces_of_all.size(); ++rank)
-  {
-    auto piece = vtkPolyData::SafeDownCast(pieces_of_all[rank]);
-    if (!piece || piece->GetNumberOfPoints() == 0)
-    {
-      continue;
-    }
-    if (int(rank) < controller->GetLocalProcessId())
-    {
-      first += piece->GetNumberOfPoints();
-    }
-    box =
-      box ? box : piece->GetFieldData()->GetAbstractArray(vtkMesoArrayNames::PeriodicBoxVectors);
-    append->AddInputData(piece);
-  }
-  auto all = vtkSmartPointer<vtkPolyData>::New();
-  if (append->GetNumberOfInputConnections(0) > 0)
-  {
-    append->Update();
-    all->ShallowCopy(append->GetOutput());
-    if (box)
-    {
-      all->GetFieldData()->AddArray(box);
-    }
-  }
-  return all;
-}
 
 /// Values [first, first + count) of an array, as a new array of the same type and name.
 template<typename Array>
@@ -601,22 +537,33 @@ int vtkMesoStructuredCutaway::GetNumberOfOrderings() const
   return this->Internal->Orderings;
 }
 
+int vtkMesoStructuredCutaway::RequestUpdateExtent(vtkInformation*,
+                                                  vtkInformationVector** inputVector,
+                                                  vtkInformationVector* outputVector)
+{
+  vtkMesoAtomPieces::RequestWholeInputsWhenStreaming(inputVector, 2, outputVector);
+  return 1;
+}
+
 int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector** inputVector,
                                           vtkInformationVector* outputVector)
 {
   vtkPolyData* local_atoms = vtkPolyData::GetData(inputVector[0]);
-  vtkPolyData* structure = vtkPolyData::GetData(inputVector[1]);
   vtkPolyData* output = vtkPolyData::GetData(outputVector, 0);
   vtkPolyData* structure_output = vtkPolyData::GetData(outputVector, 1);
   output->Initialize();
   structure_output->Initialize();
-  vtkInformation* out_info = outputVector->GetInformationObject(0);
-  const int pieces = out_info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    ? out_info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-    : 1;
-  vtkIdType first = 0;
-  vtkSmartPointer<vtkPolyData> atoms = AtomsOfEveryProcess(local_atoms, pieces, first);
-  if (!atoms || atoms->GetNumberOfPoints() == 0)
+  // On many processes every one cuts every process's atoms, so that all hide the molecules one
+  // process would, and keeps its own.
+  const vtkMesoAtomPieces::GatheredInput gathered(inputVector[0], outputVector,
+                                                  vtkMesoAtomPieces::GatheredInput::KeepWhole);
+  vtkPolyData* atoms = gathered.Whole();
+  const vtkIdType first = gathered.FirstOwn();
+  const vtkMesoAtomPieces::GatheredInput whole_structure(
+    inputVector[1], outputVector, vtkMesoAtomPieces::GatheredInput::KeepWhole);
+  vtkPolyData* structure =
+    inputVector[1]->GetInformationObject(0) ? whole_structure.Whole() : nullptr;
+  if (atoms->GetNumberOfPoints() == 0)
   {
     vtkErrorMacro("No atoms to cut away.");
     return 0;
@@ -655,7 +602,7 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
     vtkSmartPointer<vtkUnsignedCharArray> visible_atoms =
       in.AtomArrays(this->K, visible, atoms->GetNumberOfPoints());
     vtkSmartPointer<vtkFloatArray> priority = in.AtomPriority;
-    if (atoms != local_atoms)
+    if (gathered.Gathered())
     {
       // This process's atoms of all.
       visible_atoms = Slice(visible_atoms.GetPointer(), first, local_count);
@@ -673,6 +620,13 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
     }
     all->GetPointData()->AddArray(visible_atoms);
     all->GetPointData()->AddArray(priority);
+    if (!gathered.Gathered() && gathered.PieceCount() > 1)
+    {
+      // Streaming: cut with every atom, keep the piece asked for.
+      vtkMesoAtomPieces::KeepPiece(all, gathered.Piece(), gathered.PieceCount());
+      visible_atoms = vtkUnsignedCharArray::SafeDownCast(
+        all->GetPointData()->GetArray(vtkMesoArrayNames::Visible));
+    }
     if (this->ExtractVisibleAtoms)
     {
       vtkMesoAtomPieces::ExtractAtoms(all, visible_atoms, output);

@@ -181,6 +181,10 @@ protected:
   ~vtkMesoStructuredCutaway() override;
 
   int FillInputPortInformation(int port, vtkInformation* info) override;
+  /// Streaming one process's pieces: every piece computes on the whole input (see
+  /// vtkMesoAtomPieces::GatheredInput).
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
+                          vtkInformationVector* outputVector) override;
   int RequestData(vtkInformation* request, vtkInformationVector** inputVector,
                   vtkInformationVector* outputVector) override;
 

@@ -37,17 +37,19 @@ vtkMesoSurfaceArea::~vtkMesoSurfaceArea()
 }
 
 int vtkMesoSurfaceArea::RequestUpdateExtent(vtkInformation*, vtkInformationVector** inputVector,
-                                            vtkInformationVector*)
+                                            vtkInformationVector* outputVector)
 {
-  vtkMesoAtomPieces::RequestWholeInputs(inputVector, 1);
+  vtkMesoAtomPieces::RequestWholeInputsWhenStreaming(inputVector, 1, outputVector);
   return 1;
 }
 
 int vtkMesoSurfaceArea::RequestData(vtkInformation*, vtkInformationVector** inputVector,
                                     vtkInformationVector* outputVector)
 {
-  const vtkMesoAtomPieces::PieceOnReturn keep_piece(outputVector); // atoms of this piece
-  vtkPolyData* atoms = vtkPolyData::GetData(inputVector[0]);
+  // On many processes: computed on every process's atoms, this process's kept.
+  const vtkMesoAtomPieces::GatheredInput gathered(inputVector[0], outputVector,
+                                                  vtkMesoAtomPieces::GatheredInput::KeepOwn);
+  vtkPolyData* atoms = gathered.Whole();
   vtkPolyData* output = vtkPolyData::GetData(outputVector);
   output->Initialize();
   if (!atoms || atoms->GetNumberOfPoints() == 0)

@@ -29,9 +29,9 @@ cut.FractionHidden = 0.5; cut.ExtractVisibleAtoms = 1
 view = GetActiveViewOrCreate("RenderView")
 surface = Show(organelle, view); surface.SetRepresentationType("Wireframe")
 Hide(lens, view)
-atoms = Show(cut, view); atoms.SetRepresentationType("Points"); atoms.PointSize = 2
-ColorBy(atoms, ("POINTS", "AtomicNumber"))
-atoms.LookupTable = GetColorTransferFunction("AtomicNumber")
+# MesoLens' impostors in element colours; radii in Å times RadiusScale (the scene is in µm).
+atoms = Show(cut, view); atoms.SetRepresentationType("MesoLens Atoms"); atoms.RadiusScale = 1e-4
+atoms.ColorArrayName = ["POINTS", ""]
 SetActiveSource(cut)
 Render(view)
 cut.UpdatePipeline()

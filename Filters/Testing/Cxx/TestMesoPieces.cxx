@@ -6,6 +6,7 @@
 #include "vtkMesoMolecularSurface.h"
 #include "vtkMesoSecondaryStructure.h"
 #include "vtkMesoStructureReader.h"
+#include "vtkMesoStructuredCutaway.h"
 #include "vtkMesoSurfaceArea.h"
 #include "vtkMesoTrajectoryReader.h"
 
@@ -14,6 +15,7 @@
 #include <vtkAlgorithm.h>
 #include <vtkDataArray.h>
 #include <vtkNew.h>
+#include <vtkPlane.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkSmartPointer.h>
@@ -129,4 +131,41 @@ TEST(MesoPieces, FiltersOfWholeChainsComputeOnTheWholeAndKeepThePiece)
   EXPECT_GT(whole, 0);
   EXPECT_EQ(piece_of(surface, 0, 2)->GetNumberOfPolys(), whole);
   EXPECT_EQ(piece_of(surface, 1, 2)->GetNumberOfPolys(), 0);
+}
+
+TEST(MesoPieces, TheCutawayHidesTheSameMoleculesInPieces)
+{
+  vtkNew<vtkMesoTrajectoryReader> membrane; // POPE/POPG with YiiP
+  membrane->SetTopologyFileName(data_file("membranes/yiip_popepopg.gro").c_str());
+  membrane->RemoveWatersOn();
+  membrane->Update();
+  double centre[3];
+  membrane->GetOutput()->GetCenter(centre);
+  vtkNew<vtkPlane> plane;
+  plane->SetOrigin(centre);
+  plane->SetNormal(1, 0, 0);
+  vtkNew<vtkMesoStructuredCutaway> cut;
+  cut->SetInputConnection(membrane->GetOutputPort());
+  cut->SetCutFunction(plane);
+  cut->SetFractionHidden(0.6);
+  cut->ExtractVisibleAtomsOn();
+  const vtkSmartPointer<vtkPolyData> whole = piece_of(cut, 0, 1);
+  ASSERT_GT(whole->GetNumberOfPoints(), 0);
+  std::multiset<double> expected, joined;
+  vtkDataArray* ids = whole->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId);
+  for (vtkIdType a = 0; a < whole->GetNumberOfPoints(); ++a)
+  {
+    expected.insert(ids->GetComponent(a, 0));
+  }
+  for (int piece = 0; piece < 3; ++piece)
+  {
+    const vtkSmartPointer<vtkPolyData> part = piece_of(cut, piece, 3);
+    vtkDataArray* part_ids = part->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId);
+    for (vtkIdType a = 0; a < part->GetNumberOfPoints(); ++a)
+    {
+      joined.insert(part_ids->GetComponent(a, 0));
+    }
+  }
+  EXPECT_LT(expected.size(), std::size_t(membrane->GetOutput()->GetNumberOfPoints()));
+  EXPECT_EQ(joined, expected);
 }

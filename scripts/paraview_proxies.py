@@ -240,18 +240,6 @@ SURFACE_PROPERTIES = """
   <ProxyGroupDomain name="groups"><Group name="lookup_tables"/></ProxyGroupDomain>
   <Documentation>The colour map for the colour array.</Documentation>
 </ProxyProperty>
-<DoubleVectorProperty name="Opacity" command="SetOpacity" number_of_elements="1" default_values="1">
-  <DoubleRangeDomain name="range" min="0" max="1"/>
-</DoubleVectorProperty>
-<DoubleVectorProperty name="Ambient" command="SetAmbient" number_of_elements="1" default_values="0">
-  <DoubleRangeDomain name="range" min="0" max="1"/>
-</DoubleVectorProperty>
-<DoubleVectorProperty name="Diffuse" command="SetDiffuse" number_of_elements="1" default_values="1">
-  <DoubleRangeDomain name="range" min="0" max="1"/>
-</DoubleVectorProperty>
-<DoubleVectorProperty name="Specular" command="SetSpecular" number_of_elements="1" default_values="0">
-  <DoubleRangeDomain name="range" min="0" max="1"/>
-</DoubleVectorProperty>
 <DoubleVectorProperty name="SpecularPower" command="SetSpecularPower" number_of_elements="1"
     default_values="100">
   <DoubleRangeDomain name="range" min="0" max="100"/>
@@ -275,6 +263,14 @@ SURFACE_PROPERTIES = """
 <DoubleVectorProperty name="Scale" command="SetScale" number_of_elements="3" default_values="1 1 1"/>
 <DoubleVectorProperty name="Origin" command="SetOrigin" number_of_elements="3" default_values="0 0 0"/>
 """
+# The material's weights in [0, 1] and their defaults (ParaView's).
+UNIT_PROPERTIES = (("Opacity", 1), ("Ambient", 0), ("Diffuse", 1), ("Specular", 0))
+
+
+def unit_property_xml(name, default):
+    return (f'<DoubleVectorProperty name="{name}" command="Set{name}" number_of_elements="1" '
+            f'default_values="{default}"><DoubleRangeDomain name="range" min="0" max="1"/>'
+            "</DoubleVectorProperty>")
 
 
 def representation_xml(spec, source_dir, core, mesolens):
@@ -297,7 +293,8 @@ def representation_xml(spec, source_dir, core, mesolens):
         f'<RepresentationProxy name="{spec["name"]}" class="{spec["class"]}" '
         'processes="client|renderserver|dataserver">',
         f"<Documentation short_help={quoteattr(brief)}>{escape(details)}</Documentation>",
-        SURFACE_PROPERTIES.strip(), *own, "</RepresentationProxy>",
+        SURFACE_PROPERTIES.strip(), *(unit_property_xml(*p) for p in UNIT_PROPERTIES), *own,
+        "</RepresentationProxy>",
         '<Extension name="GeometryRepresentation">',
         f'<RepresentationType subproxy="{spec["name"]}" text={quoteattr(label)}/>',
         f'<SubProxy><Proxy name="{spec["name"]}" proxygroup="representations" '

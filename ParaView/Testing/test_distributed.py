@@ -14,18 +14,8 @@ from vtkmodules.vtkCommonDataModel import vtkPlane
 
 import mesolens
 
-DATA = os.environ["MESOLENS_DATA_DIR"]
-failures = []
-
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAIL:", message)
-
-
-def data(relative):
-    return os.path.join(DATA, relative)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plugin_checks import check, data, finish, vtk_output  # noqa: E402
 
 
 def ranks_holding(proxy):
@@ -34,11 +24,6 @@ def ranks_holding(proxy):
     ids.UpdatePipeline()
     info = ids.GetPointDataInformation().GetArray("ProcessId")
     return set(range(int(info.GetRange()[0]), int(info.GetRange()[1]) + 1)) if info else set()
-
-
-def vtk_output(algorithm):
-    algorithm.Update()
-    return algorithm.GetOutputDataObject(0)
 
 
 simple.LoadPlugin(sys.argv[1], remote=False)
@@ -56,23 +41,23 @@ check(protease.GetDataInformation().GetNumberOfPoints() == whole.GetNumberOfPoin
       "the ranks hold every atom once")
 check(ranks_holding(protease) == everyone, f"every rank holds atoms ({ranks_holding(protease)})")
 
+def same_point_array(proxy, plain_filter, name):
+    """Whether the ranks' outputs of `proxy`, gathered, carry the point array `name` of the
+    single process's `plain_filter` run on the whole file (to 1e-6)."""
+    plain_filter.SetInputConnection(reader.GetOutputPort())
+    expected = vtk_output(plain_filter).GetPointData().GetArray(name)
+    gathered = servermanager.Fetch(proxy).GetPointData().GetArray(name)
+    count = expected.GetNumberOfTuples()
+    return (gathered is not None and gathered.GetNumberOfTuples() == count and
+            all(abs(gathered.GetValue(i) - expected.GetValue(i)) <= 1e-6 for i in range(count)))
+
+
 # Filters across chains: the ranks' pieces, gathered, equal the single process's result.
-dssp = simple.SecondaryStructureDSSP(Input=protease)
-plain_dssp = mesolens.vtkMesoSecondaryStructure()
-plain_dssp.SetInputConnection(reader.GetOutputPort())
-expected = vtk_output(plain_dssp).GetPointData().GetArray("SecondaryStructureId")
-gathered = servermanager.Fetch(dssp).GetPointData().GetArray("SecondaryStructureId")
-check(gathered is not None and gathered.GetNumberOfTuples() == expected.GetNumberOfTuples() and
-      all(gathered.GetValue(i) == expected.GetValue(i) for i in range(expected.GetNumberOfTuples())),
+check(same_point_array(simple.SecondaryStructureDSSP(Input=protease),
+                       mesolens.vtkMesoSecondaryStructure(), "SecondaryStructureId"),
       "secondary structure on the ranks equals one process's")
-area = simple.SolventAccessibleArea(Input=protease)
-plain_area = mesolens.vtkMesoSurfaceArea()
-plain_area.SetInputConnection(reader.GetOutputPort())
-expected_areas = vtk_output(plain_area).GetPointData().GetArray("AccessibleArea")
-areas = servermanager.Fetch(area).GetPointData().GetArray("AccessibleArea")
-check(areas is not None and areas.GetNumberOfTuples() == expected_areas.GetNumberOfTuples() and
-      max(abs(areas.GetValue(i) - expected_areas.GetValue(i))
-          for i in range(areas.GetNumberOfTuples())) < 1e-6,
+check(same_point_array(simple.SolventAccessibleArea(Input=protease), mesolens.vtkMesoSurfaceArea(),
+                       "AccessibleArea"),
       "surface area per atom on the ranks equals one process's")
 surface = simple.MolecularSurface(Input=protease)
 plain_surface = mesolens.vtkMesoMolecularSurface()
@@ -134,7 +119,4 @@ check(visible_ids is not None and
       sorted(expected_ids.GetValue(i) for i in range(expected_ids.GetNumberOfTuples())),
       "the same molecules stay visible")
 
-if failures:
-    print(f"{len(failures)} check(s) failed")
-    sys.exit(1)
-print(f"all distributed checks passed on {ranks} ranks")
+finish(f"all distributed checks passed on {ranks} ranks")

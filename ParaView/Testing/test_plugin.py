@@ -15,18 +15,9 @@ from paraview import simple
 
 import mesolens
 
-DATA = os.environ["MESOLENS_DATA_DIR"]
-failures = []
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from plugin_checks import check, data, finish, vtk_output  # noqa: E402
 
-
-def check(condition, message):
-    if not condition:
-        failures.append(message)
-        print("FAIL:", message)
-
-
-def data(relative):
-    return os.path.join(DATA, relative)
 
 
 def points_of(proxy, port=0):
@@ -37,11 +28,6 @@ def points_of(proxy, port=0):
 def cells_of(proxy, port=0):
     proxy.UpdatePipeline()
     return proxy.GetDataInformation(port).GetNumberOfCells()
-
-
-def vtk_output(algorithm, port=0):
-    algorithm.Update()
-    return algorithm.GetOutputDataObject(port)
 
 
 # paraview.simple names a proxy's function after its label.
@@ -218,7 +204,4 @@ if ids == [nearest]:
           names.GetValue(nearest), "the picked atom's arrays come with it")
 simple.ClearSelection(crambin)
 
-if failures:
-    print(f"{len(failures)} check(s) failed")
-    sys.exit(1)
-print("all plugin checks passed")
+finish("all plugin checks passed")

@@ -44,6 +44,27 @@ void outer_membrane_point(vtkMesoMeshReader* mesh, double point[3])
   mesh->GetOutput()->GetPoint(1000, point);
 }
 
+/// The DPPC patch (waters removed) mapped onto the mitochondrion's outer membrane at its vertex
+/// 1000, in µm.
+struct MitochondrionMapping
+{
+  vtkNew<vtkMesoMeshReader> Mesh;
+  vtkNew<vtkMesoTrajectoryReader> Membrane;
+  vtkNew<vtkMesoMembraneMapping> Mapping;
+
+  MitochondrionMapping()
+  {
+    this->Mesh->SetFileName(data_file("meshes/mito5_outer_membrane.obj").c_str());
+    double seed[3];
+    outer_membrane_point(this->Mesh, seed);
+    this->Membrane->SetTopologyFileName(data_file("membranes/dppc128_slipids_323K.gro").c_str());
+    this->Membrane->RemoveWatersOn();
+    this->Mapping->SetSurfaceConnection(this->Mesh->GetOutputPort());
+    this->Mapping->SetMembraneConnection(this->Membrane->GetOutputPort());
+    this->Mapping->SetSeedPoint(seed);
+  }
+};
+
 double largest_abs(vtkDataArray* values, vtkIdType first)
 {
   double largest = 0;
@@ -89,17 +110,8 @@ TEST(vtkMesoGeodesicDisk, DiskAndParameterizationOnTheMitochondrion)
 
 TEST(vtkMesoMembraneMapping, ThreeMethodsOnTheMitochondrion)
 {
-  vtkNew<vtkMesoMeshReader> mesh;
-  mesh->SetFileName(data_file("meshes/mito5_outer_membrane.obj").c_str());
-  double seed[3];
-  outer_membrane_point(mesh, seed);
-  vtkNew<vtkMesoTrajectoryReader> membrane;
-  membrane->SetTopologyFileName(data_file("membranes/dppc128_slipids_323K.gro").c_str());
-  membrane->RemoveWatersOn();
-  vtkNew<vtkMesoMembraneMapping> mapping;
-  mapping->SetSurfaceConnection(mesh->GetOutputPort());
-  mapping->SetMembraneConnection(membrane->GetOutputPort());
-  mapping->SetSeedPoint(seed);
+  MitochondrionMapping pipeline;
+  vtkMesoMembraneMapping* mapping = pipeline.Mapping;
   mapping->SetTiles(2);
   mapping->SetMembraneToMeshScale(1e-4); // Å onto µm
   std::vector<double> largest_change;
@@ -209,18 +221,9 @@ TEST(vtkMesoMembraneMapping, TrajectoryTimeStepsPassThrough)
 
 TEST(vtkMesoMembraneMapping, PiecesShareTheTilesAndTogetherGiveTheWhole)
 {
-  // As on N MPI ranks: each asks for its piece; the readers upstream are read whole.
-  vtkNew<vtkMesoMeshReader> mesh;
-  mesh->SetFileName(data_file("meshes/mito5_outer_membrane.obj").c_str());
-  double seed[3];
-  outer_membrane_point(mesh, seed);
-  vtkNew<vtkMesoTrajectoryReader> membrane;
-  membrane->SetTopologyFileName(data_file("membranes/dppc128_slipids_323K.gro").c_str());
-  membrane->RemoveWatersOn();
-  vtkNew<vtkMesoMembraneMapping> mapping;
-  mapping->SetSurfaceConnection(mesh->GetOutputPort());
-  mapping->SetMembraneConnection(membrane->GetOutputPort());
-  mapping->SetSeedPoint(seed);
+  // As a streaming VTK pipeline asks: each piece maps its share of the tiles.
+  MitochondrionMapping pipeline;
+  vtkMesoMembraneMapping* mapping = pipeline.Mapping;
   mapping->SetTiles(3);
   mapping->SetMembraneToMeshScale(1e-4);
   mapping->SetMappingMethodToPolynomial();

@@ -60,13 +60,13 @@ def main():
         print(f"{label}: 1 rank {a:.3f} s, 2 ranks {b:.3f} s, ratio 2/1 {b / a:.2f}")
     shares = ", ".join(f"rank {r}: {int(two[r]['end_atoms']):,}" for r in sorted(two))
     print(f"atoms per rank on 2 ranks: {shares}")
-    peak_one = one[0]["end_peak_mib"] - one[0]["start_peak_mib"]
-    peaks_two = [two[r]["end_peak_mib"] - two[r]["start_peak_mib"] for r in sorted(two)]
-    print(f"peak memory per rank above its start ({one[0]['start_peak_mib']:.0f} MiB, ParaView "
-          f"and the mesh): "
-          f"1 rank {peak_one:.0f} MiB; 2 ranks " +
-          ", ".join(f"{p:.0f}" for p in peaks_two) +
-          f" MiB; ratio largest 2-rank / 1-rank {max(peaks_two) / peak_one:.2f}")
+    print(f"start: ParaView and the mesh, {one[0]['start_peak_mib']:.0f} MiB per rank")
+    for stage, label in (("mapped", "after the mapping"), ("end", "after two frames")):
+        peak_one = one[0][f"{stage}_peak_mib"] - one[0]["start_peak_mib"]
+        peaks_two = [two[r][f"{stage}_peak_mib"] - two[r]["start_peak_mib"] for r in sorted(two)]
+        print(f"peak memory per rank above the start, {label}: 1 rank {peak_one:.0f} MiB; "
+              f"2 ranks " + ", ".join(f"{p:.0f}" for p in peaks_two) +
+              f" MiB; ratio largest 2-rank / 1-rank {max(peaks_two) / peak_one:.2f}")
 
 
 if __name__ == "__main__":

@@ -54,6 +54,7 @@ lens.MappingMethod = "Polynomial"
 start = time.perf_counter()
 lens.UpdatePipeline()
 result("mapping_s", f"{time.perf_counter() - start:.3f}")
+report(lens, "mapped")
 
 view = simple.CreateRenderView()
 view.ViewSize = [1024, 768]

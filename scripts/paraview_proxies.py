@@ -273,6 +273,11 @@ def unit_property_xml(name, default):
             "</DoubleVectorProperty>")
 
 
+# ParaView's representation lists that atoms can reach: polydata, and the unstructured grids of
+# its Threshold and Extract Selection.
+EXTENDED_REPRESENTATIONS = ("GeometryRepresentation", "UnstructuredGridRepresentation")
+
+
 def representation_xml(spec, source_dir, core, mesolens):
     """The XML of a representation proxy and the entry that adds it to ParaView's list."""
     header = os.path.join(source_dir, spec["header"])
@@ -289,23 +294,29 @@ def representation_xml(spec, source_dir, core, mesolens):
            for name in wanted]
     exposed = "".join(f'<Property name="{name}"/>' for name in wanted)
     label = spec["label"]
+
+    def extension(composite):
+        """The entry that offers the representation in one of ParaView's representation lists."""
+        return "\n".join([
+            f'<Extension name="{composite}">',
+            f'<RepresentationType subproxy="{spec["name"]}" text={quoteattr(label)}/>',
+            f'<SubProxy><Proxy name="{spec["name"]}" proxygroup="representations" '
+            f'proxyname="{spec["name"]}"/>'
+            '<ShareProperties subproxy="SurfaceRepresentation"><Exception name="Input"/>'
+            '<Exception name="Visibility"/></ShareProperties>'
+            f"<ExposedProperties><PropertyGroup label={quoteattr(label)}>{exposed}"
+            '<Hints><PropertyWidgetDecorator type="GenericDecorator" mode="visibility" '
+            f'property="Representation" value={quoteattr(label)}/></Hints></PropertyGroup>'
+            "</ExposedProperties></SubProxy>",
+            "</Extension>"])
+
     return "\n".join([
         f'<RepresentationProxy name="{spec["name"]}" class="{spec["class"]}" '
         'processes="client|renderserver|dataserver">',
         f"<Documentation short_help={quoteattr(brief)}>{escape(details)}</Documentation>",
         SURFACE_PROPERTIES.strip(), *(unit_property_xml(*p) for p in UNIT_PROPERTIES), *own,
         "</RepresentationProxy>",
-        '<Extension name="GeometryRepresentation">',
-        f'<RepresentationType subproxy="{spec["name"]}" text={quoteattr(label)}/>',
-        f'<SubProxy><Proxy name="{spec["name"]}" proxygroup="representations" '
-        f'proxyname="{spec["name"]}"/>'
-        '<ShareProperties subproxy="SurfaceRepresentation"><Exception name="Input"/>'
-        '<Exception name="Visibility"/></ShareProperties>'
-        f"<ExposedProperties><PropertyGroup label={quoteattr(label)}>{exposed}"
-        '<Hints><PropertyWidgetDecorator type="GenericDecorator" mode="visibility" '
-        f'property="Representation" value={quoteattr(label)}/></Hints></PropertyGroup>'
-        "</ExposedProperties></SubProxy>",
-        "</Extension>"])
+        *(extension(composite) for composite in EXTENDED_REPRESENTATIONS)])
 
 
 def main():

@@ -3,9 +3,12 @@
 
 #include "vtkActor.h"
 #include "vtkAppendPolyData.h"
+#include "vtkCellArray.h"
+#include "vtkCellType.h"
 #include "vtkCompositeDataIterator.h"
 #include "vtkCompositeDataSet.h"
 #include "vtkInformation.h"
+#include "vtkIdList.h"
 #include "vtkInformationVector.h"
 #include "vtkMath.h"
 #include "vtkMatrix4x4.h"
@@ -22,7 +25,9 @@
 vtkStandardNewMacro(vtkMesoAtomsRepresentation);
 
 namespace {
-/// A dataset as atoms: polydata as it is; any other dataset as its points and point arrays.
+/// A dataset as atoms: polydata as it is; any other dataset (ParaView's Threshold or Extract
+/// Selection of atoms give unstructured grids) as its points, point arrays and 2-point lines
+/// (the bonds).
 vtkSmartPointer<vtkPolyData> AtomsOfDataSet(vtkDataSet* data)
 {
   auto atoms = vtkSmartPointer<vtkPolyData>::New();
@@ -39,6 +44,17 @@ vtkSmartPointer<vtkPolyData> AtomsOfDataSet(vtkDataSet* data)
   }
   atoms->SetPoints(points);
   atoms->GetPointData()->ShallowCopy(data->GetPointData());
+  vtkNew<vtkCellArray> bonds;
+  vtkNew<vtkIdList> ends;
+  for (vtkIdType c = 0; c < data->GetNumberOfCells(); ++c)
+  {
+    if (data->GetCellType(c) == VTK_LINE)
+    {
+      data->GetCellPoints(c, ends);
+      bonds->InsertNextCell(ends);
+    }
+  }
+  atoms->SetLines(bonds);
   return atoms;
 }
 
@@ -140,6 +156,17 @@ int vtkMesoAtomsRepresentation::ProcessViewRequest(vtkInformationRequestKey* req
     vtkNew<vtkMatrix4x4> matrix;
     this->Actor->GetMatrix(matrix);
     vtkPVRenderView::SetGeometryBounds(inInfo, this, bounds, matrix);
+    // Translucent geometry on several ranks (these atoms or anything else in the view) is
+    // composited in depth order: the view may then move atoms between ranks, each vertex and
+    // bond to one rank (an atom at the end of a bond that went elsewhere is drawn on both).
+    vtkPVRenderView::SetOrderedCompositingConfiguration(
+      inInfo, this,
+      vtkPVRenderView::DATA_IS_REDISTRIBUTABLE | vtkPVRenderView::USE_DATA_FOR_LOAD_BALANCING);
+    vtkPVRenderView::SetRedistributionModeToUniquelyAssignBoundaryCells(inInfo, this);
+    if (this->Actor->GetProperty()->GetOpacity() < 1.0)
+    {
+      outInfo->Set(vtkPVRenderView::NEED_ORDERED_COMPOSITING(), 1);
+    }
   }
   else if (request == vtkPVView::REQUEST_RENDER())
   {
@@ -245,6 +272,7 @@ void vtkMesoAtomsRepresentation::SetLookupTable(vtkScalarsToColors* table)
 void vtkMesoAtomsRepresentation::SetOpacity(double opacity)
 {
   this->Actor->GetProperty()->SetOpacity(opacity);
+  this->MarkModified(); // the view's compositing depends on it
 }
 
 void vtkMesoAtomsRepresentation::SetAmbient(double ambient)

@@ -6,8 +6,9 @@
  *
  * Chosen in the render view's representation list ("MesoLens Atoms") for any output of a
  * MesoLens reader or filter: atoms are the points (the `AtomicNumber` point array gives radii and
- * element colours), bonds the 2-point lines. Other datasets are drawn as their points; the blocks
- * of a composite dataset are appended first. Style, RadiusScale, BallScale, BondRadius,
+ * element colours), bonds the 2-point lines. Other datasets (ParaView's Threshold or Extract
+ * Selection of atoms) are drawn as their points and 2-point lines; the blocks of a composite
+ * dataset are appended first. Style, RadiusScale, BallScale, BondRadius,
  * OcclusionCulling and VisibilityArrayName are the mapper's (see vtkMesoAtomMapper).
  *
  * Colours: with no colour array (ParaView's "Solid Color") atoms take their element colours

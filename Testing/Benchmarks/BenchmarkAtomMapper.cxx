@@ -22,6 +22,7 @@
 #include "vtkMesoRenderPasses.h"
 #include "vtkMesoTrajectoryReader.h"
 
+#include "atom_stage.h"
 #include "mesolens_test_data.h"
 
 #include <vtkActor.h>
@@ -51,11 +52,9 @@
 #include <vector>
 
 namespace {
-double median(std::vector<double> values)
-{
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
+using mesolens_bench::median;
+using mesolens_bench::Stage;
+using mesolens_bench::VTKSpheres;
 
 /// Copies of the patch on a grid in x and y, one periodic cell apart (a continuous membrane, as
 /// the periodic system it was simulated as), until `count` atoms; atoms as vertices, with
@@ -99,116 +98,6 @@ vtkSmartPointer<vtkPolyData> membrane_atoms(vtkPolyData* patch, vtkIdType count)
   return atoms;
 }
 
-/// VTK's sphere mapper set up as the MesoLens demo does: van der Waals radii, element colours.
-struct VTKSpheres
-{
-  vtkNew<vtkMesoAtomProperties> Radii;
-  vtkNew<vtkOpenGLSphereMapper> Mapper;
-  vtkNew<vtkMesoElementLookupTable> Elements;
-
-  explicit VTKSpheres(vtkPolyData* atoms)
-  {
-    this->Radii->SetInputData(atoms);
-    this->Radii->Update();
-    this->Mapper->SetInputConnection(this->Radii->GetOutputPort());
-    this->Mapper->SetScaleArray(vtkMesoArrayNames::VanDerWaalsRadius);
-    this->Mapper->SetLookupTable(this->Elements);
-    this->Mapper->UseLookupTableScalarRangeOn();
-    this->Mapper->SetScalarModeToUsePointFieldData();
-    this->Mapper->SelectColorArray(vtkMesoArrayNames::AtomicNumber);
-    this->Mapper->SetColorModeToMapScalars();
-  }
-
-  /// Bytes of all its vertex buffers per atom.
-  double BytesPerAtom(vtkIdType atoms)
-  {
-    double bytes = 0;
-    for (const char* name : { "vertexMC", "offsetMC", "radiusMC", "scalarColor", "normalMC" })
-    {
-      if (vtkOpenGLVertexBufferObject* vbo = this->Mapper->GetVBOs()->GetVBO(name))
-      {
-        bytes += double(vbo->GetStride()) * vbo->GetNumberOfTuples();
-      }
-    }
-    return bytes / double(atoms);
-  }
-};
-
-/// A window with one renderer and one actor; the renderer's passes are plain or SSAO.
-struct Stage
-{
-  vtkSmartPointer<vtkOpenGLRenderWindow> Window =
-    vtkOpenGLRenderWindow::SafeDownCast(vtkSmartPointer<vtkRenderWindow>::New());
-  vtkSmartPointer<vtkOpenGLRenderer> Renderer =
-    vtkOpenGLRenderer::SafeDownCast(vtkSmartPointer<vtkRenderer>::New());
-  vtkNew<vtkActor> Actor;
-  vtkNew<vtkMesoRenderPasses> Effects;
-
-  explicit Stage(int width = 1024, int height = 768)
-  {
-    this->Window->SetOffScreenRendering(1);
-    this->Window->SetMultiSamples(0);
-    this->Window->SetSize(width, height);
-    this->Window->AddRenderer(this->Renderer);
-    this->Renderer->AddActor(this->Actor);
-    this->Renderer->SetBackground(0.1, 0.1, 0.15);
-    this->Effects->SetSSAORadius(4.0);
-    this->Effects->SetSSAOBias(0.05);
-    this->Effects->SetSSAOKernelSize(32);
-  }
-
-  void Show(vtkMapper* mapper, bool ssao)
-  {
-    this->Actor->SetMapper(mapper);
-    this->Effects->SetSSAO(ssao);
-    this->Effects->Apply(this->Renderer);
-    // The same view every time: down the membrane normal, then 40 degrees off it.
-    vtkCamera* camera = this->Renderer->GetActiveCamera();
-    camera->SetFocalPoint(0, 0, 0);
-    camera->SetPosition(0, 0, 1);
-    camera->SetViewUp(0, 1, 0);
-    this->Renderer->ResetCamera();
-    camera->Elevation(-40);
-    camera->Zoom(1.6);
-    this->Renderer->ResetCameraClippingRange();
-  }
-
-  double Frame()
-  {
-    const auto start = std::chrono::steady_clock::now();
-    this->Window->Render();
-    this->Window->WaitForCompletion();
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  }
-
-  /// The first frame (buffers built and uploaded), then the median of `frames` turning ones.
-  std::pair<double, double> Time(int frames)
-  {
-    const double first = this->Frame();
-    std::vector<double> times;
-    for (int f = 0; f < frames; ++f)
-    {
-      this->Renderer->GetActiveCamera()->Azimuth(2.0);
-      times.push_back(this->Frame());
-    }
-    return { first, median(times) };
-  }
-
-  /// One animation step: the same atoms at new positions (a copy of the points, shifted).
-  double AnimationStep(vtkPolyData* atoms)
-  {
-    vtkNew<vtkPoints> moved;
-    moved->DeepCopy(atoms->GetPoints());
-    auto* values = vtkFloatArray::SafeDownCast(moved->GetData())->GetPointer(0);
-    for (vtkIdType i = 0; i < 3 * moved->GetNumberOfPoints(); i += 3)
-    {
-      values[i] += 0.01f;
-    }
-    atoms->SetPoints(moved);
-    return this->Frame();
-  }
-};
-
 void compare_mappers(Stage& stage, Stage& small, vtkPolyData* patch, vtkIdType count, int frames,
                      int atoms_per_cell)
 {
@@ -232,7 +121,7 @@ void compare_mappers(Stage& stage, Stage& small, vtkPolyData* patch, vtkIdType c
                 whole.second, mine.second / whole.second);
     stage.Show(theirs.Mapper, ssao);
     const auto vtk = stage.Time(frames);
-    std::printf("BENCH atom-mapper frame: %lld atoms space-filling%s, 1024x768 llvmpipe: "
+    std::printf("BENCH atom-mapper frame: %lld atoms space-filling%s, 1024x768: "
                 "vtkMesoAtomMapper %.3f s, vtkOpenGLSphereMapper %.3f s, ratio %.3f (goal <= "
                 "0.333 at 1 M); first frame with upload %.3f s vs %.3f s\n",
                 static_cast<long long>(count), ssao ? " with SSAO" : "", mine.second, vtk.second,

@@ -2,6 +2,7 @@
 // Paths of test inputs, and helpers to make damaged copies of them.
 #pragma once
 
+#include <cstdlib>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -9,10 +10,12 @@
 
 namespace mesolens_test {
 
-/// A file under Data/ (in the repository).
+/// A file under Data/ (in the repository, or under $MESOLENS_DATA_DIR when it is set: a
+/// benchmark carried to another machine, scripts/gpu-kit.sh).
 inline std::string data_file(const std::string& relative)
 {
-  return std::string(MESOLENS_DATA_DIR) + "/" + relative;
+  const char* moved = std::getenv("MESOLENS_DATA_DIR");
+  return std::string(moved && *moved ? moved : MESOLENS_DATA_DIR) + "/" + relative;
 }
 
 /// A file under the shared data folder beside the checkout (may be absent).

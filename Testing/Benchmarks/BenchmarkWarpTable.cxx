@@ -173,8 +173,8 @@ int main(int argc, char* argv[])
     }
   }
   Stage stage(width, height);
-  std::printf("TABLE1 OpenGL renderer: %s; window %d x %d\n",
-              renderer_of(stage.Window).c_str(), width, height);
+  std::printf("TABLE1 OpenGL renderer: %s; window %d x %d\n", renderer_of(stage.Window).c_str(),
+              width, height);
   vtkNew<vtkSphereSource> sphere;
   sphere->SetRadius(15000);
   sphere->SetThetaResolution(256);

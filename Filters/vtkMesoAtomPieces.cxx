@@ -3,6 +3,7 @@
 
 #include "vtkMesoArrayNames.h"
 
+#include <vtkAbstractArray.h>
 #include <vtkAppendPolyData.h>
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
@@ -73,16 +74,21 @@ void KeepPiece(vtkPolyData* atoms, int piece, int pieces)
   {
     return;
   }
+  ExtractAtomIds(atoms, AtomsOfPiece(atoms, piece, pieces), atoms);
+}
+
+void ExtractAtomIds(vtkPolyData* atoms, const std::vector<vtkIdType>& ids, vtkPolyData* output)
+{
   vtkNew<vtkUnsignedCharArray> keep;
   keep->SetNumberOfValues(atoms->GetNumberOfPoints());
   keep->FillValue(0);
-  for (const vtkIdType a : AtomsOfPiece(atoms, piece, pieces))
+  for (const vtkIdType a : ids)
   {
     keep->SetValue(a, 1);
   }
   vtkNew<vtkPolyData> kept;
   ExtractAtoms(atoms, keep, kept);
-  atoms->ShallowCopy(kept);
+  output->ShallowCopy(kept);
 }
 
 bool Gathers(vtkInformation* info)
@@ -114,7 +120,7 @@ void RequestWholeInputsWhenStreaming(vtkInformationVector** inputs, int ports,
 }
 
 GatheredInput::GatheredInput(vtkInformationVector* input, vtkInformationVector* outputs,
-                             Output output)
+                             Output output, std::initializer_list<const char*> only_arrays)
   : Outputs(outputs)
   , Keep(output)
 {
@@ -136,9 +142,21 @@ GatheredInput::GatheredInput(vtkInformationVector* input, vtkInformationVector* 
   this->WasGathered = true;
   this->ThisPiece = controller->GetLocalProcessId();
   vtkNew<vtkPolyData> mine;
-  if (local)
+  if (local && only_arrays.size() == 0)
   {
     mine->ShallowCopy(local);
+  }
+  else if (local && local->GetPoints())
+  {
+    mine->SetPoints(local->GetPoints());
+    for (const char* name : only_arrays)
+    {
+      if (vtkAbstractArray* array = local->GetPointData()->GetAbstractArray(name))
+      {
+        mine->GetPointData()->AddArray(array);
+      }
+    }
+    mine->GetFieldData()->ShallowCopy(local->GetFieldData());
   }
   std::vector<vtkSmartPointer<vtkDataObject>> everyone;
   controller->AllGather(mine, everyone);
@@ -191,16 +209,9 @@ GatheredInput::~GatheredInput()
   {
     return; // an error left it empty
   }
-  vtkNew<vtkUnsignedCharArray> keep;
-  keep->SetNumberOfValues(output->GetNumberOfPoints());
-  keep->FillValue(0);
-  for (vtkIdType a = this->First; a < this->First + this->Own; ++a)
-  {
-    keep->SetValue(a, 1);
-  }
-  vtkNew<vtkPolyData> own;
-  ExtractAtoms(output, keep, own);
-  output->ShallowCopy(own);
+  std::vector<vtkIdType> own(static_cast<std::size_t>(this->Own));
+  std::iota(own.begin(), own.end(), this->First);
+  ExtractAtomIds(output, own, output);
 }
 
 vtkPolyData* GatheredInput::Whole() const

@@ -7,6 +7,7 @@
 #include <vtkSmartPointer.h>
 #include <vtkType.h>
 
+#include <initializer_list>
 #include <utility>
 #include <vector>
 
@@ -29,6 +30,10 @@ std::vector<vtkIdType> AtomsOfPiece(vtkPolyData* atoms, int piece, int pieces);
 /// Keeps only the atoms of AtomsOfPiece, with their bonds, in place (nothing changes for one
 /// piece).
 void KeepPiece(vtkPolyData* atoms, int piece, int pieces);
+
+/// The atoms `ids` (ascending) of `atoms` with their bonds, as ExtractAtoms gives them, into
+/// `output` (which may be `atoms` itself).
+void ExtractAtomIds(vtkPolyData* atoms, const std::vector<vtkIdType>& ids, vtkPolyData* output);
 
 /// Whether an update that asks `output_information` for a piece gathers its inputs' pieces
 /// from the other processes: N pieces asked on N MPI processes (ParaView's pvbatch, pvserver).
@@ -53,6 +58,8 @@ void RequestWholeInputsWhenStreaming(vtkInformationVector** inputs, int ports,
 /// RequestWholeInputsWhenStreaming). With KeepOwn, the destructor reduces output 0 of
 /// `outputs`, computed from Whole() with one point per atom in the same order, to this
 /// process's own atoms (streaming: to the piece asked for, KeepPiece), on every return path.
+/// `only_arrays` (KeepWhole only): gather the points, these point arrays and the field data, no
+/// cells and no other array, for filters that read little of many atoms; empty: everything.
 class GatheredInput
 {
 public:
@@ -61,7 +68,8 @@ public:
     KeepOwn,  ///< output 0 is per atom: keep this process's atoms of it
     KeepWhole ///< output 0 is something else (or left as it is)
   };
-  GatheredInput(vtkInformationVector* input, vtkInformationVector* outputs, Output output);
+  GatheredInput(vtkInformationVector* input, vtkInformationVector* outputs, Output output,
+                std::initializer_list<const char*> only_arrays = {});
   ~GatheredInput();
   GatheredInput(const GatheredInput&) = delete;
   GatheredInput& operator=(const GatheredInput&) = delete;

@@ -37,6 +37,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -406,19 +407,12 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
       this->Internal->Mapper.For(surface, whole_surface.Version());
     this->UpdateProgress(0.2);
     mesolens::MapRequest request = map_request(this);
-    vtkInformation* out_info = outputVector->GetInformationObject(0);
-    const int piece = out_info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-      ? out_info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_PIECE_NUMBER())
-      : 0;
-    const int pieces = out_info->Has(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-      ? out_info->Get(vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_PIECES())
-      : 1;
-    if (piece > 0 && !this->OutputAtoms)
+    std::tie(request.piece, request.pieces) =
+      vtkMesoAtomPieces::Requested(outputVector->GetInformationObject(0));
+    if (request.piece > 0 && !this->OutputAtoms)
     {
       return 1; // the warp (for the GPU) and the chart are piece 0's
     }
-    request.piece = std::max(0, piece);
-    request.pieces = std::max(1, pieces);
     const mesolens::SurfacePoint seed = mapper.seed_near(
       { this->SeedPoint[0], this->SeedPoint[1], this->SeedPoint[2] }, this->SeedTolerance);
     mesolens::MapResult result = mapper.map(seed, data.patch, request, vtkMesoParallelFor::Get());

@@ -555,8 +555,9 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
   structure_output->Initialize();
   // On many processes every one cuts every process's atoms, so that all hide the molecules one
   // process would, and keeps its own.
-  const vtkMesoAtomPieces::GatheredInput gathered(inputVector[0], outputVector,
-                                                  vtkMesoAtomPieces::GatheredInput::KeepWhole);
+  const vtkMesoAtomPieces::GatheredInput gathered(
+    inputVector[0], outputVector, vtkMesoAtomPieces::GatheredInput::KeepWhole,
+    { vtkMesoArrayNames::MoleculeId, vtkMesoArrayNames::ResidueName }); // what AtomInput reads
   vtkPolyData* atoms = gathered.Whole();
   const vtkIdType first = gathered.FirstOwn();
   const vtkMesoAtomPieces::GatheredInput whole_structure(

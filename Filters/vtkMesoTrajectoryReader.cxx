@@ -54,11 +54,12 @@ struct vtkMesoTrajectoryReader::State
     }
     if (!this->PieceTemplate || this->PieceOf != std::pair{ piece, pieces })
     {
+      const std::vector<vtkIdType> atoms =
+        vtkMesoAtomPieces::AtomsOfPiece(this->Template, piece, pieces);
       this->PieceTemplate = vtkSmartPointer<vtkPolyData>::New();
-      this->PieceTemplate->DeepCopy(this->Template);
-      vtkMesoAtomPieces::KeepPiece(this->PieceTemplate, piece, pieces);
+      vtkMesoAtomPieces::ExtractAtomIds(this->Template, atoms, this->PieceTemplate);
       this->PieceAtoms.clear();
-      for (const vtkIdType a : vtkMesoAtomPieces::AtomsOfPiece(this->Template, piece, pieces))
+      for (const vtkIdType a : atoms)
       {
         this->PieceAtoms.push_back(this->KeptAtoms.empty() ? std::size_t(a)
                                                            : this->KeptAtoms[std::size_t(a)]);

@@ -42,7 +42,8 @@ if [ ! -x /usr/bin/xkbcomp ]; then
   made_xkbcomp=1
 fi
 display=:$(( ($$ % 500) + 100 ))
-run "$here/bin/Xvfb" "$display" -screen 0 1920x1080x24 -nolisten tcp -noreset \
+# Started by the loader itself (not through run, a shell function): $! is then Xvfb.
+"$loader" --library-path "$path" "$here/bin/Xvfb" "$display" -screen 0 1920x1080x24 -nolisten tcp -noreset \
   -xkbdir "$here/share/xkb" >/tmp/mesolens-gpu-kit-xvfb.log 2>&1 &
 xvfb=$!
 trap 'kill $xvfb 2>/dev/null; [ -z "$made_xkbcomp" ] || rm -f /usr/bin/xkbcomp' EXIT

@@ -9,7 +9,7 @@
 #   scripts/gpu-kit.sh [--without-llvm] [BUILD_DIR] [OUTPUT]
 #                                   (defaults: build, mesolens-gpu-kit.tar.xz)
 #
-# --without-llvm leaves llvmpipe's compiler out (about 54 MiB down to about 42 MiB, small enough
+# --without-llvm leaves llvmpipe's compiler out (about 56 MiB down to about 35 MiB, small enough
 # to travel with this repository to a lent GPU machine, 64 MiB in all): Mesa then
 # renders with softpipe, which the carried Xvfb needs only for its side of GLX on a machine
 # whose GPU draws; benchmarks on llvmpipe need the full kit.
@@ -21,8 +21,8 @@
 # renderer string and the benchmarks' figures. --quick runs a small table (for llvmpipe).
 #
 # libLLVM (llvmpipe's compiler) links libz3 and libxml2 (with ICU), which llvmpipe never calls:
-# the kit carries stubs with their symbols instead (every function says so and aborts), about
-# 15 MiB less.
+# the kit carries stubs with their symbols instead (every function says so and aborts), and
+# leaves out what only the real ones needed; about 15 MiB less.
 set -euo pipefail
 
 without_llvm=
@@ -64,7 +64,6 @@ for file in "${programs[@]}" "${opened[@]}"; do ldd "$file"; done |
   awk '$2 == "=>" && $3 ~ /^\// { print $1, $3 }' | sort -u > "$work/closure"
 while read -r name library; do
   case " ${stubbed[*]} " in *" $name "*) continue ;; esac
-  case "$name" in libicu*) continue ;; esac # only the real libxml2 needs ICU
   cp -L "$library" "$kit/lib/$name"
 done < "$work/closure"
 cp -L /lib64/ld-linux-x86-64.so.2 "$kit/lib/"
@@ -98,6 +97,25 @@ for name in "${stubbed[@]}"; do
   version_flag=()
   [ -s "$stub/version.map" ] && version_flag=(-Wl,--version-script="$stub/version.map")
   cc -shared -fPIC -O1 -o "$kit/lib/$name" -Wl,-soname,"$name" "${version_flag[@]}" "$stub/all.c"
+done
+
+# What only the replaced libraries needed (ICU for libxml2; z3, libxml2, libedit, ... for
+# libLLVM) is needed by nothing the kit carries now: out, until nothing more goes. The libraries
+# loaded with dlopen stay.
+kept_anyway=" ld-linux-x86-64.so.2 $(for library in "${opened[@]}"; do basename "$library"; done | tr '\n' ' ')"
+while :; do
+  needed=$(for file in "$kit"/bin/* "$kit"/lib/*.so* "$kit"/lib/dri/*.so; do readelf -d "$file"; done |
+           awk -F'[][]' '/NEEDED/ { print $2 }' | sort -u)
+  removed=
+  for file in "$kit"/lib/*.so*; do
+    name=$(basename "$file")
+    case "$kept_anyway" in *" $name "*) continue ;; esac
+    if ! grep -qxF "$name" <<< "$needed"; then
+      rm "$file"
+      removed=1
+    fi
+  done
+  [ -n "$removed" ] || break
 done
 
 # Symbol tables are not needed to run (this system's own libraries come without them).

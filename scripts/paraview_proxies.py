@@ -290,7 +290,7 @@ def representation_xml(spec, source_dir, core, mesolens):
     missing = [name for name in wanted if name not in found]
     if missing:
         raise SystemExit(f"{spec['mapper']} has no properties {missing}")
-    own = [xml_property(mapper, name, *found[name][:3], found[name][3], spec, core)
+    own = [xml_property(mapper, name, *found[name], spec, core)
            for name in wanted]
     exposed = "".join(f'<Property name="{name}"/>' for name in wanted)
     label = spec["label"]

@@ -14,36 +14,24 @@
 // its normal. Each frame turns the camera 2 degrees; times are medians.
 #include "vtkMesoArrayNames.h"
 #include "vtkMesoAtomMapper.h"
-#include "vtkMesoAtomProperties.h"
 #include "vtkMesoAtomTableConversion.h"
-#include "vtkMesoElementLookupTable.h"
 #include "vtkMesoMembraneMapping.h"
 #include "vtkMesoMeshReader.h"
-#include "vtkMesoRenderPasses.h"
 #include "vtkMesoTrajectoryReader.h"
 
 #include "atom_stage.h"
 #include "mesolens_test_data.h"
 
-#include <vtkActor.h>
-#include <vtkCamera.h>
 #include <vtkExecutive.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkNew.h>
-#include <vtkOpenGLRenderWindow.h>
-#include <vtkOpenGLRenderer.h>
-#include <vtkOpenGLSphereMapper.h>
-#include <vtkOpenGLVertexBufferObject.h>
-#include <vtkOpenGLVertexBufferObjectGroup.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
-#include <vtkRenderWindow.h>
 #include <vtkUnsignedShortArray.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>

@@ -1,7 +1,8 @@
 #!/bin/bash
 # SPDX-License-Identifier: GPL-3.0-or-later
 # The GPU kit (scripts/gpu-kit.sh): it is made, fits in 60 MiB, and its run.sh draws one row of
-# Table 1 from the unpacked kit alone (its own loader, libraries, Xvfb and data).
+# Table 1 from the unpacked kit alone (its own loader, libraries, Xvfb and data) and stops its
+# Xvfb.
 #
 #   test_gpu_kit.sh SOURCE_DIR BUILD_DIR
 set -euo pipefail
@@ -18,4 +19,10 @@ tar -xJf "$work/kit.tar.xz" -C "$work"
 env -u DISPLAY "$work/mesolens-gpu-kit/run.sh" --tiny | tee "$work/run.log"
 grep -q "^TABLE1 OpenGL renderer" "$work/run.log"
 grep -q "^TABLE1 DPPC .* GPU warp [0-9.]* fps" "$work/run.log"
+# run.sh stops the Xvfb it started.
+sleep 1
+if pgrep -f "$work/mesolens-gpu-kit/bin/Xvfb" > /dev/null; then
+  echo "run.sh left its Xvfb running"
+  exit 1
+fi
 echo "the kit runs"

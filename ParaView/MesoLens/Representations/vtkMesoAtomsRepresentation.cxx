@@ -17,6 +17,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPVRenderView.h"
 #include "vtkPointData.h"
+#include "vtkPointSet.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
 #include "vtkProperty.h"
@@ -36,13 +37,20 @@ vtkSmartPointer<vtkPolyData> AtomsOfDataSet(vtkDataSet* data)
     atoms->ShallowCopy(polydata);
     return atoms;
   }
-  vtkNew<vtkPoints> points;
-  points->SetNumberOfPoints(data->GetNumberOfPoints());
-  for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
+  if (auto point_set = vtkPointSet::SafeDownCast(data))
   {
-    points->SetPoint(i, data->GetPoint(i));
+    atoms->SetPoints(point_set->GetPoints()); // shared, not copied
   }
-  atoms->SetPoints(points);
+  else
+  {
+    vtkNew<vtkPoints> points;
+    points->SetNumberOfPoints(data->GetNumberOfPoints());
+    for (vtkIdType i = 0; i < data->GetNumberOfPoints(); ++i)
+    {
+      points->SetPoint(i, data->GetPoint(i));
+    }
+    atoms->SetPoints(points);
+  }
   atoms->GetPointData()->ShallowCopy(data->GetPointData());
   vtkNew<vtkCellArray> bonds;
   vtkNew<vtkIdList> ends;

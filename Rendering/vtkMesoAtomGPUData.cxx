@@ -12,6 +12,7 @@
 #include "mesolens/mapping/membrane_warp.h"
 #include "mesolens/molecules/molecule_groups.h"
 #include "mesolens/mapping/polynomial_warp.h"
+#include "mesolens/mapping/warped_cells.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
@@ -208,6 +209,7 @@ void vtkMesoAtomGPUData::Clear()
   this->Bonds.clear();
   this->WarpMethod = NoWarp;
   this->WarpTexels.clear();
+  this->WarpedAtoms.reset();
   this->TypesKey = {};
   this->BondsKey = {};
   this->MaskKey = {};
@@ -226,6 +228,7 @@ bool vtkMesoAtomGPUData::Update(vtkPolyData* atoms, vtkPolyData* warp, const Sty
   this->MoleculeSlots.clear();
   this->WarpMethod = NoWarp;
   this->WarpTexels.clear();
+  this->WarpedAtoms.reset();
   if (!atoms || !atoms->GetPoints() || atoms->GetNumberOfPoints() == 0)
   {
     this->Clear();
@@ -241,8 +244,7 @@ bool vtkMesoAtomGPUData::Update(vtkPolyData* atoms, vtkPolyData* warp, const Sty
   this->AtomCount = n;
   vtkDataArray* mask =
     mask_name && *mask_name ? atoms->GetPointData()->GetArray(mask_name) : nullptr;
-  if (!this->UpdatePositions(atoms, mapper, warp ? 0 : atoms_per_cell) ||
-      !this->UpdateBonds(atoms, mapper))
+  if (!this->UpdatePositions(atoms, mapper, atoms_per_cell) || !this->UpdateBonds(atoms, mapper))
   {
     this->Clear();
     return false;
@@ -574,10 +576,16 @@ bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp_data, vt
   else
   {
     std::string problem;
-    if (!molecule_slots(atoms, warp, this->MoleculeSlots, this->MoleculesPerTile, problem))
+    std::vector<unsigned short> slot_of_atom;
+    if (!molecule_slots(atoms, warp, slot_of_atom, this->MoleculesPerTile, problem))
     {
       vtkErrorWithObjectMacro(mapper, "Cannot warp the atoms: " << problem);
       return false;
+    }
+    this->MoleculeSlots.resize(slot_of_atom.size());
+    for (std::size_t atom = 0; atom < slot_of_atom.size(); ++atom)
+    {
+      this->MoleculeSlots[this->SlotOf(vtkIdType(atom))] = slot_of_atom[atom];
     }
     const vtkIdType motions = tiles * this->MoleculesPerTile;
     this->WarpTexels.resize(static_cast<std::size_t>(12 * motions));
@@ -592,6 +600,31 @@ bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp_data, vt
   }
   this->WarpMethod = static_cast<int>(warp.method);
   ++this->WarpVersion;
+  this->Warp = std::move(warp);
+  if (this->Cells.cell_start.empty())
+  {
+    return true;
+  }
+  // Draw-list entries count tile x atoms in 32 bits: beyond, every atom is drawn.
+  if (double(this->AtomCount) * double(tiles) > double(std::numeric_limits<std::uint32_t>::max()))
+  {
+    return true;
+  }
+  try
+  {
+    // The GPU sums the warp's 10 terms in float: at most about 5 roundings of the largest
+    // coordinate.
+    this->WarpedAtoms = std::make_unique<mesolens::WarpedCellAtoms>(
+      this->Warp, this->Cells, this->CellBoxes,
+      mesolens::PointSpan<const float>(this->PositionData, std::size_t(this->AtomCount)),
+      this->MoleculeSlots, this->Types.data(), 2, this->Radii.data(),
+      8 * std::numeric_limits<float>::epsilon(), vtkMesoParallelFor::Get());
+  }
+  catch (const mesolens::Error& e)
+  {
+    vtkErrorWithObjectMacro(mapper, "Cannot warp the atoms: " << e.what());
+    return false;
+  }
   return true;
 }
 

@@ -15,16 +15,20 @@
  *
  * For occlusion culling the atoms may be grouped into spatial cells (GroupIntoCells): then
  * every per-atom buffer and the bond indices are in "slot" order, the atoms of each cell
- * adjacent (mesolens::AtomCells), and CellBoxes holds each cell's box of atom centres.
+ * adjacent (mesolens::AtomCells), and CellBoxes holds each cell's box of atom centres. With a
+ * warp, the cells are the patch's and WarpedAtoms carries them into every tile.
  */
 #ifndef vtkMesoAtomGPUData_h
 #define vtkMesoAtomGPUData_h
 
+#include "mesolens/mapping/membrane_warp.h"
+#include "mesolens/mapping/warped_cells.h"
 #include "mesolens/render/atom_cells.h"
 
 #include <vtkType.h>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 class vtkDataArray;
@@ -48,10 +52,10 @@ public:
   };
 
   /// Recomputes everything from the atoms, the optional warp input and the mapper's colouring
-  /// settings. With `atoms_per_cell` > 0 and no warp, the atoms are grouped into cells of about
-  /// that many atoms (kept for new positions of the same atoms while the cells stay compact).
-  /// Returns false, with an error reported on `mapper` and AtomCount 0, for inputs it cannot
-  /// draw.
+  /// settings. With `atoms_per_cell` > 0, the atoms (the patch's, with a warp) are grouped into
+  /// cells of about that many atoms (kept for new positions of the same atoms while the cells stay
+  /// compact). Returns false, with an error reported on `mapper` and AtomCount 0, for inputs it
+  /// cannot draw.
   bool Update(vtkPolyData* atoms, vtkPolyData* warp, const Style& style, vtkMapper* mapper,
               std::size_t atoms_per_cell = 0, const char* mask_name = nullptr);
 
@@ -70,14 +74,17 @@ public:
 
   vtkIdType AtomCount = 0;
   vtkIdType TileCount = 1;
-  const float* PositionData = nullptr;       ///< 3 per atom (the input's, or PositionStorage)
-  mesolens::AtomCells Cells;                 ///< empty: not grouped, slot = input index
-  std::vector<std::uint32_t> SlotOfAtom;     ///< input index -> slot (grouped only)
-  std::vector<float> CellBoxes;              ///< 6 per cell: box of the atom centres
+  const float* PositionData = nullptr;   ///< 3 per atom (the input's, or PositionStorage)
+  mesolens::AtomCells Cells;             ///< empty: not grouped, slot = input index
+  std::vector<std::uint32_t> SlotOfAtom; ///< input index -> slot (grouped only)
+  std::vector<float> CellBoxes;          ///< 6 per cell: box of the atom centres
+  /// Warp and cells: the cells' atoms in every tile (tile-major) and their boxes, for
+  /// culling (valid until the next Update); null when the tiles hold 2^32 atoms or more.
+  std::unique_ptr<mesolens::WarpedCellAtoms> WarpedAtoms;
   unsigned long CellsVersion = 0;            ///< counts groupings (SlotOfAtom changes)
   float LargestPresentRadius = 0;            ///< of the elements present, scene units
   std::vector<unsigned char> Types;          ///< 2 per atom
-  std::vector<unsigned short> MoleculeSlots; ///< 1 per atom (instancing only)
+  std::vector<unsigned short> MoleculeSlots; ///< 1 per atom (slot order; instancing only)
   std::vector<unsigned int> Bonds;
   unsigned long TypesVersion = 0;     ///< counts recomputations of Types and ColorTable
   unsigned long PositionsVersion = 0; ///< counts changes of the positions (PositionData)
@@ -87,7 +94,8 @@ public:
   float BondRadius = 0;               ///< scene units
   std::vector<float> ColorTable;      ///< 256 RGBA
 
-  int WarpMethod = NoWarp; ///< static_cast<int>(mesolens::MappingMethod) of the warp, or NoWarp
+  int WarpMethod = NoWarp;     ///< static_cast<int>(mesolens::MappingMethod) of the warp, or NoWarp
+  mesolens::MembraneWarp Warp; ///< the warp input's (drawable when WarpMethod is set)
   std::vector<float> WarpTexels; ///< RGBA texels
   unsigned long WarpVersion = 0; ///< counts readings of the warp (WarpTexels, MoleculeSlots)
   float PatchOrigin[2] = { 0, 0 };

@@ -17,7 +17,9 @@
 #include "vtkMesoMoleculeInstancingVS.h"
 #include "vtkMesoPolynomialWarpVS.h"
 
+#include "mesolens/common/errors.h"
 #include "mesolens/mapping/mapping_method.h"
+#include "mesolens/mapping/warped_cells.h"
 #include "mesolens/render/atom_cells.h"
 #include "mesolens/render/depth_pyramid.h"
 
@@ -46,6 +48,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <tuple>
 
@@ -62,6 +65,9 @@ enum class Pass
 /// queries.
 constexpr vtkIdType minimum_culled_atoms = 8192;
 
+/// Atoms per cell of a warped patch, culled by whole cells: see BenchmarkAtomMapper --warp-cells.
+constexpr vtkIdType warped_atoms_per_cell = 64;
+
 void set_uniform_int(vtkShaderProgram* program, const char* name, int value)
 {
   if (program->IsUniformUsed(name))
@@ -76,6 +82,38 @@ void set_uniform_float(vtkShaderProgram* program, const char* name, float value)
   {
     program->SetUniformf(name, value);
   }
+}
+
+/// The actor's model to clip coordinates through the renderer's camera, as the shaders see it
+/// (VTK keeps its matrices transposed).
+mesolens::ViewTransform model_view(vtkRenderer* ren, vtkActor* act)
+{
+  vtkMatrix4x4* wcvc = nullptr;
+  vtkMatrix3x3* normals = nullptr;
+  vtkMatrix4x4* vcdc = nullptr;
+  vtkMatrix4x4* wcdc = nullptr;
+  static_cast<vtkOpenGLCamera*>(ren->GetActiveCamera())
+    ->GetKeyMatrices(ren, wcvc, normals, vcdc, wcdc);
+  vtkNew<vtkMatrix4x4> mcvc;
+  mcvc->DeepCopy(wcvc);
+  if (!act->GetIsIdentity())
+  {
+    vtkMatrix4x4* mcwc = nullptr;
+    vtkMatrix3x3* actor_normals = nullptr;
+    static_cast<vtkOpenGLActor*>(act)->GetKeyMatrices(mcwc, actor_normals);
+    vtkMatrix4x4::Multiply4x4(mcwc, wcvc, mcvc);
+  }
+  mesolens::ViewTransform view;
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      view.model_to_view[4 * r + c] = mcvc->GetElement(c, r);
+      view.view_to_clip[4 * r + c] = vcdc->GetElement(c, r);
+    }
+  }
+  view.Complete();
+  return view;
 }
 
 /// A texture buffer of RGBA float texels and the buffer object behind it.
@@ -190,13 +228,14 @@ struct vtkMesoAtomMapper::Internals
   }
 
   /// Draws, through draw list `which`, the atoms of the listed cells whose visibility bits
-  /// include `bit` (the sphere program `spheres` bound). Returns how many.
+  /// include `bit` (the sphere program `spheres` bound): slot s of `atoms` is drawn as list
+  /// entry s, the atom in buffer slot s mod n of tile s / n (n atoms). Returns how many.
   std::size_t DrawAtoms(vtkOpenGLRenderWindow* window, vtkShaderProgram* spheres, int which,
-                        const std::vector<std::uint8_t>& flags, std::uint8_t bit,
-                        const std::vector<mesolens::CellInView>& cells,
+                        const mesolens::CellAtoms& atoms, const std::vector<std::uint8_t>& flags,
+                        std::uint8_t bit, const std::vector<mesolens::CellInView>& cells,
                         const std::vector<std::uint8_t>& cell_listed)
   {
-    const mesolens::AtomCells& grouping = this->Data.Cells;
+    const auto n = static_cast<std::uint32_t>(this->Data.AtomCount);
     this->DrawList.clear();
     for (const mesolens::CellInView& viewed : cells)
     {
@@ -204,15 +243,23 @@ struct vtkMesoAtomMapper::Internals
       {
         continue;
       }
-      for (std::uint32_t slot = grouping.cell_start[viewed.cell];
-           slot < grouping.cell_start[viewed.cell + 1]; ++slot)
+      const std::uint32_t end = atoms.first_slot(std::size_t(viewed.cell) + 1);
+      for (std::uint32_t slot = atoms.first_slot(viewed.cell); slot < end; ++slot)
       {
-        if ((flags[slot] & bit) && this->Data.Types[2 * slot] != vtkMesoAtomGPUData::HiddenElement)
+        if ((flags[slot] & bit) &&
+            this->Data.Types[2 * (slot < n ? slot : slot % n)] != vtkMesoAtomGPUData::HiddenElement)
         {
           this->DrawList.push_back(slot);
         }
       }
     }
+    return this->DrawListed(window, spheres, which);
+  }
+
+  /// Draws the atoms of DrawList (entries t n + slot: the atom in that slot, in tile t of a
+  /// warp) through draw list `which`. Returns how many.
+  std::size_t DrawListed(vtkOpenGLRenderWindow* window, vtkShaderProgram* spheres, int which)
+  {
     this->DrawListBytes += sizeof(std::uint32_t) * this->DrawList.size();
     if (this->DrawList.empty())
     {
@@ -223,10 +270,24 @@ struct vtkMesoAtomMapper::Internals
     texture->Activate();
     spheres->SetUniformi("atomDrawList", texture->GetTextureUnit());
     spheres->SetUniformi("useDrawList", 1);
+    spheres->SetUniformi("drawListAtoms", static_cast<int>(this->Data.AtomCount));
     glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(3 * this->DrawList.size()));
     spheres->SetUniformi("useDrawList", 0);
     texture->Deactivate();
     return this->DrawList.size();
+  }
+
+  /// With no cell seen (a first frame, a jump), the nearest quarter of the cells in view.
+  static void SeedHistory(ViewHistory& history, const std::vector<mesolens::CellInView>& cells)
+  {
+    if (std::find(history.Seen.begin(), history.Seen.end(), 1) != history.Seen.end())
+    {
+      return;
+    }
+    for (std::size_t k = 0; k < cells.size() && (k < 8 || 4 * k < cells.size()); ++k)
+    {
+      history.Seen[cells[k].cell] = 1;
+    }
   }
 
   /// Reads the depth of the current viewport of the framebuffer being drawn into Depth. False
@@ -263,6 +324,22 @@ struct vtkMesoAtomMapper::Internals
       state->PopReadFramebufferBinding();
     }
     return true;
+  }
+
+  /// The pyramid of the depth drawn so far; where the depth cannot be read, one that hides
+  /// nothing.
+  void BuildPyramid(vtkOpenGLRenderWindow* window)
+  {
+    int width = 0;
+    int height = 0;
+    if (this->ReadDepth(window, width, height))
+    {
+      this->Pyramid.Build(this->Depth.data(), width, height);
+    }
+    else
+    {
+      this->Pyramid.Build(nullptr, 0, 0);
+    }
   }
 };
 
@@ -341,6 +418,12 @@ void vtkMesoAtomMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*)
   if (this->OcclusionCulling && this->AtomsPerCell > 0)
   {
     atoms_per_cell = static_cast<std::size_t>(this->AtomsPerCell);
+  }
+  else if (this->OcclusionCulling && this->GetNumberOfInputConnections(1) > 0)
+  {
+    // A warped patch is culled by whole cells of each tile: small cells, of patches big enough
+    // to have several.
+    atoms_per_cell = input_atoms >= 4 * warped_atoms_per_cell ? warped_atoms_per_cell : 0;
   }
   else if (this->OcclusionCulling && input_atoms >= minimum_culled_atoms)
   {
@@ -448,18 +531,24 @@ void vtkMesoAtomMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkShader*
       ? "0.0"
       : atoms ? "floor(texelFetch(atomMolecules, slot).x * 65535.0 + 0.5)"
               : "atomMolecule";
-    position = "vertexMC = vec4(warpedPosition(atomPosition, " + slot +
-      ", gl_InstanceID), 1.0);\n  " + position;
+    // Atoms know their tile (the instance, or a culling draw list's entry), bonds the instance.
+    position = "vertexMC = vec4(warpedPosition(atomPosition, " + slot + ", " +
+      (atoms ? "tile" : "gl_InstanceID") + "), 1.0);\n  " + position;
   }
   vtkShaderProgram::Substitute(vertex, "//MESO::Warp::Impl", position);
   // Culling draws lists of the atoms' slots.
   if (atoms && !ren->GetSelector() && !this->Internal->Data.Cells.cell_start.empty())
   {
-    vtkShaderProgram::Substitute(vertex, "//MESO::AtomSlot::Dec",
-                                 "uniform usamplerBuffer atomDrawList;\nuniform int useDrawList;");
+    // An entry is t n + slot for the atom in that slot, in tile t of a warp (n atoms).
+    vtkShaderProgram::Substitute(
+      vertex, "//MESO::AtomSlot::Dec",
+      "uniform usamplerBuffer atomDrawList;\nuniform int useDrawList;\nuniform int drawListAtoms;");
     vtkShaderProgram::Substitute(vertex, "//MESO::AtomSlot::Impl",
-                                 "if (useDrawList != 0)\n  {\n    slot = "
-                                 "int(texelFetch(atomDrawList, drawn).r);\n    atom = slot;\n  }");
+                                 "if (useDrawList != 0)\n  {\n"
+                                 "    uint entry = texelFetch(atomDrawList, drawn).r;\n"
+                                 "    slot = int(entry % uint(drawListAtoms));\n"
+                                 "    tile = int(entry / uint(drawListAtoms));\n"
+                                 "    atom = slot;\n  }");
   }
   // Picking draws the atoms in input order: each finds its slot in the cell order.
   if (atoms && ren->GetSelector() && !this->Internal->Data.Cells.cell_start.empty())
@@ -653,10 +742,19 @@ void vtkMesoAtomMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   vtkOpenGLHelper& spheres = this->Primitives[PrimitiveTris];
   this->UpdateShaders(spheres, ren, act);
   const bool translucent = act->GetProperty()->GetOpacity() < 1.0;
-  if (grouped && this->OcclusionCulling && !picking && !translucent)
+  const bool warped = data.WarpMethod != vtkMesoAtomGPUData::NoWarp;
+  if (grouped && this->OcclusionCulling && !picking && !translucent &&
+      (!warped || data.WarpedAtoms))
   {
     in.DrawListTextures[0]->Deactivate();
-    this->DrawVisibleCells(ren, act, spheres.Program);
+    if (warped)
+    {
+      this->DrawVisibleWarpedCells(ren, act, spheres.Program);
+    }
+    else
+    {
+      this->DrawVisibleCells(ren, act, spheres.Program);
+    }
   }
   else
   {
@@ -681,80 +779,64 @@ void vtkMesoAtomMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
 
 void vtkMesoAtomMapper::DrawVisibleCells(vtkRenderer* ren, vtkActor* act, vtkShaderProgram* spheres)
 {
-  Internals& in = *this->Internal;
-  const vtkMesoAtomGPUData& data = in.Data;
-  auto* window = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  const vtkMesoAtomGPUData& data = this->Internal->Data;
+  const mesolens::StoredCellAtoms atoms({ data.PositionData, std::size_t(data.AtomCount) },
+                                        data.Types.data(), 2, data.Radii.data(), data.Cells);
+  this->DrawVisibleAtoms(ren, act, spheres, atoms, data.CellBoxes,
+                         this->CellPaddingFactor * 1.01 * data.LargestPresentRadius);
+}
 
-  // Model to clip coordinates, as the shaders see it (VTK keeps its matrices transposed).
-  vtkMatrix4x4* wcvc = nullptr;
-  vtkMatrix3x3* normals = nullptr;
-  vtkMatrix4x4* vcdc = nullptr;
-  vtkMatrix4x4* wcdc = nullptr;
-  vtkCamera* camera = ren->GetActiveCamera();
-  static_cast<vtkOpenGLCamera*>(camera)->GetKeyMatrices(ren, wcvc, normals, vcdc, wcdc);
-  vtkNew<vtkMatrix4x4> mcvc;
-  mcvc->DeepCopy(wcvc);
-  if (!act->GetIsIdentity())
-  {
-    vtkMatrix4x4* mcwc = nullptr;
-    vtkMatrix3x3* actor_normals = nullptr;
-    static_cast<vtkOpenGLActor*>(act)->GetKeyMatrices(mcwc, actor_normals);
-    vtkMatrix4x4::Multiply4x4(mcwc, wcvc, mcvc);
-  }
-  mesolens::ViewTransform view;
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      view.model_to_view[4 * r + c] = mcvc->GetElement(c, r);
-      view.view_to_clip[4 * r + c] = vcdc->GetElement(c, r);
-    }
-  }
-  view.Complete();
-  const double padding = 1.01 * data.LargestPresentRadius;
+void vtkMesoAtomMapper::DrawVisibleWarpedCells(vtkRenderer* ren, vtkActor* act,
+                                               vtkShaderProgram* spheres)
+{
+  const vtkMesoAtomGPUData& data = this->Internal->Data;
+  // The boxes hold the warped centres up to the GPU's rounding.
+  this->DrawVisibleAtoms(ren, act, spheres, *data.WarpedAtoms, data.WarpedAtoms->boxes(),
+                         this->CellPaddingFactor *
+                           (1.01 * data.LargestPresentRadius + data.WarpedAtoms->margin()));
+}
+
+void vtkMesoAtomMapper::DrawVisibleAtoms(vtkRenderer* ren, vtkActor* act, vtkShaderProgram* spheres,
+                                         const mesolens::CellAtoms& atoms,
+                                         const std::vector<float>& boxes, double padding)
+{
+  Internals& in = *this->Internal;
+  auto* window = static_cast<vtkOpenGLRenderWindow*>(ren->GetRenderWindow());
+  const mesolens::ViewTransform view = model_view(ren, act);
   const std::vector<mesolens::CellInView> cells =
-    mesolens::cells_in_view(data.CellBoxes, padding, view.model_to_clip);
+    mesolens::cells_in_view(boxes, padding, view.model_to_clip);
 
   // What this renderer saw last time at this viewport size.
   GLint viewport[4] = { 0, 0, 0, 0 };
   glGetIntegerv(GL_VIEWPORT, viewport);
-  const std::size_t atom_count = static_cast<std::size_t>(data.AtomCount);
-  ViewHistory& history = in.History({ ren, viewport[2], viewport[3] }, data.CellsVersion,
-                                    atom_count, data.Cells.cell_count());
+  const std::size_t cell_count = atoms.cell_count();
+  ViewHistory& history = in.History({ ren, viewport[2], viewport[3] }, in.Data.CellsVersion,
+                                    atoms.first_slot(cell_count), cell_count);
 
   // 1. The atoms seen last time; with none (a first frame, a jump), the nearest quarter of the
   // cells in view, whole.
   if (std::find(history.Seen.begin(), history.Seen.end(), 1) == history.Seen.end())
   {
-    for (std::size_t k = 0; k < cells.size() && (k < 8 || 4 * k < cells.size()); ++k)
+    Internals::SeedHistory(history, cells);
+    for (std::size_t cell = 0; cell < cell_count; ++cell)
     {
-      const std::uint32_t cell = cells[k].cell;
-      history.Seen[cell] = 1;
-      std::fill(history.Flags.begin() + data.Cells.cell_start[cell],
-                history.Flags.begin() + data.Cells.cell_start[cell + 1],
-                std::uint8_t(mesolens::SEEN));
+      if (history.Seen[cell])
+      {
+        std::fill(history.Flags.begin() + atoms.first_slot(cell),
+                  history.Flags.begin() + atoms.first_slot(cell + 1), std::uint8_t(mesolens::SEEN));
+      }
     }
   }
   in.DrawListBytes = 0;
-  in.DrawAtoms(window, spheres, 0, history.Flags, mesolens::SEEN, cells, history.Seen);
+  in.DrawAtoms(window, spheres, 0, atoms, history.Flags, mesolens::SEEN, cells, history.Seen);
 
   // 2. Every atom in view tested against that depth; those that show and were not drawn yet
   // are drawn now. Where the depth cannot be read, everything in view counts as shown.
-  int width = 0;
-  int height = 0;
-  if (in.ReadDepth(window, width, height))
-  {
-    in.Pyramid.Build(in.Depth.data(), width, height);
-  }
-  else
-  {
-    in.Pyramid.Build(nullptr, 0, 0);
-  }
+  in.BuildPyramid(window);
   const mesolens::CellVisibility found = mesolens::test_atom_visibility(
-    in.Pyramid, view, { data.PositionData, std::size_t(data.AtomCount) }, data.Types.data(), 2,
-    data.Radii.data(), data.Cells, data.CellBoxes, cells, padding, history.Flags,
-    vtkMesoParallelFor::Get());
-  in.DrawAtoms(window, spheres, 1, history.Flags, mesolens::NEWLY_SEEN, cells, found.newly_seen);
+    in.Pyramid, view, atoms, boxes, cells, padding, history.Flags, vtkMesoParallelFor::Get());
+  in.DrawAtoms(window, spheres, 1, atoms, history.Flags, mesolens::NEWLY_SEEN, cells,
+               found.newly_seen);
   in.LastDrawnAtoms = static_cast<vtkIdType>(found.drawn_first + found.drawn_after);
   history.Seen = found.seen;
 }
@@ -882,6 +964,7 @@ void vtkMesoAtomMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "BondRadius: " << this->BondRadius << "\n";
   os << indent << "OcclusionCulling: " << (this->OcclusionCulling ? "on" : "off") << "\n";
   os << indent << "AtomsPerCell: " << this->AtomsPerCell << "\n";
+  os << indent << "CellPaddingFactor: " << this->CellPaddingFactor << "\n";
   os << indent << "VisibilityArrayName: "
      << (this->VisibilityArrayName ? this->VisibilityArrayName : "(none)") << "\n";
   os << indent << "Warp: " << (this->GetNumberOfInputConnections(1) ? "connected" : "none") << "\n";

@@ -85,6 +85,11 @@
 #include "vtkOpenGLPolyDataMapper.h"
 
 #include <memory>
+#include <vector>
+
+namespace mesolens {
+class CellAtoms;
+}
 
 class MESOLENSRENDERING_EXPORT vtkMesoAtomMapper : public vtkOpenGLPolyDataMapper
 {
@@ -158,6 +163,15 @@ public:
   ///@}
 
   ///@{
+  /// Factor on how far culling grows its cells' boxes: by the largest atom radius (and, for a
+  /// warped patch, the GPU's rounding of the warp). Range [0, 10]; default 1, what keeps the
+  /// picture exact. Below 1 the boxes no longer hold the atoms' spheres and atoms at their edges
+  /// may be culled wrongly: for checking that a test notices.
+  vtkSetClampMacro(CellPaddingFactor, double, 0.0, 10.0);
+  vtkGetMacro(CellPaddingFactor, double);
+  ///@}
+
+  ///@{
   /// The point array whose zeros hide atoms (any numeric type, first component). Default
   /// "Visible"; nullptr or "": no mask. An input without the array draws every atom.
   vtkSetStringMacro(VisibilityArrayName);
@@ -213,6 +227,7 @@ protected:
   double BondRadius = 0.2;
   bool OcclusionCulling = true;
   int AtomsPerCell = 0;
+  double CellPaddingFactor = 1;
   char* VisibilityArrayName = nullptr;
 
 private:
@@ -225,6 +240,12 @@ private:
   /// Draws the atoms that may be visible with the sphere program `spheres` (bound): see
   /// Occlusion culling.
   void DrawVisibleCells(vtkRenderer* ren, vtkActor* act, vtkShaderProgram* spheres);
+  /// The same for a warped patch: the patch's cells in every tile.
+  void DrawVisibleWarpedCells(vtkRenderer* ren, vtkActor* act, vtkShaderProgram* spheres);
+  /// The two passes of culling over `atoms`, whose cells have `boxes` (grown by `padding`).
+  void DrawVisibleAtoms(vtkRenderer* ren, vtkActor* act, vtkShaderProgram* spheres,
+                        const mesolens::CellAtoms& atoms, const std::vector<float>& boxes,
+                        double padding);
 
   struct Internals;
   std::unique_ptr<Internals> Internal;

@@ -1,10 +1,13 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "mesolens/render/depth_pyramid.h"
 
+#include "mesolens/common/errors.h"
+
 #include <algorithm>
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <string>
 
 namespace mesolens {
 namespace {
@@ -421,38 +424,96 @@ bool DepthPyramid::SphereHidden(const ScreenFootprint& footprint, const EyeSpher
   return true;
 }
 
+bool CellAtoms::cell_footprint(std::size_t cell, const std::vector<float>& boxes, double padding,
+                               const ViewTransform& view, int width, int height,
+                               ScreenFootprint& footprint) const
+{
+  const float* box = boxes.data() + 6 * cell;
+  const double low[3] = { box[0] - padding, box[1] - padding, box[2] - padding };
+  const double high[3] = { box[3] + padding, box[4] + padding, box[5] + padding };
+  return box_footprint(low, high, view.model_to_clip, width, height, footprint);
+}
+
+StoredCellAtoms::StoredCellAtoms(PointSpan<const float> slot_xyz,
+                                 const std::uint8_t* element_of_slot, std::size_t element_stride,
+                                 const float* radius_of_element, const AtomCells& cells)
+  : SlotXYZ(slot_xyz)
+  , ElementOfSlot(element_of_slot)
+  , ElementStride(element_stride)
+  , RadiusOfElement(radius_of_element)
+  , Cells(cells)
+{
+}
+
+std::size_t StoredCellAtoms::cell_count() const
+{
+  return this->Cells.cell_count();
+}
+
+std::uint32_t StoredCellAtoms::first_slot(std::size_t cell) const
+{
+  return this->Cells.cell_start[cell];
+}
+
+void StoredCellAtoms::load(std::size_t cell, std::vector<float>& xyz,
+                           std::vector<float>& radii) const
+{
+  const std::uint32_t first = this->Cells.cell_start[cell];
+  const std::uint32_t end = this->Cells.cell_start[cell + 1];
+  xyz.assign(this->SlotXYZ[first], this->SlotXYZ[first] + 3 * std::size_t(end - first));
+  radii.resize(end - first);
+  for (std::uint32_t slot = first; slot < end; ++slot)
+  {
+    radii[slot - first] =
+      this->RadiusOfElement[this->ElementOfSlot[std::size_t(slot) * this->ElementStride]];
+  }
+}
+
 CellVisibility test_atom_visibility(
   const DepthPyramid& pyramid, const ViewTransform& view, PointSpan<const float> slot_xyz,
   const std::uint8_t* element_of_slot, std::size_t element_stride, const float* radius_of_element,
   const AtomCells& cells, const std::vector<float>& boxes, const std::vector<CellInView>& in_view,
   double padding, std::vector<std::uint8_t>& flags, const ParallelFor& parallel_for)
 {
-  const std::size_t cell_count = cells.cell_count();
+  const StoredCellAtoms atoms(slot_xyz, element_of_slot, element_stride, radius_of_element, cells);
+  return test_atom_visibility(pyramid, view, atoms, boxes, in_view, padding, flags, parallel_for);
+}
+
+CellVisibility test_atom_visibility(const DepthPyramid& pyramid, const ViewTransform& view,
+                                    const CellAtoms& atoms, const std::vector<float>& boxes,
+                                    const std::vector<CellInView>& in_view, double padding,
+                                    std::vector<std::uint8_t>& flags,
+                                    const ParallelFor& parallel_for)
+{
+  const std::size_t cell_count = atoms.cell_count();
+  if (boxes.size() != 6 * cell_count)
+  {
+    throw InvalidInput("test_atom_visibility: " + std::to_string(boxes.size() / 6) + " boxes for " +
+                       std::to_string(cell_count) + " cells");
+  }
   CellVisibility result;
   result.seen.assign(cell_count, 0);
   result.newly_seen.assign(cell_count, 0);
-  flags.resize(cells.atom_of_slot.size(), 0);
+  flags.resize(atoms.first_slot(cell_count), 0);
   const int width = pyramid.Width();
   const int height = pyramid.Height();
-  const double* model_to_clip = view.model_to_clip;
   std::atomic<std::size_t> drawn_first_count{ 0 };
   std::atomic<std::size_t> newly_seen_count{ 0 };
   run_parallel(parallel_for, in_view.size(), [&](std::size_t begin, std::size_t end) {
+    std::vector<float> xyz;
+    std::vector<float> radii;
     for (std::size_t k = begin; k < end; ++k)
     {
       const std::uint32_t cell = in_view[k].cell;
-      const std::uint32_t first = cells.cell_start[cell];
-      const std::uint32_t last = cells.cell_start[cell + 1];
+      const std::uint32_t first = atoms.first_slot(cell);
+      const std::uint32_t last = atoms.first_slot(std::size_t(cell) + 1);
       // 0: the whole cell hidden; 1: test each atom; 2: every atom visible.
       int mode = 2;
       double cell_farthest = 1.0; // the farthest depth drawn over the cell's footprint
       if (!in_view[k].must_draw)
       {
-        const float* box = boxes.data() + 6 * std::size_t(cell);
-        const double low[3] = { box[0] - padding, box[1] - padding, box[2] - padding };
-        const double high[3] = { box[3] + padding, box[4] + padding, box[5] + padding };
         ScreenFootprint footprint;
-        if (box_footprint(low, high, model_to_clip, width, height, footprint))
+        if (atoms.cell_footprint(cell, boxes, padding, view, width, height, footprint))
         {
           mode = pyramid.Hidden(footprint, 8) ? 0 : 1;
           cell_farthest = pyramid.Farthest(footprint, 8);
@@ -462,13 +523,17 @@ CellVisibility test_atom_visibility(
       bool newly_seen = false;
       std::size_t drawn_first_here = 0;
       std::size_t newly_seen_here = 0;
+      if (mode == 1)
+      {
+        atoms.load(cell, xyz, radii);
+      }
       for (std::uint32_t slot = first; slot < last; ++slot)
       {
         bool visible = mode == 2;
         if (mode == 1)
         {
-          const float* p = slot_xyz[slot];
-          const double r = radius_of_element[element_of_slot[slot * element_stride]];
+          const float* p = xyz.data() + 3 * std::size_t(slot - first);
+          const double r = radii[slot - first];
           // Behind everything drawn over its cell's footprint: hidden, without its outline.
           const double* m = view.model_to_view;
           const double z =
@@ -512,7 +577,7 @@ CellVisibility test_atom_visibility(
   {
     if (!viewed[cell])
     {
-      std::fill(flags.begin() + cells.cell_start[cell], flags.begin() + cells.cell_start[cell + 1],
+      std::fill(flags.begin() + atoms.first_slot(cell), flags.begin() + atoms.first_slot(cell + 1),
                 std::uint8_t(0));
     }
   }

@@ -45,6 +45,8 @@ void main()
   int corner = gl_VertexID - 3 * drawn;
   int atom = drawn;
   int slot = atom;
+  int tile = gl_InstanceID; // of a warp
+
   //MESO::AtomSlot::Impl
   vec3 atomPosition = texelFetch(atomPositions, slot).xyz;
   vec2 type = floor(texelFetch(atomTypes, slot).xy * 255.0 + 0.5);

@@ -21,6 +21,7 @@
 #include <vtkPolyData.h>
 #include <vtkRenderWindow.h>
 #include <vtkSmartPointer.h>
+#include <vtkUnsignedCharArray.h>
 
 #include <algorithm>
 #include <chrono>
@@ -128,6 +129,15 @@ struct Stage
       times.push_back(this->Frame());
     }
     return { first, median(times) };
+  }
+
+  /// The last frame's colours (RGB, rows bottom to top).
+  std::vector<unsigned char> Pixels()
+  {
+    const int* size = this->Window->GetSize();
+    vtkNew<vtkUnsignedCharArray> data;
+    this->Window->GetPixelData(0, 0, size[0] - 1, size[1] - 1, 0, data, 0);
+    return { data->GetPointer(0), data->GetPointer(0) + data->GetNumberOfValues() };
   }
 
   /// One animation step: the same atoms at new positions (a copy of the points, shifted).

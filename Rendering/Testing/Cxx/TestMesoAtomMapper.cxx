@@ -821,3 +821,45 @@ TEST(MesoAtomMapper, SplitPolynomialWarpBoundsCoverTheMappedAtoms)
   auto cpu = mesolens_test::mapped_membrane(vtkMesoMembraneMapping::POLYNOMIAL, true, 0.2);
   expect_bounds_cover(scene.Mapper, cpu->GetOutput());
 }
+
+TEST(MesoAtomMapper, CullingAWarpedPatchKeepsThePicture)
+{
+  // 2 x 2 tiles of the DPPC patch warped on the GPU, culled by the patch's cells carried into
+  // every tile, against every atom drawn.
+  for (const int method :
+       { vtkMesoMembraneMapping::POLYNOMIAL, vtkMesoMembraneMapping::MOLECULE_INSTANCING })
+  {
+    auto mapping = mesolens_test::mapped_membrane(method, false);
+    vtkDataObject* patch = mapping->GetInputDataObject(1, 0);
+    const vtkIdType all = 4 * vtkPolyData::SafeDownCast(patch)->GetNumberOfPoints();
+    CullingPair pair(vtkPolyData::SafeDownCast(patch));
+    for (Scene* scene : { &pair.Culled, &pair.Whole })
+    {
+      scene->Mapper->SetWarpConnection(mapping->GetOutputPort());
+      scene->Mapper->SetRadiusScale(1e-4);
+    }
+    mesolens_test::EventRecorder events(pair.Culled.Mapper);
+    pair.Culled.Renderer->ResetCamera();
+    vtkCamera* camera = pair.Culled.Renderer->GetActiveCamera();
+    camera->Elevation(-35);
+    for (int frame = 0; frame < 4; ++frame)
+    {
+      EXPECT_LT(pair.Render(), 5) << "method " << method << " frame " << frame;
+      EXPECT_EQ(pair.Whole.Mapper->GetLastDrawnAtomCount(), all);
+      EXPECT_LT(pair.Culled.Mapper->GetLastDrawnAtomCount(), all / 2)
+        << "method " << method << " frame " << frame;
+      EXPECT_GT(pair.Culled.Mapper->GetLastDrawnAtomCount(), all / 50);
+      camera->Azimuth(25);
+    }
+    // Close up: tiles out of view are skipped as well.
+    camera->Zoom(5);
+    EXPECT_LT(pair.Render(), 5);
+    EXPECT_LT(pair.Render(), 5);
+    EXPECT_TRUE(events.Errors.empty()) << events.AllErrors();
+    // Translucent atoms are all drawn.
+    pair.Culled.Actor->GetProperty()->SetOpacity(0.5);
+    pair.Whole.Actor->GetProperty()->SetOpacity(0.5);
+    pair.Render();
+    EXPECT_EQ(pair.Culled.Mapper->GetLastDrawnAtomCount(), all);
+  }
+}

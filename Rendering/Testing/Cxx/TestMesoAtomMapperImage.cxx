@@ -2,12 +2,17 @@
 // Render tests of vtkMesoAtomMapper: draws one scene to a PNG that the test compares with its
 // baseline (mesolens_compare_images).
 //
-//   TestMesoAtomMapperImage SCENE OUTPUT.png [--radius-factor F]
+//   TestMesoAtomMapperImage SCENE OUTPUT.png [--radius-factor F] [--cells N] [--no-culling]
+//                           [--cell-padding F]
 //
 // Scenes: space_filling, ball_and_stick, sticks, vtk_sphere_mapper (VTK's own impostors for
 // the same atoms), ssao, shadows, translucent, parallel_viewports, scalar_colors,
-// warp_polynomial_cpu, warp_polynomial_gpu, warp_instancing_cpu, warp_instancing_gpu.
-// --radius-factor scales every radius (a test breaks the picture on purpose with 1.1).
+// warp_polynomial_cpu, warp_polynomial_gpu, warp_instancing_cpu, warp_instancing_gpu,
+// warp_polynomial_spheres_cpu, warp_polynomial_spheres_gpu, warp_instancing_spheres_gpu
+// (space-filling).
+// --radius-factor scales every radius (a test breaks the picture on purpose with 1.1); --cells
+// sets the atom mappers' AtomsPerCell (and renders twice), --no-culling turns their culling
+// off, --cell-padding sets their CellPaddingFactor (0 breaks culling on purpose).
 #include "vtkMesoArrayNames.h"
 #include "MesoAtomScenes.h"
 
@@ -202,7 +207,8 @@ vtkSmartPointer<vtkRenderWindow> scalar_colors()
 
 /// The mapped membrane, balls and sticks, seen from outside the organelle: the atoms mapped on
 /// the CPU (gpu false) or the patch warped by the mapper (gpu true).
-vtkSmartPointer<vtkRenderWindow> warped(int method, bool gpu, double max_residual = 1.0)
+vtkSmartPointer<vtkRenderWindow> warped(int method, bool gpu, double max_residual = 1.0,
+                                        int style = vtkMesoAtomMapper::BALL_AND_STICK)
 {
   auto cpu_mapping = mesolens_test::mapped_membrane(method, true, max_residual);
   vtkPolyData* cpu_atoms = cpu_mapping->GetOutput();
@@ -218,7 +224,7 @@ vtkSmartPointer<vtkRenderWindow> warped(int method, bool gpu, double max_residua
   {
     mapper->SetInputConnection(cpu_mapping->GetOutputPort());
   }
-  mapper->SetStyle(vtkMesoAtomMapper::BALL_AND_STICK);
+  mapper->SetStyle(style);
   mapper->SetRadiusScale(1e-4 * radius_factor);
   auto renderer = vtkSmartPointer<vtkRenderer>::New();
   renderer->SetBackground(0.1, 0.1, 0.15);
@@ -252,22 +258,37 @@ int main(int argc, char* argv[])
   if (argc < 3)
   {
     std::cerr << "usage: TestMesoAtomMapperImage SCENE OUTPUT.png [--radius-factor F] "
-                 "[--cells N]\n";
+                 "[--cells N] [--no-culling] [--cell-padding F]\n";
     return 2;
   }
   const std::string scene = argv[1];
   const std::string output = argv[2];
   int atoms_per_cell = 0;
-  for (int i = 3; i + 1 < argc; i += 2)
+  bool culling = true;
+  double cell_padding = 1.0;
+  for (int i = 3; i < argc; ++i)
   {
     const std::string option = argv[i];
-    if (option == "--radius-factor")
+    if (option == "--radius-factor" && i + 1 < argc)
     {
-      radius_factor = std::atof(argv[i + 1]);
+      radius_factor = std::atof(argv[++i]);
     }
-    else if (option == "--cells")
+    else if (option == "--cells" && i + 1 < argc)
     {
-      atoms_per_cell = std::atoi(argv[i + 1]);
+      atoms_per_cell = std::atoi(argv[++i]);
+    }
+    else if (option == "--cell-padding" && i + 1 < argc)
+    {
+      cell_padding = std::atof(argv[++i]);
+    }
+    else if (option == "--no-culling")
+    {
+      culling = false;
+    }
+    else
+    {
+      std::cerr << "unknown option " << option << "\n";
+      return 2;
     }
   }
   const std::map<std::string, std::function<vtkSmartPointer<vtkRenderWindow>()>> scenes{
@@ -291,6 +312,22 @@ int main(int argc, char* argv[])
       [] { return warped(vtkMesoMembraneMapping::MOLECULE_INSTANCING, false); } },
     { "warp_instancing_gpu",
       [] { return warped(vtkMesoMembraneMapping::MOLECULE_INSTANCING, true); } },
+    // Space-filling, where culling leaves most atoms out.
+    { "warp_polynomial_spheres_cpu",
+      [] {
+        return warped(vtkMesoMembraneMapping::POLYNOMIAL, false, 1.0,
+                      vtkMesoAtomMapper::SPACE_FILLING);
+      } },
+    { "warp_polynomial_spheres_gpu",
+      [] {
+        return warped(vtkMesoMembraneMapping::POLYNOMIAL, true, 1.0,
+                      vtkMesoAtomMapper::SPACE_FILLING);
+      } },
+    { "warp_instancing_spheres_gpu",
+      [] {
+        return warped(vtkMesoMembraneMapping::MOLECULE_INSTANCING, true, 1.0,
+                      vtkMesoAtomMapper::SPACE_FILLING);
+      } },
   };
   const auto found = scenes.find(scene);
   if (found == scenes.end())
@@ -299,24 +336,26 @@ int main(int argc, char* argv[])
     return 2;
   }
   vtkSmartPointer<vtkRenderWindow> window = found->second();
-  if (atoms_per_cell > 0)
+  // The culling settings of every atom mapper; with cells, two frames: the first learns what
+  // shows, the second draws from what it learnt.
+  vtkRenderer* renderer = nullptr;
+  auto renderers = window->GetRenderers();
+  for (renderers->InitTraversal(); (renderer = renderers->GetNextItem());)
   {
-    // Occlusion culling for the small test molecules: cells of that many atoms. Two frames:
-    // the first learns what shows, the second draws from what it learnt.
-    vtkRenderer* renderer = nullptr;
-    auto renderers = window->GetRenderers();
-    for (renderers->InitTraversal(); (renderer = renderers->GetNextItem());)
+    vtkActor* actor = nullptr;
+    auto actors = renderer->GetActors();
+    for (actors->InitTraversal(); (actor = actors->GetNextActor());)
     {
-      vtkActor* actor = nullptr;
-      auto actors = renderer->GetActors();
-      for (actors->InitTraversal(); (actor = actors->GetNextActor());)
+      if (auto* atoms = vtkMesoAtomMapper::SafeDownCast(actor->GetMapper()))
       {
-        if (auto* atoms = vtkMesoAtomMapper::SafeDownCast(actor->GetMapper()))
-        {
-          atoms->SetAtomsPerCell(atoms_per_cell);
-        }
+        atoms->SetAtomsPerCell(atoms_per_cell);
+        atoms->SetOcclusionCulling(culling);
+        atoms->SetCellPaddingFactor(cell_padding);
       }
     }
+  }
+  if (atoms_per_cell > 0)
+  {
     window->Render();
   }
   window->Render();

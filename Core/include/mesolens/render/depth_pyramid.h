@@ -125,12 +125,62 @@ struct CellVisibility
   std::size_t drawn_after = 0; ///< atoms now NEWLY_SEEN
 };
 
-/// Tests every atom of the cells in view (atoms in slot order: `slot_xyz` one per slot, radius
-/// `radius_of_element[element_of_slot[slot * element_stride]]`) against the pyramid and
-/// rewrites `flags` (one per slot; the SEEN bit on entry says what was drawn first this frame):
-/// SEEN when not hidden, NEWLY_SEEN when not hidden and not drawn first. Atoms of cells that are
-/// not in view, or whose box (grown by `padding`) is hidden, get 0. Cells in view that reach
-/// the eye keep all their atoms SEEN (NEWLY_SEEN unless drawn first).
+/// The atoms of the cells a visibility test visits, one cell at a time: their positions may be
+/// computed only then (a patch warped tile by tile). The atoms of cell c have the slots
+/// [first_slot(c), first_slot(c + 1)), the cells' slots in order.
+class CellAtoms
+{
+public:
+  virtual ~CellAtoms() = default;
+  /// The number of cells.
+  virtual std::size_t cell_count() const = 0;
+  /// The first slot of `cell`, for cell in [0, cell_count()] (the last: the number of slots).
+  virtual std::uint32_t first_slot(std::size_t cell) const = 0;
+  /// The positions (3 per atom, model units) and radii (model units) of the cell's atoms, in
+  /// slot order. Called from several threads at once.
+  virtual void load(std::size_t cell, std::vector<float>& xyz, std::vector<float>& radii) const = 0;
+  /// The footprint of what holds the cell's atom centres, grown by `padding`: by default its
+  /// box in `boxes` (6 per cell) through box_footprint. False when it reaches the eye's plane or
+  /// the near plane.
+  virtual bool cell_footprint(std::size_t cell, const std::vector<float>& boxes, double padding,
+                              const ViewTransform& view, int width, int height,
+                              ScreenFootprint& footprint) const;
+};
+
+/// Atoms stored in slot order (`slot_xyz` one per slot, radius
+/// `radius_of_element[element_of_slot[slot * element_stride]]`), grouped by `cells`. The
+/// arrays are referenced, not copied.
+class StoredCellAtoms : public CellAtoms
+{
+public:
+  StoredCellAtoms(PointSpan<const float> slot_xyz, const std::uint8_t* element_of_slot,
+                  std::size_t element_stride, const float* radius_of_element,
+                  const AtomCells& cells);
+  std::size_t cell_count() const override;
+  std::uint32_t first_slot(std::size_t cell) const override;
+  void load(std::size_t cell, std::vector<float>& xyz, std::vector<float>& radii) const override;
+
+private:
+  PointSpan<const float> SlotXYZ;
+  const std::uint8_t* ElementOfSlot;
+  std::size_t ElementStride;
+  const float* RadiusOfElement;
+  const AtomCells& Cells;
+};
+
+/// Tests every atom of the cells in view against the pyramid and rewrites `flags` (one per
+/// slot; the SEEN bit on entry says what was drawn first this frame): SEEN when not hidden,
+/// NEWLY_SEEN when not hidden and not drawn first. Atoms of cells that are not in view, or
+/// whose box (`boxes`, 6 per cell, grown by `padding`) is hidden, get 0. Cells in view that
+/// reach the eye keep all their atoms SEEN (NEWLY_SEEN unless drawn first). Throws
+/// InvalidInput for boxes of another count than the cells.
+CellVisibility test_atom_visibility(const DepthPyramid& pyramid, const ViewTransform& view,
+                                    const CellAtoms& atoms, const std::vector<float>& boxes,
+                                    const std::vector<CellInView>& in_view, double padding,
+                                    std::vector<std::uint8_t>& flags,
+                                    const ParallelFor& parallel_for = {});
+
+/// The same for atoms stored in slot order (StoredCellAtoms).
 CellVisibility test_atom_visibility(
   const DepthPyramid& pyramid, const ViewTransform& view, PointSpan<const float> slot_xyz,
   const std::uint8_t* element_of_slot, std::size_t element_stride, const float* radius_of_element,

@@ -14,6 +14,8 @@
 #include "mesolens/common/errors.h"
 #include "mesolens/mapping/chart_lattice.h"
 #include "mesolens/mapping/membrane_mapper.h"
+#include "mesolens/mapping/membrane_warp.h"
+#include "mesolens/molecules/molecule_groups.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
@@ -278,6 +280,106 @@ void build_atoms(vtkPolyData* atoms, const PatchData& data, const mesolens::Mapp
   output->GetCellData()->AddArray(change);
 }
 
+/// Output 0 without atoms (OutputAtoms off): a vertex per molecule and tile at the molecule's
+/// centre as the renderer warps it, tile-major, the molecules in the patch's order; point arrays
+/// MoleculeId (made unique over the tiles as the mapped atoms'), TileId and, when the patch has
+/// it, ResidueName (of each molecule's first atom). The arrays are kept, the same objects, while
+/// the patch's ids and names and the tiles stay, so a cutaway of these molecules keeps its work
+/// over the frames.
+struct MoleculeArrays
+{
+  std::vector<vtkMesoStamp> From;
+  std::size_t Tiles = 0;
+  vtkSmartPointer<vtkPointData> Arrays;
+
+  vtkPointData* For(vtkPolyData* atoms, const PatchData& data,
+                    const mesolens::MoleculeGroups& groups, std::size_t tiles)
+  {
+    vtkPointData* in = atoms->GetPointData();
+    vtkAbstractArray* names = in->GetAbstractArray(vtkMesoArrayNames::ResidueName);
+    const std::vector<vtkMesoStamp> from{
+      vtkMesoStamp::Of(in->GetAbstractArray(vtkMesoArrayNames::MoleculeId)), vtkMesoStamp::Of(names)
+    };
+    if (this->Arrays && from == this->From && tiles == this->Tiles)
+    {
+      return this->Arrays;
+    }
+    const std::size_t molecules = groups.count();
+    const auto total = static_cast<vtkIdType>(tiles * molecules);
+    const int stride = *std::max_element(data.molecule_ids.begin(), data.molecule_ids.end()) + 1;
+    vtkNew<vtkIntArray> ids;
+    ids->SetName(vtkMesoArrayNames::MoleculeId);
+    ids->SetNumberOfValues(total);
+    vtkNew<vtkIntArray> tile_ids;
+    tile_ids->SetName(vtkMesoArrayNames::TileId);
+    tile_ids->SetNumberOfValues(total);
+    vtkSmartPointer<vtkAbstractArray> first_names;
+    if (names)
+    {
+      first_names = vtk::TakeSmartPointer(names->NewInstance());
+      first_names->SetName(vtkMesoArrayNames::ResidueName);
+      first_names->SetNumberOfComponents(names->GetNumberOfComponents());
+      first_names->SetNumberOfTuples(total);
+    }
+    for (std::size_t tile = 0; tile < tiles; ++tile)
+    {
+      for (std::size_t m = 0; m < molecules; ++m)
+      {
+        const auto point = static_cast<vtkIdType>(tile * molecules + m);
+        ids->SetValue(point, static_cast<int>(tile) * stride + groups.ids[m]);
+        tile_ids->SetValue(point, static_cast<int>(tile));
+        if (first_names)
+        {
+          first_names->SetTuple(point, groups.atoms[groups.first[m]], names);
+        }
+      }
+    }
+    this->Arrays = vtkSmartPointer<vtkPointData>::New();
+    this->Arrays->AddArray(ids);
+    this->Arrays->AddArray(tile_ids);
+    if (first_names)
+    {
+      this->Arrays->AddArray(first_names);
+    }
+    this->From = from;
+    this->Tiles = tiles;
+    return this->Arrays;
+  }
+};
+
+void build_molecule_centres(vtkPolyData* atoms, const PatchData& data,
+                            const mesolens::MembraneWarp& warp, MoleculeArrays& arrays,
+                            vtkPolyData* output)
+{
+  const mesolens::MoleculeGroups groups =
+    mesolens::group_molecules(data.molecule_ids.data(), data.patch.atom_count());
+  const std::vector<double> centres =
+    mesolens::warped_molecule_centres(warp, data.patch, groups, vtkMesoParallelFor::Get());
+  vtkNew<vtkDoubleArray> coordinates;
+  coordinates->SetNumberOfComponents(3);
+  coordinates->SetNumberOfTuples(static_cast<vtkIdType>(centres.size() / 3));
+  std::copy(centres.begin(), centres.end(), coordinates->GetPointer(0));
+  vtkNew<vtkPoints> points;
+  points->SetData(coordinates);
+  output->SetPoints(points);
+  vtkMesoAtomTableConversion::SetAtomVertices(output);
+  output->GetPointData()->ShallowCopy(arrays.For(atoms, data, groups, warp.tile_count()));
+}
+
+/// Whether a renderer can draw the patch by `warp` (mesolens::check_drawable).
+bool drawable(const mesolens::MembraneWarp& warp)
+{
+  try
+  {
+    mesolens::check_drawable(warp);
+    return true;
+  }
+  catch (const mesolens::Error&)
+  {
+    return false;
+  }
+}
+
 /// Outputs 1 and 2: the parameterized disk and, when lattice_edge > 0, the lattice of that edge
 /// laid on it.
 void build_chart_outputs(const mesolens::MappingChart& chart, double lattice_edge,
@@ -321,6 +423,7 @@ struct vtkMesoMembraneMapping::State
 {
   vtkMesoSurfaceConversion::SurfaceMapper Mapper;
   TileArrays MappedArrays;
+  MoleculeArrays CentreArrays;
 };
 
 vtkMesoMembraneMapping::vtkMesoMembraneMapping()
@@ -430,8 +533,14 @@ int vtkMesoMembraneMapping::RequestData(vtkInformation*, vtkInformationVector** 
         this->Internal->MappedArrays, output);
     }
     const std::shared_ptr<const mesolens::MappingChart> chart = result.chart;
-    vtkMesoMembraneWarp::Write(mesolens::membrane_warp(std::move(result), data.patch, request),
-                               output->GetFieldData());
+    const bool mapped_atoms = !mapped.positions.empty();
+    const mesolens::MembraneWarp warp =
+      mesolens::membrane_warp(std::move(result), data.patch, request);
+    if (!mapped_atoms && !data.molecule_ids.empty() && drawable(warp))
+    {
+      build_molecule_centres(atoms, data, warp, this->Internal->CentreArrays, output);
+    }
+    vtkMesoMembraneWarp::Write(warp, output->GetFieldData());
     if (atoms->GetInformation()->Has(vtkDataObject::DATA_TIME_STEP()))
     {
       output->GetInformation()->Set(vtkDataObject::DATA_TIME_STEP(),

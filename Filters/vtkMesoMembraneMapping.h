@@ -33,7 +33,8 @@
  * leaving it are dropped). A warning, field data `TilesRequested`, `TilesMapped`, `CutToDisk`
  * and the text `MappingNote` say what was mapped.
  *
- * Output 0, the mapped atoms (unless OutputAtoms is off): k^2 copies of the patch (tile t = j k + i
+ * Output 0, the mapped atoms (unless OutputAtoms is off: then the molecules' warped centres,
+ * see SetOutputAtoms): k^2 copies of the patch (tile t = j k + i
  * holds atoms [t n, (t+1) n), less those a cut tile drops), one vertex per atom and the patch's
  * bonds in every tile; the patch's point arrays repeated, plus `TileId`, with `MoleculeId` made
  * unique over the tiles (t (largest id + 1) + id); cell data `BondLengthChange` (mapped length /
@@ -175,10 +176,16 @@ public:
   ///@}
 
   ///@{
-  /// Map every atom into output 0 (on), or (off) leave output 0 without atoms and bonds,
-  /// holding only the field data: for POLYNOMIAL and MOLECULE_INSTANCING, whose coefficients or
-  /// matrices vtkMesoAtomMapper evaluates on the GPU (its warp input). DISPLACEMENT always maps
-  /// the atoms. See mesolens::MappingParams::map_atoms.
+  /// Map every atom into output 0 (on), or (off) leave output 0 without atoms and bonds: for
+  /// POLYNOMIAL and MOLECULE_INSTANCING, whose coefficients or matrices vtkMesoAtomMapper
+  /// evaluates on the GPU (its warp input). Output 0 then holds the field data and one vertex
+  /// per molecule and tile (with a patch MoleculeId), at the molecule's centre as the renderer
+  /// warps it (mesolens::warped_molecule_centres, equal to the centre of its mapped atoms),
+  /// tile-major, the molecules in the patch's order; point arrays MoleculeId (unique over the
+  /// tiles, as the mapped atoms'), TileId and ResidueName (of its first atom): what a
+  /// vtkMesoStructuredCutaway cuts (give it the structure, output 2: one point per molecule is
+  /// too few to make one) for the mapper to hide molecules tile by tile. DISPLACEMENT always
+  /// maps the atoms. See mesolens::MappingParams::map_atoms.
   vtkSetMacro(OutputAtoms, bool);
   vtkGetMacro(OutputAtoms, bool);
   vtkBooleanMacro(OutputAtoms, bool);

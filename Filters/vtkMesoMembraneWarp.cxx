@@ -178,3 +178,39 @@ bool vtkMesoMembraneWarp::Read(vtkFieldData* fields, mesolens::MembraneWarp& war
   warp.instance_tiles = values<int>(fields, names::InstanceTileId);
   return true;
 }
+
+std::vector<vtkAbstractArray*> vtkMesoMembraneWarp::Arrays(vtkFieldData* fields)
+{
+  static const char* const warp_names[] = {
+    names::MappingMethod,
+    names::Tiles,
+    names::TilesRequested,
+    names::TilesMapped,
+    names::CutToDisk,
+    names::MappingNote,
+    names::MembraneToMeshScale,
+    names::PatchOrigin,
+    names::PatchCellA,
+    names::PatchCellB,
+    names::PatchCentreHeight,
+    names::LayerHalfThickness,
+    names::GeodesicRadius,
+    names::SeedUV,
+    names::SeedNormal,
+    names::RefinementLevels,
+    names::PolynomialCoefficients,
+    names::PolynomialSplits,
+    names::PolynomialResidualRMS,
+    names::PolynomialResidualMax,
+    names::PolynomialFallbackTiles,
+    names::InstanceMatrices,
+    names::InstanceMoleculeId,
+    names::InstanceTileId,
+  };
+  std::vector<vtkAbstractArray*> arrays;
+  for (const char* name : warp_names)
+  {
+    arrays.push_back(fields ? fields->GetAbstractArray(name) : nullptr);
+  }
+  return arrays;
+}

@@ -20,6 +20,9 @@
 
 #include "mesolens/mapping/membrane_warp.h"
 
+#include <vector>
+
+class vtkAbstractArray;
 class vtkFieldData;
 
 namespace vtkMesoMembraneWarp {
@@ -30,6 +33,11 @@ MESOLENSFILTERS_EXPORT void Write(const mesolens::MembraneWarp& warp, vtkFieldDa
 /// frame's arrays, the tiles or the method (not the output of a vtkMesoMembraneMapping). Does
 /// not check that the warp can be drawn (mesolens::check_drawable does).
 MESOLENSFILTERS_EXPORT bool Read(vtkFieldData* fields, mesolens::MembraneWarp& warp);
+
+/// The warp's arrays in `fields` (those Write adds, nullptr where absent), in a fixed order:
+/// while they are the same objects, unmodified, Read would read the same warp (a filter that
+/// passes the warp on and adds arrays of its own, as vtkMesoStructuredCutaway, keeps them).
+MESOLENSFILTERS_EXPORT std::vector<vtkAbstractArray*> Arrays(vtkFieldData* fields);
 }
 
 #endif

@@ -207,9 +207,7 @@ void vtkMesoAtomGPUData::Clear()
   this->Types.clear();
   this->MoleculeSlots.clear();
   this->Bonds.clear();
-  this->WarpMethod = NoWarp;
-  this->WarpTexels.clear();
-  this->WarpedAtoms.reset();
+  this->ClearWarp();
   this->TypesKey = {};
   this->BondsKey = {};
   this->MaskKey = {};
@@ -224,11 +222,10 @@ bool vtkMesoAtomGPUData::Update(vtkPolyData* atoms, vtkPolyData* warp, const Sty
 {
   this->Radii = StyleRadii(style);
   this->BondRadius = static_cast<float>(style.BondRadius * style.RadiusScale);
-  this->TileCount = 1;
-  this->MoleculeSlots.clear();
-  this->WarpMethod = NoWarp;
-  this->WarpTexels.clear();
-  this->WarpedAtoms.reset();
+  if (!warp)
+  {
+    this->ClearWarp();
+  }
   if (!atoms || !atoms->GetPoints() || atoms->GetNumberOfPoints() == 0)
   {
     this->Clear();
@@ -256,12 +253,27 @@ bool vtkMesoAtomGPUData::Update(vtkPolyData* atoms, vtkPolyData* warp, const Sty
     this->LargestPresentRadius =
       std::max(this->LargestPresentRadius, this->ElementPresent[z] ? this->Radii[z] : 0.0f);
   }
-  if (warp && !this->ReadWarp(atoms, warp, mapper))
+  if (warp &&
+      (!this->ReadWarp(atoms, warp, mapper) || !this->ReadMoleculeMask(warp, mapper, mask_name)))
   {
     this->Clear();
     return false;
   }
   return true;
+}
+
+void vtkMesoAtomGPUData::ClearWarp()
+{
+  this->TileCount = 1;
+  this->MoleculeSlots.clear();
+  this->WarpMethod = NoWarp;
+  this->WarpTexels.clear();
+  this->WarpedAtoms.reset();
+  this->WarpKey.clear();
+  this->PatchMolecules = 0;
+  this->MoleculeSizes.clear();
+  this->MoleculeMask.clear();
+  this->MoleculeMaskKey = {};
 }
 
 bool vtkMesoAtomGPUData::UpdatePositions(vtkPolyData* atoms, vtkMapper* mapper,
@@ -518,10 +530,8 @@ bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp_data, vt
     return false;
   }
   const auto tiles = static_cast<vtkIdType>(warp.tile_count());
-  // The mapping's own output has TileId; a warp input with atoms has k^2 copies of the patch.
-  if (atoms->GetPointData()->GetArray(vtkMesoArrayNames::TileId) ||
-      (warp_data->GetNumberOfPoints() > 0 &&
-       warp_data->GetNumberOfPoints() != tiles * atoms->GetNumberOfPoints()))
+  // The mapping's own output has TileId.
+  if (atoms->GetPointData()->GetArray(vtkMesoArrayNames::TileId))
   {
     vtkErrorWithObjectMacro(mapper,
                             "Cannot warp the atoms: the mapper's input must be the "
@@ -535,6 +545,27 @@ bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp_data, vt
   catch (const mesolens::Error& e)
   {
     vtkErrorWithObjectMacro(mapper, "Cannot warp the atoms: " << e.what());
+    return false;
+  }
+  // The same warp of the same patch (a new mask of its molecules): nothing to read again.
+  vtkDataArray* ids = atoms->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId);
+  std::vector<std::pair<const void*, vtkMTimeType>> key{
+    { ids, ids ? ids->GetMTime() : 0 },
+    { nullptr, this->PositionsVersion },
+    { nullptr, this->CellsVersion },
+    { nullptr, static_cast<vtkMTimeType>(this->AtomCount) },
+  };
+  for (vtkAbstractArray* array : vtkMesoMembraneWarp::Arrays(warp_data->GetFieldData()))
+  {
+    key.emplace_back(array, array ? array->GetMTime() : 0);
+  }
+  if (key == this->WarpKey && this->WarpMethod != NoWarp)
+  {
+    return true;
+  }
+  this->ClearWarp();
+  if (!this->ReadPatchMolecules(atoms, warp, mapper))
+  {
     return false;
   }
   const double determinant = warp.a[0] * warp.b[1] - warp.a[1] * warp.b[0];
@@ -575,18 +606,6 @@ bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp_data, vt
   }
   else
   {
-    std::string problem;
-    std::vector<unsigned short> slot_of_atom;
-    if (!molecule_slots(atoms, warp, slot_of_atom, this->MoleculesPerTile, problem))
-    {
-      vtkErrorWithObjectMacro(mapper, "Cannot warp the atoms: " << problem);
-      return false;
-    }
-    this->MoleculeSlots.resize(slot_of_atom.size());
-    for (std::size_t atom = 0; atom < slot_of_atom.size(); ++atom)
-    {
-      this->MoleculeSlots[this->SlotOf(vtkIdType(atom))] = slot_of_atom[atom];
-    }
     const vtkIdType motions = tiles * this->MoleculesPerTile;
     this->WarpTexels.resize(static_cast<std::size_t>(12 * motions));
     for (vtkIdType m = 0; m < motions; ++m)
@@ -601,6 +620,7 @@ bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp_data, vt
   this->WarpMethod = static_cast<int>(warp.method);
   ++this->WarpVersion;
   this->Warp = std::move(warp);
+  this->WarpKey = std::move(key);
   if (this->Cells.cell_start.empty())
   {
     return true;
@@ -617,13 +637,104 @@ bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp_data, vt
     this->WarpedAtoms = std::make_unique<mesolens::WarpedCellAtoms>(
       this->Warp, this->Cells, this->CellBoxes,
       mesolens::PointSpan<const float>(this->PositionData, std::size_t(this->AtomCount)),
-      this->MoleculeSlots, this->Types.data(), 2, this->Radii.data(),
-      8 * std::numeric_limits<float>::epsilon(), vtkMesoParallelFor::Get());
+      this->MoleculeSlots, this->Types, 2, this->Radii, 8 * std::numeric_limits<float>::epsilon(),
+      vtkMesoParallelFor::Get());
   }
   catch (const mesolens::Error& e)
   {
     vtkErrorWithObjectMacro(mapper, "Cannot warp the atoms: " << e.what());
     return false;
+  }
+  return true;
+}
+
+bool vtkMesoAtomGPUData::ReadPatchMolecules(vtkPolyData* atoms, const mesolens::MembraneWarp& warp,
+                                            vtkMapper* mapper)
+{
+  std::vector<unsigned short> slot_of_atom;
+  if (warp.method == mesolens::MappingMethod::MoleculeInstancing)
+  {
+    std::string problem;
+    if (!molecule_slots(atoms, warp, slot_of_atom, this->MoleculesPerTile, problem))
+    {
+      vtkErrorWithObjectMacro(mapper, "Cannot warp the atoms: " << problem);
+      return false;
+    }
+  }
+  else if (vtkDataArray* ids = atoms->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId))
+  {
+    // The molecules in order of first appearance, as the mapping numbers its molecule centres.
+    std::vector<int> id_copy;
+    const mesolens::MoleculeGroups groups = mesolens::group_molecules(
+      vtkMesoIntValues(ids, id_copy), static_cast<std::size_t>(this->AtomCount));
+    if (groups.count() > 65536)
+    {
+      return true; // no masks of its molecules: their slots would not fit 16 bits
+    }
+    this->MoleculesPerTile = static_cast<int>(groups.count());
+    slot_of_atom.resize(groups.of_atom.size());
+    for (std::size_t a = 0; a < slot_of_atom.size(); ++a)
+    {
+      slot_of_atom[a] = static_cast<unsigned short>(groups.of_atom[a]);
+    }
+  }
+  else
+  {
+    return true; // no molecules
+  }
+  this->PatchMolecules = static_cast<vtkIdType>(this->MoleculesPerTile);
+  this->MoleculeSizes.assign(std::size_t(this->MoleculesPerTile), 0);
+  this->MoleculeSlots.resize(slot_of_atom.size());
+  for (std::size_t atom = 0; atom < slot_of_atom.size(); ++atom)
+  {
+    this->MoleculeSlots[this->SlotOf(vtkIdType(atom))] = slot_of_atom[atom];
+    ++this->MoleculeSizes[slot_of_atom[atom]];
+  }
+  ++this->MoleculeSlotsVersion;
+  return true;
+}
+
+bool vtkMesoAtomGPUData::ReadMoleculeMask(vtkPolyData* warp_data, vtkMapper* mapper,
+                                          const char* mask_name)
+{
+  const vtkIdType points = warp_data->GetNumberOfPoints();
+  const vtkIdType expected = this->TileCount * this->PatchMolecules;
+  if (points > 0 && points != expected)
+  {
+    vtkErrorWithObjectMacro(
+      mapper,
+      "Cannot warp the atoms: the warp input holds "
+        << points << " points, not one per molecule and tile of the patch (" << expected
+        << "): connect the output 0 of a vtkMesoMembraneMapping that ran with OutputAtoms off "
+           "(or a vtkMesoStructuredCutaway of it), and the patch it mapped to the mapper's input");
+    return false;
+  }
+  vtkDataArray* visible = points > 0 && mask_name && *mask_name
+    ? warp_data->GetPointData()->GetArray(mask_name)
+    : nullptr;
+  const ArrayKey key{ visible, visible ? visible->GetMTime() : 0, nullptr, 0, 0, expected };
+  if (key == this->MoleculeMaskKey)
+  {
+    return true;
+  }
+  this->MoleculeMaskKey = key;
+  ++this->MoleculeMaskVersion;
+  this->MoleculeMask.clear();
+  this->HiddenInTiles = 0;
+  if (!visible)
+  {
+    return true;
+  }
+  // A bit per molecule and tile, set where it is hidden.
+  this->MoleculeMask.assign(static_cast<std::size_t>((expected + 31) / 32), 0u);
+  auto* bytes = vtkUnsignedCharArray::FastDownCast(visible);
+  for (vtkIdType i = 0; i < expected; ++i)
+  {
+    if (bytes ? bytes->GetValue(i) == 0 : visible->GetComponent(i, 0) == 0.0)
+    {
+      this->MoleculeMask[std::size_t(i / 32)] |= 1u << (i % 32);
+      this->HiddenInTiles += this->MoleculeSizes[std::size_t(i % this->PatchMolecules)];
+    }
   }
   return true;
 }

@@ -29,6 +29,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 class vtkDataArray;
@@ -81,10 +82,13 @@ public:
   /// Warp and cells: the cells' atoms in every tile (tile-major) and their boxes, for
   /// culling (valid until the next Update); null when the tiles hold 2^32 atoms or more.
   std::unique_ptr<mesolens::WarpedCellAtoms> WarpedAtoms;
-  unsigned long CellsVersion = 0;            ///< counts groupings (SlotOfAtom changes)
-  float LargestPresentRadius = 0;            ///< of the elements present, scene units
-  std::vector<unsigned char> Types;          ///< 2 per atom
-  std::vector<unsigned short> MoleculeSlots; ///< 1 per atom (slot order; instancing only)
+  unsigned long CellsVersion = 0;   ///< counts groupings (SlotOfAtom changes)
+  float LargestPresentRadius = 0;   ///< of the elements present, scene units
+  std::vector<unsigned char> Types; ///< 2 per atom
+  /// 1 per atom (slot order): its molecule's index among the patch's (first appearance, which is
+  /// also the order of an instancing warp's instances); with a warp whose patch has molecules
+  std::vector<unsigned short> MoleculeSlots;
+  unsigned long MoleculeSlotsVersion = 0; ///< counts recomputations of MoleculeSlots
   std::vector<unsigned int> Bonds;
   unsigned long TypesVersion = 0;     ///< counts recomputations of Types and ColorTable
   unsigned long PositionsVersion = 0; ///< counts changes of the positions (PositionData)
@@ -103,7 +107,21 @@ public:
   float PatchCentreHeight = 0;
   float InverseLayerHalfThickness = 1;
   int TileCountForHeader = 0; ///< polynomial: header texels (one per tile) before the pieces
-  int MoleculesPerTile = 0;
+  int MoleculesPerTile = 0;   ///< the patch's molecules (with MoleculeSlots)
+  /// Warp: a bit per molecule and tile (tile t's molecule m is bit t MoleculesPerTile + m),
+  /// set where the warp input's point array of the mask's name is 0 (vtkMesoStructuredCutaway's
+  /// `Visible` of the mapping's molecule centres); empty: no such mask.
+  std::vector<std::uint32_t> MoleculeMask;
+  unsigned long MoleculeMaskVersion = 0; ///< counts readings of MoleculeMask
+  vtkIdType HiddenInTiles = 0;           ///< atoms of all tiles hidden by MoleculeMask
+
+  /// Whether the GPU needs MoleculeSlots: instancing, or a molecule mask.
+  bool UsesMoleculeSlots() const
+  {
+    return !this->MoleculeSlots.empty() &&
+      (this->WarpMethod == static_cast<int>(mesolens::MappingMethod::MoleculeInstancing) ||
+       !this->MoleculeMask.empty());
+  }
 
 private:
   /// What the types (bonds) were computed from; equal keys mean nothing to recompute.
@@ -136,6 +154,12 @@ private:
   void ComputeTypes(vtkMapper* mapper, vtkDataArray* numbers, vtkDataArray* scalars,
                     vtkScalarsToColors* table);
   bool ReadWarp(vtkPolyData* atoms, vtkPolyData* warp, vtkMapper* mapper);
+  /// MoleculeSlots, MoleculesPerTile and MoleculeSizes from the patch's MoleculeId.
+  bool ReadPatchMolecules(vtkPolyData* atoms, const mesolens::MembraneWarp& warp,
+                          vtkMapper* mapper);
+  /// MoleculeMask from the warp input's points (one per molecule and tile, or none).
+  bool ReadMoleculeMask(vtkPolyData* warp, vtkMapper* mapper, const char* mask_name);
+  void ClearWarp();
   void Clear();
 
   std::vector<float> PositionStorage;
@@ -146,6 +170,11 @@ private:
   double GroupedDiagonal = 0; ///< total_cell_diagonal when the cells were made
   ArrayKey TypesKey;
   ArrayKey BondsKey;
+  /// What the warp was read from: its field arrays, the patch's molecules and cells.
+  std::vector<std::pair<const void*, vtkMTimeType>> WarpKey;
+  vtkIdType PatchMolecules = 0;         ///< molecules per tile, 0: none known
+  std::vector<vtkIdType> MoleculeSizes; ///< atoms per molecule
+  ArrayKey MoleculeMaskKey;
 };
 
 #endif

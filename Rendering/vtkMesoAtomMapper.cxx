@@ -187,6 +187,11 @@ struct vtkMesoAtomMapper::Internals
   vtkTimeStamp BufferTime;    // the buffers behind the vertex attributes changed
   vtkTimeStamp ShaderKeyTime; // the warp method or the grouping into cells changed
   int ShaderWarpMethod = -1;
+  bool ShaderMask = false; // the shaders read a molecule mask
+  // The molecule mask of a warped patch (vtkMesoAtomGPUData::MoleculeMask), R32UI texels.
+  vtkNew<vtkOpenGLBufferObject> MaskBuffer;
+  vtkNew<vtkTextureObject> MaskTexture;
+  unsigned long UploadedMask = 0;
   vtkIdType LastUploadBytes = 0;
   double Bounds[6] = { 0, 0, 0, 0, 0, 0 }; // the last ComputeBounds
   vtkMTimeType BoundsTime = 0;             // of the inputs and settings at this time
@@ -246,14 +251,29 @@ struct vtkMesoAtomMapper::Internals
       const std::uint32_t end = atoms.first_slot(std::size_t(viewed.cell) + 1);
       for (std::uint32_t slot = atoms.first_slot(viewed.cell); slot < end; ++slot)
       {
+        const std::uint32_t atom = slot < n ? slot : slot % n;
         if ((flags[slot] & bit) &&
-            this->Data.Types[2 * (slot < n ? slot : slot % n)] != vtkMesoAtomGPUData::HiddenElement)
+            this->Data.Types[2 * atom] != vtkMesoAtomGPUData::HiddenElement &&
+            !this->MoleculeHidden(slot / n, atom))
         {
           this->DrawList.push_back(slot);
         }
       }
     }
     return this->DrawListed(window, spheres, which);
+  }
+
+  /// Whether the molecule mask hides the atom in buffer slot `atom` in `tile`.
+  bool MoleculeHidden(std::uint32_t tile, std::uint32_t atom) const
+  {
+    const std::vector<std::uint32_t>& mask = this->Data.MoleculeMask;
+    if (mask.empty())
+    {
+      return false;
+    }
+    const std::size_t molecule =
+      std::size_t(tile) * std::size_t(this->Data.MoleculesPerTile) + this->Data.MoleculeSlots[atom];
+    return ((mask[molecule / 32] >> (molecule % 32)) & 1u) != 0;
   }
 
   /// Draws the atoms of DrawList (entries t n + slot: the atom in that slot, in tile t of a
@@ -357,7 +377,8 @@ vtkMesoAtomMapper::~vtkMesoAtomMapper()
 
 vtkIdType vtkMesoAtomMapper::GetHiddenAtomCount() const
 {
-  return this->Internal->Data.HiddenAtoms;
+  const vtkMesoAtomGPUData& data = this->Internal->Data;
+  return data.HiddenAtoms * data.TileCount + data.HiddenInTiles;
 }
 
 int vtkMesoAtomMapper::FillInputPortInformation(int port, vtkInformation* info)
@@ -451,10 +472,10 @@ void vtkMesoAtomMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*)
     in.UploadedTypes = data.TypesVersion;
     in.LastUploadBytes += static_cast<vtkIdType>(data.Types.size());
   }
-  if (!data.MoleculeSlots.empty() && data.WarpVersion != in.UploadedMolecules)
+  if (data.UsesMoleculeSlots() && data.MoleculeSlotsVersion != in.UploadedMolecules)
   {
     in.Molecules->Upload(data.MoleculeSlots, vtkOpenGLBufferObject::ArrayBuffer);
-    in.UploadedMolecules = data.WarpVersion;
+    in.UploadedMolecules = data.MoleculeSlotsVersion;
     in.LastUploadBytes +=
       static_cast<vtkIdType>(sizeof(unsigned short) * data.MoleculeSlots.size());
   }
@@ -463,7 +484,7 @@ void vtkMesoAtomMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*)
   in.PositionTexture->CreateTextureBuffer(atoms, 3, VTK_FLOAT, in.Positions);
   in.TypeTexture->SetContext(window);
   in.TypeTexture->CreateTextureBuffer(atoms, 2, VTK_UNSIGNED_CHAR, in.Types);
-  if (!data.MoleculeSlots.empty())
+  if (data.UsesMoleculeSlots())
   {
     in.MoleculeTexture->SetContext(window);
     in.MoleculeTexture->CreateTextureBuffer(atoms, 1, VTK_UNSIGNED_SHORT, in.Molecules);
@@ -487,9 +508,21 @@ void vtkMesoAtomMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*)
   {
     in.Warp.Upload(window, data.WarpTexels, data.WarpVersion);
   }
-  if (data.WarpMethod != in.ShaderWarpMethod)
+  if (!data.MoleculeMask.empty() && data.MoleculeMaskVersion != in.UploadedMask)
+  {
+    // A cutaway step: a bit per molecule and tile goes up, nothing else.
+    in.MaskBuffer->Upload(data.MoleculeMask, vtkOpenGLBufferObject::TextureBuffer);
+    in.MaskTexture->SetContext(window);
+    in.MaskTexture->SetInternalFormat(GL_R32UI);
+    in.MaskTexture->CreateTextureBuffer(static_cast<unsigned int>(data.MoleculeMask.size()), 1,
+                                        VTK_UNSIGNED_INT, in.MaskBuffer);
+    in.UploadedMask = data.MoleculeMaskVersion;
+    in.LastUploadBytes += static_cast<vtkIdType>(sizeof(std::uint32_t) * data.MoleculeMask.size());
+  }
+  if (data.WarpMethod != in.ShaderWarpMethod || data.MoleculeMask.empty() != !in.ShaderMask)
   {
     in.ShaderWarpMethod = data.WarpMethod;
+    in.ShaderMask = !data.MoleculeMask.empty();
     in.ShaderKeyTime.Modified();
   }
   in.BufferTime.Modified();
@@ -536,6 +569,24 @@ void vtkMesoAtomMapper::ReplaceShaderValues(std::map<vtkShader::Type, vtkShader*
       (atoms ? "tile" : "gl_InstanceID") + "), 1.0);\n  " + position;
   }
   vtkShaderProgram::Substitute(vertex, "//MESO::Warp::Impl", position);
+  // A molecule mask: hidden molecules of a tile get radius 0 (atoms), or hide their bonds.
+  if (warp != vtkMesoAtomGPUData::NoWarp && this->Internal->ShaderMask)
+  {
+    vtkShaderProgram::Substitute(
+      vertex, "//MESO::MoleculeMask::Dec",
+      "uniform usamplerBuffer moleculeMask;\nuniform int maskMoleculesPerTile;\n"
+      "bool moleculeHidden(int tile, float moleculeSlot)\n{\n"
+      "  int molecule = tile * maskMoleculesPerTile + int(moleculeSlot + 0.5);\n"
+      "  return ((texelFetch(moleculeMask, molecule >> 5).r >> uint(molecule & 31)) & 1u) != 0u;\n"
+      "}\n");
+    vtkShaderProgram::Substitute(
+      vertex, "//MESO::MoleculeMask::Impl",
+      atoms
+        ? "if (moleculeHidden(tile, floor(texelFetch(atomMolecules, slot).x * 65535.0 + 0.5)))\n"
+          "  {\n    radius = 0.0;\n  }"
+        : "if (moleculeHidden(gl_InstanceID, atomMolecule))\n  {\n"
+          "    atomHiddenVSOutput = 1.0;\n  }");
+  }
   // Culling draws lists of the atoms' slots.
   if (atoms && !ren->GetSelector() && !this->Internal->Data.Cells.cell_start.empty())
   {
@@ -621,7 +672,7 @@ void vtkMesoAtomMapper::SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRe
     cellBO.VAO->AddAttributeArray(program, in.Positions, "atomPosition", 0, 3 * sizeof(float),
                                   VTK_FLOAT, 3, false);
     cellBO.VAO->AddAttributeArray(program, in.Types, "atomType", 0, 2, VTK_UNSIGNED_CHAR, 2, false);
-    if (data.WarpMethod == static_cast<int>(mesolens::MappingMethod::MoleculeInstancing))
+    if (data.UsesMoleculeSlots())
     {
       cellBO.VAO->AddAttributeArray(program, in.Molecules, "atomMolecule", 0,
                                     sizeof(unsigned short), VTK_UNSIGNED_SHORT, 1, false);
@@ -648,7 +699,7 @@ void vtkMesoAtomMapper::SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRe
       program->SetUniformi("useDrawList", 0);
     }
 
-    if (data.WarpMethod == static_cast<int>(mesolens::MappingMethod::MoleculeInstancing))
+    if (data.UsesMoleculeSlots())
     {
       set_uniform_int(program, "atomMolecules", in.MoleculeTexture->GetTextureUnit());
     }
@@ -670,6 +721,11 @@ void vtkMesoAtomMapper::SetMapperShaderParameters(vtkOpenGLHelper& cellBO, vtkRe
     set_uniform_float(program, "patchCentreHeight", data.PatchCentreHeight);
     set_uniform_float(program, "inverseLayerHalfThickness", data.InverseLayerHalfThickness);
     set_uniform_int(program, "moleculesPerTile", data.MoleculesPerTile);
+    set_uniform_int(program, "maskMoleculesPerTile", data.MoleculesPerTile);
+    if (in.ShaderMask)
+    {
+      set_uniform_int(program, "moleculeMask", in.MaskTexture->GetTextureUnit());
+    }
     set_uniform_int(program, "polynomialTiles", data.TileCountForHeader);
   }
   this->Superclass::SetMapperShaderParameters(cellBO, ren, act);
@@ -698,9 +754,13 @@ void vtkMesoAtomMapper::RenderPieceDraw(vtkRenderer* ren, vtkActor* act)
   {
     in.Warp.Texture->Activate();
   }
-  if (data.WarpMethod == static_cast<int>(mesolens::MappingMethod::MoleculeInstancing))
+  if (data.UsesMoleculeSlots())
   {
     in.MoleculeTexture->Activate();
+  }
+  if (!data.MoleculeMask.empty())
+  {
+    in.MaskTexture->Activate();
   }
   const bool grouped = !data.Cells.cell_start.empty();
   const bool picking = ren->GetSelector() != nullptr;
@@ -850,7 +910,7 @@ void vtkMesoAtomMapper::RenderPieceFinish(vtkRenderer* ren, vtkActor* act)
   }
   for (vtkTextureObject* texture :
        { in.Warp.Texture.Get(), in.PositionTexture.Get(), in.TypeTexture.Get(),
-         in.MoleculeTexture.Get(), in.SlotTexture.Get() })
+         in.MoleculeTexture.Get(), in.SlotTexture.Get(), in.MaskTexture.Get() })
   {
     if (texture->GetHandle() != 0)
     {
@@ -866,6 +926,11 @@ void vtkMesoAtomMapper::ComputeBounds()
   // bounds while the atoms, the warp and the style stay (the renderer asks every frame).
   Internals& in = *this->Internal;
   vtkPolyData* atoms = this->GetInput();
+  // The warp is needed before the first render (a camera reset): brought up to date here too.
+  if (this->GetNumberOfInputConnections(1) > 0 && !this->Static)
+  {
+    this->GetInputAlgorithm(1, 0)->Update(this->GetInputConnection(1, 0)->GetIndex());
+  }
   vtkPolyData* warp = this->WarpInput();
   const vtkMTimeType key =
     std::max({ atoms ? atoms->GetMTime() : 0, this->GetMTime(), warp ? warp->GetMTime() : 0 });
@@ -910,7 +975,7 @@ double vtkMesoAtomMapper::GetBufferBytesPerAtom() const
     return 0;
   }
   const double bytes = 3.0 * sizeof(float) * double(data.AtomCount) + data.Types.size() +
-    sizeof(unsigned short) * data.MoleculeSlots.size();
+    (data.UsesMoleculeSlots() ? sizeof(unsigned short) * data.MoleculeSlots.size() : 0);
   return bytes / static_cast<double>(data.AtomCount);
 }
 
@@ -944,6 +1009,9 @@ void vtkMesoAtomMapper::ReleaseGraphicsResources(vtkWindow* window)
   in.PositionTexture->ReleaseGraphicsResources(window);
   in.TypeTexture->ReleaseGraphicsResources(window);
   in.MoleculeTexture->ReleaseGraphicsResources(window);
+  in.MaskTexture->ReleaseGraphicsResources(window);
+  in.MaskBuffer->ReleaseGraphicsResources();
+  in.UploadedMask = 0;
   in.Warp.Release(window);
   for (int which = 0; which < 2; ++which)
   {

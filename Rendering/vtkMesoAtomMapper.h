@@ -43,11 +43,17 @@
  *   molecule and tile), the molecule known by the patch's `MoleculeId` point array.
  * DISPLACEMENT has no GPU form: map the atoms on the CPU (OutputAtoms on) and draw its output.
  * Radii stay in RadiusScale x Å: set RadiusScale to the mapping's MembraneToMeshScale.
+ * The warp input's points, when it has any, are the mapping's molecule centres (one per molecule
+ * and tile, OutputAtoms off); where their VisibilityArrayName array is 0 (a
+ * vtkMesoStructuredCutaway of them between the mapping and this mapper) that molecule is hidden
+ * in that tile: the GPU holds a bit per molecule and tile, and a new cut uploads those bits only.
  *
  * Occlusion culling (OcclusionCulling, on by default; for inputs of at least 8192 atoms, or any
- * input when AtomsPerCell is set, drawn without a warp), after Grottel et al., EuroVis 2010: the
- * atoms are grouped once into compact spatial cells of about AtomsPerCell atoms (their buffers
- * are kept in cell order). Each frame, per camera:
+ * input when AtomsPerCell is set; for a warped patch of 256 atoms or more), after Grottel et al.,
+ * EuroVis 2010: the atoms are grouped once into compact spatial cells of about AtomsPerCell atoms
+ * (their buffers are kept in cell order; a warped patch's cells hold 64, and are carried into
+ * every tile: their boxes bounded through the warp in each tile's frame, their atoms warped on
+ * the CPU only when tested, mesolens::WarpedCellAtoms). Each frame, per camera:
  * 1. the atoms that were visible in this camera's last frame are drawn (cells out of view are
  *    skipped; a first frame draws the nearest quarter of the cells);
  * 2. the depth buffer is read back and reduced to a pyramid of farthest depths, and every atom
@@ -56,12 +62,13 @@
  *    outline covers;
  * 3. the atoms that may show and were not drawn in 1 are drawn; what showed is remembered.
  * The picture does not change: an atom left out has no pixel in front of what is drawn. Atoms
- * are drawn from lists of their slots (4 bytes per drawn atom, GetLastDrawListBytesPerAtom).
- * Translucent atoms, picking, warped membranes and multisampled framebuffers (whose depth cannot
- * be read back as it is) draw every atom in view. For a new time step the cells stay while the
- * atoms stay near them (they are regrouped when the boxes have grown by half). Picking draws the
- * atoms in input order through a table of their cell-order slots (4 bytes per atom, uploaded for
- * the pick and released at the next plain frame).
+ * are drawn from lists of their slots (4 bytes per drawn atom, GetLastDrawListBytesPerAtom; for
+ * a warp, entries t n + slot for the atom in that slot of tile t, so tiles x atoms must stay
+ * below 2^32, beyond which every atom is drawn). Translucent atoms, picking and multisampled
+ * framebuffers (whose depth cannot be read back as it is) draw every atom in view. For a new time
+ * step the cells stay while the atoms stay near them (they are regrouped when the boxes have grown
+ * by half). Picking draws the atoms in input order through a table of their cell-order slots (4
+ * bytes per atom, uploaded for the pick and released at the next plain frame).
  *
  * VTK 9.1's vtkSSAOPass draws black in a renderer whose viewport does not start at the window's
  * origin (with any mapper, VTK's sphere mapper too): give ambient occlusion to the renderer at
@@ -157,7 +164,8 @@ public:
 
   ///@{
   /// Atoms per culling cell; 0 (default): automatic, n / 1024 clamped to [256, 2048], and only
-  /// for inputs of 8192 atoms or more. Range [0, 1e6].
+  /// for inputs of 8192 atoms or more; a warped patch's cells, 64 atoms, for patches of 256 or
+  /// more. Range [0, 1e6].
   vtkSetClampMacro(AtomsPerCell, int, 0, 1000000);
   vtkGetMacro(AtomsPerCell, int);
   ///@}
@@ -178,18 +186,20 @@ public:
   vtkGetStringMacro(VisibilityArrayName);
   ///@}
 
-  /// Atoms hidden by the visibility mask at the last buffer update.
+  /// Atoms hidden by the visibility masks at the last buffer update (in all tiles of a warp:
+  /// the patch's hidden atoms times the tiles, plus the atoms of the molecules hidden per tile).
   vtkIdType GetHiddenAtomCount() const;
 
   /// Atoms drawn by the last render (times the tiles in warp mode): fewer than the input's when
   /// culling skipped cells.
   vtkIdType GetLastDrawnAtomCount() const;
 
-  /// Bytes per input atom of the draw lists of the last culled render (4 per drawn atom); 0
-  /// without culling.
+  /// Bytes per input atom (of the patch, for a warp) of the draw lists of the last culled
+  /// render (4 per drawn atom); 0 without culling.
   double GetLastDrawListBytesPerAtom() const;
 
-  /// Bytes of GPU buffer per atom of the input (positions and types; after a render), 0 before.
+  /// Bytes of GPU buffer per atom of the input (positions, types and, for instancing or a
+  /// molecule mask, the molecule; after a render), 0 before.
   double GetBufferBytesPerAtom() const;
 
   /// Bytes uploaded by the last buffer update: the positions alone for a new time step of the

@@ -4,6 +4,7 @@
 #include "mesolens/common/errors.h"
 #include "mesolens/mapping/membrane_mapper.h"
 
+#include <array>
 #include <cmath>
 #include <string>
 #include <utility>
@@ -164,6 +165,75 @@ void check_drawable(const MembraneWarp& warp)
   }
   throw InvalidInput("a DISPLACEMENT mapping has no warp of the patch to draw: only POLYNOMIAL "
                      "and MOLECULE_INSTANCING do (draw the DISPLACEMENT output directly)");
+}
+
+std::vector<double> warped_molecule_centres(const MembraneWarp& warp, const MembranePatch& patch,
+                                            const MoleculeGroups& groups,
+                                            const ParallelFor& parallel_for)
+{
+  check_drawable(warp);
+  const std::size_t molecules = groups.count();
+  if (groups.of_atom.size() != patch.atom_count())
+  {
+    throw InvalidInput("warped_molecule_centres: the groups hold " +
+                       std::to_string(groups.of_atom.size()) + " atoms, the patch " +
+                       std::to_string(patch.atom_count()));
+  }
+  const bool polynomial = warp.method == MappingMethod::Polynomial;
+  if (!polynomial && molecules_per_tile(warp) != molecules)
+  {
+    throw InvalidInput("warped_molecule_centres: the warp moves " +
+                       std::to_string(molecules_per_tile(warp)) +
+                       " molecules per tile, the patch has " + std::to_string(molecules));
+  }
+  const std::vector<std::size_t> first =
+    polynomial ? polynomial_first_pieces(warp) : std::vector<std::size_t>{};
+  const std::size_t tiles = warp.tile_count();
+  std::vector<double> centres(3 * tiles * molecules);
+  run_parallel(parallel_for, tiles, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t tile = begin; tile < end; ++tile)
+    {
+      const int splits =
+        polynomial && !warp.polynomial_splits.empty() ? warp.polynomial_splits[tile] : 1;
+      for (std::size_t m = 0; m < molecules; ++m)
+      {
+        // As MoleculeMapper and molecule_centres: each atom warped in double, summed in the
+        // molecule's atom order, divided by the count.
+        const double* matrix =
+          polynomial ? nullptr : warp.instance_matrices.data() + 16 * (tile * molecules + m);
+        double sum[3] = { 0, 0, 0 };
+        double total = 0;
+        for (const std::uint32_t a : groups.atoms_of(m))
+        {
+          const float* p = patch.positions[a];
+          std::array<double, 3> x{};
+          if (polynomial)
+          {
+            x = evaluate_tile_polynomial(patch, warp.layer_half_thickness, splits,
+                                         warp.polynomial_coefficients.data() + 30 * first[tile], p);
+          }
+          else
+          {
+            for (std::size_t r = 0; r < 3; ++r)
+            {
+              x[r] = matrix[4 * r] * p[0] + matrix[4 * r + 1] * p[1] + matrix[4 * r + 2] * p[2] +
+                matrix[4 * r + 3];
+            }
+          }
+          for (std::size_t d = 0; d < 3; ++d)
+          {
+            sum[d] += x[d];
+          }
+          total += 1;
+        }
+        for (std::size_t d = 0; d < 3; ++d)
+        {
+          centres[3 * (tile * molecules + m) + d] = sum[d] / total;
+        }
+      }
+    }
+  });
+  return centres;
 }
 
 } // namespace mesolens

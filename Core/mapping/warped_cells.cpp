@@ -281,9 +281,10 @@ WarpedCellAtoms::WarpedCellAtoms(const MembraneWarp& warp, const AtomCells& cell
                                  const std::vector<float>& cell_boxes,
                                  PointSpan<const float> slot_xyz,
                                  const std::vector<unsigned short>& molecule_of_slot,
-                                 const std::uint8_t* element_of_slot, std::size_t element_stride,
-                                 const float* radius_of_element, double relative_margin,
-                                 const ParallelFor& parallel_for)
+                                 const std::vector<std::uint8_t>& element_of_slot,
+                                 std::size_t element_stride,
+                                 const std::vector<float>& radius_of_element,
+                                 double relative_margin, const ParallelFor& parallel_for)
   : Warp(warp)
   , Cells(cells)
   , SlotXYZ(slot_xyz)

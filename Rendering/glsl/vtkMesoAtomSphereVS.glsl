@@ -28,6 +28,7 @@ flat out vec3 centerVCGSOutput;
 flat out vec4 atomColorGSOutput;
 
 //MESO::Warp::Dec
+//MESO::MoleculeMask::Dec
 
 // clipping plane vars
 //VTK::Clip::Dec
@@ -55,6 +56,7 @@ void main()
   vec4 vertexMC = vec4(atomPosition, 1.0);
 
   //MESO::Warp::Impl
+  //MESO::MoleculeMask::Impl
 
   vec3 centre = gl_Position.xyz;
   vec3 across = vec3(1.0, 0.0, 0.0);

@@ -15,6 +15,7 @@ out vec4 atomColorVSOutput;
 out float atomHiddenVSOutput; // 1: hidden by a visibility mask (element 127)
 
 //MESO::Warp::Dec
+//MESO::MoleculeMask::Dec
 
 // clipping plane vars
 //VTK::Clip::Dec
@@ -29,6 +30,7 @@ void main()
   vec4 vertexMC = vec4(atomPosition, 1.0);
 
   //MESO::Warp::Impl
+  //MESO::MoleculeMask::Impl
 
   //VTK::Clip::Impl
 

@@ -201,9 +201,8 @@ void compare_warp(Stage& stage, int tiles, int frames, int atoms_per_cell)
   vtkNew<vtkCamera> start;
   start->DeepCopy(stage.Renderer->GetActiveCamera());
   auto run = [&](vtkMesoAtomMapper* mapper, bool culling) {
-    stage.Actor->SetMapper(mapper);
     mapper->SetOcclusionCulling(culling);
-    stage.Renderer->GetActiveCamera()->DeepCopy(start);
+    stage.ShowFrom(mapper, false, start);
     return stage.Time(frames);
   };
   const auto drawn = run(cpu, false);

@@ -2,9 +2,10 @@
 // Table 1 of Membrane Mapping (Waltemate, Sommer and Botsch, VCBM 2014) on this machine's
 // OpenGL: a membrane patch mapped in k x k tiles onto a cell-sized sphere and drawn
 // space-filling, in frames per second, three ways: the warp evaluated on the GPU from the patch
-// (vtkMesoAtomMapper with the mapping's warp), the atoms mapped on the CPU and drawn culled
-// (vtkMesoAtomMapper), and VTK's vtkOpenGLSphereMapper on the same CPU-mapped atoms; with and
-// without SSAO; and the GPU buffer memory of each. The first line is the OpenGL renderer.
+// (vtkMesoAtomMapper with the mapping's warp, culled), the atoms mapped on the CPU and drawn
+// culled (vtkMesoAtomMapper), and VTK's vtkOpenGLSphereMapper on the same CPU-mapped atoms; with
+// and without SSAO; and the GPU buffer memory of each (with the culling's draw lists). The
+// first line is the OpenGL renderer.
 //
 //   BenchmarkWarpTable [--size 1920x1080] [--tiles 1,3,5,10,15] [--patches yiip,dppc]
 //                      [--methods polynomial,instancing] [--frames 5]
@@ -20,6 +21,7 @@
 #include "vtkMesoMembraneMapping.h"
 #include "vtkMesoTrajectoryReader.h"
 
+#include <vtkCamera.h>
 #include <vtkExecutive.h>
 #include <vtkFieldData.h>
 #include <vtkSphereSource.h>
@@ -111,22 +113,31 @@ void table_rows(Stage& stage, vtkPolyData* sphere, const Patch& patch, int tiles
     gpu->SetWarpConnection(mapping->GetOutputPort());
     for (const bool ssao : { false, true })
     {
-      stage.Show(gpu, ssao);
-      const double warped = stage.Time(frames).second;
+      // Every mapper turns from the CPU-mapped atoms' view: the same pictures.
       stage.Show(cpu, ssao);
+      vtkNew<vtkCamera> start;
+      start->DeepCopy(stage.Renderer->GetActiveCamera());
+      stage.ShowFrom(gpu, ssao, start);
+      const double warped = stage.Time(frames).second;
+      const double warp_share = double(gpu->GetLastDrawnAtomCount()) / double(atoms);
+      stage.ShowFrom(cpu, ssao, start);
       const double culled = stage.Time(frames).second;
       const double drawn_share = double(cpu->GetLastDrawnAtomCount()) / double(atoms);
-      stage.Show(spheres.Mapper, ssao);
+      stage.ShowFrom(spheres.Mapper, ssao, start);
       const double vtk = stage.Time(frames).second;
       const double patch_atoms = double(membrane->GetOutput()->GetNumberOfPoints());
       std::printf(
         "TABLE1 %s (%lld atoms) %dx%d tiles (%dx%d mapped, %lld atoms) %s%s: GPU warp %.1f fps "
-        "| CPU-mapped culled %.1f fps (%.0f %% drawn) | vtkOpenGLSphereMapper %.1f fps | ratio "
-        "warp/culled frame time %.2f | GPU MB: warp %.1f, CPU-mapped %.1f, VTK %.1f\n",
+        "(%.0f %% drawn) | CPU-mapped culled %.1f fps (%.0f %% drawn) | vtkOpenGLSphereMapper "
+        "%.1f fps | ratio warp/culled frame time %.2f | GPU MB: warp %.1f, CPU-mapped %.1f, VTK "
+        "%.1f\n",
         patch.Name.c_str(), static_cast<long long>(patch_atoms), tiles, tiles, mapped_tiles,
         mapped_tiles, static_cast<long long>(atoms), method.c_str(), ssao ? ", SSAO" : "",
-        1.0 / warped, 1.0 / culled, 100.0 * drawn_share, 1.0 / vtk, warped / culled,
-        gpu->GetBufferBytesPerAtom() * patch_atoms / 1e6,
+        1.0 / warped, 100.0 * warp_share, 1.0 / culled, 100.0 * drawn_share, 1.0 / vtk,
+        warped / culled,
+        (gpu->GetBufferBytesPerAtom() * patch_atoms +
+         gpu->GetLastDrawListBytesPerAtom() * double(gpu->GetInput()->GetNumberOfPoints())) /
+          1e6,
         (cpu->GetBufferBytesPerAtom() + cpu->GetLastDrawListBytesPerAtom()) * double(atoms) / 1e6,
         spheres.BytesPerAtom(atoms) * double(atoms) / 1e6);
       std::fflush(stdout);

@@ -110,6 +110,16 @@ struct Stage
     this->Renderer->ResetCameraClippingRange();
   }
 
+  /// The same as Show, but from the camera `start` (the view another mapper was shown with):
+  /// the same pictures for the same atoms, whatever each mapper's bounds.
+  void ShowFrom(vtkMapper* mapper, bool ssao, vtkCamera* start)
+  {
+    this->Actor->SetMapper(mapper);
+    this->Effects->SetSSAO(ssao);
+    this->Effects->Apply(this->Renderer);
+    this->Renderer->GetActiveCamera()->DeepCopy(start);
+  }
+
   double Frame()
   {
     const auto start = std::chrono::steady_clock::now();

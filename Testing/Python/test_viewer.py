@@ -151,17 +151,29 @@ class Viewer(unittest.TestCase):
 
 
 def drawn_atoms(lens):
-    """Atoms the atom mapper draws: its input's less those its visibility mask hides, times the
-    tiles when it warps on the GPU."""
+    """Atoms the atom mapper draws: its input's (times the tiles when it warps on the GPU) less
+    those its visibility masks hide."""
     lens.renderer.GetRenderWindow().Render()
-    count = lens.atoms.GetInput().GetNumberOfPoints() - lens.atoms.GetHiddenAtomCount()
+    count = lens.atoms.GetInput().GetNumberOfPoints()
     warped = lens.atoms.GetNumberOfInputConnections(1) > 0 and lens.atoms.GetInputConnection(1, 0)
-    return count * lens.tiles * lens.tiles if warped else count
+    if warped:
+        count *= lens.tiles * lens.tiles
+    return count - lens.atoms.GetHiddenAtomCount()
+
+
+def patch_molecule_sizes(lens):
+    """Atoms per molecule of the patch, in order of first appearance."""
+    ids = vtk_to_numpy(lens._patch_source().GetOutput().GetPointData()
+                       .GetArray(array_names.MoleculeId))
+    _, first, sizes = np.unique(ids, return_index=True, return_counts=True)
+    return sizes[np.argsort(first)]
 
 
 def cut_atoms(lens):
-    """Per atom of the cutaway's input, whether its molecule's centre is on the cut side of the
-    lens' cut plane (counted here, not by the filter); and the largest molecule's atoms."""
+    """Per point of the cutaway's input (an atom, or on the GPU a molecule's centre in a tile),
+    whether its molecule's centre is on the cut side of the lens' cut plane (counted here, not
+    by the filter); the molecules in the cut; the largest molecule's atoms; and the atoms each
+    point stands for."""
     atoms = lens.cutaway.GetInput()
     points = vtk_to_numpy(atoms.GetPoints().GetData()).astype(np.float64)
     molecule = np.unique(vtk_to_numpy(atoms.GetPointData().GetArray(array_names.MoleculeId)),
@@ -170,7 +182,11 @@ def cut_atoms(lens):
     centres = np.column_stack([np.bincount(molecule, points[:, d]) for d in range(3)])
     centres /= sizes[:, None]
     in_cut = (centres - lens.cut_origin) @ np.asarray(lens.cut_normal) >= 0
-    return in_cut[molecule], int(in_cut.sum()), int(sizes.max())
+    if lens.on_gpu:
+        patch_sizes = patch_molecule_sizes(lens)
+        weights = np.tile(patch_sizes, len(points) // len(patch_sizes))
+        return in_cut[molecule], int(in_cut.sum()), int(patch_sizes.max()), weights
+    return in_cut[molecule], int(in_cut.sum()), int(sizes.max()), np.ones(len(points))
 
 
 def visible_mask(lens):
@@ -203,13 +219,15 @@ class Cutaway(unittest.TestCase):
             self.assertAlmostEqual(got, want, places=9)
 
         self.viewer.set_cut_fraction(0.5)
-        atom_in_cut, molecules, largest = cut_atoms(self.lens)
+        self.assertTrue(self.lens.on_gpu)  # the polynomial warp stays on the GPU
+        atom_in_cut, molecules, largest, weights = cut_atoms(self.lens)
         self.assertGreater(molecules, 50)
         hidden, in_cut = self.lens.cut_counts()
         self.assertEqual(in_cut, molecules)
         self.assertEqual(hidden, math.floor(0.5 * molecules + 0.5))
         hidden_atoms = self.all_atoms - drawn_atoms(self.lens)
-        self.assertLessEqual(abs(hidden_atoms - 0.5 * atom_in_cut.sum()), largest)
+        self.assertLessEqual(abs(hidden_atoms - 0.5 * weights[atom_in_cut].sum()), largest)
+        self.assertEqual(drawn_atoms(self.lens), self.lens.atom_count())
         status = self.viewer.status.GetInput()
         self.assertIn(f"hidden {hidden:,} of {in_cut:,} in cut", status)
         self.assertIn("structured (n), wireframe (i)", status)
@@ -220,9 +238,11 @@ class Cutaway(unittest.TestCase):
             self.viewer.set_cut_fraction(fraction)
             # Half-way counts round up (Python's round() would go to the even one).
             self.assertEqual(self.lens.cut_counts()[0], math.floor(fraction * in_cut + 0.5))
-            # The mapper gets a new mask only: 2 type bytes per atom, no positions.
+            # The mapper gets a new mask only, a bit per molecule and tile (in 32-bit words):
+            # no positions, no warp.
             drawn_atoms(self.lens)
-            self.assertEqual(self.lens.atoms.GetLastUploadBytes(), 2 * self.all_atoms)
+            bits = 4 * len(patch_molecule_sizes(self.lens))
+            self.assertEqual(self.lens.atoms.GetLastUploadBytes(), 4 * ((bits + 31) // 32))
         self.viewer.set_cut_plane(self.lens.centre, [-v for v in self.lens.cut_normal])
         self.viewer.set_cut_plane(self.lens.centre, self.lens.seed_normal())
         self.assertEqual(self.lens.cutaway.GetNumberOfAssignments(), 1)

@@ -25,7 +25,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <vector>
 
 using mesolens_test::data_file;
@@ -160,32 +162,93 @@ TEST(vtkMesoMembraneMapping, ThreeMethodsOnTheMitochondrion)
   ASSERT_NE(matrices, nullptr);
   EXPECT_EQ(matrices->GetNumberOfTuples(), 4 * 128);
 
-  // Without atoms: the same warp, nothing else (for the GPU); displacement still maps.
-  std::vector<double> with_atoms(30);
-  mapping->SetMappingMethodToPolynomial();
-  mapping->Update();
-  coefficients =
-    mapping->GetOutput()->GetFieldData()->GetArray(vtkMesoArrayNames::PolynomialCoefficients);
-  coefficients->GetTuple(3, with_atoms.data());
-  mapping->OutputAtomsOff();
-  mapping->Update();
-  EXPECT_EQ(mapping->GetOutput()->GetNumberOfPoints(), 0);
-  EXPECT_EQ(mapping->GetOutput()->GetNumberOfLines(), 0);
-  coefficients =
-    mapping->GetOutput()->GetFieldData()->GetArray(vtkMesoArrayNames::PolynomialCoefficients);
-  ASSERT_NE(coefficients, nullptr);
-  for (int c = 0; c < 30; ++c)
+  // Without atoms: the same warp (for the GPU) and a vertex per molecule and tile at the centre
+  // the mapped atoms have, to the bit (a cutaway of either decides the same); displacement
+  // still maps.
+  for (const bool polynomial : { true, false })
   {
-    EXPECT_EQ(coefficients->GetComponent(3, c), with_atoms[std::size_t(c)]);
+    if (polynomial)
+    {
+      mapping->SetMappingMethodToPolynomial();
+    }
+    else
+    {
+      mapping->SetMappingMethodToMoleculeInstancing();
+    }
+    mapping->OutputAtomsOn();
+    mapping->Update();
+    vtkNew<vtkPolyData> atoms;
+    atoms->ShallowCopy(mapping->GetOutput());
+    std::vector<double> with_atoms(30);
+    if (polynomial)
+    {
+      atoms->GetFieldData()
+        ->GetArray(vtkMesoArrayNames::PolynomialCoefficients)
+        ->GetTuple(3, with_atoms.data());
+    }
+    // The mapped atoms' molecule centres, in order of first appearance.
+    vtkDataArray* atom_ids = atoms->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId);
+    std::vector<int> order;
+    std::map<int, std::array<double, 4>> sums;
+    for (vtkIdType a = 0; a < atoms->GetNumberOfPoints(); ++a)
+    {
+      const int id = static_cast<int>(atom_ids->GetComponent(a, 0));
+      if (!sums.count(id))
+      {
+        order.push_back(id);
+        sums[id] = { 0, 0, 0, 0 };
+      }
+      double p[3];
+      atoms->GetPoint(a, p);
+      for (int d = 0; d < 3; ++d)
+      {
+        sums[id][std::size_t(d)] += p[d];
+      }
+      sums[id][3] += 1;
+    }
+    mapping->OutputAtomsOff();
+    mapping->Update();
+    vtkPolyData* centres = mapping->GetOutput();
+    EXPECT_EQ(centres->GetNumberOfLines(), 0);
+    ASSERT_EQ(centres->GetNumberOfPoints(), 4 * 128);
+    EXPECT_EQ(centres->GetNumberOfVerts(), 4 * 128);
+    vtkDataArray* ids = centres->GetPointData()->GetArray(vtkMesoArrayNames::MoleculeId);
+    vtkDataArray* tiles = centres->GetPointData()->GetArray(vtkMesoArrayNames::TileId);
+    vtkAbstractArray* names =
+      centres->GetPointData()->GetAbstractArray(vtkMesoArrayNames::ResidueName);
+    ASSERT_NE(ids, nullptr);
+    ASSERT_NE(tiles, nullptr);
+    ASSERT_NE(names, nullptr);
+    for (vtkIdType m = 0; m < centres->GetNumberOfPoints(); ++m)
+    {
+      const int id = order[std::size_t(m)];
+      EXPECT_EQ(ids->GetComponent(m, 0), id);
+      EXPECT_EQ(tiles->GetComponent(m, 0), double(m / 128));
+      double p[3];
+      centres->GetPoint(m, p);
+      for (int d = 0; d < 3; ++d)
+      {
+        EXPECT_EQ(p[d], sums[id][std::size_t(d)] / sums[id][3]) << "molecule " << m;
+      }
+    }
+    EXPECT_EQ(names->GetVariantValue(0).ToString(), "DPPC");
+    if (polynomial)
+    {
+      vtkDataArray* coefficients =
+        centres->GetFieldData()->GetArray(vtkMesoArrayNames::PolynomialCoefficients);
+      ASSERT_NE(coefficients, nullptr);
+      for (int c = 0; c < 30; ++c)
+      {
+        EXPECT_EQ(coefficients->GetComponent(3, c), with_atoms[std::size_t(c)]);
+      }
+    }
+    else
+    {
+      EXPECT_EQ(
+        centres->GetFieldData()->GetArray(vtkMesoArrayNames::InstanceMatrices)->GetNumberOfTuples(),
+        4 * 128);
+    }
   }
-  mapping->SetMappingMethodToMoleculeInstancing();
-  mapping->Update();
-  EXPECT_EQ(mapping->GetOutput()->GetNumberOfPoints(), 0);
-  EXPECT_EQ(mapping->GetOutput()
-              ->GetFieldData()
-              ->GetArray(vtkMesoArrayNames::InstanceMatrices)
-              ->GetNumberOfTuples(),
-            4 * 128);
   mapping->SetMappingMethodToDisplacement();
   mapping->Update();
   EXPECT_EQ(mapping->GetOutput()->GetNumberOfPoints(), 4 * 16640);

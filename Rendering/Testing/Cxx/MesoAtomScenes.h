@@ -6,11 +6,15 @@
 #include "vtkMesoMembraneMapping.h"
 #include "vtkMesoMeshReader.h"
 #include "vtkMesoStructureReader.h"
+#include "vtkMesoStructuredCutaway.h"
 #include "vtkMesoTrajectoryReader.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
+#include <vtkDataArray.h>
+#include <vtkFieldData.h>
 #include <vtkNew.h>
+#include <vtkPlane.h>
 #include <vtkPolyData.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
@@ -77,5 +81,46 @@ inline vtkSmartPointer<vtkMesoMembraneMapping> mapped_membrane(int method, bool 
   mapping->Update();
   return mapping;
 }
+
+/// The mapped membrane (2 x 2 tiles) cut open by the structured cutaway along the mapping's
+/// lattice (edges of 40 Å), the half-space beyond the surface at the seed: on the CPU path the
+/// cutaway cuts the mapped atoms and the mapper draws them; on the GPU path (gpu) it cuts the
+/// molecules' centres of the mapping without atoms, and the mapper warps the patch and hides
+/// the molecules of each tile that the cutaway hides.
+struct CutMembrane
+{
+  vtkSmartPointer<vtkMesoMembraneMapping> Mapping;
+  vtkNew<vtkMesoStructuredCutaway> Cutaway;
+  vtkNew<vtkPlane> Cut;
+  vtkNew<vtkMesoAtomMapper> Mapper;
+
+  CutMembrane(int method, bool gpu, double fraction = 0.6)
+    : Mapping(mapped_membrane(method, !gpu))
+  {
+    this->Mapping->SetLatticeEdge(40e-4);
+    this->Mapping->Update();
+    const double* seed = this->Mapping->GetSeedPoint();
+    double normal[3];
+    this->Mapping->GetOutput()->GetFieldData()->GetArray("SeedNormal")->GetTuple(0, normal);
+    // The filter cuts where the plane's function is <= 0: behind its normal.
+    this->Cut->SetOrigin(seed[0], seed[1], seed[2]);
+    this->Cut->SetNormal(-normal[0], -normal[1], -normal[2]);
+    this->Cutaway->SetInputConnection(this->Mapping->GetOutputPort(0));
+    this->Cutaway->SetStructureConnection(this->Mapping->GetOutputPort(2));
+    this->Cutaway->MakeAssemblyWholeOff();
+    this->Cutaway->SetCutFunction(this->Cut);
+    this->Cutaway->SetFractionHidden(fraction);
+    if (gpu)
+    {
+      this->Mapper->SetInputConnection(this->Mapping->GetInputConnection(1, 0));
+      this->Mapper->SetWarpConnection(this->Cutaway->GetOutputPort());
+    }
+    else
+    {
+      this->Mapper->SetInputConnection(this->Cutaway->GetOutputPort());
+    }
+    this->Mapper->SetRadiusScale(1e-4);
+  }
+};
 
 } // namespace mesolens_test

@@ -785,7 +785,7 @@ void expect_bounds_cover(vtkMesoAtomMapper* mapper, vtkPolyData* mapped_atoms)
 TEST(MesoAtomMapper, InstancingWarpTakesSixteenBytesPerAtom)
 {
   auto mapping = mesolens_test::mapped_membrane(vtkMesoMembraneMapping::MOLECULE_INSTANCING, false);
-  EXPECT_EQ(mapping->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_EQ(mapping->GetOutput()->GetNumberOfPoints(), 4 * 128); // the molecules' centres
   Scene scene = make_scene(mapping, vtkMesoAtomMapper::SPACE_FILLING, 64);
   scene.Mapper->SetInputConnection(mapping->GetInputConnection(1, 0));
   scene.Mapper->SetWarpConnection(mapping->GetOutputPort());
@@ -861,5 +861,51 @@ TEST(MesoAtomMapper, CullingAWarpedPatchKeepsThePicture)
     pair.Whole.Actor->GetProperty()->SetOpacity(0.5);
     pair.Render();
     EXPECT_EQ(pair.Culled.Mapper->GetLastDrawnAtomCount(), all);
+  }
+}
+
+TEST(MesoAtomMapper, CutawayOnTheGPUPathHidesWhatItHidesOnTheCPU)
+{
+  for (const int method :
+       { vtkMesoMembraneMapping::POLYNOMIAL, vtkMesoMembraneMapping::MOLECULE_INSTANCING })
+  {
+    mesolens_test::CutMembrane cpu(method, false);
+    mesolens_test::CutMembrane gpu(method, true);
+    cpu.Cutaway->Update();
+    gpu.Cutaway->Update();
+    // The same decisions: per molecule and tile on the GPU path, per atom on the CPU path.
+    vtkPolyData* atoms = cpu.Cutaway->GetOutput();
+    vtkPolyData* molecules = gpu.Cutaway->GetOutput();
+    ASSERT_EQ(molecules->GetNumberOfPoints(), 4 * 128);
+    vtkDataArray* atom_visible = atoms->GetPointData()->GetArray(vtkMesoArrayNames::Visible);
+    vtkDataArray* molecule_visible =
+      molecules->GetPointData()->GetArray(vtkMesoArrayNames::Visible);
+    ASSERT_NE(atom_visible, nullptr);
+    ASSERT_NE(molecule_visible, nullptr);
+    const vtkIdType per_tile = atoms->GetNumberOfPoints() / 4;
+    const vtkIdType atoms_per_molecule = per_tile / 128; // DPPC: 130 atoms each
+    vtkIdType hidden = 0;
+    for (vtkIdType a = 0; a < atoms->GetNumberOfPoints(); ++a)
+    {
+      const vtkIdType molecule = a / per_tile * 128 + (a % per_tile) / atoms_per_molecule;
+      ASSERT_EQ(atom_visible->GetComponent(a, 0), molecule_visible->GetComponent(molecule, 0))
+        << "atom " << a;
+      hidden += atom_visible->GetComponent(a, 0) == 0 ? 1 : 0;
+    }
+    EXPECT_GT(hidden, atoms->GetNumberOfPoints() / 10);
+
+    // Drawn: the GPU path hides as many atoms, and a slider step uploads the mask alone.
+    Scene scene = empty_scene(vtkMesoAtomMapper::SPACE_FILLING, 120);
+    scene.Actor->SetMapper(gpu.Mapper);
+    mesolens_test::EventRecorder events(gpu.Mapper);
+    scene.Renderer->ResetCamera();
+    scene.Window->Render();
+    EXPECT_TRUE(events.Errors.empty()) << events.AllErrors();
+    EXPECT_TRUE(drew_something(scene.Window));
+    EXPECT_EQ(gpu.Mapper->GetHiddenAtomCount(), hidden);
+    gpu.Cutaway->SetFractionHidden(0.3);
+    scene.Window->Render();
+    EXPECT_EQ(gpu.Mapper->GetLastUploadBytes(), 4 * ((4 * 128 + 31) / 32));
+    EXPECT_LT(gpu.Mapper->GetHiddenAtomCount(), hidden);
   }
 }

@@ -9,7 +9,9 @@
 // the same atoms), ssao, shadows, translucent, parallel_viewports, scalar_colors,
 // warp_polynomial_cpu, warp_polynomial_gpu, warp_instancing_cpu, warp_instancing_gpu,
 // warp_polynomial_spheres_cpu, warp_polynomial_spheres_gpu, warp_instancing_spheres_gpu
-// (space-filling).
+// (space-filling), cutaway_polynomial_cpu, cutaway_polynomial_gpu, cutaway_instancing_cpu,
+// cutaway_instancing_gpu (the structured cutaway on the atoms mapped on the CPU, or as a mask of
+// the molecules of each tile on the GPU path).
 // --radius-factor scales every radius (a test breaks the picture on purpose with 1.1); --cells
 // sets the atom mappers' AtomsPerCell (and renders twice), --no-culling turns their culling
 // off, --cell-padding sets their CellPaddingFactor (0 breaks culling on purpose).
@@ -37,6 +39,7 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <memory>
 
 namespace {
 using mesolens_test::crambin;
@@ -208,13 +211,21 @@ vtkSmartPointer<vtkRenderWindow> scalar_colors()
 /// The mapped membrane, balls and sticks, seen from outside the organelle: the atoms mapped on
 /// the CPU (gpu false) or the patch warped by the mapper (gpu true).
 vtkSmartPointer<vtkRenderWindow> warped(int method, bool gpu, double max_residual = 1.0,
-                                        int style = vtkMesoAtomMapper::BALL_AND_STICK)
+                                        int style = vtkMesoAtomMapper::BALL_AND_STICK,
+                                        bool cut = false)
 {
   auto cpu_mapping = mesolens_test::mapped_membrane(method, true, max_residual);
   vtkPolyData* cpu_atoms = cpu_mapping->GetOutput();
-  auto mapper = vtkSmartPointer<vtkMesoAtomMapper>::New();
+  vtkSmartPointer<vtkMesoAtomMapper> mapper = vtkSmartPointer<vtkMesoAtomMapper>::New();
   vtkSmartPointer<vtkMesoMembraneMapping> gpu_mapping;
-  if (gpu)
+  // The cutaway and the mapping stay alive as the mapper's upstream pipeline.
+  std::unique_ptr<mesolens_test::CutMembrane> cut_membrane;
+  if (cut)
+  {
+    cut_membrane = std::make_unique<mesolens_test::CutMembrane>(method, gpu);
+    mapper = cut_membrane->Mapper.Get();
+  }
+  else if (gpu)
   {
     gpu_mapping = mesolens_test::mapped_membrane(method, false, max_residual);
     mapper->SetInputConnection(gpu_mapping->GetInputConnection(1, 0));
@@ -322,6 +333,27 @@ int main(int argc, char* argv[])
       [] {
         return warped(vtkMesoMembraneMapping::POLYNOMIAL, true, 1.0,
                       vtkMesoAtomMapper::SPACE_FILLING);
+      } },
+    // The structured cutaway: on the mapped atoms, and on the GPU path (molecule masks).
+    { "cutaway_polynomial_cpu",
+      [] {
+        return warped(vtkMesoMembraneMapping::POLYNOMIAL, false, 1.0,
+                      vtkMesoAtomMapper::SPACE_FILLING, true);
+      } },
+    { "cutaway_polynomial_gpu",
+      [] {
+        return warped(vtkMesoMembraneMapping::POLYNOMIAL, true, 1.0,
+                      vtkMesoAtomMapper::SPACE_FILLING, true);
+      } },
+    { "cutaway_instancing_cpu",
+      [] {
+        return warped(vtkMesoMembraneMapping::MOLECULE_INSTANCING, false, 1.0,
+                      vtkMesoAtomMapper::BALL_AND_STICK, true);
+      } },
+    { "cutaway_instancing_gpu",
+      [] {
+        return warped(vtkMesoMembraneMapping::MOLECULE_INSTANCING, true, 1.0,
+                      vtkMesoAtomMapper::BALL_AND_STICK, true);
       } },
     { "warp_instancing_spheres_gpu",
       [] {

@@ -178,8 +178,7 @@ TEST(WarpedCells, AtomsAreLoadedWarpedTileByTile)
     std::vector<float> radii(128, 0.0f);
     radii[6] = 1.7f;
     const mesolens::WarpedCellAtoms atoms(patch.warp, patch.cells, patch.cell_boxes, patch.slots(),
-                                          patch.molecule_of_slot, elements.data(), 2, radii.data(),
-                                          1e-6);
+                                          patch.molecule_of_slot, elements, 2, radii, 1e-6);
     const std::size_t cells = patch.cells.cell_count();
     const std::size_t n = patch.cells.atom_of_slot.size();
     ASSERT_EQ(atoms.cell_count(), 9 * cells);
@@ -215,7 +214,7 @@ TEST(WarpedCells, BadInputIsRefused)
   const std::vector<float> radii(128, 1.0f);
   auto make = [&](const WarpedPatch& p) {
     return mesolens::WarpedCellAtoms(p.warp, p.cells, p.cell_boxes, p.slots(), p.molecule_of_slot,
-                                     elements.data(), 2, radii.data(), 0.0);
+                                     elements, 2, radii, 0.0);
   };
   EXPECT_NO_THROW(make(patch));
   // Boxes of another number of cells.

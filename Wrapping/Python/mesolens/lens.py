@@ -223,6 +223,7 @@ class MembraneLens:
         self.cutaway.SetCutFunction(self._cut_side)
         self._cutaway_errors = _ErrorCatcher(self.cutaway)
         self.cutaway_on = False
+        self.on_gpu = False  # the atoms warped by the mapper (place() decides)
         self.cut_origin = None
         self.cut_normal = None
         self.method = "polynomial"
@@ -265,7 +266,11 @@ class MembraneLens:
     def set_time(self, time):
         """Shows the membrane at `time` (ps)."""
         # Asked of what the atom mapper draws, the time reaches every filter up to the reader
-        # (the mapping, the cutaway), and each of them runs for the new frame.
+        # (the mapping, the cutaway), and each of them runs for the new frame. Warped on the
+        # GPU, the mapper draws the patch and its warp (the mapping, or the cutaway of its
+        # molecules): both are asked, so that the reader serves them the same frame.
+        if self.centre is not None and self.atoms.GetNumberOfInputConnections(1) > 0:
+            self.atoms.GetInputAlgorithm(1, 0).UpdateTimeStep(time)
         drawn = self.atoms.GetInputAlgorithm() if self.centre is not None else None
         (drawn or self._patch_source()).UpdateTimeStep(time)
 
@@ -306,8 +311,9 @@ class MembraneLens:
         the new disk; if the cutaway fails, it is turned off and LensError says why."""
         self.mapping.SetSeedPoint(*centre)
         self.mapping.SetMappingMethod(METHODS[self.method])
-        # The cutaway needs the mapped atoms on the CPU, whatever the method.
-        on_gpu = self.method != "displacement" and not self.cutaway_on
+        # Warped on the GPU, the mapping gives the molecules' centres instead of the atoms: the
+        # cutaway cuts those, and the mapper hides the molecules it hides, tile by tile.
+        on_gpu = self.method != "displacement"
         self.mapping.SetOutputAtoms(not on_gpu)
         self._progress(f"mapping {self.tiles} x {self.tiles} tiles by {self.method} around "
                        f"({centre[0]:.4g}, {centre[1]:.4g}, {centre[2]:.4g})")
@@ -327,6 +333,7 @@ class MembraneLens:
             on_gpu = False
             self.mapping.SetOutputAtoms(True)
             self.mapping.Update()
+        self.on_gpu = on_gpu
         if self.cutaway_on:
             if moved or self.cut_normal is None:
                 self.set_cut_plane(self.centre, self.seed_normal())
@@ -349,16 +356,22 @@ class MembraneLens:
             self.atoms.SetWarpConnection(None)
 
     def _draw_cutaway(self):
-        """Runs the cutaway on the mapped atoms and gives them to the mapper, which hides the
-        atoms whose `Visible` is 0 (a new fraction uploads that mask, not the positions). Raises
-        LensError with the cutaway's reason when it fails."""
+        """Runs the cutaway on the mapped atoms, or on the molecules' centres for a warp on the
+        GPU, and gives it to the mapper, which hides the atoms (molecules of a tile) whose
+        `Visible` is 0: a new fraction uploads that mask, not the positions. Raises LensError
+        with the cutaway's reason when it fails."""
         port = self.cutaway.GetOutputPort()
         self.cutaway.Update()
         message = self._cutaway_errors.take()
         if message or self.cutaway.GetOutput().GetNumberOfPoints() == 0:
             raise LensError(f"the membrane cannot be cut open there: {message or 'no atoms'}")
-        self.atoms.SetInputConnection(port)
-        self.atoms.SetWarpConnection(None)
+        if self.on_gpu:
+            # The cut molecules' centres carry the warp and the mask; the mapper warps the patch.
+            self.atoms.SetInputConnection(self._patch_port())
+            self.atoms.SetWarpConnection(port)
+        else:
+            self.atoms.SetInputConnection(port)
+            self.atoms.SetWarpConnection(None)
 
     def seed_normal(self):
         """The surface's unit normal at the mapped patch's centre, where the patch's +z goes (the
@@ -375,8 +388,9 @@ class MembraneLens:
         of set_cut_plane, at first the plane through the lens' centre facing along the surface's
         normal there (seed_normal: the side of the patch's upper leaflet); of the molecules there, set_cut_fraction's share is hidden (default
         0.5), in structured order (a wireframe of triangles of CUT_STRUCTURE_EDGE Å; patches with
-        set_cut_inverted) or random order (set_cut_random). While on, all methods map the atoms
-        on the CPU. Raises LensError before place() or when the cutaway fails (it is then off)."""
+        set_cut_inverted) or random order (set_cut_random). The polynomial and instancing methods
+        stay on the GPU: the molecules' centres are cut, and the mapper hides the molecules of
+        each tile that the cutaway hides. Raises LensError before place() or when the cutaway fails (it is then off)."""
         on = bool(on)
         if on and self.centre is None:
             raise LensError("place the membrane first: the cutaway cuts the mapped membrane open")
@@ -515,10 +529,18 @@ class MembraneLens:
             visible = self.cutaway.GetOutput().GetPointData().GetArray(array_names.Visible)
             if visible is None:
                 return 0
-            return int(np.count_nonzero(vtk_to_numpy(visible)))
-        mapped = self.mapping.GetOutput().GetNumberOfPoints()
-        if mapped:
-            return mapped
+            visible = vtk_to_numpy(visible)
+            if not self.on_gpu:
+                return int(np.count_nonzero(visible))
+            # A visible flag per molecule and tile: times the molecules' atoms.
+            ids = vtk_to_numpy(self._patch_source().GetOutput().GetPointData()
+                               .GetArray(array_names.MoleculeId))
+            _, first, sizes = np.unique(ids, return_index=True, return_counts=True)
+            sizes = sizes[np.argsort(first)]  # in order of first appearance
+            tiles = visible.size // sizes.size
+            return int(np.sum(visible.reshape(tiles, sizes.size) != 0, axis=0) @ sizes)
+        if not self.on_gpu:
+            return self.mapping.GetOutput().GetNumberOfPoints()
         return self.membrane.GetOutput().GetNumberOfPoints() * self.tiles_mapped() ** 2
 
     def _seed_normal(self):

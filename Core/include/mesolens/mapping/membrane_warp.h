@@ -3,8 +3,10 @@
 // and the atom mapper (written into VTK data and read back by vtkMesoMembraneWarp).
 #pragma once
 
+#include "mesolens/common/parallel_for.h"
 #include "mesolens/mapping/mapping_method.h"
 #include "mesolens/mapping/membrane_mapping.h"
+#include "mesolens/molecules/molecule_groups.h"
 
 #include <array>
 #include <cstddef>
@@ -91,5 +93,16 @@ void check_drawable(const MembraneWarp& warp);
 
 /// Molecules per tile of a MoleculeInstancing warp: the instances of tile 0.
 std::size_t molecules_per_tile(const MembraneWarp& warp);
+
+/// Where a renderer that warps `patch` by `warp` puts its molecules: per tile t and molecule m
+/// of `groups` (the patch's molecules; for MoleculeInstancing in the order of its instances), the
+/// mean of the molecule's warped atom positions (mesh units), computed as from the atoms the
+/// mapping maps on the CPU (the same arithmetic, so a cut of these centres decides as a cut of
+/// the mapped atoms does): 3 values per molecule, tile-major. Throws InvalidInput unless `warp`
+/// is drawable (check_drawable) and `groups` groups the patch's atoms, with, for
+/// MoleculeInstancing, as many molecules as the warp has per tile.
+std::vector<double> warped_molecule_centres(const MembraneWarp& warp, const MembranePatch& patch,
+                                            const MoleculeGroups& groups,
+                                            const ParallelFor& parallel_for = {});
 
 } // namespace mesolens

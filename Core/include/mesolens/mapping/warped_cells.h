@@ -56,16 +56,18 @@ WarpedCellBoxes warped_cell_boxes(const MembraneWarp& warp, const AtomCells& cel
 /// (for the renderer's own rounding of the warp, e.g. a few float epsilons). Its cells' boxes are
 /// warped_cell_boxes' (boxes(): the world ones, for cells_in_view and the test; the test's
 /// footprints come from the tighter local ones). Every array and `warp` are referenced, not
-/// copied, and must stay unchanged while it is used. Throws InvalidInput for a warp that cannot be
-/// drawn from the patch, arrays of other lengths, or more than 2^32 - 1 slots in all.
+/// copied: the element and radius vectors may change their values (a new visibility mask)
+/// but not their lengths, the rest must stay unchanged while it is used. Throws InvalidInput for a
+/// warp that cannot be drawn from the patch, arrays of other lengths, or more than 2^32 - 1 slots
+/// in all.
 class WarpedCellAtoms : public CellAtoms
 {
 public:
   WarpedCellAtoms(const MembraneWarp& warp, const AtomCells& cells,
                   const std::vector<float>& cell_boxes, PointSpan<const float> slot_xyz,
                   const std::vector<unsigned short>& molecule_of_slot,
-                  const std::uint8_t* element_of_slot, std::size_t element_stride,
-                  const float* radius_of_element, double relative_margin,
+                  const std::vector<std::uint8_t>& element_of_slot, std::size_t element_stride,
+                  const std::vector<float>& radius_of_element, double relative_margin,
                   const ParallelFor& parallel_for = {});
   std::size_t cell_count() const override;
   std::uint32_t first_slot(std::size_t cell) const override;
@@ -91,9 +93,9 @@ private:
   const AtomCells& Cells;
   PointSpan<const float> SlotXYZ;
   const std::vector<unsigned short>& MoleculeOfSlot;
-  const std::uint8_t* ElementOfSlot;
+  const std::vector<std::uint8_t>& ElementOfSlot;
   std::size_t ElementStride;
-  const float* RadiusOfElement;
+  const std::vector<float>& RadiusOfElement;
   WarpedCellBoxes Boxes;
   double Margin = 0;
   std::vector<std::size_t> FirstPiece; ///< polynomial: per tile

@@ -65,9 +65,6 @@ enum class Pass
 /// queries.
 constexpr vtkIdType minimum_culled_atoms = 8192;
 
-/// Atoms per cell of a warped patch, culled by whole cells: see BenchmarkAtomMapper --warp-cells.
-constexpr vtkIdType warped_atoms_per_cell = 64;
-
 void set_uniform_int(vtkShaderProgram* program, const char* name, int value)
 {
   if (program->IsUniformUsed(name))
@@ -248,13 +245,16 @@ struct vtkMesoAtomMapper::Internals
       {
         continue;
       }
+      // A cell's slots lie in one tile: slot = tile n + buffer slot.
+      const std::uint32_t first = atoms.first_slot(viewed.cell);
       const std::uint32_t end = atoms.first_slot(std::size_t(viewed.cell) + 1);
-      for (std::uint32_t slot = atoms.first_slot(viewed.cell); slot < end; ++slot)
+      const std::uint32_t tile = first / n;
+      const std::uint32_t base = tile * n;
+      for (std::uint32_t slot = first; slot < end; ++slot)
       {
-        const std::uint32_t atom = slot < n ? slot : slot % n;
         if ((flags[slot] & bit) &&
-            this->Data.Types[2 * atom] != vtkMesoAtomGPUData::HiddenElement &&
-            !this->MoleculeHidden(slot / n, atom))
+            this->Data.Types[2 * (slot - base)] != vtkMesoAtomGPUData::HiddenElement &&
+            !this->MoleculeHidden(tile, slot - base))
         {
           this->DrawList.push_back(slot);
         }
@@ -442,9 +442,12 @@ void vtkMesoAtomMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*)
   }
   else if (this->OcclusionCulling && this->GetNumberOfInputConnections(1) > 0)
   {
-    // A warped patch is culled by whole cells of each tile: small cells, of patches big enough
-    // to have several.
-    atoms_per_cell = input_atoms >= 4 * warped_atoms_per_cell ? warped_atoms_per_cell : 0;
+    // A warped patch's cells go into every tile: about 32 per patch (fewer cells cost less per
+    // frame than tighter ones save; BenchmarkAtomMapper --atoms-per-cell), of patches big
+    // enough to have 4.
+    atoms_per_cell = input_atoms >= 256
+      ? static_cast<std::size_t>(std::clamp<vtkIdType>(input_atoms / 32, 64, 2048))
+      : 0;
   }
   else if (this->OcclusionCulling && input_atoms >= minimum_culled_atoms)
   {

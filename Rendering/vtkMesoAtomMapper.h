@@ -51,8 +51,8 @@
  * Occlusion culling (OcclusionCulling, on by default; for inputs of at least 8192 atoms, or any
  * input when AtomsPerCell is set; for a warped patch of 256 atoms or more), after Grottel et al.,
  * EuroVis 2010: the atoms are grouped once into compact spatial cells of about AtomsPerCell atoms
- * (their buffers are kept in cell order; a warped patch's cells hold 64, and are carried into
- * every tile: their boxes bounded through the warp in each tile's frame, their atoms warped on
+ * (their buffers are kept in cell order; a warped patch's cells, about 32 per patch, are carried
+ * into every tile: their boxes bounded through the warp in each tile's frame, their atoms warped on
  * the CPU only when tested, mesolens::WarpedCellAtoms). Each frame, per camera:
  * 1. the atoms that were visible in this camera's last frame are drawn (cells out of view are
  *    skipped; a first frame draws the nearest quarter of the cells);
@@ -164,8 +164,8 @@ public:
 
   ///@{
   /// Atoms per culling cell; 0 (default): automatic, n / 1024 clamped to [256, 2048], and only
-  /// for inputs of 8192 atoms or more; a warped patch's cells, 64 atoms, for patches of 256 or
-  /// more. Range [0, 1e6].
+  /// for inputs of 8192 atoms or more; for a warped patch, n / 32 clamped to [64, 2048], for
+  /// patches of 256 atoms or more. Range [0, 1e6].
   vtkSetClampMacro(AtomsPerCell, int, 0, 1000000);
   vtkGetMacro(AtomsPerCell, int);
   ///@}

@@ -323,17 +323,43 @@ WarpedCellAtoms::WarpedCellAtoms(const MembraneWarp& warp, const AtomCells& cell
       const auto local = polynomial_coordinates(frame, warp.layer_half_thickness, slot_xyz[slot]);
       std::copy(local.begin(), local.end(), this->LocalCoordinates.begin() + 3 * slot);
     }
-    if (warp.polynomial_splits.empty() ||
-        std::find(warp.polynomial_splits.begin(), warp.polynomial_splits.end(), 1) !=
-          warp.polynomial_splits.end())
+    // Tables for the most common piece counts (at most 8 of them; others computed when loaded).
+    std::vector<int> splits_of_tile(warp.tile_count(), 1);
+    if (!warp.polynomial_splits.empty())
     {
-      this->WholeTileMonomials.resize(quadratic_terms * slots);
-      for (std::size_t slot = 0; slot < slots; ++slot)
+      splits_of_tile = warp.polynomial_splits;
+    }
+    this->TableOfTile.assign(splits_of_tile.size(), -1);
+    for (std::size_t tile = 0; tile < splits_of_tile.size(); ++tile)
+    {
+      const int splits = splits_of_tile[tile];
+      auto found = std::find_if(this->PieceTables.begin(), this->PieceTables.end(),
+                                [&](const PieceTable& table) { return table.splits == splits; });
+      if (found == this->PieceTables.end() && this->PieceTables.size() < 8)
       {
-        const double* local = this->LocalCoordinates.data() + 3 * slot;
-        const auto monomials = quadratic_monomials(local[0], local[1], local[2]);
-        std::copy(monomials.begin(), monomials.end(),
-                  this->WholeTileMonomials.begin() + quadratic_terms * slot);
+        PieceTable table;
+        table.splits = splits;
+        table.piece.resize(slots);
+        table.monomials.resize(quadratic_terms * slots);
+        for (std::size_t slot = 0; slot < slots; ++slot)
+        {
+          double local_s = this->LocalCoordinates[3 * slot];
+          double local_t = this->LocalCoordinates[3 * slot + 1];
+          table.piece[slot] =
+            static_cast<std::uint32_t>(polynomial_piece(splits, local_s, local_t));
+          const auto monomials =
+            quadratic_monomials(local_s, local_t, this->LocalCoordinates[3 * slot + 2]);
+          for (std::size_t k = 0; k < quadratic_terms; ++k)
+          {
+            table.monomials[k * slots + slot] = monomials[k];
+          }
+        }
+        this->PieceTables.push_back(std::move(table));
+        found = this->PieceTables.end() - 1;
+      }
+      if (found != this->PieceTables.end())
+      {
+        this->TableOfTile[tile] = static_cast<int>(found - this->PieceTables.begin());
       }
     }
   }
@@ -383,23 +409,60 @@ void WarpedCellAtoms::load(std::size_t cell, std::vector<float>& xyz,
   const double* tile_warp = polynomial
     ? this->Warp.polynomial_coefficients.data() + 3 * quadratic_terms * this->FirstPiece[tile]
     : nullptr;
+  const std::size_t count = end - first;
+  for (std::uint32_t slot = first; slot < end; ++slot)
+  {
+    radii[slot - first] =
+      this->RadiusOfElement[this->ElementOfSlot[std::size_t(slot) * this->ElementStride]] +
+      static_cast<float>(this->Margin);
+  }
+  const int table_index = polynomial ? this->TableOfTile[tile] : -1;
+  if (table_index >= 0 && this->PieceTables[std::size_t(table_index)].splits == 1)
+  {
+    // One polynomial for the whole cell: a loop over the atoms per coordinate, which the
+    // compiler vectorises.
+    const PieceTable& table = this->PieceTables[std::size_t(table_index)];
+    const std::size_t slots = table.piece.size();
+    const double* m = table.monomials.data() + first;
+    for (std::size_t d = 0; d < 3; ++d)
+    {
+      const double* c = tile_warp + quadratic_terms * d;
+      for (std::size_t i = 0; i < count; ++i)
+      {
+        double x = 0;
+        for (std::size_t k = 0; k < quadratic_terms; ++k)
+        {
+          x += c[k] * m[k * slots + i];
+        }
+        xyz[3 * i + d] = static_cast<float>(x);
+      }
+    }
+    return;
+  }
   for (std::uint32_t slot = first; slot < end; ++slot)
   {
     std::array<double, 3> x{ 0, 0, 0 };
-    if (polynomial)
+    if (table_index >= 0)
+    {
+      const PieceTable& table = this->PieceTables[std::size_t(table_index)];
+      const std::size_t slots = table.piece.size();
+      const double* warp = tile_warp + 3 * quadratic_terms * table.piece[slot];
+      for (std::size_t d = 0; d < 3; ++d)
+      {
+        for (std::size_t k = 0; k < quadratic_terms; ++k)
+        {
+          x[d] += warp[quadratic_terms * d + k] * table.monomials[k * slots + slot];
+        }
+      }
+    }
+    else if (polynomial)
     {
       // As evaluate_tile_polynomial, from the tile-independent coordinates.
-      std::array<double, quadratic_terms> local_monomials;
-      const double* monomials = this->WholeTileMonomials.data() + quadratic_terms * slot;
-      const double* warp = tile_warp;
-      if (splits != 1)
-      {
-        double s = this->LocalCoordinates[3 * slot];
-        double t = this->LocalCoordinates[3 * slot + 1];
-        warp += 3 * quadratic_terms * std::size_t(polynomial_piece(splits, s, t));
-        local_monomials = quadratic_monomials(s, t, this->LocalCoordinates[3 * slot + 2]);
-        monomials = local_monomials.data();
-      }
+      double s = this->LocalCoordinates[3 * slot];
+      double t = this->LocalCoordinates[3 * slot + 1];
+      const double* warp =
+        tile_warp + 3 * quadratic_terms * std::size_t(polynomial_piece(splits, s, t));
+      const auto monomials = quadratic_monomials(s, t, this->LocalCoordinates[3 * slot + 2]);
       for (std::size_t d = 0; d < 3; ++d)
       {
         for (std::size_t k = 0; k < quadratic_terms; ++k)
@@ -422,9 +485,6 @@ void WarpedCellAtoms::load(std::size_t cell, std::vector<float>& xyz,
     {
       xyz[3 * std::size_t(slot - first) + d] = static_cast<float>(x[d]);
     }
-    radii[slot - first] =
-      this->RadiusOfElement[this->ElementOfSlot[std::size_t(slot) * this->ElementStride]] +
-      static_cast<float>(this->Margin);
   }
 }
 

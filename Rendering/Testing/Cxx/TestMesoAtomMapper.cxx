@@ -846,7 +846,8 @@ TEST(MesoAtomMapper, CullingAWarpedPatchKeepsThePicture)
     {
       EXPECT_LT(pair.Render(), 5) << "method " << method << " frame " << frame;
       EXPECT_EQ(pair.Whole.Mapper->GetLastDrawnAtomCount(), all);
-      EXPECT_LT(pair.Culled.Mapper->GetLastDrawnAtomCount(), all / 2)
+      // The first frame draws the nearest cells whole, then learns what shows.
+      EXPECT_LT(pair.Culled.Mapper->GetLastDrawnAtomCount(), frame == 0 ? all * 3 / 4 : all / 2)
         << "method " << method << " frame " << frame;
       EXPECT_GT(pair.Culled.Mapper->GetLastDrawnAtomCount(), all / 50);
       camera->Azimuth(25);

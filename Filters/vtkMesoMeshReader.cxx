@@ -4,18 +4,19 @@
 #include "mesolens/common/errors.h"
 #include "mesolens/io/file_names.h"
 #include "mesolens/io/off_file.h"
+#include "mesolens/io/ply_file.h"
 
 #include <vtkCallbackCommand.h>
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
 #include <vtkCellData.h>
 #include <vtkExecutive.h>
+#include <vtkFloatArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkNew.h>
 #include <vtkOBJReader.h>
 #include <vtkObjectFactory.h>
-#include <vtkPLYReader.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkPolyData.h>
@@ -159,12 +160,6 @@ bool vtkMesoMeshReader::ReadWithVTK(const std::string& extension, vtkPolyData* o
     obj->SetFileName(this->FileName.c_str());
     reader = obj;
   }
-  else if (extension == "ply")
-  {
-    auto ply = vtkSmartPointer<vtkPLYReader>::New();
-    ply->SetFileName(this->FileName.c_str());
-    reader = ply;
-  }
   else if (extension == "stl")
   {
     auto stl = vtkSmartPointer<vtkSTLReader>::New();
@@ -196,16 +191,26 @@ bool vtkMesoMeshReader::ReadWithVTK(const std::string& extension, vtkPolyData* o
   return true;
 }
 
-bool vtkMesoMeshReader::ReadOFF(vtkPolyData* output)
+bool vtkMesoMeshReader::ReadSoup(const std::string& extension, vtkPolyData* output)
 {
   mesolens::PolygonSoup soup;
+  std::vector<double> normals;
   try
   {
-    soup = mesolens::read_off(this->FileName);
+    if (extension == "ply")
+    {
+      mesolens::PlyMesh mesh = mesolens::read_ply(this->FileName);
+      soup = std::move(mesh.soup);
+      normals = std::move(mesh.normals);
+    }
+    else
+    {
+      soup = mesolens::read_off(this->FileName);
+    }
   }
   catch (const mesolens::Error& e)
   {
-    vtkErrorMacro("Cannot read " << this->FileName << ": " << e.what());
+    vtkErrorMacro("Cannot read " << e.what()); // the message starts with the path
     return false;
   }
   vtkNew<vtkPoints> points;
@@ -226,6 +231,18 @@ bool vtkMesoMeshReader::ReadOFF(vtkPolyData* output)
   }
   output->SetPoints(points);
   output->SetPolys(polys);
+  if (!normals.empty())
+  {
+    vtkNew<vtkFloatArray> array;
+    array->SetName("Normals");
+    array->SetNumberOfComponents(3);
+    array->SetNumberOfTuples(points->GetNumberOfPoints());
+    for (std::size_t v = 0; v < normals.size(); ++v)
+    {
+      array->SetValue(static_cast<vtkIdType>(v), static_cast<float>(normals[v]));
+    }
+    output->GetPointData()->SetNormals(array);
+  }
   return true;
 }
 
@@ -261,7 +278,8 @@ int vtkMesoMeshReader::RequestData(vtkInformation*, vtkInformationVector**,
     return 0;
   }
   vtkNew<vtkPolyData> mesh;
-  const bool read = extension == "off" ? this->ReadOFF(mesh) : this->ReadWithVTK(extension, mesh);
+  const bool read = extension == "off" || extension == "ply" ? this->ReadSoup(extension, mesh)
+                                                             : this->ReadWithVTK(extension, mesh);
   if (!read)
   {
     return 0;

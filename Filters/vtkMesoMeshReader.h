@@ -3,8 +3,10 @@
  * @class   vtkMesoMeshReader
  * @brief   Reads a cell-component surface mesh (.obj, .ply, .stl, .vtp, .off) as triangles.
  *
- * OBJ, PLY, STL and VTP go through VTK's own readers (vtkOBJReader, vtkPLYReader, vtkSTLReader,
- * vtkXMLPolyDataReader); OFF through CGAL's polygon-soup reader, so meshes with defects (holes,
+ * OBJ, STL and VTP go through VTK's own readers (vtkOBJReader, vtkSTLReader,
+ * vtkXMLPolyDataReader); OFF through CGAL's polygon-soup reader; PLY (ascii and binary) through
+ * MesoLens' own strict reader (mesolens::read_ply: VTK's crashes on files whose header lies),
+ * with the vertex normals as `Normals` when the file has them. Meshes with defects (holes,
  * non-manifold or inconsistently oriented faces, degenerate triangles) are read as they are and
  * vtkMesoMeshReport can describe them. Polygons with more than three vertices are split into
  * triangles; vertices, lines and strips are dropped. Points with identical coordinates are
@@ -52,7 +54,8 @@ private:
   void operator=(const vtkMesoMeshReader&) = delete;
 
   bool ReadWithVTK(const std::string& extension, vtkPolyData* output);
-  bool ReadOFF(vtkPolyData* output);
+  /// OFF (CGAL) and PLY (mesolens::read_ply): polygon soups read by Core.
+  bool ReadSoup(const std::string& extension, vtkPolyData* output);
 };
 
 #endif

@@ -9,6 +9,7 @@
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
+#include <vtkMath.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
@@ -143,6 +144,50 @@ TEST(vtkMesoMeshReader, BadFilesFailCleanly)
     EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 0);
     EXPECT_NE(events.AllErrors().find(c.problem), std::string::npos) << events.AllErrors();
   }
+}
+
+TEST(vtkMesoMeshReader, PlyFilesThatCrashedVTKsReaderAreRefused)
+{
+  // Mutations of PLY files (a byte changed in the format line and a cut header; a cut header
+  // claiming 10^11 vertices; a byte changed in the embryo's faces) on which vtkPLYReader
+  // crashes or aborts the process; and a lying face count and a cut body made here.
+  const std::string hostile = std::string(MESOLENS_SOURCE_DIR) + "/Testing/Data/meshes/";
+  std::string lying = mesolens_test::read_bytes(data_file("meshes/celegans_embryo_cell10_T10.ply"));
+  lying.replace(lying.find("element face 1450"), 17, "element face 4000000000");
+  const struct
+  {
+    std::string path;
+    const char* problem;
+  } cases[] = {
+    { hostile + "vtk_crash_cut_header.ply", "unknown keyword 'format?binary_little_endian'" },
+    { hostile + "vtk_crash_huge_vertex_count.ply", "header line 8: unknown keyword 'prope'" },
+    { hostile + "vtk_crash_mutated_embryo.ply", "refers to vertex" },
+    { mesolens_test::write_bytes("lying_faces.ply", lying), "claims 4000000000 face items" },
+    { mesolens_test::truncated_copy(data_file("meshes/celegans_embryo_cell10_T10.ply"), 20000,
+                                    "truncated_embryo.ply"),
+      "more than the" },
+  };
+  for (const auto& c : cases)
+  {
+    SCOPED_TRACE(c.path);
+    vtkNew<vtkMesoMeshReader> reader;
+    mesolens_test::EventRecorder events(reader);
+    reader->SetFileName(c.path.c_str());
+    EXPECT_EQ(reader->GetExecutive()->Update(), 0);
+    EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 0);
+    EXPECT_NE(events.AllErrors().find(c.problem), std::string::npos) << events.AllErrors();
+  }
+}
+
+TEST(vtkMesoMeshReader, PlyNormalsAreKept)
+{
+  vtkNew<vtkMesoMeshReader> reader;
+  reader->SetFileName(data_file("meshes/celegans_embryo_cell10_T10.ply").c_str());
+  reader->Update();
+  vtkDataArray* normals = reader->GetOutput()->GetPointData()->GetNormals();
+  ASSERT_NE(normals, nullptr);
+  EXPECT_EQ(normals->GetNumberOfTuples(), reader->GetOutput()->GetNumberOfPoints());
+  EXPECT_NEAR(vtkMath::Norm(normals->GetTuple3(0)), 1.0, 1e-3);
 }
 
 TEST(vtkMesoMeshReport, EmptyInput)

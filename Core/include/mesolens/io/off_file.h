@@ -2,18 +2,11 @@
 // Reading Object File Format (.off) polygon soups with CGAL, defects and all.
 #pragma once
 
-#include <cstdint>
+#include "mesolens/io/polygon_soup.h"
+
 #include <string>
-#include <vector>
 
 namespace mesolens {
-
-/// A polygon soup: no orientation or manifoldness is assumed.
-struct PolygonSoup
-{
-  std::vector<double> points;                      ///< 3 per vertex
-  std::vector<std::vector<std::int64_t>> polygons; ///< vertex indices per face
-};
 
 /// Reads an OFF file as a polygon soup with CGAL::IO::read_OFF (non-manifold, inconsistently
 /// oriented and degenerate faces are kept, so mesh_report() can describe them).

@@ -7,3 +7,9 @@ if (MESOLENS_ENABLE_SANITIZERS)
   add_compile_options(${mesolens_sanitizer_flags})
   add_link_options(-fsanitize=address,undefined)
 endif ()
+# Fuzz targets: every library instrumented for libFuzzer's coverage, with the sanitizers.
+if (MESOLENS_BUILD_FUZZERS)
+  add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer
+                      -fno-sanitize-recover=undefined)
+  add_link_options(-fsanitize=address,undefined)
+endif ()

@@ -1,6 +1,7 @@
 #!/bin/sh
 # SPDX-License-Identifier: GPL-3.0-or-later
-# Installs what is missing (Debian 12 packages), configures and builds MesoLens in ./build.
+# Installs what is missing (Debian 12 packages; clang and libclang-rt-dev for scripts/fuzz.sh),
+# configures and builds MesoLens in ./build.
 # Idempotent: packages already installed are not touched; the build is incremental.
 #   BUILD_DIR=...   build folder (default: build)
 #   CMAKE_ARGS=...  extra CMake arguments (e.g. -DMESOLENS_ENABLE_SANITIZERS=ON)
@@ -14,7 +15,8 @@ packages="cmake g++ make pkg-config zlib1g-dev
   paraview-dev python3-paraview libglew-dev libfreetype-dev openmpi-bin
   python3-numpy libeigen3-dev libcgal-dev libopenmesh-dev
   libgtest-dev gemmi-dev tao-pegtl-dev libgromacs-dev dssp freesasa edtsurf python3-pymol
-  xvfb xauth mesa-utils libgl1-mesa-dri"
+  xvfb xauth mesa-utils libgl1-mesa-dri
+  clang libclang-rt-dev"
 missing=""
 for package in $packages; do
   if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then

@@ -365,12 +365,22 @@ PlyMesh read_ply(const std::string& path)
 {
   detail::require_readable_file(path);
   std::ifstream stream(path, std::ios::binary);
-  std::vector<char> file((std::istreambuf_iterator<char>(stream)),
-                         std::istreambuf_iterator<char>());
+  const std::string bytes((std::istreambuf_iterator<char>(stream)),
+                          std::istreambuf_iterator<char>());
   if (!stream && !stream.eof())
   {
     throw FileError(path + ": cannot be read");
   }
+  return read_ply_bytes(bytes, path);
+}
+
+PlyMesh read_ply_bytes(const std::string& bytes, const std::string& path)
+{
+  if (bytes.empty())
+  {
+    throw FileError(path + ": the file is empty");
+  }
+  std::vector<char> file(bytes.begin(), bytes.end());
   Format format = Format::Ascii;
   std::size_t body_start = 0;
   const std::vector<Element> elements = read_header(path, file, format, body_start);

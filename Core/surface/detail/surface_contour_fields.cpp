@@ -472,7 +472,9 @@ private:
              const std::pair<PieceKind, std::uint32_t>& piece, Vec& position,
              ClosestPiece& nearest) const
   {
-    const auto [kind, index] = piece;
+    // Plain variables, not a structured binding: lambdas below capture them (C++17).
+    const PieceKind kind = piece.first;
+    const std::uint32_t index = piece.second;
     if (kind == PieceKind::None)
     {
       return false;

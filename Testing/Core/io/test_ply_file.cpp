@@ -132,6 +132,20 @@ TEST(PlyFile, ReadsAsciiAndBothBinaryOrders)
   expect_square(mesolens::read_ply(write_bytes("square_crlf.ply", crlf)));
 }
 
+TEST(PlyFile, BytesInMemoryReadAsTheFile)
+{
+  expect_square(mesolens::read_ply_bytes(square_binary(true), "square in memory"));
+  try
+  {
+    mesolens::read_ply_bytes("", "nothing");
+    ADD_FAILURE() << "accepted no bytes";
+  }
+  catch (const mesolens::FileError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("nothing: the file is empty"), std::string::npos);
+  }
+}
+
 TEST(PlyFile, ElementsWithoutPropertiesAreNotLoopedThrough)
 {
   // A header claiming 10^18 items of an element with nothing to read must not hang.

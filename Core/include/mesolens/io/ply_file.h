@@ -30,4 +30,7 @@ struct PlyMesh
 /// file without vertices or faces.
 PlyMesh read_ply(const std::string& path);
 
+/// The same for a PLY file's bytes held in memory (`name` says which in messages).
+PlyMesh read_ply_bytes(const std::string& bytes, const std::string& name);
+
 } // namespace mesolens

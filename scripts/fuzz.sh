@@ -1,0 +1,36 @@
+#!/bin/sh
+# SPDX-License-Identifier: GPL-3.0-or-later
+# Builds one libFuzzer target (clang, ASan and UBSan) in build-fuzz/ and runs it for SECONDS
+# over its corpus: the seeds of the checkout, then what the run adds (kept in
+# build-fuzz/corpus/TARGET). Crashes, leaks, timeouts (-timeout=10 s) and allocations over 2 GiB
+# (-rss_limit_mb=2048) stop the run and leave the input in build-fuzz/artifacts/TARGET/.
+#
+#   scripts/fuzz.sh TARGET SECONDS [libFuzzer options...]       (TARGET: fuzz_ply)
+set -eu
+if [ $# -lt 2 ]; then
+  echo "usage: scripts/fuzz.sh TARGET SECONDS [libFuzzer options...]" >&2
+  exit 2
+fi
+target=$1
+seconds=$2
+shift 2
+root=$(cd "$(dirname "$0")/.." && pwd)
+build="$root/build-fuzz"
+case "$target" in
+  fuzz_ply) seeds="$root/Data/meshes/*.ply $root/Testing/Data/meshes/*.ply"; dict="$root/Testing/Fuzz/ply.dict" ;;
+  *) echo "unknown fuzz target $target" >&2; exit 2 ;;
+esac
+if [ ! -f "$build/CMakeCache.txt" ]; then
+  CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DMESOLENS_BUILD_FUZZERS=ON -DMESOLENS_BUILD_TESTING=OFF -DMESOLENS_BUILD_EXAMPLES=OFF \
+    -DMESOLENS_WRAP_PYTHON=OFF -DMESOLENS_BUILD_PARAVIEW_PLUGIN=OFF >/dev/null
+fi
+cmake --build "$build" --target "$target" -j "$(nproc)" >/dev/null
+corpus="$build/corpus/$target"
+artifacts="$build/artifacts/$target"
+mkdir -p "$corpus" "$artifacts"
+for seed in $seeds; do
+  [ -f "$seed" ] && cp "$seed" "$corpus/"
+done
+exec "$build/bin/$target" "$corpus" -dict="$dict" -max_total_time="$seconds" -timeout=10 \
+  -rss_limit_mb=2048 -artifact_prefix="$artifacts/" -print_final_stats=1 "$@"

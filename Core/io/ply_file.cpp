@@ -459,11 +459,14 @@ PlyMesh read_ply_bytes(const std::string& bytes, const std::string& path)
           continue;
         }
         const double length = body.read(property.count_type, what.c_str());
-        if (!(length >= 0) || length > double(body.left() / body.least_bytes(property.type)))
+        // (An ascii count is any number: shown as it is, never converted if out of range.)
+        if (!(length >= 0) || length != std::floor(length) ||
+            length > double(body.left() / body.least_bytes(property.type)))
         {
-          body.fail(element.name + " " + std::to_string(item) + ": a list of " +
-                    std::to_string(static_cast<long long>(length)) + " " + property.name +
-                    ", more than the file holds");
+          std::ostringstream shown;
+          shown << length;
+          body.fail(element.name + " " + std::to_string(item) + ": a list of " + shown.str() + " " +
+                    property.name + ", not a count the rest of the file can hold");
         }
         const bool keep = faces && int(k) == indices;
         if (keep)

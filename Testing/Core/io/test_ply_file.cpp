@@ -132,6 +132,21 @@ TEST(PlyFile, ReadsAsciiAndBothBinaryOrders)
   expect_square(mesolens::read_ply(write_bytes("square_crlf.ply", crlf)));
 }
 
+TEST(PlyFile, FuzzFindingsAreRefused)
+{
+  // fuzz_ply: an ascii list count of 1.1e23 was converted to an integer for the message
+  // (undefined behaviour, UBSan).
+  std::string text = square_ascii;
+  text.replace(text.find("3 0 2 3"), 1, "1.11111e+23");
+  expect_refused(text, "a list of 1.11111e+23 vertex_indices, not a count");
+  text = square_ascii;
+  text.replace(text.find("3 0 2 3"), 1, "2.5");
+  expect_refused(text, "a list of 2.5 vertex_indices, not a count");
+  const std::string found =
+    std::string(MESOLENS_SOURCE_DIR) + "/Testing/Data/meshes/fuzz_ply_list_count_1e23.ply";
+  EXPECT_THROW(mesolens::read_ply(found), mesolens::FileError);
+}
+
 TEST(PlyFile, BytesInMemoryReadAsTheFile)
 {
   expect_square(mesolens::read_ply_bytes(square_binary(true), "square in memory"));
@@ -173,10 +188,10 @@ TEST(PlyFile, HostileAndBrokenFilesAreRefusedWithTheReason)
   expect_refused(square_binary(true, 4000000000u), "more than the");
   std::string long_list = square_binary(false);
   long_list[long_list.find("end_header\n") + 11 + 48] = char(250); // a list of 250 ints
-  expect_refused(long_list, "more than the file holds");
+  expect_refused(long_list, "a list of 250 vertex_indices, not a count the rest of the file");
   // A truncated body, a bad index, a face of two vertices, a missing element.
   const std::string whole = square_binary(false);
-  expect_refused(whole.substr(0, whole.size() - 3), "more than the file holds");
+  expect_refused(whole.substr(0, whole.size() - 3), "not a count the rest of the file can hold");
   const std::string ascii = square_ascii;
   expect_refused(ascii.substr(0, ascii.find("3 0 2 3")), "the file ends before");
   expect_refused(square_binary(false, 4, 4, 9), "refers to vertex 9 of 4");

@@ -297,19 +297,6 @@ struct vtkMesoAtomMapper::Internals
     return this->DrawList.size();
   }
 
-  /// With no cell seen (a first frame, a jump), the nearest quarter of the cells in view.
-  static void SeedHistory(ViewHistory& history, const std::vector<mesolens::CellInView>& cells)
-  {
-    if (std::find(history.Seen.begin(), history.Seen.end(), 1) != history.Seen.end())
-    {
-      return;
-    }
-    for (std::size_t k = 0; k < cells.size() && (k < 8 || 4 * k < cells.size()); ++k)
-    {
-      history.Seen[cells[k].cell] = 1;
-    }
-  }
-
   /// Reads the depth of the current viewport of the framebuffer being drawn into Depth. False
   /// where it cannot be read as it is (multisampled, or a pixel buffer bound for reading).
   bool ReadDepth(vtkOpenGLRenderWindow* window, int& width, int& height)
@@ -880,14 +867,13 @@ void vtkMesoAtomMapper::DrawVisibleAtoms(vtkRenderer* ren, vtkActor* act, vtkSha
   // cells in view, whole.
   if (std::find(history.Seen.begin(), history.Seen.end(), 1) == history.Seen.end())
   {
-    Internals::SeedHistory(history, cells);
-    for (std::size_t cell = 0; cell < cell_count; ++cell)
+    for (std::size_t k = 0; k < cells.size() && (k < 8 || 4 * k < cells.size()); ++k)
     {
-      if (history.Seen[cell])
-      {
-        std::fill(history.Flags.begin() + atoms.first_slot(cell),
-                  history.Flags.begin() + atoms.first_slot(cell + 1), std::uint8_t(mesolens::SEEN));
-      }
+      const std::uint32_t cell = cells[k].cell;
+      history.Seen[cell] = 1;
+      std::fill(history.Flags.begin() + atoms.first_slot(cell),
+                history.Flags.begin() + atoms.first_slot(std::size_t(cell) + 1),
+                std::uint8_t(mesolens::SEEN));
     }
   }
   in.DrawListBytes = 0;

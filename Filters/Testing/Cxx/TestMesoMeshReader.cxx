@@ -120,6 +120,20 @@ TEST(vtkMesoMeshReader, VtpRoundTrip)
   EXPECT_EQ(report->GetEulerCharacteristic(), 2);
 }
 
+namespace {
+/// The reader fails on `path` with an error saying `problem`, and leaves its output empty.
+void expect_refused(const std::string& path, const char* problem)
+{
+  SCOPED_TRACE(path);
+  vtkNew<vtkMesoMeshReader> reader;
+  mesolens_test::EventRecorder events(reader);
+  reader->SetFileName(path.c_str());
+  EXPECT_EQ(reader->GetExecutive()->Update(), 0);
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_NE(events.AllErrors().find(problem), std::string::npos) << events.AllErrors();
+}
+} // namespace
+
 TEST(vtkMesoMeshReader, BadFilesFailCleanly)
 {
   const struct
@@ -136,13 +150,7 @@ TEST(vtkMesoMeshReader, BadFilesFailCleanly)
   };
   for (const auto& c : cases)
   {
-    SCOPED_TRACE(c.path);
-    vtkNew<vtkMesoMeshReader> reader;
-    mesolens_test::EventRecorder events(reader);
-    reader->SetFileName(c.path.c_str());
-    EXPECT_EQ(reader->GetExecutive()->Update(), 0);
-    EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 0);
-    EXPECT_NE(events.AllErrors().find(c.problem), std::string::npos) << events.AllErrors();
+    expect_refused(c.path, c.problem);
   }
 }
 
@@ -169,13 +177,7 @@ TEST(vtkMesoMeshReader, PlyFilesThatCrashedVTKsReaderAreRefused)
   };
   for (const auto& c : cases)
   {
-    SCOPED_TRACE(c.path);
-    vtkNew<vtkMesoMeshReader> reader;
-    mesolens_test::EventRecorder events(reader);
-    reader->SetFileName(c.path.c_str());
-    EXPECT_EQ(reader->GetExecutive()->Update(), 0);
-    EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 0);
-    EXPECT_NE(events.AllErrors().find(c.problem), std::string::npos) << events.AllErrors();
+    expect_refused(c.path, c.problem);
   }
 }
 

@@ -36,37 +36,24 @@ struct ScalarType
 
 ScalarType scalar_type(const std::string& name)
 {
-  if (name == "char" || name == "int8")
+  // The format's type names, old and new.
+  static const struct
   {
-    return { 1, false, true };
-  }
-  if (name == "uchar" || name == "uint8")
+    const char* old_name;
+    const char* new_name;
+    ScalarType type;
+  } types[] = {
+    { "char", "int8", { 1, false, true } },    { "uchar", "uint8", { 1, false, false } },
+    { "short", "int16", { 2, false, true } },  { "ushort", "uint16", { 2, false, false } },
+    { "int", "int32", { 4, false, true } },    { "uint", "uint32", { 4, false, false } },
+    { "float", "float32", { 4, true, true } }, { "double", "float64", { 8, true, true } },
+  };
+  for (const auto& known : types)
   {
-    return { 1, false, false };
-  }
-  if (name == "short" || name == "int16")
-  {
-    return { 2, false, true };
-  }
-  if (name == "ushort" || name == "uint16")
-  {
-    return { 2, false, false };
-  }
-  if (name == "int" || name == "int32")
-  {
-    return { 4, false, true };
-  }
-  if (name == "uint" || name == "uint32")
-  {
-    return { 4, false, false };
-  }
-  if (name == "float" || name == "float32")
-  {
-    return { 4, true, true };
-  }
-  if (name == "double" || name == "float64")
-  {
-    return { 8, true, true };
+    if (name == known.old_name || name == known.new_name)
+    {
+      return known.type;
+    }
   }
   return {};
 }

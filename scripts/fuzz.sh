@@ -1,11 +1,11 @@
 #!/bin/sh
 # SPDX-License-Identifier: GPL-3.0-or-later
 # Builds one libFuzzer target (clang, ASan and UBSan) in build-fuzz/ and runs it for SECONDS
-# over its corpus: the seeds of the checkout, then what the run adds (kept in
-# build-fuzz/corpus/TARGET). Crashes, leaks, timeouts (-timeout=10 s) and allocations over 2 GiB
+# over its corpus: the seeds of the checkout (Testing/Fuzz/seeds/TARGET), then what the run
+# adds (kept in build-fuzz/corpus/TARGET). Crashes, leaks, timeouts (-timeout=10 s) and allocations over 2 GiB
 # (-rss_limit_mb=2048) stop the run and leave the input in build-fuzz/artifacts/TARGET/.
 #
-#   scripts/fuzz.sh TARGET SECONDS [libFuzzer options...]       (TARGET: fuzz_ply)
+#   scripts/fuzz.sh TARGET SECONDS [libFuzzer options...]       (TARGET: fuzz_ply, fuzz_structure, fuzz_gro, fuzz_trajectory)
 set -eu
 if [ $# -lt 2 ]; then
   echo "usage: scripts/fuzz.sh TARGET SECONDS [libFuzzer options...]" >&2
@@ -17,7 +17,10 @@ shift 2
 root=$(cd "$(dirname "$0")/.." && pwd)
 build="$root/build-fuzz"
 case "$target" in
-  fuzz_ply) seeds="$root/Data/meshes/*.ply $root/Testing/Data/meshes/*.ply"; dict="$root/Testing/Fuzz/ply.dict" ;;
+  fuzz_ply) dict=ply.dict ;;
+  fuzz_structure) dict=structure.dict ;;
+  fuzz_gro) dict=gro.dict ;;
+  fuzz_trajectory) dict=trajectory.dict ;;
   *) echo "unknown fuzz target $target" >&2; exit 2 ;;
 esac
 if [ ! -f "$build/CMakeCache.txt" ]; then
@@ -29,8 +32,7 @@ cmake --build "$build" --target "$target" -j "$(nproc)" >/dev/null
 corpus="$build/corpus/$target"
 artifacts="$build/artifacts/$target"
 mkdir -p "$corpus" "$artifacts"
-for seed in $seeds; do
-  [ -f "$seed" ] && cp "$seed" "$corpus/"
-done
-exec "$build/bin/$target" "$corpus" -dict="$dict" -max_total_time="$seconds" -timeout=10 \
-  -rss_limit_mb=2048 -artifact_prefix="$artifacts/" -print_final_stats=1 "$@"
+# New inputs go to the first folder; the committed seeds are read from the second.
+exec "$build/bin/$target" "$corpus" "$root/Testing/Fuzz/seeds/$target" \
+  -dict="$root/Testing/Fuzz/$dict" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+  -artifact_prefix="$artifacts/" -print_final_stats=1 "$@"

@@ -16,6 +16,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <unordered_map>
 
@@ -369,6 +370,57 @@ void check_finite(const AtomTable& table, const std::string& path)
   }
 }
 
+/// gemmi 0.5 reads the reported distance (columns 74-78) of SSBOND and LINK records whenever a
+/// line, its newline included, is longer than 73 characters: past the end of a record cut
+/// before or inside those columns. PDB columns are fixed and blank when absent, so such records
+/// get blanks up to column 80 first. Returns the padded text, or an empty string when no record
+/// needed it.
+std::string pad_connection_records(const char* text, std::size_t size)
+{
+  constexpr std::size_t record_width = 80;
+  std::string padded;
+  std::size_t copied = 0;
+  for (std::size_t start = 0; start < size;)
+  {
+    const char* end_of_line =
+      static_cast<const char*>(std::memchr(text + start, '\n', size - start));
+    std::size_t end = end_of_line ? std::size_t(end_of_line - text) : size;
+    const std::size_t next = end_of_line ? end + 1 : size;
+    if (end > start && text[end - 1] == '\r')
+    {
+      --end;
+    }
+    const std::size_t length = end - start;
+    const auto starts_with = [&](const char* name) {
+      const std::size_t name_length = std::strlen(name);
+      if (length < name_length)
+      {
+        return false;
+      }
+      for (std::size_t i = 0; i < name_length; ++i)
+      {
+        if (std::toupper(static_cast<unsigned char>(text[start + i])) != name[i])
+        {
+          return false;
+        }
+      }
+      return true;
+    };
+    if (length < record_width && (starts_with("SSBOND") || starts_with("LINK")))
+    {
+      padded.append(text + copied, end - copied);
+      padded.append(record_width - length, ' ');
+      copied = end;
+    }
+    start = next;
+  }
+  if (copied != 0)
+  {
+    padded.append(text + copied, size - copied);
+  }
+  return padded;
+}
+
 gemmi::Structure parse_with_gemmi(const std::string& path, detail::PdbTextScan& pdb)
 {
   detail::require_readable_file(path);
@@ -397,7 +449,9 @@ gemmi::Structure parse_with_gemmi(const std::string& path, detail::PdbTextScan& 
     if (format == gemmi::CoorFormat::Pdb)
     {
       pdb = detail::scan_pdb_text(buffer.data(), buffer.size(), path);
-      return gemmi::read_pdb_from_memory(buffer.data(), buffer.size(), path);
+      const std::string padded = pad_connection_records(buffer.data(), buffer.size());
+      return padded.empty() ? gemmi::read_pdb_from_memory(buffer.data(), buffer.size(), path)
+                            : gemmi::read_pdb_from_memory(padded.data(), padded.size(), path);
     }
     if (format == gemmi::CoorFormat::Mmcif)
     {

@@ -580,3 +580,22 @@ TEST(StructureFile, DamagedShiftedRecordsThrow)
     }
   }
 }
+
+// Found by fuzz_structure: gemmi 0.5 read the distance columns (74-78) of an SSBOND or LINK
+// record cut at column 73 past the end of the line (a heap overflow under AddressSanitizer).
+// The record is read as if blank-padded: the disulfide becomes a bond.
+TEST(StructureFile, ConnectionRecordsCutInTheirDistanceColumns)
+{
+  mesolens::StructureReadParams params;
+  params.perceive_bonds = false; // the bond can come from the SSBOND record only
+  const auto file =
+    mesolens::read_structure(std::string(MESOLENS_SOURCE_DIR) +
+                               "/Testing/Data/proteins/fuzz_ssbond_cut_in_distance_columns.pdb",
+                             params);
+  ASSERT_EQ(file.models.size(), 1u);
+  const mesolens::AtomTable& atoms = file.models.front();
+  ASSERT_EQ(atoms.size(), 2u);
+  ASSERT_EQ(atoms.bonds.size(), 1u);
+  EXPECT_EQ(atoms.bonds.front().first, 0u);
+  EXPECT_EQ(atoms.bonds.front().second, 1u);
+}

@@ -1,0 +1,133 @@
+#!/usr/bin/python3
+# SPDX-License-Identifier: GPL-3.0-or-later
+"""Writes the seed inputs of the fuzz targets into Testing/Fuzz/seeds/TARGET/.
+
+Seeds are small cuts of real files (Data/, Data/proteins/awkward/, Testing/Data/), with the
+option byte each target reads first. The XTC and TRR cuts come from write_trajectory_seeds
+(GROMACS' own writers): pass its output folder. scripts/fuzz.sh reads these seeds; a long run's
+corpus, minimised with -merge=1, may be added to them.
+
+    Testing/Fuzz/make_fuzz_seeds.py TRAJECTORY_SEEDS_DIR
+"""
+import gzip
+import pathlib
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+SEEDS = ROOT / "Testing" / "Fuzz" / "seeds"
+ATOM_RECORDS = 60
+
+
+# Records and categories the reader interprets; the rest of a header is left out of seeds.
+PDB_SKIPPED = ("REMARK", "SEQRES", "JRNL", "AUTHOR", "REVDAT", "SOURCE", "KEYWDS", "COMPND",
+               "DBREF", "SEQADV", "FORMUL", "HETNAM", "HETSYN", "SITE", "HET ")
+CIF_KEPT = ("data_", "_entry.", "_struct.", "_cell.", "_symmetry.", "_struct_conf.",
+            "_struct_sheet_range.", "_struct_conn.", "_atom_site.")
+
+
+def cut_pdb(text):
+    """The first ATOM_RECORDS atom records of a PDB file, with the records before them that
+    the reader interprets."""
+    lines, atoms = [], 0
+    for line in text.splitlines():
+        if line.startswith(("ATOM", "HETATM")):
+            atoms += 1
+            if atoms > ATOM_RECORDS:
+                break
+        if not line.startswith(PDB_SKIPPED):
+            lines.append(line)
+    return "\n".join(lines + ["END"]) + "\n"
+
+
+def cif_blocks(text):
+    """The '#'-separated blocks of a PDB mmCIF file that hold categories the reader reads."""
+    blocks, block = [], []
+    for line in text.splitlines():
+        if line.startswith("#"):
+            blocks.append(block)
+            block = []
+        else:
+            block.append(line)
+    blocks.append(block)
+    kept = [b for b in blocks if any(line.startswith(CIF_KEPT) for line in b)]
+    return "\n#\n".join("\n".join(b) for b in kept)
+
+
+def cut_cif(text):
+    """The mmCIF file's interpreted categories, up to ATOM_RECORDS rows of its _atom_site
+    loop."""
+    lines, in_atoms, rows = [], False, 0
+    for line in cif_blocks(text).splitlines():
+        if line.startswith("_atom_site."):
+            in_atoms = True
+        elif in_atoms and not line.startswith("_"):
+            if line.startswith(("#", "loop_")):
+                break
+            rows += 1
+            if rows > ATOM_RECORDS:
+                break
+        lines.append(line)
+    return "\n".join(lines) + "\n"
+
+
+def cut_gro(text, atoms=40):
+    """The first `atoms` atoms of a .gro file's first frame, with its box."""
+    lines = text.splitlines()
+    count = int(lines[1])
+    body = lines[2:2 + min(atoms, count)]
+    box = lines[2 + count]
+    return "\n".join([lines[0], "%5d" % len(body)] + body + [box]) + "\n"
+
+
+def write(target, name, option, payload):
+    folder = SEEDS / target
+    folder.mkdir(parents=True, exist_ok=True)
+    if isinstance(payload, str):
+        payload = payload.encode("latin-1")
+    (folder / name).write_bytes(bytes([option]) + payload)
+
+
+def main():
+    if len(sys.argv) != 2:
+        sys.exit(__doc__)
+    trajectories = pathlib.Path(sys.argv[1])
+    proteins = ROOT / "Data" / "proteins"
+    awkward = proteins / "awkward"
+
+    # Structures: every awkward file as it is, the small real ones cut, in each file form.
+    structures = []
+    for path in sorted(awkward.glob("*.pdb")) + sorted(awkward.glob("*.cif")):
+        if path.stat().st_size <= 16384:
+            structures.append((path, path.read_text("latin-1")))
+    for path in sorted(proteins.glob("*.pdb")):
+        structures.append((path, cut_pdb(path.read_text("latin-1"))))
+    for path in sorted(proteins.glob("*.cif")):
+        structures.append((path, cut_cif(path.read_text("latin-1"))))
+    for index, (path, text) in enumerate(structures):
+        is_cif = path.suffix == ".cif"
+        write("fuzz_structure", path.stem + path.suffix, 1 if is_cif else 0, text)
+        # Some seeds in the other forms: no extension, gzipped, and with options set.
+        if index % 3 == 0:
+            write("fuzz_structure", path.stem + "_bare" + path.suffix, 2, text)
+        if index % 3 == 1:
+            write("fuzz_structure", path.stem + "_gz" + path.suffix, 0x83 if is_cif else 3, text)
+        if index % 3 == 2:
+            options = (1 if is_cif else 0) | (4 << (index // 3 % 5))
+            write("fuzz_structure", path.stem + "_options" + path.suffix, options, text)
+
+    # GRO: the awkward files as they are, the membranes cut; then as trajectories too.
+    for path in sorted(awkward.glob("*.gro")):
+        write("fuzz_gro", path.name, 0, path.read_text("latin-1"))
+    for path in sorted((ROOT / "Data" / "membranes").glob("*.gro")):
+        write("fuzz_gro", path.name, 0, cut_gro(path.read_text("latin-1")))
+        write("fuzz_gro", path.stem + "_beads.gro", 2, cut_gro(path.read_text("latin-1"), 12))
+
+    # XTC and TRR.
+    for path in sorted(trajectories.glob("*.xtc")) + sorted(trajectories.glob("*.trr")):
+        trr = path.suffix == ".trr"
+        write("fuzz_trajectory", path.name, int(trr), path.read_bytes())
+        write("fuzz_trajectory", path.stem + "_skip" + path.suffix, int(trr) | 2, path.read_bytes())
+
+
+if __name__ == "__main__":
+    main()

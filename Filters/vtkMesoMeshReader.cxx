@@ -26,7 +26,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
+#include <string>
 #include <vector>
 #include <fstream>
 #include <sys/stat.h>
@@ -116,6 +118,42 @@ void weld_identical_points(vtkPolyData* mesh)
   mesh->SetPolys(polys);
 }
 
+/// VTK's OBJ, STL and XML readers pass on what the file says: faces that name vertices the file
+/// does not have (an OBJ cut short), and non-finite coordinates. Returns what is wrong with the
+/// first such polygon or point, or an empty string when the mesh can be used.
+std::string invalid_mesh_data(vtkPolyData* mesh)
+{
+  const vtkIdType point_count = mesh->GetNumberOfPoints();
+  for (vtkIdType i = 0; i < point_count; ++i)
+  {
+    double p[3];
+    mesh->GetPoint(i, p);
+    if (!std::isfinite(p[0]) || !std::isfinite(p[1]) || !std::isfinite(p[2]))
+    {
+      return "vertex " + std::to_string(i + 1) + " has a non-finite coordinate";
+    }
+  }
+  auto iterator = vtk::TakeSmartPointer(mesh->GetPolys()->NewIterator());
+  vtkIdType polygon = 1;
+  for (iterator->GoToFirstCell(); !iterator->IsDoneWithTraversal(); iterator->GoToNextCell())
+  {
+    vtkIdType size = 0;
+    const vtkIdType* ids = nullptr;
+    iterator->GetCurrentCell(size, ids);
+    for (vtkIdType k = 0; k < size; ++k)
+    {
+      if (ids[k] < 0 || ids[k] >= point_count)
+      {
+        return "face " + std::to_string(polygon) + " refers to vertex " +
+          std::to_string(ids[k] + 1) + ", but the file has " + std::to_string(point_count) +
+          " vertices";
+      }
+    }
+    ++polygon;
+  }
+  return {};
+}
+
 /// Keeps polygons only, fan-splitting those with more than three vertices.
 void keep_triangles(vtkPolyData* mesh)
 {
@@ -188,6 +226,13 @@ bool vtkMesoMeshReader::ReadWithVTK(const std::string& extension, vtkPolyData* o
     return false;
   }
   output->ShallowCopy(vtkPolyData::SafeDownCast(reader->GetOutputDataObject(0)));
+  const std::string invalid = invalid_mesh_data(output);
+  if (!invalid.empty())
+  {
+    vtkErrorMacro("Cannot read " << this->FileName << ": " << invalid);
+    output->Initialize();
+    return false;
+  }
   return true;
 }
 

@@ -5,7 +5,8 @@
 # adds (kept in build-fuzz/corpus/TARGET). Crashes, leaks, timeouts (-timeout=10 s) and allocations over 2 GiB
 # (-rss_limit_mb=2048) stop the run and leave the input in build-fuzz/artifacts/TARGET/.
 #
-#   scripts/fuzz.sh TARGET SECONDS [libFuzzer options...]       (TARGET: fuzz_ply, fuzz_structure, fuzz_gro, fuzz_trajectory)
+#   scripts/fuzz.sh TARGET SECONDS [libFuzzer options...]       (TARGET: fuzz_ply, fuzz_structure, fuzz_gro,
+#                                                                 fuzz_trajectory, fuzz_mesh)
 set -eu
 if [ $# -lt 2 ]; then
   echo "usage: scripts/fuzz.sh TARGET SECONDS [libFuzzer options...]" >&2
@@ -21,6 +22,7 @@ case "$target" in
   fuzz_structure) dict=structure.dict ;;
   fuzz_gro) dict=gro.dict ;;
   fuzz_trajectory) dict=trajectory.dict ;;
+  fuzz_mesh) dict=mesh.dict ;;
   *) echo "unknown fuzz target $target" >&2; exit 2 ;;
 esac
 if [ ! -f "$build/CMakeCache.txt" ]; then

@@ -370,11 +370,11 @@ void check_finite(const AtomTable& table, const std::string& path)
   }
 }
 
-/// gemmi 0.5 reads the reported distance (columns 74-78) of SSBOND and LINK records whenever a
-/// line, its newline included, is longer than 73 characters: past the end of a record cut
-/// before or inside those columns. PDB columns are fixed and blank when absent, so such records
-/// get blanks up to column 80 first. Returns the padded text, or an empty string when no record
-/// needed it.
+/// gemmi 0.5 reads the reported distance (columns 74-78) of SSBOND and LINK records, and a
+/// LINKR record's link id (columns 73-80), whenever a line, its newline included, is longer than
+/// 73 characters: past the end of a record cut before or inside those columns. PDB columns are
+/// fixed and blank when absent, so these records (and CISPEP, read the same way) get blanks up
+/// to column 80 first. Returns the padded text, or an empty string when no record needed it.
 std::string pad_connection_records(const char* text, std::size_t size)
 {
   constexpr std::size_t record_width = 80;
@@ -406,7 +406,9 @@ std::string pad_connection_records(const char* text, std::size_t size)
       }
       return true;
     };
-    if (length < record_width && (starts_with("SSBOND") || starts_with("LINK")))
+    // gemmi knows a record by its first four letters, in any case.
+    if (length < record_width &&
+        (starts_with("SSBO") || starts_with("LINK") || starts_with("CISP")))
     {
       padded.append(text + copied, end - copied);
       padded.append(record_width - length, ' ');

@@ -9,8 +9,9 @@ corpus, minimised with -merge=1, may be added to them.
 
     Testing/Fuzz/make_fuzz_seeds.py TRAJECTORY_SEEDS_DIR
 """
-import gzip
+import base64
 import pathlib
+import struct
 import sys
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
@@ -79,6 +80,94 @@ def cut_gro(text, atoms=40):
     return "\n".join([lines[0], "%5d" % len(body)] + body + [box]) + "\n"
 
 
+def read_off(text):
+    """Points and triangles of a small OFF file."""
+    words = text.split()
+    vertices, faces = int(words[1]), int(words[2])
+    numbers = words[4:]
+    points = [tuple(float(v) for v in numbers[3 * i:3 * i + 3]) for i in range(vertices)]
+    rest, triangles = numbers[3 * vertices:], []
+    for _ in range(faces):
+        count = int(rest[0])
+        triangles.append(tuple(int(v) for v in rest[1:1 + count]))
+        rest = rest[1 + count:]
+    return points, triangles
+
+
+def obj_text(points, triangles):
+    lines = ["v %g %g %g" % p for p in points]
+    lines += ["f " + " ".join(str(i + 1) for i in t) for t in triangles]
+    return "\n".join(lines) + "\n"
+
+
+def cut_obj(text, vertices=40):
+    """The first `vertices` vertices of an OBJ file and the faces that use only them."""
+    lines, seen = [], 0
+    for line in text.splitlines():
+        if line.startswith("v "):
+            seen += 1
+            if seen <= vertices:
+                lines.append(line)
+        elif line.startswith("f "):
+            corners = [int(c.split("/")[0]) for c in line.split()[1:]]
+            if max(corners) <= vertices:
+                lines.append(" ".join(["f"] + [str(c) for c in corners]))
+        elif not line.startswith(("vn", "vt")):
+            lines.append(line)
+    return "\n".join(lines) + "\n"
+
+
+def stl_ascii(points, triangles):
+    lines = ["solid seed"]
+    for t in triangles:
+        lines += ["facet normal 0 0 0", "outer loop"]
+        lines += ["vertex %g %g %g" % points[i] for i in t[:3]]
+        lines += ["endloop", "endfacet"]
+    return "\n".join(lines + ["endsolid seed"]) + "\n"
+
+
+def stl_binary(points, triangles):
+    data = b"seed".ljust(80, b" ") + struct.pack("<I", len(triangles))
+    for t in triangles:
+        data += struct.pack("<3f", 0, 0, 0)
+        for i in t[:3]:
+            data += struct.pack("<3f", *points[i])
+        data += b"\0\0"
+    return data
+
+
+def vtp(points, triangles, binary):
+    """A VTK XML PolyData file, ascii or with base64 binary data inline."""
+    def array(kind, name, components, values):
+        attributes = 'type="%s" Name="%s" NumberOfComponents="%d"' % (kind, name, components)
+        if binary:
+            code = {"Float32": "f", "Int64": "q"}[kind]
+            raw = struct.pack("<%d%s" % (len(values), code), *values)
+            payload = base64.b64encode(struct.pack("<Q", len(raw)) + raw).decode()
+            return '<DataArray %s format="binary">%s</DataArray>' % (attributes, payload)
+        return '<DataArray %s format="ascii">%s</DataArray>' % (
+            attributes, " ".join(str(v) for v in values))
+    coordinates = [c for p in points for c in p]
+    connectivity = [i for t in triangles for i in t]
+    offsets = [sum(len(t) for t in triangles[:k + 1]) for k in range(len(triangles))]
+    header = 'header_type="UInt64" ' if binary else ""
+    return ('<?xml version="1.0"?>\n<VTKFile type="PolyData" version="1.0" '
+            'byte_order="LittleEndian" %s>\n<PolyData>\n'
+            '<Piece NumberOfPoints="%d" NumberOfPolys="%d">\n<Points>%s</Points>\n'
+            '<Polys>%s%s</Polys>\n</Piece>\n</PolyData>\n</VTKFile>\n') % (
+        header, len(points), len(triangles), array("Float32", "Points", 3, coordinates),
+        array("Int64", "connectivity", 1, connectivity), array("Int64", "offsets", 1, offsets))
+
+
+def ply_ascii(points, triangles):
+    lines = ["ply", "format ascii 1.0", "element vertex %d" % len(points), "property float x",
+             "property float y", "property float z", "element face %d" % len(triangles),
+             "property list uchar int vertex_indices", "end_header"]
+    lines += ["%g %g %g" % p for p in points]
+    lines += ["%d " % len(t) + " ".join(str(i) for i in t) for t in triangles]
+    return "\n".join(lines) + "\n"
+
+
 def write(target, name, option, payload):
     folder = SEEDS / target
     folder.mkdir(parents=True, exist_ok=True)
@@ -121,6 +210,23 @@ def main():
     for path in sorted((ROOT / "Data" / "membranes").glob("*.gro")):
         write("fuzz_gro", path.name, 0, cut_gro(path.read_text("latin-1")))
         write("fuzz_gro", path.stem + "_beads.gro", 2, cut_gro(path.read_text("latin-1"), 12))
+
+    # Meshes, one extension per option byte (byte % 5: obj, ply, stl, off, vtp).
+    for path in sorted((ROOT / "Data" / "meshes" / "bad").glob("*.off")):
+        text = path.read_text("latin-1")
+        write("fuzz_mesh", path.name, 3, text)
+        points, triangles = read_off(text)
+        write("fuzz_mesh", path.stem + ".obj", 0, obj_text(points, triangles))
+        write("fuzz_mesh", path.stem + "_ascii.stl", 2, stl_ascii(points, triangles))
+        write("fuzz_mesh", path.stem + "_binary.stl", 2, stl_binary(points, triangles))
+        write("fuzz_mesh", path.stem + "_ascii.vtp", 4, vtp(points, triangles, False))
+        write("fuzz_mesh", path.stem + "_binary.vtp", 4, vtp(points, triangles, True))
+        write("fuzz_mesh", path.stem + "_ascii.ply", 1, ply_ascii(points, triangles))
+    obj = (ROOT / "Data" / "meshes" / "hipsc_cell_membrane_1.obj").read_text("latin-1")
+    write("fuzz_mesh", "hipsc_cut.obj", 0, cut_obj(obj))
+    for path in sorted((ROOT / "Testing" / "Data" / "meshes").glob("*.ply")):
+        if path.stat().st_size <= 8192:
+            write("fuzz_mesh", path.name, 1, path.read_bytes())
 
     # XTC and TRR.
     for path in sorted(trajectories.glob("*.xtc")) + sorted(trajectories.glob("*.trr")):

@@ -18,6 +18,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdint>
+#include <limits>
+
 using mesolens_test::data_file;
 
 namespace {
@@ -174,6 +177,43 @@ TEST(vtkMesoMeshReader, PlyFilesThatCrashedVTKsReaderAreRefused)
     { mesolens_test::truncated_copy(data_file("meshes/celegans_embryo_cell10_T10.ply"), 20000,
                                     "truncated_embryo.ply"),
       "more than the" },
+  };
+  for (const auto& c : cases)
+  {
+    expect_refused(c.path, c.problem);
+  }
+}
+
+TEST(vtkMesoMeshReader, WhatVTKsReadersPassOnIsChecked)
+{
+  // vtkOBJReader, vtkSTLReader and vtkXMLPolyDataReader pass on faces naming vertices that the
+  // file does not have (found by fuzz_mesh: an OBJ cut short, read as triangles whose indices
+  // run past the points) and non-finite coordinates.
+  const std::string hostile = std::string(MESOLENS_SOURCE_DIR) + "/Testing/Data/meshes/";
+  std::string stl_with_nan(80, ' ');
+  const std::uint32_t one = 1;
+  stl_with_nan.append(reinterpret_cast<const char*>(&one), 4);
+  const float facet[12] = { 0, 0, 1, 0, 0, 0, 1, 0, 0, std::numeric_limits<float>::quiet_NaN(),
+                            1, 0 };
+  stl_with_nan.append(reinterpret_cast<const char*>(facet), sizeof facet);
+  stl_with_nan.append(2, '\0');
+  const std::string vtp_past_the_points =
+    "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\">\n<PolyData>\n"
+    "<Piece NumberOfPoints=\"3\" NumberOfPolys=\"1\">\n<Points><DataArray type=\"Float32\" "
+    "NumberOfComponents=\"3\" format=\"ascii\">0 0 0 1 0 0 0 1 0</DataArray></Points>\n"
+    "<Polys><DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">0 1 7"
+    "</DataArray><DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">3</DataArray>"
+    "</Polys>\n</Piece>\n</PolyData>\n</VTKFile>\n";
+  const struct
+  {
+    std::string path;
+    const char* problem;
+  } cases[] = {
+    { hostile + "fuzz_obj_faces_past_the_vertices.obj",
+      "face 3 refers to vertex 5, but the file has 4 vertices" },
+    { mesolens_test::write_bytes("nan_vertex.stl", stl_with_nan), "non-finite coordinate" },
+    { mesolens_test::write_bytes("past_the_points.vtp", vtp_past_the_points),
+      "face 1 refers to vertex 8, but the file has 3 vertices" },
   };
   for (const auto& c : cases)
   {

@@ -582,7 +582,8 @@ TEST(StructureFile, DamagedShiftedRecordsThrow)
 }
 
 // Found by fuzz_structure: gemmi 0.5 read the distance columns (74-78) of an SSBOND or LINK
-// record cut at column 73 past the end of the line (a heap overflow under AddressSanitizer).
+// record cut at column 73 past the end of the line (a heap overflow under AddressSanitizer), and
+// of records known by their first four letters in any case ("ssbo", "LINKR").
 // The record is read as if blank-padded: the disulfide becomes a bond.
 TEST(StructureFile, ConnectionRecordsCutInTheirDistanceColumns)
 {

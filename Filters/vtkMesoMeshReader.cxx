@@ -4,6 +4,7 @@
 #include "mesolens/common/errors.h"
 #include "mesolens/io/file_names.h"
 #include "mesolens/io/off_file.h"
+#include "mesolens/io/obj_file.h"
 #include "mesolens/io/ply_file.h"
 
 #include <vtkCallbackCommand.h>
@@ -15,7 +16,6 @@
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
 #include <vtkNew.h>
-#include <vtkOBJReader.h>
 #include <vtkObjectFactory.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
@@ -62,10 +62,11 @@ struct ErrorCollector
   }
 };
 
-/// vtkOBJReader gives every face corner its own point when the file has per-corner normals or
-/// texture coordinates (the hiPSC membrane goes from 1216 vertices to 7284 points), which makes a
-/// closed surface look like a triangle soup. Points with identical coordinates are merged back
-/// (the attributes of the first one are kept), so the mesh has its file topology.
+/// Many writers repeat a vertex for every face that uses it (STL always does; OBJ and PLY
+/// exporters of per-corner normals or texture coordinates, and VTK's own OBJ reader, split
+/// them so: the hiPSC membrane has 1216 vertices and 7284 corners). Points with identical
+/// coordinates are merged back (the attributes of the first one are kept), so the mesh has its
+/// surface's topology.
 void weld_identical_points(vtkPolyData* mesh)
 {
   const vtkIdType n = mesh->GetNumberOfPoints();
@@ -118,8 +119,8 @@ void weld_identical_points(vtkPolyData* mesh)
   mesh->SetPolys(polys);
 }
 
-/// VTK's OBJ, STL and XML readers pass on what the file says: faces that name vertices the file
-/// does not have (an OBJ cut short), and non-finite coordinates. Returns what is wrong with the
+/// VTK's STL and XML readers pass on what the file says: faces that name vertices the file does
+/// not have, and non-finite coordinates. Returns what is wrong with the
 /// first such polygon or point, or an empty string when the mesh can be used.
 std::string invalid_mesh_data(vtkPolyData* mesh)
 {
@@ -192,13 +193,7 @@ int vtkMesoMeshReader::CanReadFile(const char* fileName)
 bool vtkMesoMeshReader::ReadWithVTK(const std::string& extension, vtkPolyData* output)
 {
   vtkSmartPointer<vtkAlgorithm> reader;
-  if (extension == "obj")
-  {
-    auto obj = vtkSmartPointer<vtkOBJReader>::New();
-    obj->SetFileName(this->FileName.c_str());
-    reader = obj;
-  }
-  else if (extension == "stl")
+  if (extension == "stl")
   {
     auto stl = vtkSmartPointer<vtkSTLReader>::New();
     stl->SetFileName(this->FileName.c_str());
@@ -242,9 +237,10 @@ bool vtkMesoMeshReader::ReadSoup(const std::string& extension, vtkPolyData* outp
   std::vector<double> normals;
   try
   {
-    if (extension == "ply")
+    if (extension == "ply" || extension == "obj")
     {
-      mesolens::PlyMesh mesh = mesolens::read_ply(this->FileName);
+      mesolens::MeshFileContents mesh = extension == "ply" ? mesolens::read_ply(this->FileName)
+                                                           : mesolens::read_obj(this->FileName);
       soup = std::move(mesh.soup);
       normals = std::move(mesh.normals);
     }
@@ -323,8 +319,8 @@ int vtkMesoMeshReader::RequestData(vtkInformation*, vtkInformationVector**,
     return 0;
   }
   vtkNew<vtkPolyData> mesh;
-  const bool read = extension == "off" || extension == "ply" ? this->ReadSoup(extension, mesh)
-                                                             : this->ReadWithVTK(extension, mesh);
+  const bool read = extension == "stl" || extension == "vtp" ? this->ReadWithVTK(extension, mesh)
+                                                             : this->ReadSoup(extension, mesh);
   if (!read)
   {
     return 0;

@@ -3,16 +3,18 @@
  * @class   vtkMesoMeshReader
  * @brief   Reads a cell-component surface mesh (.obj, .ply, .stl, .vtp, .off) as triangles.
  *
- * OBJ, STL and VTP go through VTK's own readers (vtkOBJReader, vtkSTLReader,
- * vtkXMLPolyDataReader); OFF through CGAL's polygon-soup reader; PLY (ascii and binary) through
- * MesoLens' own strict reader (mesolens::read_ply: VTK's crashes on files whose header lies),
- * with the vertex normals as `Normals` when the file has them. Meshes with defects (holes,
- * non-manifold or inconsistently oriented faces, degenerate triangles) are read as they are and
- * vtkMesoMeshReport can describe them. Polygons with more than three vertices are split into
- * triangles; vertices, lines and strips are dropped. Points with identical coordinates are
- * merged (vtkOBJReader splits them per face corner when the file has per-corner normals), so
- * the output has the file's topology; the point attributes of the first copy are kept. Coordinates
- * are in the file's own unit (the mitochondrion meshes of the test data are in µm).
+ * STL and VTP go through VTK's own readers (vtkSTLReader, vtkXMLPolyDataReader), whose output
+ * is checked (faces naming points the file lacks, non-finite coordinates); OFF through CGAL's
+ * polygon-soup reader; OBJ and PLY (ascii and binary) through MesoLens' own strict readers
+ * (mesolens::read_obj, mesolens::read_ply: VTK's read garbage numbers as 0, pass on faces past
+ * the vertices, and crash on PLY files whose header lies), with the vertex normals as `Normals`
+ * when the file has them. Meshes with defects (holes, non-manifold or inconsistently oriented
+ * faces, degenerate triangles) are read as they are and vtkMesoMeshReport can describe them.
+ * Polygons with more than three vertices are split into triangles; vertices, lines and strips
+ * are dropped. Points with identical coordinates are merged (writers repeat a vertex per face
+ * corner), so the output has the file's topology; the point attributes of the first copy are
+ * kept. Coordinates are in the file's own unit (the mitochondrion meshes of the test data are in
+ * µm).
  *
  * A missing, empty or unreadable file, or one without any polygon, gives a vtkErrorMacro
  * naming the file, an empty output and a failed update.

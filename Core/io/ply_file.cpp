@@ -348,20 +348,12 @@ std::vector<Element> read_header(const std::string& path, const std::vector<char
 
 } // namespace
 
-PlyMesh read_ply(const std::string& path)
+MeshFileContents read_ply(const std::string& path)
 {
-  detail::require_readable_file(path);
-  std::ifstream stream(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(stream)),
-                          std::istreambuf_iterator<char>());
-  if (!stream && !stream.eof())
-  {
-    throw FileError(path + ": cannot be read");
-  }
-  return read_ply_bytes(bytes, path);
+  return read_ply_bytes(detail::read_file_bytes(path), path);
 }
 
-PlyMesh read_ply_bytes(const std::string& bytes, const std::string& path)
+MeshFileContents read_ply_bytes(const std::string& bytes, const std::string& path)
 {
   if (bytes.empty())
   {
@@ -376,7 +368,7 @@ PlyMesh read_ply_bytes(const std::string& bytes, const std::string& path)
   file.clear();
   file.shrink_to_fit();
 
-  PlyMesh mesh;
+  MeshFileContents mesh;
   std::uint64_t vertex_count = 0;
   bool have_vertices = false;
   for (const Element& element : elements)

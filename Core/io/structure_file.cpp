@@ -553,6 +553,7 @@ StructureFile read_structure(const std::string& path, const StructureReadParams&
 
   StructureFile file;
   file.title = structure.get_info("_struct.title");
+  bool emptied_by_selection = false; // a model whose atoms the params all removed
   for (std::size_t m = 0; m < structure.models.size(); ++m)
   {
     const gemmi::Model& model = structure.models[m];
@@ -589,6 +590,11 @@ StructureFile read_structure(const std::string& path, const StructureReadParams&
     if (std::find(keep.begin(), keep.end(), false) != keep.end())
     {
       table.filter(keep);
+      if (table.size() == 0)
+      {
+        emptied_by_selection = true;
+        continue; // nothing of this model is wanted
+      }
     }
     const std::vector<Bond> kept_explicit = table.bonds;
     file.coarse_grained = build_connectivity(table, kept_explicit, params, elements_given);
@@ -600,6 +606,14 @@ StructureFile read_structure(const std::string& path, const StructureReadParams&
     }
     file.models.push_back(std::move(table));
     report(0.5 + 0.5 * double(m + 1) / double(structure.models.size()));
+  }
+  if (file.models.empty() && emptied_by_selection)
+  {
+    throw InvalidInput(path + ": no atoms are left once " +
+                       (params.remove_waters && params.remove_hydrogens
+                          ? "waters and hydrogens are"
+                          : (params.remove_waters ? "waters are" : "hydrogens are")) +
+                       " removed");
   }
   if (file.models.empty())
   {

@@ -13,7 +13,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 {
   try
   {
-    const mesolens::PlyMesh mesh =
+    const mesolens::MeshFileContents mesh =
       mesolens::read_ply_bytes(std::string(reinterpret_cast<const char*>(data), size), "input");
     // What the reader promises: indices within the vertices, 3 coordinates per vertex.
     const std::size_t vertices = mesh.soup.points.size() / 3;

@@ -4,6 +4,7 @@
 #include "mesolens/common/errors.h"
 
 #include <fstream>
+#include <iterator>
 #include <sys/stat.h>
 
 namespace mesolens {
@@ -35,6 +36,18 @@ void require_readable_file(const std::string& path)
   {
     throw FileError(path + ": cannot be opened for reading");
   }
+}
+
+std::string read_file_bytes(const std::string& path)
+{
+  require_readable_file(path);
+  std::ifstream stream(path, std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
+  if (!stream && !stream.eof())
+  {
+    throw FileError(path + ": cannot be read");
+  }
+  return bytes;
 }
 
 } // namespace detail

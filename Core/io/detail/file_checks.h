@@ -10,5 +10,9 @@ namespace detail {
 /// Throws FileError unless `path` is a readable, non-empty regular file.
 void require_readable_file(const std::string& path);
 
+/// The bytes of a readable file (require_readable_file() first); throws FileError when reading
+/// fails part-way.
+std::string read_file_bytes(const std::string& path);
+
 } // namespace detail
 } // namespace mesolens

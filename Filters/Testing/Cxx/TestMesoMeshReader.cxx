@@ -148,7 +148,7 @@ TEST(vtkMesoMeshReader, BadFilesFailCleanly)
     { mesolens_test::write_bytes("empty_mesh.ply", ""), "empty" },
     { mesolens_test::garbage_file("garbage_mesh.ply"), "Cannot read" },
     { mesolens_test::garbage_file("garbage_mesh.off"), "not a valid OFF" },
-    { mesolens_test::write_bytes("points_only.obj", "v 0 0 0\nv 1 0 0\n"), "no polygons" },
+    { mesolens_test::write_bytes("points_only.obj", "v 0 0 0\nv 1 0 0\n"), "no faces" },
     { data_file("proteins/1crn.pdb"), "unknown mesh format" },
   };
   for (const auto& c : cases)
@@ -188,13 +188,14 @@ TEST(vtkMesoMeshReader, WhatVTKsReadersPassOnIsChecked)
 {
   // vtkOBJReader, vtkSTLReader and vtkXMLPolyDataReader pass on faces naming vertices that the
   // file does not have (found by fuzz_mesh: an OBJ cut short, read as triangles whose indices
-  // run past the points) and non-finite coordinates.
+  // run past the points) and non-finite coordinates; vtkOBJReader reads "nan" and "x" as 0.
   const std::string hostile = std::string(MESOLENS_SOURCE_DIR) + "/Testing/Data/meshes/";
   std::string stl_with_nan(80, ' ');
   const std::uint32_t one = 1;
   stl_with_nan.append(reinterpret_cast<const char*>(&one), 4);
-  const float facet[12] = { 0, 0, 1, 0, 0, 0, 1, 0, 0, std::numeric_limits<float>::quiet_NaN(),
-                            1, 0 };
+  const float facet[12] = {
+    0, 0, 1, 0, 0, 0, 1, 0, 0, std::numeric_limits<float>::quiet_NaN(), 1, 0
+  };
   stl_with_nan.append(reinterpret_cast<const char*>(facet), sizeof facet);
   stl_with_nan.append(2, '\0');
   const std::string vtp_past_the_points =
@@ -210,7 +211,11 @@ TEST(vtkMesoMeshReader, WhatVTKsReadersPassOnIsChecked)
     const char* problem;
   } cases[] = {
     { hostile + "fuzz_obj_faces_past_the_vertices.obj",
-      "face 3 refers to vertex 5, but the file has 4 vertices" },
+      "line 7: the face refers to vertex 5, but the file has 4 vertices" },
+    { mesolens_test::write_bytes("nan_vertex.obj", "v 0 0 0\nv 1 nan 0\nv 0 1 0\nf 1 2 3\n"),
+      "line 2: non-finite coordinate 'nan'" },
+    { mesolens_test::write_bytes("garbage_vertex.obj", "v 0 0 0\nv 1 x 0\nv 0 1 0\nf 1 2 3\n"),
+      "line 2: 'x' is not a number" },
     { mesolens_test::write_bytes("nan_vertex.stl", stl_with_nan), "non-finite coordinate" },
     { mesolens_test::write_bytes("past_the_points.vtp", vtp_past_the_points),
       "face 1 refers to vertex 8, but the file has 3 vertices" },

@@ -77,7 +77,7 @@ std::string square_binary(bool big_endian, std::uint32_t claimed_vertices = 4,
   return text;
 }
 
-void expect_square(const mesolens::PlyMesh& mesh)
+void expect_square(const mesolens::MeshFileContents& mesh)
 {
   ASSERT_EQ(mesh.soup.points.size(), 12u);
   EXPECT_EQ(mesh.soup.points[3], 1.0);

@@ -186,6 +186,40 @@ TEST(StructureFile, RemoveWatersAndHydrogens)
             154u);
 }
 
+TEST(StructureFile, NothingLeftAfterRemovalIsAnError)
+{
+  // Found by fuzz_structure: a file of hydrogens read without hydrogens gave a model of no atoms.
+  const std::string hydrogens = mesolens_test::write_bytes(
+    "hydrogens_only.pdb",
+    "ATOM      1  H1  HOH A   1       0.000   0.000   0.000  1.00  0.00           H\n"
+    "ATOM      2  H2  HOH A   1       0.800   0.600   0.000  1.00  0.00           H\n");
+  const struct
+  {
+    bool waters, hydrogens;
+    const char* message;
+  } cases[] = {
+    { false, true, "no atoms are left once hydrogens are removed" },
+    { true, false, "no atoms are left once waters are removed" },
+    { true, true, "no atoms are left once waters and hydrogens are removed" },
+  };
+  for (const auto& c : cases)
+  {
+    mesolens::StructureReadParams params;
+    params.remove_waters = c.waters;
+    params.remove_hydrogens = c.hydrogens;
+    try
+    {
+      mesolens::read_structure(hydrogens, params);
+      ADD_FAILURE() << "no error: " << c.message;
+    }
+    catch (const mesolens::InvalidInput& e)
+    {
+      EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(mesolens::read_structure(hydrogens).models.front().size(), 2u);
+}
+
 TEST(StructureFile, ExplicitBondsWithoutPerception)
 {
   mesolens::StructureReadParams params;

@@ -12,13 +12,6 @@
 
 namespace mesolens {
 
-/// A PLY mesh: its vertices and faces, and the vertex normals when the file has them.
-struct PlyMesh
-{
-  PolygonSoup soup;
-  std::vector<double> normals; ///< 3 per vertex (nx, ny, nz), or empty
-};
-
 /// Reads the `vertex` element's x, y, z (and nx, ny, nz when all three are there) and the
 /// `face` element's `vertex_indices` (or `vertex_index`) lists of a PLY file; other elements and
 /// properties are read past. Property types: char/int8, uchar/uint8, short/int16,
@@ -28,9 +21,9 @@ struct PlyMesh
 /// shorter than its header claims, a list count larger than the file could hold, a face of
 /// fewer than 3 vertices or with an index outside the vertices, a non-finite coordinate, or a
 /// file without vertices or faces.
-PlyMesh read_ply(const std::string& path);
+MeshFileContents read_ply(const std::string& path);
 
 /// The same for a PLY file's bytes held in memory (`name` says which in messages).
-PlyMesh read_ply_bytes(const std::string& bytes, const std::string& name);
+MeshFileContents read_ply_bytes(const std::string& bytes, const std::string& name);
 
 } // namespace mesolens

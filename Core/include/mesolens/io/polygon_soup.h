@@ -14,4 +14,11 @@ struct PolygonSoup
   std::vector<std::vector<std::int64_t>> polygons; ///< vertex indices per face
 };
 
+/// What a mesh file gives: its polygons, and the vertex normals when it has them.
+struct MeshFileContents
+{
+  PolygonSoup soup;
+  std::vector<double> normals; ///< 3 per vertex (nx, ny, nz), or empty
+};
+
 } // namespace mesolens

@@ -217,9 +217,14 @@ Lattice choose_lattice(const SurfaceInput& input)
   const MolecularSurfaceParams& options = input.options;
   const double p = input.probe;
   Lattice lattice;
-  lattice.curvature_radius = input.excluded
-    ? std::min(p, input.smallest_atom)
-    : input.smallest_atom + (options.kind == SurfaceKind::SolventAccessible ? p : 0.0);
+  // Atoms, probes and cavities smaller than the tolerance cannot be drawn within it, so the
+  // lattice does not resolve them: without this floor its cost grew without bound as a radius
+  // went to 0 (an atom of 1e-4 Å took 0.8 s, one of 1e-6 Å minutes).
+  lattice.curvature_radius =
+    std::max(options.tolerance,
+             input.excluded
+               ? std::min(p, input.smallest_atom)
+               : input.smallest_atom + (options.kind == SurfaceKind::SolventAccessible ? p : 0.0));
   double reach = 0.5 * std::sqrt(3.0) *
     cubic_spacing_for(std::max(
                         options.tolerance,
@@ -227,7 +232,7 @@ Lattice choose_lattice(const SurfaceInput& input)
                       lattice.curvature_radius);
   if (input.excluded)
   {
-    reach = std::min(reach, cavity_reach_ratio * p);
+    reach = std::min(reach, cavity_reach_ratio * std::max(p, options.tolerance));
   }
   lattice.spacing = spacing_per_reach * reach;
   lattice.tolerance = lattice.spacing * lattice.spacing / (8.0 * lattice.curvature_radius);

@@ -24,12 +24,17 @@ inline int ceil_to_int(double x)
   return truncated + (x > truncated ? 1 : 0);
 }
 
-/// The cell of edge `size` holding `p`.
+/// The cell of edge `size` holding `p` (finite). Cells past +-2^62 per axis (points 1e18 cells
+/// away, which only hostile input has) are clamped there: converting them would be undefined,
+/// and a shared far cell only adds candidates that the searches' distance tests drop.
 inline GridCell grid_cell(const std::array<double, 3>& p, double size)
 {
-  return { static_cast<std::int64_t>(std::floor(p[0] / size)),
-           static_cast<std::int64_t>(std::floor(p[1] / size)),
-           static_cast<std::int64_t>(std::floor(p[2] / size)) };
+  constexpr double limit = 4.611686018427387904e18; // 2^62
+  const auto axis = [size](double x) {
+    const double cell = std::floor(x / size);
+    return static_cast<std::int64_t>(cell < -limit ? -limit : (cell > limit ? limit : cell));
+  };
+  return { axis(p[0]), axis(p[1]), axis(p[2]) };
 }
 
 /// A cell as one 64-bit key: 21 bits per axis, cells up to +-1e6 per axis (far more than any

@@ -429,10 +429,8 @@ void ChordRefinement::project_candidates(ChunkState& state, ChunkSplits& out) co
   std::vector<Candidate>& candidates = state.candidates;
   for (Candidate& candidate : candidates)
   {
-    const Vec cube = (candidate.middle / focus_size).array().floor();
-    candidate.cube =
-      grid_cell_key({ static_cast<std::int64_t>(cube[0]), static_cast<std::int64_t>(cube[1]),
-                      static_cast<std::int64_t>(cube[2]) });
+    candidate.cube = grid_cell_key(
+      grid_cell({ candidate.middle[0], candidate.middle[1], candidate.middle[2] }, focus_size));
   }
   std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
     return x.cube < y.cube || (x.cube == y.cube && x.corner < y.corner);

@@ -2,6 +2,7 @@
 #include "surface/detail/sas_boundary.h"
 
 #include "mesolens/common/errors.h"
+#include "mesolens/surface/sphere_union_area.h"
 
 #include "common/detail/grid_cells.h"
 #include "surface/detail/power_cell.h"
@@ -629,7 +630,8 @@ double exposed_unit_area(std::vector<Cap>& caps, Vec& normal_integral, UnitPiece
 }
 
 /// The largest radius; throws InvalidInput for lists of different lengths, a non-finite
-/// centre or radius, or a radius that is not positive.
+/// centre or radius, a radius that is not positive, or a centre coordinate or radius beyond
+/// largest_sphere_coordinate.
 double check_spheres(PointSpan<const double> centres, const std::vector<double>& radii)
 {
   const std::size_t n = centres.size();
@@ -646,6 +648,15 @@ double check_spheres(PointSpan<const double> centres, const std::vector<double>&
     {
       throw InvalidInput("sphere " + std::to_string(i) +
                          " has a non-finite centre or a radius that is not positive");
+    }
+    if (std::abs(centres[i][0]) > largest_sphere_coordinate ||
+        std::abs(centres[i][1]) > largest_sphere_coordinate ||
+        std::abs(centres[i][2]) > largest_sphere_coordinate || radii[i] > largest_sphere_coordinate)
+    {
+      throw InvalidInput("sphere " + std::to_string(i) + " lies or reaches beyond " +
+                         std::to_string(largest_sphere_coordinate) +
+                         " length units from the origin, where the arithmetic has too few "
+                         "digits left; move the spheres near the origin");
     }
     largest = std::max(largest, radii[i]);
   }

@@ -625,6 +625,26 @@ TEST(MolecularSurface, ProgressRisesToOne)
   EXPECT_DOUBLE_EQ(fractions.back(), 1.0);
 }
 
+// Found by fuzz_surface: the lattice followed the smallest atom's or probe's curvature however
+// small, so its cost grew without bound (an atom of 1e-4 Å took 10 s under the sanitizers, one
+// of 1e-8 Å would take hours). Features below the tolerance are not resolved.
+TEST(MolecularSurface, TinyAtomsAndProbesDoNotRefineTheLatticeBelowTheTolerance)
+{
+  for (const double atom : { 1e-8, 1e-4, 0.05 })
+  {
+    MolecularSurfaceParams options;
+    options.probe_radius = 2.2;
+    options.tolerance = 0.178;
+    const auto surface = mesolens::molecular_surface(Centres{ { -8, -8, -8 } }, { atom }, options);
+    EXPECT_GE(surface.grid_spacing, options.tolerance) << atom;
+  }
+  MolecularSurfaceParams options;
+  options.probe_radius = 1e-9;
+  const auto surface = mesolens::molecular_surface(Centres{ { 0, 0, 0 } }, { 1.5 }, options);
+  EXPECT_GE(surface.grid_spacing, options.tolerance);
+  EXPECT_NEAR(surface.area, 4 * M_PI * 1.5 * 1.5, 1e-6); // a lone atom's SES is its sphere
+}
+
 TEST(MolecularSurface, BadInputsAreRefused)
 {
   const auto refused = [](const Centres& centres, const std::vector<double>& radii,
@@ -638,6 +658,7 @@ TEST(MolecularSurface, BadInputsAreRefused)
   refused({ { 0, 0, 0 } }, { -1.0 });
   refused({ { 0, 0, 0 } }, { nan });
   refused({ { 0, 0, 0 } }, { 1e6 });
+  refused({ { 0, 0, 0 }, { 9.9549e+186, 0, 0 } }, { 1.5, 1.5 }); // found by fuzz_surface
   for (const double probe : { 0.0, -1.0, 1e6, nan })
   {
     MolecularSurfaceParams options;

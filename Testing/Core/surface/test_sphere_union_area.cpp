@@ -232,3 +232,28 @@ TEST(SphereUnionArea, BadInputs)
   EXPECT_THROW(mesolens::sphere_union_area(Centres{ { 0, 0, 0 } }, { INFINITY }),
                mesolens::InvalidInput);
 }
+
+// Found by fuzz_surface: finite centres far out (1e191) overflowed the neighbour grid's cell
+// index (undefined behaviour) and left no digits for the geometry.
+TEST(SphereUnionArea, SpheresBeyondTheCoordinateLimitAreRefused)
+{
+  for (const double far : { 2e8, -1e191, 1.7e308 })
+  {
+    try
+    {
+      mesolens::sphere_union_area(Centres{ { 0, 0, 0 }, { 0, far, 0 } }, { 1.0, 1.0 });
+      ADD_FAILURE() << far << " accepted";
+    }
+    catch (const mesolens::InvalidInput& e)
+    {
+      EXPECT_NE(std::string(e.what()).find("sphere 1 lies or reaches beyond"), std::string::npos)
+        << e.what();
+    }
+  }
+  EXPECT_THROW(mesolens::sphere_union_area(Centres{ { 0, 0, 0 } }, { 1e300 }),
+               mesolens::InvalidInput);
+  // Just inside the limit, a sphere is still measured exactly.
+  const double limit = mesolens::largest_sphere_coordinate;
+  const auto area = mesolens::sphere_union_area(Centres{ { limit - 2, 0, 0 } }, { 1.0 });
+  EXPECT_NEAR(area.total, 4 * M_PI, 1e-9);
+}

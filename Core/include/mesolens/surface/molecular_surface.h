@@ -118,13 +118,14 @@ using SurfaceProgress = std::function<void(double)>;
 /// are not made (the meshes of the test data's 15 PDB proteins were checked free of
 /// self-intersections at 0.02, 0.05, 0.1 and 0.3 Å, 3l5q's at 0.3 Å). Exactly degenerate inputs
 /// (four atoms touching one probe position, as in a perfect lattice) may give wrong exact figures;
-/// the mesh stays right.
+/// the mesh stays right. Atoms, probes and cavities smaller than the tolerance are not resolved:
+/// the mesh may leave them out (the exact figures keep them).
 ///
-/// Throws InvalidInput for lists of different lengths, a non-finite centre or radius, a radius
-/// <= 0 or > 20 Å, an option out of range, a tolerance that would need more than 2e7
-/// triangles, or atoms spread so far apart (thousands of Å along each axis) that the search
-/// grid would need more than about 12 GB. No atoms give an empty surface. Deterministic
-/// whatever `parallel_for`.
+/// Throws InvalidInput for lists of different lengths, a non-finite centre or radius, a centre
+/// coordinate beyond largest_sphere_coordinate (1e8 Å), a radius <= 0 or > 20 Å, an option out of
+/// range, a tolerance that would need more than 2e7 triangles, or atoms spread so far apart
+/// (thousands of Å along each axis) that the search grid would need more than about 12 GB. No atoms
+/// give an empty surface. Deterministic whatever `parallel_for`.
 MolecularSurface molecular_surface(PointSpan<const double> centres,
                                    const std::vector<double>& radii,
                                    const MolecularSurfaceParams& options = {},

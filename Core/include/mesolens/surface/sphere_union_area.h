@@ -11,6 +11,11 @@
 
 namespace mesolens {
 
+/// The largest magnitude of a centre coordinate or radius the sphere union and the molecular
+/// surface take, in their length unit (1 cm for Å): farther out, doubles keep too few digits
+/// below the Å for the geometry. Translate distant molecules towards the origin first.
+constexpr double largest_sphere_coordinate = 1e8;
+
 /// Per sphere, the area of its part of the union's surface (length units squared), the total,
 /// and the union's volume (length units cubed).
 struct SphereUnionArea
@@ -27,7 +32,8 @@ struct SphereUnionArea
 /// integrals from the same arcs). For the
 /// solvent-accessible surface pass the atoms' radii plus the probe radius. Spheres inside
 /// another have no exposed area; coincident equal spheres count once (the first). Throws
-/// InvalidInput for lists of different lengths, a non-finite centre or radius, or a radius <= 0.
+/// InvalidInput for lists of different lengths, a non-finite centre or radius, a radius <= 0, or
+/// a coordinate or radius beyond largest_sphere_coordinate.
 /// Deterministic whatever `parallel_for`; time about O(n k^2) for k neighbours per sphere.
 SphereUnionArea sphere_union_area(PointSpan<const double> centres, const std::vector<double>& radii,
                                   const ParallelFor& parallel_for = {});

@@ -17,6 +17,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 #include <unordered_map>
 
@@ -423,6 +424,114 @@ std::string pad_connection_records(const char* text, std::size_t size)
   return padded;
 }
 
+/// Whether a CIF value starts with an integer (after blanks and a sign) beyond int's range.
+bool starts_with_overflowing_int(const std::string& value)
+{
+  std::size_t i = value.find_first_not_of(" \t");
+  if (i == std::string::npos)
+  {
+    return false;
+  }
+  if (value[i] == '-' || value[i] == '+')
+  {
+    ++i;
+  }
+  i = std::min(value.find_first_not_of('0', i), value.size()); // leading zeros
+  std::int64_t magnitude = 0;
+  for (; i < value.size() && value[i] >= '0' && value[i] <= '9'; ++i)
+  {
+    magnitude = 10 * magnitude + (value[i] - '0');
+    if (magnitude > std::int64_t(std::numeric_limits<int>::max()))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+/// gemmi 0.5 reads mmCIF integers into int without checking for overflow (undefined behaviour,
+/// and in practice wrong residue numbers and serials). Throws FileError naming the first
+/// integer out of int's range in a category that gemmi's structure reads.
+void refuse_overflowing_integers(const gemmi::cif::Document& document, const std::string& path)
+{
+  static const char* const read_categories[] = {
+    "_atom_site.",
+    "_atom_site_anisotrop.",
+    "_struct_conf.",
+    "_struct_sheet_range.",
+    "_struct_sheet_order.",
+    "_pdbx_struct_sheet_hbond.",
+    "_struct_conn.",
+    "_pdbx_struct_assembly.",
+    "_pdbx_struct_assembly_gen.",
+    "_pdbx_struct_assembly_prop.",
+    "_pdbx_struct_oper_list.",
+    "_pdbx_sifts_xref_db.",
+    "_refine.",
+    "_exptl.",
+    "_exptl_crystal.",
+    "_diffrn.",
+    "_diffrn_detector.",
+    "_diffrn_radiation.",
+    "_diffrn_source.",
+    "_reflns.",
+    "_software.",
+    "_struct_ncs_oper.",
+    "_entity.",
+    "_entity_poly.",
+    "_entity_poly_seq.",
+    "_struct_ref.",
+    "_struct_ref_seq.",
+    "_struct_asym.",
+    "_struct_mon_prot_cis.",
+  };
+  const auto is_read = [](const std::string& tag) {
+    for (const char* category : read_categories)
+    {
+      if (gemmi::istarts_with(tag, category))
+      {
+        return true;
+      }
+    }
+    return false;
+  };
+  if (document.blocks.empty())
+  {
+    return;
+  }
+  for (const gemmi::cif::Item& item : document.blocks.front().items)
+  {
+    if (item.type == gemmi::cif::ItemType::Pair && is_read(item.pair[0]) &&
+        starts_with_overflowing_int(item.pair[1]))
+    {
+      throw FileError(path + ": line " + std::to_string(item.line_number) + ": " + item.pair[0] +
+                      " " + item.pair[1].substr(0, 32) + " is an integer beyond 2147483647");
+    }
+    if (item.type != gemmi::cif::ItemType::Loop)
+    {
+      continue;
+    }
+    const gemmi::cif::Loop& loop = item.loop;
+    const std::size_t width = loop.tags.size();
+    for (std::size_t column = 0; column < width; ++column)
+    {
+      if (!is_read(loop.tags[column]))
+      {
+        continue;
+      }
+      for (std::size_t v = column; v < loop.values.size(); v += width)
+      {
+        if (starts_with_overflowing_int(loop.values[v]))
+        {
+          throw FileError(
+            path + ": " + loop.tags[column] + " in row " + std::to_string(v / width + 1) +
+            " of its loop: " + loop.values[v].substr(0, 32) + " is an integer beyond 2147483647");
+        }
+      }
+    }
+  }
+}
+
 gemmi::Structure parse_with_gemmi(const std::string& path, detail::PdbTextScan& pdb)
 {
   detail::require_readable_file(path);
@@ -457,8 +566,10 @@ gemmi::Structure parse_with_gemmi(const std::string& path, detail::PdbTextScan& 
     }
     if (format == gemmi::CoorFormat::Mmcif)
     {
-      return gemmi::make_structure(
-        gemmi::cif::read_memory(buffer.data(), buffer.size(), path.c_str()));
+      const gemmi::cif::Document document =
+        gemmi::cif::read_memory(buffer.data(), buffer.size(), path.c_str());
+      refuse_overflowing_integers(document, path);
+      return gemmi::make_structure(document);
     }
     throw FileError(path + ": neither a PDB nor an mmCIF file");
   }

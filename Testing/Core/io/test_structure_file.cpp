@@ -220,6 +220,40 @@ TEST(StructureFile, NothingLeftAfterRemovalIsAnError)
   EXPECT_EQ(mesolens::read_structure(hydrogens).models.front().size(), 2u);
 }
 
+TEST(StructureFile, MmcifIntegersBeyondIntAreRefused)
+{
+  // Found by fuzz_structure: gemmi 0.5 reads mmCIF integers into int unchecked (signed
+  // overflow: undefined behaviour, in practice wrong residue numbers).
+  const auto cif = [](const std::string& residue_number) {
+    return "data_test\nloop_\n_atom_site.group_PDB\n_atom_site.id\n_atom_site.type_symbol\n"
+           "_atom_site.label_atom_id\n_atom_site.label_alt_id\n_atom_site.label_comp_id\n"
+           "_atom_site.label_asym_id\n_atom_site.label_seq_id\n_atom_site.Cartn_x\n"
+           "_atom_site.Cartn_y\n_atom_site.Cartn_z\n_atom_site.occupancy\n"
+           "_atom_site.B_iso_or_equiv\n_atom_site.auth_seq_id\n_atom_site.auth_comp_id\n"
+           "_atom_site.auth_asym_id\n_atom_site.auth_atom_id\n_atom_site.pdbx_PDB_model_num\n"
+           "ATOM 1 N N . GLY A 1 1.0 2.0 3.0 1.0 0.0 " +
+      residue_number + " GLY A N 1\n";
+  };
+  const auto good =
+    mesolens::read_structure(mesolens_test::write_bytes("int_ok.cif", cif("-2147483647")));
+  EXPECT_EQ(good.models.front().residue_numbers.front(), -2147483647);
+  for (const char* number : { "7777777777", "-2147483649", "00000000002147483648" })
+  {
+    try
+    {
+      mesolens::read_structure(mesolens_test::write_bytes("int_overflow.cif", cif(number)));
+      ADD_FAILURE() << number << " accepted";
+    }
+    catch (const mesolens::FileError& e)
+    {
+      EXPECT_NE(std::string(e.what()).find("_atom_site.auth_seq_id in row 1 of its loop: " +
+                                           std::string(number) + " is an integer beyond"),
+                std::string::npos)
+        << e.what();
+    }
+  }
+}
+
 TEST(StructureFile, ExplicitBondsWithoutPerception)
 {
   mesolens::StructureReadParams params;

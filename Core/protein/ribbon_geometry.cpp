@@ -530,8 +530,7 @@ std::vector<PiecePlan> plan_pieces(const std::vector<ResidueRun>& cylinders,
 }
 
 SegmentCurve build_curve(const std::vector<RibbonResidue>& residues, const RibbonSegment& segment,
-                         std::size_t segment_index, int subdivisions,
-                         const RibbonParams& settings)
+                         std::size_t segment_index, int subdivisions, const RibbonParams& settings)
 {
   const std::size_t n = segment.residue_count;
   const std::size_t first = segment.first_residue;
@@ -843,21 +842,27 @@ void write_piece(RibbonMesh& mesh, const std::vector<RibbonResidue>& residues,
 
 void check_settings(const RibbonParams& s)
 {
+  // Shorter lengths leave the sections' normals no digits (a coil radius of 1e-306 Å gave zero
+  // normals); longer ones are no ribbon.
   const auto positive = [](double value, const char* name) {
-    if (!(value > 0) || !std::isfinite(value))
+    if (!(value >= shortest_ribbon_length && value <= longest_ribbon_length))
     {
-      throw InvalidInput(std::string("ribbon: ") + name + " must be a positive length, not " +
+      throw InvalidInput(std::string("ribbon: ") + name + " must be a length in [" +
+                         std::to_string(shortest_ribbon_length) + ", " +
+                         std::to_string(longest_ribbon_length) + "] Å, not " +
                          std::to_string(value));
     }
   };
-  if (s.subdivisions < 1)
+  if (s.subdivisions < 1 || s.subdivisions > largest_ribbon_subdivisions)
   {
-    throw InvalidInput("ribbon: subdivisions must be at least 1, not " +
+    throw InvalidInput("ribbon: subdivisions must be in [1, " +
+                       std::to_string(largest_ribbon_subdivisions) + "], not " +
                        std::to_string(s.subdivisions));
   }
-  if (s.tube_sides < 3)
+  if (s.tube_sides < 3 || s.tube_sides > largest_ribbon_tube_sides)
   {
-    throw InvalidInput("ribbon: tube_sides must be at least 3, not " +
+    throw InvalidInput("ribbon: tube_sides must be in [3, " +
+                       std::to_string(largest_ribbon_tube_sides) + "], not " +
                        std::to_string(s.tube_sides));
   }
   positive(s.helix_width, "helix_width");
@@ -868,9 +873,9 @@ void check_settings(const RibbonParams& s)
   positive(s.cylinder_radius, "cylinder_radius");
   positive(s.protein_break_distance, "protein_break_distance");
   positive(s.nucleic_break_distance, "nucleic_break_distance");
-  if (!(s.arrow_width_factor >= 1) || !std::isfinite(s.arrow_width_factor))
+  if (!(s.arrow_width_factor >= 1 && s.arrow_width_factor <= 100))
   {
-    throw InvalidInput("ribbon: arrow_width_factor must be at least 1, not " +
+    throw InvalidInput("ribbon: arrow_width_factor must be in [1, 100], not " +
                        std::to_string(s.arrow_width_factor));
   }
 }
@@ -895,10 +900,11 @@ std::vector<int> subdivisions_by_segment(const RibbonParams& settings, std::size
   }
   for (std::size_t s = 0; s < segments; ++s)
   {
-    if (settings.segment_subdivisions[s] < 1)
+    if (settings.segment_subdivisions[s] < 1 ||
+        settings.segment_subdivisions[s] > largest_ribbon_subdivisions)
     {
-      throw InvalidInput("ribbon: segment_subdivisions[" + std::to_string(s) +
-                         "] must be at least 1, not " +
+      throw InvalidInput("ribbon: segment_subdivisions[" + std::to_string(s) + "] must be in [1, " +
+                         std::to_string(largest_ribbon_subdivisions) + "], not " +
                          std::to_string(settings.segment_subdivisions[s]));
     }
   }

@@ -7,8 +7,11 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
+#include <map>
 #include <string>
 #include <unistd.h>
+#include <utility>
+#include <vector>
 
 namespace mesolens_fuzz {
 
@@ -111,6 +114,27 @@ inline void require(bool promise)
   if (!promise)
   {
     __builtin_trap();
+  }
+}
+
+/// Every undirected edge in exactly two triangles, once each way, and no index outside the
+/// vertices: a closed, consistently oriented mesh.
+inline void require_closed_mesh(std::size_t vertices, const std::vector<std::int64_t>& triangles)
+{
+  require(triangles.size() % 3 == 0);
+  std::map<std::pair<std::int64_t, std::int64_t>, int> directed;
+  for (std::size_t t = 0; t < triangles.size(); t += 3)
+  {
+    for (int k = 0; k < 3; ++k)
+    {
+      const std::int64_t a = triangles[t + k], b = triangles[t + (k + 1) % 3];
+      require(a >= 0 && std::size_t(a) < vertices && a != b);
+      require(++directed[{ a, b }] == 1);
+    }
+  }
+  for (const auto& edge : directed)
+  {
+    require(directed.count({ edge.first.second, edge.first.first }) == 1);
   }
 }
 

@@ -20,8 +20,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <map>
-#include <utility>
 #include <vector>
 
 namespace {
@@ -76,26 +74,6 @@ std::vector<double> sphere_centres(mesolens_fuzz::FuzzInput& input, std::vector<
   return centres;
 }
 
-/// Every undirected edge in exactly two triangles, once each way: a closed, oriented mesh.
-void require_closed(const mesolens::MolecularSurface& surface)
-{
-  std::map<std::pair<std::int64_t, std::int64_t>, int> directed;
-  const std::int64_t vertices = std::int64_t(surface.points.size() / 3);
-  for (std::size_t t = 0; t < surface.triangles.size(); t += 3)
-  {
-    for (int k = 0; k < 3; ++k)
-    {
-      const std::int64_t a = surface.triangles[t + k], b = surface.triangles[t + (k + 1) % 3];
-      require(a >= 0 && a < vertices && a != b);
-      require(++directed[{ a, b }] == 1);
-    }
-  }
-  for (const auto& edge : directed)
-  {
-    require(directed.count({ edge.first.second, edge.first.first }) == 1);
-  }
-}
-
 } // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size)
@@ -143,8 +121,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     require(surface.normals.size() == surface.points.size());
     require(surface.atom.size() == surface.points.size() / 3);
-    require(surface.triangles.size() % 3 == 0);
-    require_closed(surface);
+    mesolens_fuzz::require_closed_mesh(surface.points.size() / 3, surface.triangles);
     if (options.exact_figures && surface.degenerate_vertex_count == 0)
     {
       require(std::isfinite(surface.area) && surface.area >= 0);

@@ -630,6 +630,49 @@ TEST(RibbonGeometry, HelixAsCylinderAlongItsAxis)
   }
 }
 
+// Found by fuzz_ribbons: a coil radius of 1e-306 Å was taken and gave zero normals; lengths
+// and counts now have documented ranges.
+TEST(RibbonGeometry, SettingsOutsideTheirRangesAreRefused)
+{
+  const auto refused = [](const RibbonParams& settings, const std::string& phrase) {
+    try
+    {
+      mesolens::ribbon_mesh(mixed_chain(), settings);
+      ADD_FAILURE() << "accepted: " << phrase;
+    }
+    catch (const mesolens::InvalidInput& e)
+    {
+      EXPECT_NE(std::string(e.what()).find(phrase), std::string::npos) << e.what();
+    }
+  };
+  RibbonParams bad;
+  bad.coil_radius = 1e-306;
+  refused(bad, "coil_radius must be a length in [0.001000, 1000.000000] Å");
+  bad = {};
+  bad.helix_width = 1e300;
+  refused(bad, "helix_width must be a length in");
+  bad = {};
+  bad.subdivisions = 1000000000;
+  refused(bad, "subdivisions must be in [1, 100]");
+  bad = {};
+  bad.tube_sides = 100000;
+  refused(bad, "tube_sides must be in [3, 360]");
+  bad = {};
+  bad.arrow_width_factor = 1e200;
+  refused(bad, "arrow_width_factor must be in [1, 100]");
+  bad = {};
+  bad.segment_subdivisions = { 101 };
+  refused(bad, "segment_subdivisions[0] must be in [1, 100]");
+  RibbonParams edge;
+  edge.coil_radius = mesolens::shortest_ribbon_length;
+  edge.subdivisions = mesolens::largest_ribbon_subdivisions;
+  const RibbonMesh mesh = mesolens::ribbon_mesh(mixed_chain(), edge);
+  for (std::size_t v = 0; v < mesh.normals.size(); v += 3)
+  {
+    ASSERT_NEAR(std::hypot(mesh.normals[v], mesh.normals[v + 1], mesh.normals[v + 2]), 1.0, 1e-9);
+  }
+}
+
 TEST(RibbonGeometry, BadInputs)
 {
   RibbonMesh empty;

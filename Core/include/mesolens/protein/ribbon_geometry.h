@@ -55,17 +55,27 @@ struct RibbonResidue
   std::int64_t id = 0;
 };
 
-/// Shape and level of detail of ribbon_mesh(). Lengths in Å.
+/// The range of every length of RibbonParams, Å: shorter ones leave the sections' normals no
+/// digits, longer ones are no ribbon.
+constexpr double shortest_ribbon_length = 1e-3;
+constexpr double longest_ribbon_length = 1e3;
+/// The most samples per residue and vertices around a section RibbonParams takes (memory grows
+/// as their product).
+constexpr int largest_ribbon_subdivisions = 100;
+constexpr int largest_ribbon_tube_sides = 360;
+
+/// Shape and level of detail of ribbon_mesh(). Lengths in Å, each in [shortest_ribbon_length,
+/// longest_ribbon_length].
 struct RibbonParams
 {
-  /// Spline samples per residue (level of detail), >= 1: 2 is coarse, 12 fine; default 6.
+  /// Spline samples per residue (level of detail), [1, 100]: 2 is coarse, 12 fine; default 6.
   /// The triangle count grows linearly with it.
   int subdivisions = 6;
   /// Per segment (in the order ribbon_segments() lists them), a subdivision count >= 1 that
   /// replaces `subdivisions`, e.g. chosen from each segment's size on screen. Empty: all
   /// segments use `subdivisions`; otherwise it must have one entry per segment.
   std::vector<int> segment_subdivisions;
-  /// Vertices around every cross-section, >= 3. Default 8.
+  /// Vertices around every cross-section, [3, 360]. Default 8.
   int tube_sides = 8;
   /// Draw each helix of 4 or more residues as one straight capped cylinder along its axis
   /// instead of a wide ribbon (shorter helices are then drawn as coil). Default false.
@@ -74,7 +84,7 @@ struct RibbonParams
   double helix_width = 2.4;
   /// Full width of a strand ribbon, > 0. Default 2.0.
   double strand_width = 2.0;
-  /// Width of an arrowhead's base as a multiple of strand_width, >= 1. Default 1.5.
+  /// Width of an arrowhead's base as a multiple of strand_width, [1, 100]. Default 1.5.
   double arrow_width_factor = 1.5;
   /// Thickness of helix and strand ribbons, > 0. Default 0.5.
   double ribbon_thickness = 0.5;

@@ -386,6 +386,17 @@ GeodesicDisk geodesic_disk(const CellSurface& surface, const SurfacePoint& seed,
     throw InvalidInput("the geodesic radius must be positive and finite, got " +
                        format_length(params.radius));
   }
+  // Bisecting towards a radius a billionth of the coordinates' size runs out of digits (a
+  // radius of 1e-73 on a mesh of 3e-3 bisected without end).
+  const double scale = std::max({ surface.bounding_diagonal(), std::abs(seed.position[0]),
+                                  std::abs(seed.position[1]), std::abs(seed.position[2]) });
+  if (params.radius < smallest_relative_disk_radius * scale)
+  {
+    throw InvalidInput("the geodesic radius " + format_length(params.radius) + " is below " +
+                       format_length(smallest_relative_disk_radius) + " times the mesh's size (" +
+                       format_length(scale) +
+                       ", its bounding diagonal or the seed's distance from the origin)");
+  }
   detail::LocalSurfaceParams local_params;
   // Straight-line distance never exceeds the geodesic one; the margin covers the march's error.
   local_params.reach = 1.02 * params.radius;
@@ -395,6 +406,10 @@ GeodesicDisk geodesic_disk(const CellSurface& surface, const SurfacePoint& seed,
     // Longest-edge bisection leaves triangles of h^2 / 8 to h^2 / 4 (h their longest edge), so
     // this edge gives n to 2 n triangles in a flat disk.
     local_params.target_edge = params.radius * std::sqrt(4 * pi / double(params.min_triangles));
+    // A disk of n triangles refines its surroundings a few times n; a hundred times n (at
+    // least 2e5) means the mesh is too coarse and curved for the radius, better said at once
+    // than after seconds of bisection.
+    local_params.max_new_triangles = std::max<std::size_t>(200000, 100 * params.min_triangles);
   }
   // The finest copy of the surface with few enough triangles within reach: predicted from the
   // copies' mean triangle areas, then counted while the local surface is gathered (a coarser

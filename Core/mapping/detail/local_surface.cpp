@@ -170,6 +170,13 @@ public:
   {
   }
 
+  /// Stop (SolverFailure) when bisection has added more than `count` triangles; 0: no limit.
+  void limit_refinement(std::size_t count)
+  {
+    this->InputCount = this->Corners.size();
+    this->RefinedLimit = count > 0 ? this->InputCount + count : 0;
+  }
+
   LocalSurface Out;
   std::vector<std::array<std::int64_t, 3>> Corners;
   std::vector<std::array<Barycentric, 3>> Bary;
@@ -233,6 +240,8 @@ private:
   double Reach;
   double TargetEdge2;
   std::size_t MaxTriangles;
+  std::size_t InputCount = 0;   ///< triangles before bisection (limit_refinement)
+  std::size_t RefinedLimit = 0; ///< InputCount + the bisections allowed; 0: none
   std::vector<std::int64_t> Source;
   std::unordered_map<std::uint64_t, std::array<std::int64_t, 2>> EdgeTriangles;
   std::vector<std::size_t> Touched;
@@ -364,6 +373,14 @@ private:
     {
       throw SolverFailure("refining the surface around the seed needs more than " +
                           std::to_string(this->MaxTriangles) + " triangles");
+    }
+    if (this->RefinedLimit > 0 && this->Corners.size() > this->RefinedLimit)
+    {
+      throw SolverFailure(
+        "refining the surface around the seed needs more than " +
+        std::to_string(this->RefinedLimit - this->InputCount) +
+        " new triangles: the mesh is too coarse and curved there for a disk this small; "
+        "subdivide the mesh or choose a larger radius");
     }
   }
 
@@ -526,6 +543,7 @@ LocalSurface local_surface(const SurfaceLevel& surface, const SurfacePoint& seed
   Refinement refinement(surface, seed.position, params.reach, params.target_edge,
                         params.max_triangles);
   refinement.add_input_triangles(region);
+  refinement.limit_refinement(params.max_new_triangles);
   refinement.refine_all();
   refinement.finish();
   LocalSurface local = std::move(refinement.Out);

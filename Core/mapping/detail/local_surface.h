@@ -42,6 +42,10 @@ struct LocalSurfaceParams
   std::size_t max_region = 0;
   /// Gathering and refinement stop with SolverFailure beyond this many triangles (a safeguard).
   std::size_t max_triangles = 2000000;
+  /// Refinement stops with SolverFailure once bisection has added more triangles than this
+  /// (on coarse, strongly curved meshes the patches' bulge bound keeps far triangles "within
+  /// reach" and bisection would cover them all); 0: only max_triangles applies.
+  std::size_t max_new_triangles = 0;
 };
 
 /// The local surface around `seed` (a point of surface.mesh()), with new vertices on its smooth

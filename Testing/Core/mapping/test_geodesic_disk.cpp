@@ -95,6 +95,50 @@ TEST(GeodesicDisk, SphereCapAndRefinementOfCoarseMeshes)
   EXPECT_LT(unrefined.mesh.triangle_count(), 100u);
 }
 
+// Found by fuzz_geodesic: on a torus of 3 x 12 quads (edges of about 2000 units) a disk of
+// radius 200 bisected its way to 2 million triangles (2.5 s, then an error): the patches' bulge
+// bound kept far triangles within reach. Now it stops after 2e5 new triangles, saying why.
+TEST(GeodesicDisk, TooCoarseAndCurvedAMeshFailsFast)
+{
+  const mesolens::CellSurface surface(mesolens_test::torus(3 * 568.628, 568.628, 3, 12));
+  mesolens::GeodesicDiskParams params;
+  params.radius = 200.817;
+  params.min_triangles = 492;
+  try
+  {
+    mesolens::geodesic_disk(surface, surface.closest_point({ -568.628, -5, 0 }), params);
+    ADD_FAILURE() << "a disk was grown";
+  }
+  catch (const mesolens::SolverFailure& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("more than 200000 new triangles: the mesh is too coarse "
+                                         "and curved there for a disk this small"),
+              std::string::npos)
+      << e.what();
+  }
+}
+
+// Found by fuzz_geodesic: a radius of 1e-73 on a mesh 3e-3 across bisected without end.
+TEST(GeodesicDisk, RadiiTooSmallForTheMeshAreRefused)
+{
+  const mesolens::CellSurface surface(mesolens_test::icosphere(1e-3, 1));
+  mesolens::GeodesicDiskParams params;
+  params.radius = 3.36e-73;
+  const mesolens::SurfacePoint seed = surface.closest_point({ 0, 0, 1 });
+  try
+  {
+    mesolens::geodesic_disk(surface, seed, params);
+    ADD_FAILURE() << "a disk was grown";
+  }
+  catch (const mesolens::InvalidInput& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("is below 1e-09 times the mesh's size"), std::string::npos)
+      << e.what();
+  }
+  params.radius = 1e-4; // a tenth of the sphere's radius: fine
+  EXPECT_GT(mesolens::geodesic_disk(surface, seed, params).mesh.triangle_count(), 100u);
+}
+
 TEST(GeodesicDisk, TopologyErrors)
 {
   // Radius beyond the plane's border.
@@ -180,7 +224,7 @@ TEST(GeodesicDisk, TheTopOfABumpTheFrontWentRoundIsTakenWithItsOwnTriangles)
     EXPECT_GE(disk.original_vertex[v] >= 0 ? 1 : 0, disk.distance[v] > 4.0 ? 1 : 0)
       << "only input vertices lie beyond the radius";
   }
-  EXPECT_GT(top, 2.9);     // the bump's summit is in
+  EXPECT_GT(top, 2.9);      // the bump's summit is in
   EXPECT_GT(farthest, 4.0); // and it lies beyond the radius
   for (const std::int64_t source : disk.source_triangle)
   {

@@ -14,11 +14,16 @@
 
 namespace mesolens {
 
+/// The smallest disk radius geodesic_disk() takes, as a fraction of the mesh's size (the larger
+/// of its bounding diagonal and the seed's largest coordinate): smaller disks have no digits
+/// left for their triangles.
+constexpr double smallest_relative_disk_radius = 1e-9;
+
 /// Parameters of geodesic_disk().
 struct GeodesicDiskParams
 {
-  /// Geodesic radius r, mesh units. Must be > 0 and finite; no default (0, the initial value,
-  /// is rejected).
+  /// Geodesic radius r, mesh units. Must be finite and at least smallest_relative_disk_radius
+  /// times the mesh's size; no default (0, the initial value, is rejected).
   double radius = 0;
   /// Resolution: triangles of the surface that come within r of the seed and are longer than
   /// the edge giving about this many triangles in a flat disk of radius r (r sqrt(4 pi / n)) are
@@ -62,9 +67,11 @@ struct GeodesicDisk
 
 /// Grows the geodesic disk of `params.radius` around `seed` (a point on surface.mesh()) on the
 /// local surface around it (only triangles within the radius are visited). Throws InvalidInput
-/// for a bad radius or seed, and TopologyError (with a message saying where) when the disk
-/// reaches a boundary of the mesh, wraps a handle or covers a whole closed component (radius
-/// too large), or is not a manifold disk. Deterministic.
+/// for a bad radius or seed, SolverFailure when the mesh is too coarse and curved around the
+/// seed for the radius (bisection would add more than max(2e5, 100 min_triangles) triangles:
+/// subdivide the mesh or choose a larger radius), and TopologyError (with a message saying
+/// where) when the disk reaches a boundary of the mesh, wraps a handle or covers a whole closed
+/// component (radius too large), or is not a manifold disk. Deterministic.
 GeodesicDisk geodesic_disk(const CellSurface& surface, const SurfacePoint& seed,
                            const GeodesicDiskParams& params);
 

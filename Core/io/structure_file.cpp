@@ -19,6 +19,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <optional>
 #include <unordered_map>
 
 namespace mesolens {
@@ -371,16 +372,21 @@ void check_finite(const AtomTable& table, const std::string& path)
   }
 }
 
-/// gemmi 0.5 reads the reported distance (columns 74-78) of SSBOND and LINK records, and a
-/// LINKR record's link id (columns 73-80), whenever a line, its newline included, is longer than
-/// 73 characters: past the end of a record cut before or inside those columns. PDB columns are
-/// fixed and blank when absent, so these records (and CISPEP, read the same way) get blanks up
-/// to column 80 first. Returns the padded text, or an empty string when no record needed it.
-std::string pad_connection_records(const char* text, std::size_t size)
+/// The PDB text as gemmi 0.5 can read it safely, or nothing when it already can:
+/// - gemmi reads the reported distance (columns 74-78) of SSBOND and LINK records, and a LINKR
+///   record's link id (columns 73-80), whenever a line, its newline included, is longer than 73
+///   characters: past the end of a record cut before or inside those columns. PDB columns are
+///   fixed and blank when absent, so these records (and CISPEP, read the same way) get blanks up
+///   to column 80.
+/// - gemmi reads DBREF2's ten-digit sequence numbers into int unchecked (signed overflow for
+///   more than 2147483647). MesoLens keeps no database references, so DBREF2 records are left
+///   out.
+std::optional<std::string> pdb_text_for_gemmi(const char* text, std::size_t size)
 {
   constexpr std::size_t record_width = 80;
   std::string padded;
   std::size_t copied = 0;
+  bool changed = false;
   for (std::size_t start = 0; start < size;)
   {
     const char* end_of_line =
@@ -414,13 +420,21 @@ std::string pad_connection_records(const char* text, std::size_t size)
       padded.append(text + copied, end - copied);
       padded.append(record_width - length, ' ');
       copied = end;
+      changed = true;
+    }
+    else if (starts_with("DBRE") && length > 5 && text[start + 5] == '2')
+    {
+      padded.append(text + copied, start - copied);
+      copied = next;
+      changed = true;
     }
     start = next;
   }
-  if (copied != 0)
+  if (!changed)
   {
-    padded.append(text + copied, size - copied);
+    return std::nullopt;
   }
+  padded.append(text + copied, size - copied);
   return padded;
 }
 
@@ -560,9 +574,9 @@ gemmi::Structure parse_with_gemmi(const std::string& path, detail::PdbTextScan& 
     if (format == gemmi::CoorFormat::Pdb)
     {
       pdb = detail::scan_pdb_text(buffer.data(), buffer.size(), path);
-      const std::string padded = pad_connection_records(buffer.data(), buffer.size());
-      return padded.empty() ? gemmi::read_pdb_from_memory(buffer.data(), buffer.size(), path)
-                            : gemmi::read_pdb_from_memory(padded.data(), padded.size(), path);
+      const std::optional<std::string> padded = pdb_text_for_gemmi(buffer.data(), buffer.size());
+      return padded ? gemmi::read_pdb_from_memory(padded->data(), padded->size(), path)
+                    : gemmi::read_pdb_from_memory(buffer.data(), buffer.size(), path);
     }
     if (format == gemmi::CoorFormat::Mmcif)
     {

@@ -186,6 +186,22 @@ TEST(StructureFile, RemoveWatersAndHydrogens)
             154u);
 }
 
+// Found by fuzz_structure: gemmi 0.5 read DBREF2's ten-digit sequence numbers into int unchecked
+// (signed overflow under UBSan). MesoLens keeps no database references: the record is skipped.
+TEST(StructureFile, DbrefNumbersBeyondIntAreSkipped)
+{
+  const std::string path = mesolens_test::write_bytes(
+    "dbref2_overflow.pdb",
+    "DBREF1 1ABC A    1    10  UNP                  PROT_HUMAN\n"
+    "DBREF2 1ABC A     P12345                          4444444444  9999999999\n"
+    "ATOM      1  N   GLY A   1       0.000   0.000   0.000  1.00  0.00           N\n"
+    "ATOM      2  CA  GLY A   1       1.458   0.000   0.000  1.00  0.00           C\n");
+  const auto file = mesolens::read_structure(path);
+  ASSERT_EQ(file.models.size(), 1u);
+  EXPECT_EQ(file.models.front().size(), 2u);
+  EXPECT_EQ(file.models.front().bonds.size(), 1u);
+}
+
 TEST(StructureFile, NothingLeftAfterRemovalIsAnError)
 {
   // Found by fuzz_structure: a file of hydrogens read without hydrogens gave a model of no atoms.

@@ -50,5 +50,6 @@ mkdir -p "$corpus" "$artifacts"
 seeds="$root/Testing/Fuzz/seeds/$target"
 [ ! -d "$seeds" ] || set -- "$seeds" "$@"
 [ -z "$dict" ] || set -- -dict="$root/Testing/Fuzz/$dict" "$@"
+export LSAN_OPTIONS="suppressions=$root/Testing/Fuzz/lsan.supp${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 exec "$build/bin/$target" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
   -artifact_prefix="$artifacts/" -print_final_stats=1 "$@"

@@ -3,6 +3,7 @@
 
 #include "io/detail/file_checks.h"
 #include "io/detail/gromacs_support.h"
+#include "io/detail/trajectory_index.h"
 #include "mesolens/molecules/elements.h"
 #include "mesolens/common/errors.h"
 
@@ -57,6 +58,15 @@ std::string trimmed(const char* text)
 AtomTable read_gro_topology(const std::string& path)
 {
   detail::require_readable_file(path);
+  // GROMACS' reader crashes on some malformed files (no atoms and a bad box: a null
+  // dereference) and ends the process on others: the frames are checked first.
+  const detail::FrameIndex frames = detail::index_gro(path);
+  if (frames.offsets.empty())
+  {
+    throw FileError(
+      path + ": " +
+      (frames.incomplete_tail.empty() ? std::string("no complete frame") : frames.incomplete_tail));
+  }
   detail::install_gromacs_error_handler();
   GroConfiguration gro;
   try

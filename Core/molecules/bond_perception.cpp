@@ -54,19 +54,15 @@ public:
     // cell until the cell count is below 8 n + 64.
     const double max_cells = 8.0 * double(count) + 64.0;
     this->Cell = std::max(cell_size, 1e-3);
-    for (;;)
+    // Counted in doubles: atoms spread over 1e30 Å would overflow an integer count.
+    const auto cells_along = [&](int d) { return std::floor((high[d] - low[d]) / this->Cell) + 1; };
+    while (cells_along(0) * cells_along(1) * cells_along(2) > max_cells)
     {
-      double cells = 1;
-      for (int d = 0; d < 3; ++d)
-      {
-        this->Dims[d] = std::int64_t((high[d] - low[d]) / this->Cell) + 1;
-        cells *= double(this->Dims[d]);
-      }
-      if (cells <= max_cells)
-      {
-        break;
-      }
       this->Cell *= 1.5;
+    }
+    for (int d = 0; d < 3; ++d)
+    {
+      this->Dims[d] = std::int64_t(cells_along(d));
     }
     this->Low = low;
     const std::size_t cell_count = std::size_t(this->Dims[0] * this->Dims[1] * this->Dims[2]);

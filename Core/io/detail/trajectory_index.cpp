@@ -3,6 +3,7 @@
 
 #include "mesolens/common/errors.h"
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -303,6 +304,61 @@ FrameIndex index_trr(const std::string& path)
   return index;
 }
 
+/// The longest line GROMACS' GRO reader takes whole (its STRLEN, less a margin).
+constexpr std::size_t longest_gro_line = 4000;
+
+/// Throws FileError unless GROMACS' GRO reader (get_w_conf in groio.cpp) reads this atom line
+/// without failing or overrunning its buffers: at least 39 characters; x, y and z each one
+/// number in a field of `width` characters from column 21. `width` comes from the frame's first
+/// atom line, as GROMACS takes it: the distance between its first two decimal points (anywhere
+/// in the line), which must equal the distance between the second and third; at most 32 here
+/// (GROMACS copies a field into a buffer of 256). Returns the width when `width` is 0.
+std::size_t check_gro_atom_line(const std::string& line, std::size_t width,
+                                const std::string& where)
+{
+  std::string text = line;
+  if (!text.empty() && text.back() == '\r')
+  {
+    text.pop_back();
+  }
+  if (text.size() < 39 || text.size() > longest_gro_line)
+  {
+    throw FileError(where + " has " + std::to_string(text.size()) +
+                    " characters: an atom line of a GRO file has at least 39 (names, numbers and "
+                    "x, y, z from column 21)");
+  }
+  if (width == 0)
+  {
+    const std::size_t first = text.find('.');
+    const std::size_t second = first == std::string::npos ? first : text.find('.', first + 1);
+    const std::size_t third = second == std::string::npos ? second : text.find('.', second + 1);
+    if (third == std::string::npos || second - first != third - second || second - first > 32)
+    {
+      throw FileError(where +
+                      ": the decimal points of x, y and z are not evenly spaced; GRO is "
+                      "a fixed-column format");
+    }
+    width = second - first;
+  }
+  std::size_t column = 20;
+  for (const char axis : { 'x', 'y', 'z' })
+  {
+    const std::string field = text.substr(std::min(column, text.size()), width);
+    column += width;
+    const char* begin = field.c_str();
+    char* end = nullptr;
+    std::strtod(begin, &end);
+    char* after = nullptr;
+    std::strtod(end, &after);
+    if (end == begin || after != end)
+    {
+      throw FileError(where + ": " + axis + " is not one number in its " + std::to_string(width) +
+                      " columns; GRO is a fixed-column format");
+    }
+  }
+  return width;
+}
+
 FrameIndex index_gro(const std::string& path)
 {
   std::ifstream stream(path, std::ios::binary);
@@ -343,10 +399,27 @@ FrameIndex index_gro(const std::string& path)
     }
     check_atom_count(index, atoms, frame, path);
     bool complete = true;
+    std::size_t width = 0; // of the coordinate fields, from the frame's first atom line
     for (long i = 0; i <= atoms && complete; ++i) // atoms lines, then the box line
     {
       complete = bool(std::getline(stream, line));
       offset += std::int64_t(line.size()) + 1;
+      if (complete && i < atoms)
+      {
+        width = check_gro_atom_line(line, width,
+                                    path + ": frame " + std::to_string(frame) + ", atom line " +
+                                      std::to_string(i + 1));
+      }
+      else if (complete)
+      {
+        double box[3];
+        if (std::sscanf(line.c_str(), "%lf%lf%lf", &box[0], &box[1], &box[2]) != 3 ||
+            line.size() > longest_gro_line)
+        {
+          throw FileError(path + ": frame " + std::to_string(frame) +
+                          ": the box line after the atoms does not start with three numbers");
+        }
+      }
     }
     if (!complete)
     {

@@ -24,7 +24,9 @@ struct FrameIndex
 FrameIndex index_xtc(const std::string& path);
 /// Scans a TRR file (single or double precision). Same errors as index_xtc().
 FrameIndex index_trr(const std::string& path);
-/// Scans a (possibly multi-frame) GRO file by lines. Same errors as index_xtc().
+/// Scans a (possibly multi-frame) GRO file by lines, checking every atom and box line as
+/// GROMACS' reader needs them (it overruns its buffers or ends the process otherwise). Same
+/// errors as index_xtc(), and FileError naming the line for one GROMACS could not read.
 FrameIndex index_gro(const std::string& path);
 
 } // namespace detail

@@ -214,6 +214,47 @@ TEST(TrajectoryFile, CorruptCompressedDataIsAnErrorNotACrash)
   EXPECT_NO_THROW(file.read_frame(0)); // the reader recovers for the intact frames
 }
 
+// Found by fuzz_gro: GROMACS' reader dereferences null for a file of no atoms and a bad box
+// line, copies a coordinate field as wide as the first line's decimal points are apart into a
+// buffer of 256, and ends the process on lines it cannot read. Such files are refused first.
+TEST(GroTopology, FilesGromacsCannotReadAreRefusedFirst)
+{
+  const std::string atom = "    1RES     CA    1   0.000   0.000   0.000\n";
+  const std::string wide_fields = "    1RES     CA    1" + std::string(300, ' ') + "1." +
+    std::string(298, ' ') + "2." + std::string(298, ' ') + "3.\n";
+  const struct
+  {
+    std::string text;
+    const char* problem;
+  } cases[] = {
+    { "no atoms\n    0\n  10.sting ex000\n", "claims 0 atoms" },
+    { "wide\n    1\n" + wide_fields + "   1.0   1.0   1.0\n",
+      "decimal points of x, y and z are not evenly spaced" },
+    { "short\n    1\n    1RES     CA    1   0.000   0.000\n   1.0   1.0   1.0\n",
+      "atom line 1 has 36 characters" },
+    { "two numbers\n    1\n    1RES     CA    1   0.000   0.0 0   0.000\n   1 1 1\n",
+      "y is not one number in its 8 columns" },
+    { "bad box\n    1\n" + atom + "   box\n", "the box line after the atoms" },
+    { "cut\n    2\n" + atom, "incomplete" },
+  };
+  for (const auto& c : cases)
+  {
+    SCOPED_TRACE(c.text.substr(0, 20));
+    try
+    {
+      mesolens::read_gro_topology(mesolens_test::write_bytes("refused.gro", c.text));
+      ADD_FAILURE() << "accepted";
+    }
+    catch (const mesolens::FileError& e)
+    {
+      EXPECT_NE(std::string(e.what()).find(c.problem), std::string::npos) << e.what();
+    }
+  }
+  const mesolens::AtomTable one = mesolens::read_gro_topology(
+    mesolens_test::write_bytes("one.gro", "one\n    1\n" + atom + "   1.0   1.0   1.0\n"));
+  EXPECT_EQ(one.size(), 1u);
+}
+
 TEST(GroTopology, AtomsResiduesAndBox)
 {
   const auto t = mesolens::read_gro_topology(data_file("membranes/dppc128_slipids_323K.gro"));

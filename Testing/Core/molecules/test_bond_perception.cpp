@@ -106,6 +106,19 @@ TEST(BondPerception, NonFiniteAtomsNeverBond)
   EXPECT_EQ(bonds[0].second, 2u);
 }
 
+// Found by fuzz_gro: atoms 5e30 Å apart overflowed the neighbour grid's integer cell count.
+TEST(BondPerception, AtomsFarApartStillBondTheirNeighbours)
+{
+  Atoms atoms;
+  atoms.add(0, 0, 0, 6);
+  atoms.add(1.5f, 0, 0, 6);
+  atoms.add(5.2e30f, 0, -3e38f, 6);
+  const auto bonds = mesolens::perceive_bonds(atoms.input());
+  ASSERT_EQ(bonds.size(), 1u);
+  EXPECT_EQ(bonds[0].first, 0u);
+  EXPECT_EQ(bonds[0].second, 1u);
+}
+
 TEST(BondPerception, GridMatchesBruteForceOnRandomCloud)
 {
   std::mt19937 random(42);

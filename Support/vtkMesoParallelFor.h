@@ -11,7 +11,9 @@
 
 #include <cstdlib>
 #include <string>
+#include <thread>
 #include <utility>
+#include <vector>
 
 namespace vtkMesoParallelFor {
 /// Makes VTK's SMP tools use threads. ParaView 5.11's VTK starts on its Sequential backend (one
@@ -31,25 +33,77 @@ inline void UseThreads()
   (void)chosen;
 }
 
-/// The number of threads VTK's SMP tools run on (after UseThreads).
+/// MESOLENS_THREADS, when set to a count >= 1: MesoLens' loops then run on that many threads
+/// of their own (the range split evenly) instead of VTK's SMP tools, whose STDThread backend
+/// takes no more threads than there are cores. For checking that results do not depend on the
+/// thread count. 0 when unset.
+inline int OwnThreads()
+{
+  const char* value = std::getenv("MESOLENS_THREADS");
+  const int count = value ? std::atoi(value) : 0;
+  return count > 0 ? count : 0;
+}
+
+/// Runs functor(b, e) over `threads` even parts of [begin, end), the last on this thread.
+template<typename Functor>
+inline void ForOnOwnThreads(vtkIdType begin, vtkIdType end, int threads, Functor& functor)
+{
+  const vtkIdType count = end - begin;
+  const auto part = [&](int t) { return begin + count * t / threads; };
+  std::vector<std::thread> others;
+  for (int t = 0; t + 1 < threads; ++t)
+  {
+    others.emplace_back([&, t] {
+      if (part(t) < part(t + 1))
+      {
+        functor(part(t), part(t + 1));
+      }
+    });
+  }
+  if (part(threads - 1) < end)
+  {
+    functor(part(threads - 1), end);
+  }
+  for (std::thread& other : others)
+  {
+    other.join();
+  }
+}
+
+/// The number of threads MesoLens' loops run on (after UseThreads).
 inline int ThreadCount()
 {
   UseThreads();
-  return vtkSMPTools::GetEstimatedNumberOfThreads();
+  return OwnThreads() > 0 ? OwnThreads() : vtkSMPTools::GetEstimatedNumberOfThreads();
 }
 
-/// vtkSMPTools::For over [begin, end), on threads (UseThreads).
+/// vtkSMPTools::For over [begin, end), on threads (UseThreads; MESOLENS_THREADS, see OwnThreads).
 template<typename Functor>
 inline void For(vtkIdType begin, vtkIdType end, Functor&& functor)
 {
   UseThreads();
+  if (const int threads = OwnThreads())
+  {
+    ForOnOwnThreads(begin, end, threads, functor);
+    return;
+  }
   vtkSMPTools::For(begin, end, std::forward<Functor>(functor));
 }
 
-/// A mesolens::ParallelFor running its ranges through vtkSMPTools::For (on threads).
+/// A mesolens::ParallelFor running its ranges through vtkSMPTools::For (on threads;
+/// MESOLENS_THREADS, see OwnThreads).
 inline mesolens::ParallelFor Get()
 {
   UseThreads();
+  if (const int threads = OwnThreads())
+  {
+    return [threads](std::size_t count, const mesolens::RangeKernel& kernel) {
+      const auto range = [&kernel](vtkIdType begin, vtkIdType end) {
+        kernel(static_cast<std::size_t>(begin), static_cast<std::size_t>(end));
+      };
+      ForOnOwnThreads(0, static_cast<vtkIdType>(count), threads, range);
+    };
+  }
   return [](std::size_t count, const mesolens::RangeKernel& kernel) {
     vtkSMPTools::For(0, static_cast<vtkIdType>(count), [&kernel](vtkIdType begin, vtkIdType end) {
       kernel(static_cast<std::size_t>(begin), static_cast<std::size_t>(end));

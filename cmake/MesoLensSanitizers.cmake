@@ -7,6 +7,16 @@ if (MESOLENS_ENABLE_SANITIZERS)
   add_compile_options(${mesolens_sanitizer_flags})
   add_link_options(-fsanitize=address,undefined)
 endif ()
+# ThreadSanitizer for the whole build (not with the two above): the determinism test's two
+# pipelines in two threads are its race check.
+option(MESOLENS_ENABLE_THREAD_SANITIZER "Build with ThreadSanitizer" OFF)
+if (MESOLENS_ENABLE_THREAD_SANITIZER)
+  if (MESOLENS_ENABLE_SANITIZERS)
+    message(FATAL_ERROR "ThreadSanitizer cannot be combined with MESOLENS_ENABLE_SANITIZERS")
+  endif ()
+  add_compile_options(-fsanitize=thread -fno-omit-frame-pointer)
+  add_link_options(-fsanitize=thread)
+endif ()
 # Fuzz targets: every library instrumented for libFuzzer's coverage, with the sanitizers.
 if (MESOLENS_BUILD_FUZZERS)
   add_compile_options(-fsanitize=fuzzer-no-link,address,undefined -fno-omit-frame-pointer

@@ -4,15 +4,13 @@
 // then every frame through mesolens::TrajectoryFile. The first byte chooses: bit 0 no bond
 // perception, bit 1 coarse-grained beads forced, bit 2 incomplete frames skipped (else refused);
 // the rest is the file. Every input must give atoms or a mesolens::Error.
+#include "fuzz_frames.h"
 #include "fuzz_input.h"
 
 #include "mesolens/common/errors.h"
 #include "mesolens/io/gro_topology.h"
 #include "mesolens/io/structure_file.h"
-#include "mesolens/io/trajectory_file.h"
 
-#include <algorithm>
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
 
@@ -43,19 +41,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   try
   {
-    mesolens::TrajectoryFile frames(path,
-                                    (options & 4)
-                                      ? mesolens::TrajectoryFile::IncompleteFrames::Skip
-                                      : mesolens::TrajectoryFile::IncompleteFrames::Reject);
-    for (std::size_t index = 0; index < std::min<std::size_t>(frames.frame_count(), 8); ++index)
-    {
-      const mesolens::TrajectoryFrame frame = frames.read_frame(index);
-      require(frame.positions.size() == 3 * frames.atom_count());
-      for (const float coordinate : frame.positions)
-      {
-        require(std::isfinite(coordinate));
-      }
-    }
+    mesolens_fuzz::read_frames(path, options & 4, 8);
   }
   catch (const mesolens::Error&)
   {

@@ -122,6 +122,11 @@ struct TrajectoryFile::Impl
     if (this->IsXtc)
     {
       detail::check_xtc_frame(this->Path, this->Index.offsets[frame_index]);
+      if (!this->Status && frame_index != 0)
+      {
+        // Opening the decoder decodes the first frame too.
+        detail::check_xtc_frame(this->Path, this->Index.offsets[0]);
+      }
     }
     this->open_decoder();
     if (gmx_fio_seek(trx_get_fileio(this->Status), this->Index.offsets[frame_index]) != 0)

@@ -217,6 +217,27 @@ TEST(TrajectoryFile, CorruptCompressedDataIsAnErrorNotACrash)
 // Found by fuzz_gro: GROMACS' reader dereferences null for a file of no atoms and a bad box
 // line, copies a coordinate field as wide as the first line's decimal points are apart into a
 // buffer of 256, and ends the process on lines it cannot read. Such files are refused first.
+// Found by fuzz_trajectory: opening GROMACS' decoder decodes the first frame, which was not
+// checked when a later frame was read first (a crash in xdr3dfcoord).
+TEST(TrajectoryFile, ACorruptFirstFrameIsCaughtWhenALaterOneIsReadFirst)
+{
+  std::string bytes = mesolens_test::read_bytes(data_file("membranes/yiip_popepopg.xtc"));
+  bytes[84] = bytes[85] = bytes[86] = 0; // frame 0's small-coordinate index: 99
+  bytes[87] = 99;
+  mesolens::TrajectoryFile file(mesolens_test::write_bytes("corrupt_first_frame.xtc", bytes));
+  ASSERT_EQ(file.frame_count(), 5u);
+  try
+  {
+    file.read_frame(1);
+    ADD_FAILURE() << "frame 1 read";
+  }
+  catch (const mesolens::FileError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("the frame at byte 0 is corrupt"), std::string::npos)
+      << e.what();
+  }
+}
+
 TEST(GroTopology, FilesGromacsCannotReadAreRefusedFirst)
 {
   const std::string atom = "    1RES     CA    1   0.000   0.000   0.000\n";

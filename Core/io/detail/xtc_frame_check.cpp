@@ -129,7 +129,13 @@ void check_xtc_frame(const std::string& path, std::int64_t offset)
   {
     throw corrupt("small-coordinate index out of range");
   }
-  if (byte_count < 0 || std::int64_t(byte_count) > 12 * std::int64_t(atoms) + 64)
+  // GROMACS reads the compressed bytes (padded to 4) into a buffer of 60 ints for up to 16
+  // atoms, else of 1.2 ints per coordinate, whose first 3 ints it keeps for itself.
+  const std::int64_t coordinates = 3 * std::int64_t(atoms);
+  const std::int64_t buffer_ints =
+    coordinates <= 48 ? 60 : std::int64_t(static_cast<double>(coordinates) * 1.2);
+  if (byte_count < 0 || std::int64_t(byte_count) > 12 * std::int64_t(atoms) + 64 ||
+      (std::int64_t(byte_count) + 3) / 4 * 4 > 4 * (buffer_ints - 3))
   {
     throw corrupt("compressed size out of range");
   }

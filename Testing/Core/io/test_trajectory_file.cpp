@@ -214,9 +214,69 @@ TEST(TrajectoryFile, CorruptCompressedDataIsAnErrorNotACrash)
   EXPECT_NO_THROW(file.read_frame(0)); // the reader recovers for the intact frames
 }
 
-// Found by fuzz_gro: GROMACS' reader dereferences null for a file of no atoms and a bad box
-// line, copies a coordinate field as wide as the first line's decimal points are apart into a
-// buffer of 256, and ends the process on lines it cannot read. Such files are refused first.
+// Found by fuzz_trajectory (a heap corruption that ASan reported later, in fclose): GROMACS
+// reads a frame's compressed bytes into a buffer of 60 ints up to 16 atoms, else of 1.2 ints per
+// coordinate, whatever size the frame claims; and it sizes its coordinates by the header's atom
+// count but decodes the count repeated before them.
+TEST(TrajectoryFile, XtcFramesThatWouldOverrunGromacsBuffersAreRefused)
+{
+  const auto xtc = [](std::int32_t header_atoms, std::int32_t atoms, std::int32_t bytes) {
+    std::string frame;
+    const auto put = [&frame](std::int32_t value) {
+      for (int shift = 24; shift >= 0; shift -= 8)
+      {
+        frame.push_back(char((std::uint32_t(value) >> shift) & 0xff));
+      }
+    };
+    put(1995);
+    put(header_atoms);
+    put(0); // step
+    put(0); // time
+    for (int k = 0; k < 9; ++k)
+    {
+      put(k % 4 == 0 ? 0x40a00000 : 0); // a 5 nm cubic box
+    }
+    put(atoms);
+    put(0x447a0000); // precision 1000
+    for (int k = 0; k < 3; ++k)
+    {
+      put(0); // minint
+    }
+    for (int k = 0; k < 3; ++k)
+    {
+      put(100); // maxint
+    }
+    put(10);    // small-coordinate index
+    put(bytes); // compressed bytes, all zero
+    frame.append(std::size_t((bytes + 3) / 4 * 4), '\0');
+    return frame;
+  };
+  const struct
+  {
+    std::string bytes;
+    const char* problem;
+  } cases[] = {
+    { xtc(17, 17, 260), "compressed size out of range" },        // 232 bytes fit
+    { xtc(13, 13, 224), "compressed size out of range" },        // 228 fit (on GROMACS' stack)
+    { xtc(12, 30, 100), "atom counts 12 and 30 in its header" }, // found by the index
+    { xtc(3, 9, 0), "atom counts 3 and 9 in its header" },
+  };
+  for (const auto& c : cases)
+  {
+    SCOPED_TRACE(c.problem);
+    try
+    {
+      mesolens::TrajectoryFile file(mesolens_test::write_bytes("overrun.xtc", c.bytes));
+      file.read_frame(0);
+      ADD_FAILURE() << "read";
+    }
+    catch (const mesolens::FileError& e)
+    {
+      EXPECT_NE(std::string(e.what()).find(c.problem), std::string::npos) << e.what();
+    }
+  }
+}
+
 // Found by fuzz_trajectory: opening GROMACS' decoder decodes the first frame, which was not
 // checked when a later frame was read first (a crash in xdr3dfcoord).
 TEST(TrajectoryFile, ACorruptFirstFrameIsCaughtWhenALaterOneIsReadFirst)
@@ -238,6 +298,9 @@ TEST(TrajectoryFile, ACorruptFirstFrameIsCaughtWhenALaterOneIsReadFirst)
   }
 }
 
+// Found by fuzz_gro: GROMACS' reader dereferences null for a file of no atoms and a bad box
+// line, copies a coordinate field as wide as the first line's decimal points are apart into a
+// buffer of 256, and ends the process on lines it cannot read. Such files are refused first.
 TEST(GroTopology, FilesGromacsCannotReadAreRefusedFirst)
 {
   const std::string atom = "    1RES     CA    1   0.000   0.000   0.000\n";

@@ -23,9 +23,14 @@ std::int32_t big_endian_int(const unsigned char* p)
                       (std::uint32_t(p[2]) << 8) | std::uint32_t(p[3]));
 }
 
-/// Bits needed to store `size` values, as the XTC algorithm counts them.
+/// Bits needed to store `size` values, as the XTC algorithm counts them (GROMACS' sizeofint):
+/// its int arithmetic overflows for sizes of 2^30 or more, which then take 32 bits, not 31.
 int bits_for(std::uint64_t size)
 {
+  if (size >= (std::uint64_t(1) << 30))
+  {
+    return 32;
+  }
   int bits = 0;
   while (bits < 32 && (std::uint64_t(1) << bits) <= size)
   {

@@ -277,6 +277,27 @@ TEST(TrajectoryFile, XtcFramesThatWouldOverrunGromacsBuffersAreRefused)
   }
 }
 
+// Found by fuzz_trajectory (valgrind named the write): for a coordinate range of 2^30 or more,
+// GROMACS' int arithmetic takes 32 bits per coordinate where the check counted 31, so the check
+// walked another bit stream than GROMACS decodes, and GROMACS wrote past its integer array.
+TEST(TrajectoryFile, CoordinateRangesOf2To30AreWalkedAsGromacsDecodesThem)
+{
+  mesolens::TrajectoryFile file(
+    std::string(MESOLENS_SOURCE_DIR) +
+      "/Testing/Data/trajectories/fuzz_xtc_coordinate_range_over_2e30.xtc",
+    mesolens::TrajectoryFile::IncompleteFrames::Skip);
+  ASSERT_EQ(file.frame_count(), 1u);
+  try
+  {
+    file.read_frame(0);
+    ADD_FAILURE() << "read";
+  }
+  catch (const mesolens::FileError& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("bit stream ends early"), std::string::npos) << e.what();
+  }
+}
+
 // Found by fuzz_trajectory: opening GROMACS' decoder decodes the first frame, which was not
 // checked when a later frame was read first (a crash in xdr3dfcoord).
 TEST(TrajectoryFile, ACorruptFirstFrameIsCaughtWhenALaterOneIsReadFirst)

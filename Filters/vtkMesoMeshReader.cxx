@@ -190,8 +190,74 @@ int vtkMesoMeshReader::CanReadFile(const char* fileName)
   return probe ? 1 : 0;
 }
 
+std::string vtkMesoMeshReader::DeclaredCountProblem(const std::string& extension) const
+{
+  std::ifstream file(this->FileName, std::ios::binary);
+  std::string head(65536, '\0');
+  file.read(&head[0], static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(file.gcount()));
+  file.clear();
+  file.seekg(0, std::ios::end);
+  const auto size = static_cast<unsigned long long>(file.tellg());
+  if (extension == "stl")
+  {
+    // An ascii STL declares no counts; any byte outside text makes VTK read it as binary: an
+    // 80-byte header, a triangle count, then 50 bytes per triangle.
+    const bool text = std::all_of(head.begin(), head.end(), [](char c) {
+      const auto byte = static_cast<unsigned char>(c);
+      return byte == '\t' || byte == '\n' || byte == '\r' || (byte >= 0x20 && byte < 0x7f);
+    });
+    if (text || size < 84)
+    {
+      return {};
+    }
+    const auto* count_bytes = reinterpret_cast<const unsigned char*>(head.data() + 80);
+    const unsigned long long triangles = count_bytes[0] | (count_bytes[1] << 8) |
+      (count_bytes[2] << 16) | (static_cast<unsigned long long>(count_bytes[3]) << 24);
+    if (84 + 50 * triangles > size)
+    {
+      return "the binary STL declares " + std::to_string(triangles) + " triangles (" +
+        std::to_string(84 + 50 * triangles) + " bytes) but the file has " + std::to_string(size) +
+        " bytes";
+    }
+    if (static_cast<long long>(triangles) > this->MaximumElements)
+    {
+      return "the STL declares " + std::to_string(triangles) + " triangles, more than " +
+        std::to_string(this->MaximumElements) + " (vtkMesoMeshReader::MaximumElements)";
+    }
+    return {};
+  }
+  // VTK XML: every Number...="N" of the pieces.
+  for (std::size_t at = head.find("Number"); at != std::string::npos;
+       at = head.find("Number", at + 1))
+  {
+    const std::size_t quote = head.find('"', at);
+    const std::size_t equals = head.find('=', at);
+    if (quote == std::string::npos || equals == std::string::npos || equals > quote ||
+        quote - at > 32)
+    {
+      continue;
+    }
+    const std::string name = head.substr(at, equals - at);
+    const double count = std::strtod(head.c_str() + quote + 1, nullptr);
+    if (name.find("Components") == std::string::npos && name.find("Tuples") == std::string::npos &&
+        !(count <= double(this->MaximumElements)))
+    {
+      return "the VTP declares " + name + "=" + head.substr(quote + 1, 24) + ", more than " +
+        std::to_string(this->MaximumElements) + " (vtkMesoMeshReader::MaximumElements)";
+    }
+  }
+  return {};
+}
+
 bool vtkMesoMeshReader::ReadWithVTK(const std::string& extension, vtkPolyData* output)
 {
+  const std::string declared = this->DeclaredCountProblem(extension);
+  if (!declared.empty())
+  {
+    vtkErrorMacro("Cannot read " << this->FileName << ": " << declared);
+    return false;
+  }
   vtkSmartPointer<vtkAlgorithm> reader;
   if (extension == "stl")
   {
@@ -343,4 +409,5 @@ void vtkMesoMeshReader::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "FileName: " << (this->FileName.empty() ? "(none)" : this->FileName) << "\n";
+  os << indent << "MaximumElements: " << this->MaximumElements << "\n";
 }

@@ -3,11 +3,12 @@
  * @class   vtkMesoMeshReader
  * @brief   Reads a cell-component surface mesh (.obj, .ply, .stl, .vtp, .off) as triangles.
  *
- * STL and VTP go through VTK's own readers (vtkSTLReader, vtkXMLPolyDataReader), whose output
- * is checked (faces naming points the file lacks, non-finite coordinates); OFF through CGAL's
- * polygon-soup reader; OBJ and PLY (ascii and binary) through MesoLens' own strict readers
- * (mesolens::read_obj, mesolens::read_ply: VTK's read garbage numbers as 0, pass on faces past
- * the vertices, and crash on PLY files whose header lies), with the vertex normals as `Normals`
+ * STL and VTP go through VTK's own readers (vtkSTLReader, vtkXMLPolyDataReader), their declared
+ * counts checked before (MaximumElements) and their output after (faces naming points the file
+ * lacks, non-finite coordinates); OBJ, OFF and PLY (ascii and binary) through MesoLens' own
+ * strict readers (mesolens::read_obj, read_off, read_ply: VTK's read garbage numbers as 0, pass
+ * on faces past the vertices and crash on PLY files whose header lies; CGAL's OFF scanner takes
+ * negative indices), with the vertex normals as `Normals`
  * when the file has them. Meshes with defects (holes, non-manifold or inconsistently oriented
  * faces, degenerate triangles) are read as they are and vtkMesoMeshReport can describe them.
  * Polygons with more than three vertices are split into triangles; vertices, lines and strips
@@ -40,6 +41,15 @@ public:
   vtkGetCharFromStdStringMacro(FileName);
   ///@}
 
+  ///@{
+  /// The most points, and the most cells, an STL or VTP file may declare, [1, 1e9]; default
+  /// 2e7. VTK's readers allocate what a header declares before reading: a binary STL whose
+  /// triangle count the file cannot hold, or a VTP declaring more than this (compressed data can
+  /// hold a billion zeros in a few megabytes), is refused before VTK sees it.
+  vtkSetClampMacro(MaximumElements, vtkIdType, 1, 1000000000);
+  vtkGetMacro(MaximumElements, vtkIdType);
+  ///@}
+
   /// 1 when the extension is .obj, .ply, .stl, .vtp or .off and the file exists.
   static int CanReadFile(const char* fileName);
 
@@ -50,13 +60,16 @@ protected:
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   std::string FileName;
+  vtkIdType MaximumElements = 20000000;
 
 private:
   vtkMesoMeshReader(const vtkMesoMeshReader&) = delete;
   void operator=(const vtkMesoMeshReader&) = delete;
 
   bool ReadWithVTK(const std::string& extension, vtkPolyData* output);
-  /// OFF (CGAL) and PLY (mesolens::read_ply): polygon soups read by Core.
+  /// What is wrong with the counts an STL or VTP file declares (see MaximumElements), or empty.
+  std::string DeclaredCountProblem(const std::string& extension) const;
+  /// OBJ, OFF and PLY: polygon soups read by Core (mesolens::read_obj, read_off, read_ply).
   bool ReadSoup(const std::string& extension, vtkPolyData* output);
 };
 

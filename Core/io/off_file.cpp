@@ -4,47 +4,180 @@
 #include "io/detail/file_checks.h"
 #include "mesolens/common/errors.h"
 
-#include <CGAL/IO/OFF.h>
-#include <CGAL/Simple_cartesian.h>
-
+#include <cctype>
+#include <charconv>
 #include <cmath>
-#include <sstream>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace mesolens {
+namespace {
+
+/// The words of an OFF file, line by line, without comments.
+class OffWords
+{
+public:
+  OffWords(const std::string& bytes, const std::string& name)
+    : Bytes(bytes)
+    , Name(name)
+  {
+  }
+
+  /// The words of the next line that has any; false at the end of the file.
+  bool next_line(std::vector<std::string_view>& words)
+  {
+    words.clear();
+    while (words.empty() && Position < Bytes.size())
+    {
+      std::size_t end = Bytes.find('\n', Position);
+      if (end == std::string::npos)
+      {
+        end = Bytes.size();
+      }
+      std::string_view line(Bytes.data() + Position, end - Position);
+      Position = end + 1;
+      ++Line;
+      line = line.substr(0, line.find('#'));
+      for (std::size_t i = 0; i < line.size();)
+      {
+        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i])))
+        {
+          ++i;
+        }
+        const std::size_t start = i;
+        while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i])))
+        {
+          ++i;
+        }
+        if (i > start)
+        {
+          words.push_back(line.substr(start, i - start));
+        }
+      }
+    }
+    return !words.empty();
+  }
+
+  [[noreturn]] void fail(const std::string& what) const
+  {
+    throw FileError(Name + ": line " + std::to_string(Line) + ": " + what);
+  }
+
+  double number(std::string_view word) const
+  {
+    double value = 0;
+    const char* begin = word.size() > 1 && word[0] == '+' ? word.data() + 1 : word.data();
+    const auto [stop, error] = std::from_chars(begin, word.data() + word.size(), value);
+    if (error != std::errc() || stop != word.data() + word.size() || !std::isfinite(value))
+    {
+      fail("'" + std::string(word.substr(0, 32)) + "' is not a finite number");
+    }
+    return value;
+  }
+
+  /// A count or an index: a whole number in [0, limit).
+  std::int64_t whole(std::string_view word, std::int64_t limit, const char* what) const
+  {
+    long long value = -1;
+    const auto [stop, error] = std::from_chars(word.data(), word.data() + word.size(), value);
+    if (error != std::errc() || stop != word.data() + word.size() || value < 0 || value >= limit)
+    {
+      fail(std::string(what) + " '" + std::string(word.substr(0, 32)) +
+           "' is not a whole number in [0, " + std::to_string(limit) + ")");
+    }
+    return value;
+  }
+
+private:
+  const std::string& Bytes;
+  const std::string& Name;
+  std::size_t Position = 0;
+  std::size_t Line = 0;
+};
+
+} // namespace
 
 PolygonSoup read_off(const std::string& path)
 {
-  detail::require_readable_file(path);
-  using Point = CGAL::Simple_cartesian<double>::Point_3;
-  std::vector<Point> points;
-  std::vector<std::vector<std::size_t>> polygons;
-  bool ok = false;
-  try
+  const std::string bytes = detail::read_file_bytes(path);
+  OffWords words(bytes, path);
+  std::vector<std::string_view> line;
+  if (!words.next_line(line))
   {
-    ok = CGAL::IO::read_OFF(path, points, polygons);
+    throw FileError(path + ": no OFF header");
   }
-  catch (const std::exception& e)
+  // [ST][C][N]OFF; the 4D and n-dimensional variants are not meshes of 3D points.
+  std::string_view header = line.front();
+  for (const char* prefix : { "ST", "C", "N" })
   {
-    throw FileError(path + ": not a valid OFF file (" + e.what() + ")");
+    const std::string_view p(prefix);
+    if (header.substr(0, p.size()) == p && header.size() > 3)
+    {
+      header.remove_prefix(p.size());
+    }
   }
-  if (!ok)
+  if (header != "OFF")
   {
-    throw FileError(path + ": not a valid OFF file");
+    throw FileError(path + ": '" + std::string(line.front().substr(0, 32)) +
+                    "' is not an OFF header (OFF, COFF, NOFF, CNOFF, STOFF ...)");
   }
-  if (points.empty() || polygons.empty())
+  std::vector<std::string_view> counts(line.begin() + 1, line.end());
+  if (counts.empty() && !words.next_line(counts))
   {
-    throw FileError(path + ": the OFF file holds no faces");
+    throw FileError(path + ": no vertex and face counts after the header");
   }
+  if (counts.size() < 2)
+  {
+    words.fail("the counts line needs the vertex and face counts");
+  }
+  // Each vertex takes at least 6 bytes ("0 0 0\n"), each face at least 8 ("3 0 1 2\n").
+  const std::int64_t vertices =
+    words.whole(counts[0], std::int64_t(bytes.size() / 6) + 2, "vertex count");
+  const std::int64_t faces =
+    words.whole(counts[1], std::int64_t(bytes.size() / 8) + 2, "face count");
   PolygonSoup soup;
-  soup.points.reserve(3 * points.size());
-  for (const Point& p : points)
+  soup.points.reserve(3 * std::size_t(vertices));
+  for (std::int64_t v = 0; v < vertices; ++v)
   {
-    soup.points.insert(soup.points.end(), { p.x(), p.y(), p.z() });
+    if (!words.next_line(line))
+    {
+      throw FileError(path + ": the file ends after " + std::to_string(v) + " of " +
+                      std::to_string(vertices) + " vertices");
+    }
+    if (line.size() < 3)
+    {
+      words.fail("a vertex needs 3 coordinates");
+    }
+    for (int d = 0; d < 3; ++d)
+    {
+      soup.points.push_back(words.number(line[std::size_t(d)]));
+    }
   }
-  soup.polygons.reserve(polygons.size());
-  for (const auto& polygon : polygons)
+  soup.polygons.reserve(std::size_t(faces));
+  for (std::int64_t f = 0; f < faces; ++f)
   {
-    soup.polygons.emplace_back(polygon.begin(), polygon.end());
+    if (!words.next_line(line))
+    {
+      throw FileError(path + ": the file ends after " + std::to_string(f) + " of " +
+                      std::to_string(faces) + " faces");
+    }
+    const std::int64_t corners = words.whole(line[0], std::int64_t(line.size()), "corner count");
+    if (corners < 3)
+    {
+      words.fail("a face needs at least 3 corners");
+    }
+    std::vector<std::int64_t> polygon(static_cast<std::size_t>(corners));
+    for (std::int64_t k = 0; k < corners; ++k)
+    {
+      polygon[std::size_t(k)] = words.whole(line[std::size_t(k + 1)], vertices, "vertex index");
+    }
+    soup.polygons.push_back(std::move(polygon));
+  }
+  if (soup.polygons.empty())
+  {
+    throw FileError(path + ": the file holds no faces");
   }
   return soup;
 }

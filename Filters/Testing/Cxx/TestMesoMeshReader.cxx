@@ -147,7 +147,7 @@ TEST(vtkMesoMeshReader, BadFilesFailCleanly)
     { mesolens_test::output_file("missing.obj"), "no such file" },
     { mesolens_test::write_bytes("empty_mesh.ply", ""), "empty" },
     { mesolens_test::garbage_file("garbage_mesh.ply"), "Cannot read" },
-    { mesolens_test::garbage_file("garbage_mesh.off"), "not a valid OFF" },
+    { mesolens_test::garbage_file("garbage_mesh.off"), "is not an OFF header" },
     { mesolens_test::write_bytes("points_only.obj", "v 0 0 0\nv 1 0 0\n"), "no faces" },
     { data_file("proteins/1crn.pdb"), "unknown mesh format" },
   };
@@ -224,6 +224,40 @@ TEST(vtkMesoMeshReader, WhatVTKsReadersPassOnIsChecked)
   {
     expect_refused(c.path, c.problem);
   }
+}
+
+TEST(vtkMesoMeshReader, CountsVTKsReadersWouldAllocateAreCheckedFirst)
+{
+  // Found by fuzz_mesh (out of memory): vtkSTLReader and vtkXMLPolyDataReader allocate what a
+  // header declares. A binary STL must hold its triangles; a VTP may declare at most
+  // MaximumElements points and cells (compressed zeros would justify any count).
+  std::string stl(80, '\x01');
+  const std::uint32_t claimed = 1000000000;
+  stl.append(reinterpret_cast<const char*>(&claimed), 4);
+  stl.append(50, '\0');
+  const std::string vtp =
+    "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\">\n<PolyData>\n"
+    "<Piece NumberOfPoints=\"2000000000\" NumberOfPolys=\"1\">\n</Piece>\n</PolyData>\n"
+    "</VTKFile>\n";
+  const struct
+  {
+    std::string path;
+    const char* problem;
+  } cases[] = {
+    { mesolens_test::write_bytes("lying.stl", stl),
+      "the binary STL declares 1000000000 triangles (50000000084 bytes) but the file has 134 "
+      "bytes" },
+    { mesolens_test::write_bytes("huge.vtp", vtp), "the VTP declares NumberOfPoints=2000000000" },
+  };
+  for (const auto& c : cases)
+  {
+    expect_refused(c.path, c.problem);
+  }
+  vtkNew<vtkMesoMeshReader> reader;
+  reader->SetMaximumElements(3);
+  reader->SetFileName(data_file("meshes/mito5_outer_membrane.obj").c_str()); // OBJ: no limit
+  reader->Update();
+  EXPECT_GT(reader->GetOutput()->GetNumberOfPolys(), 3);
 }
 
 TEST(vtkMesoMeshReader, PlyNormalsAreKept)

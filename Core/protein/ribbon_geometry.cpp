@@ -51,9 +51,11 @@ Vec carry_over(const Vec& v, const Vec& axis)
   return length > 1e-9 ? Vec(w / length) : any_perpendicular(axis);
 }
 
+/// Finite and within largest_ribbon_coordinate (farther out the spline overflows).
 bool finite(const std::array<double, 3>& p)
 {
-  return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
+  return std::abs(p[0]) <= largest_ribbon_coordinate &&
+    std::abs(p[1]) <= largest_ribbon_coordinate && std::abs(p[2]) <= largest_ribbon_coordinate;
 }
 
 /// The natural cubic spline through knots at parameters 0, 1, ..., n - 1: C2, interpolating,
@@ -944,7 +946,8 @@ std::vector<RibbonSegment> ribbon_segments(const std::vector<RibbonResidue>& res
   {
     if (!finite(residues[i].trace))
     {
-      throw InvalidInput("ribbon: " + describe(residues, i) + " has a non-finite Cα/P position");
+      throw InvalidInput("ribbon: " + describe(residues, i) +
+                         " has a non-finite Cα/P position or one beyond 1e8 Å");
     }
     bool joined = false;
     if (i > 0)
@@ -978,7 +981,8 @@ RibbonMesh ribbon_mesh(const std::vector<RibbonResidue>& residues, const RibbonP
   {
     if (residues[i].carbonyl_oxygen && !finite(*residues[i].carbonyl_oxygen))
     {
-      throw InvalidInput("ribbon: " + describe(residues, i) + " has a non-finite carbonyl O");
+      throw InvalidInput("ribbon: " + describe(residues, i) +
+                         " has a non-finite carbonyl O or one beyond 1e8 Å");
     }
   }
   const std::vector<int> subdivisions = subdivisions_by_segment(settings, mesh.segments.size());

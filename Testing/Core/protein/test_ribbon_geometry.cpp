@@ -673,6 +673,28 @@ TEST(RibbonGeometry, SettingsOutsideTheirRangesAreRefused)
   }
 }
 
+// Found by fuzz_ribbons: a trace 1e300 Å out overflowed the spline to infinite points.
+TEST(RibbonGeometry, TracesBeyondTheCoordinateLimitAreRefused)
+{
+  Chain chain = mixed_chain();
+  chain[3].trace[2] = 1e300;
+  try
+  {
+    mesolens::ribbon_mesh(chain);
+    ADD_FAILURE() << "accepted";
+  }
+  catch (const mesolens::InvalidInput& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("residue 3 (id 1003, chain 0) has a non-finite Cα/P "
+                                         "position or one beyond 1e8 Å"),
+              std::string::npos)
+      << e.what();
+  }
+  chain = mixed_chain();
+  chain[2].carbonyl_oxygen = std::array<double, 3>{ 0, -2e8, 0 };
+  EXPECT_THROW(mesolens::ribbon_mesh(chain), mesolens::InvalidInput);
+}
+
 TEST(RibbonGeometry, BadInputs)
 {
   RibbonMesh empty;

@@ -63,6 +63,9 @@ constexpr double longest_ribbon_length = 1e3;
 /// as their product).
 constexpr int largest_ribbon_subdivisions = 100;
 constexpr int largest_ribbon_tube_sides = 360;
+/// The largest magnitude of a trace or carbonyl O coordinate ribbon_mesh() takes, Å (farther
+/// out the spline's arithmetic overflows).
+constexpr double largest_ribbon_coordinate = 1e8;
 
 /// Shape and level of detail of ribbon_mesh(). Lengths in Å, each in [shortest_ribbon_length,
 /// longest_ribbon_length].
@@ -217,9 +220,10 @@ std::vector<RibbonSegment> ribbon_segments(const std::vector<RibbonResidue>& res
 ///
 /// Empty input gives an empty mesh (no exception; the settings are still checked). Throws
 /// InvalidInput, naming the residue (index, id and chain), for a non-finite trace or O
-/// position, and for settings out of range or a segment_subdivisions list whose length is not
-/// the number of segments. Deterministic whatever `parallel_for` (which runs the segments, then
-/// the pieces); time and memory O(residues × subdivisions × tube_sides).
+/// position or one beyond largest_ribbon_coordinate, and for settings out of range or a
+/// segment_subdivisions list whose length is not the number of segments. Deterministic whatever
+/// `parallel_for` (which runs the segments, then the pieces); time and memory O(residues ×
+/// subdivisions × tube_sides).
 RibbonMesh ribbon_mesh(const std::vector<RibbonResidue>& residues,
                        const RibbonParams& settings = {}, const ParallelFor& parallel_for = {});
 

@@ -59,8 +59,9 @@ AtomTable read_gro_topology(const std::string& path)
 {
   detail::require_readable_file(path);
   // GROMACS' reader crashes on some malformed files (no atoms and a bad box: a null
-  // dereference) and ends the process on others: the frames are checked first.
-  const detail::FrameIndex frames = detail::index_gro(path);
+  // dereference) and ends the process on others: the first frame, which it reads, is checked
+  // first.
+  const detail::FrameIndex frames = detail::index_gro(path, 1);
   if (frames.offsets.empty())
   {
     throw FileError(

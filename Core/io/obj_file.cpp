@@ -2,9 +2,10 @@
 #include "mesolens/io/obj_file.h"
 
 #include "io/detail/file_checks.h"
+#include "io/detail/text_fields.h"
 #include "mesolens/common/errors.h"
 
-#include <charconv>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -13,35 +14,6 @@
 
 namespace mesolens {
 namespace {
-
-bool is_space(char c)
-{
-  return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
-}
-
-/// Splits a record into its words.
-std::vector<std::string_view> words_of(std::string_view line)
-{
-  std::vector<std::string_view> words;
-  std::size_t i = 0;
-  while (i < line.size())
-  {
-    while (i < line.size() && is_space(line[i]))
-    {
-      ++i;
-    }
-    const std::size_t start = i;
-    while (i < line.size() && !is_space(line[i]))
-    {
-      ++i;
-    }
-    if (i > start)
-    {
-      words.push_back(line.substr(start, i - start));
-    }
-  }
-  return words;
-}
 
 /// Parses one OBJ file, a record at a time.
 class ObjParser
@@ -55,7 +27,7 @@ public:
   void record(std::string_view line, std::size_t line_number)
   {
     Line = line_number;
-    const std::vector<std::string_view> words = words_of(line);
+    const std::vector<std::string_view> words = detail::split_words(line);
     if (words.empty())
     {
       return;
@@ -140,17 +112,13 @@ private:
   double number(std::string_view word) const
   {
     double value = 0.0;
-    const char* end = word.data() + word.size();
-    // from_chars takes no leading '+', which some writers put.
-    const char* begin = word.size() > 1 && word[0] == '+' ? word.data() + 1 : word.data();
-    const auto [stop, error] = std::from_chars(begin, end, value);
-    if (error != std::errc() || stop != end)
+    if (!detail::parse_number(word, value))
     {
-      fail("'" + printable(word) + "' is not a number");
+      fail("'" + detail::quoted_field(word) + "' is not a number");
     }
     if (!std::isfinite(value))
     {
-      fail("non-finite coordinate '" + printable(word) + "'");
+      fail("non-finite coordinate '" + detail::quoted_field(word) + "'");
     }
     return value;
   }
@@ -159,11 +127,9 @@ private:
   std::int64_t index(std::string_view word, std::int64_t count, const char* what) const
   {
     long long value = 0;
-    const char* end = word.data() + word.size();
-    const auto [stop, error] = std::from_chars(word.data(), end, value);
-    if (error != std::errc() || stop != end)
+    if (!detail::parse_integer(word, value))
     {
-      fail("'" + printable(word) + "' is not a " + what + " index");
+      fail("'" + detail::quoted_field(word) + "' is not a " + what + " index");
     }
     if (value == 0)
     {
@@ -203,7 +169,7 @@ private:
         if (!texture.empty() &&
             index(texture, TextureCoordinates, "texture coordinate") >= TextureCoordinates)
         {
-          fail("texture coordinate index " + printable(texture) + " past the " +
+          fail("texture coordinate index " + detail::quoted_field(texture) + " past the " +
                std::to_string(TextureCoordinates) + " read so far");
         }
       }
@@ -263,19 +229,6 @@ private:
     }
   }
 
-  static std::string printable(std::string_view word)
-  {
-    std::string shown(word.substr(0, 32));
-    for (char& c : shown)
-    {
-      if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) > 0x7e)
-      {
-        c = '?';
-      }
-    }
-    return shown;
-  }
-
   std::string Name;
   std::size_t Line = 0;
   MeshFileContents Mesh;
@@ -314,7 +267,7 @@ MeshFileContents read_obj_bytes(const std::string& bytes, const std::string& nam
     start = end + 1;
     const std::size_t comment = line.find('#');
     line = line.substr(0, comment);
-    while (!line.empty() && is_space(line.back()))
+    while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back())))
     {
       line.remove_suffix(1);
     }

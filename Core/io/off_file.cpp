@@ -2,10 +2,9 @@
 #include "mesolens/io/off_file.h"
 
 #include "io/detail/file_checks.h"
+#include "io/detail/text_fields.h"
 #include "mesolens/common/errors.h"
 
-#include <cctype>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -39,23 +38,7 @@ public:
       std::string_view line(Bytes.data() + Position, end - Position);
       Position = end + 1;
       ++Line;
-      line = line.substr(0, line.find('#'));
-      for (std::size_t i = 0; i < line.size();)
-      {
-        while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i])))
-        {
-          ++i;
-        }
-        const std::size_t start = i;
-        while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i])))
-        {
-          ++i;
-        }
-        if (i > start)
-        {
-          words.push_back(line.substr(start, i - start));
-        }
-      }
+      words = detail::split_words(line.substr(0, line.find('#')));
     }
     return !words.empty();
   }
@@ -68,11 +51,9 @@ public:
   double number(std::string_view word) const
   {
     double value = 0;
-    const char* begin = word.size() > 1 && word[0] == '+' ? word.data() + 1 : word.data();
-    const auto [stop, error] = std::from_chars(begin, word.data() + word.size(), value);
-    if (error != std::errc() || stop != word.data() + word.size() || !std::isfinite(value))
+    if (!detail::parse_number(word, value) || !std::isfinite(value))
     {
-      fail("'" + std::string(word.substr(0, 32)) + "' is not a finite number");
+      fail("'" + detail::quoted_field(word) + "' is not a finite number");
     }
     return value;
   }
@@ -81,10 +62,9 @@ public:
   std::int64_t whole(std::string_view word, std::int64_t limit, const char* what) const
   {
     long long value = -1;
-    const auto [stop, error] = std::from_chars(word.data(), word.data() + word.size(), value);
-    if (error != std::errc() || stop != word.data() + word.size() || value < 0 || value >= limit)
+    if (!detail::parse_integer(word, value) || value < 0 || value >= limit)
     {
-      fail(std::string(what) + " '" + std::string(word.substr(0, 32)) +
+      fail(std::string(what) + " '" + detail::quoted_field(word) +
            "' is not a whole number in [0, " + std::to_string(limit) + ")");
     }
     return value;
@@ -120,7 +100,7 @@ PolygonSoup read_off(const std::string& path)
   }
   if (header != "OFF")
   {
-    throw FileError(path + ": '" + std::string(line.front().substr(0, 32)) +
+    throw FileError(path + ": '" + detail::quoted_field(line.front()) +
                     "' is not an OFF header (OFF, COFF, NOFF, CNOFF, STOFF ...)");
   }
   std::vector<std::string_view> counts(line.begin() + 1, line.end());

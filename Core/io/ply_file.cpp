@@ -2,6 +2,7 @@
 #include "mesolens/io/ply_file.h"
 
 #include "io/detail/file_checks.h"
+#include "io/detail/text_fields.h"
 #include "mesolens/common/errors.h"
 
 #include <algorithm>
@@ -56,20 +57,6 @@ ScalarType scalar_type(const std::string& name)
     }
   }
   return {};
-}
-
-/// At most 32 characters of `text`, those that do not print as '?': a message quotes the file.
-std::string quoted(const std::string& text)
-{
-  std::string shown = text.substr(0, 32);
-  for (char& c : shown)
-  {
-    if (!std::isprint(static_cast<unsigned char>(c)))
-    {
-      c = '?';
-    }
-  }
-  return shown;
 }
 
 struct Property
@@ -157,7 +144,7 @@ private:
     const double value = std::strtod(token.c_str(), &parsed_end);
     if (token.empty() || parsed_end != token.c_str() + token.size())
     {
-      this->fail("'" + quoted(token) + "' is not a number (" + what + ")");
+      this->fail("'" + detail::quoted_field(token) + "' is not a number (" + what + ")");
     }
     this->At = end;
     return value;
@@ -278,7 +265,7 @@ std::vector<Element> read_header(const std::string& path, const std::vector<char
       }
       else
       {
-        fail(where + ": unknown format '" + quoted(kind) + "'");
+        fail(where + ": unknown format '" + detail::quoted_field(kind) + "'");
       }
       have_format = true;
     }
@@ -324,7 +311,7 @@ std::vector<Element> read_header(const std::string& path, const std::vector<char
         property.type = scalar_type(type);
         if (property.type.bytes == 0)
         {
-          fail(where + ": unknown property type '" + quoted(type) + "'");
+          fail(where + ": unknown property type '" + detail::quoted_field(type) + "'");
         }
       }
       if (property.name.empty())
@@ -335,7 +322,7 @@ std::vector<Element> read_header(const std::string& path, const std::vector<char
     }
     else
     {
-      fail(where + ": unknown keyword '" + quoted(keyword) + "'");
+      fail(where + ": unknown keyword '" + detail::quoted_field(keyword) + "'");
     }
   }
   if (!have_format)

@@ -52,7 +52,7 @@ Vec carry_over(const Vec& v, const Vec& axis)
 }
 
 /// Finite and within largest_ribbon_coordinate (farther out the spline overflows).
-bool finite(const std::array<double, 3>& p)
+bool within_limits(const std::array<double, 3>& p)
 {
   return std::abs(p[0]) <= largest_ribbon_coordinate &&
     std::abs(p[1]) <= largest_ribbon_coordinate && std::abs(p[2]) <= largest_ribbon_coordinate;
@@ -944,7 +944,7 @@ std::vector<RibbonSegment> ribbon_segments(const std::vector<RibbonResidue>& res
   std::vector<RibbonSegment> segments;
   for (std::size_t i = 0; i < residues.size(); ++i)
   {
-    if (!finite(residues[i].trace))
+    if (!within_limits(residues[i].trace))
     {
       throw InvalidInput("ribbon: " + describe(residues, i) +
                          " has a non-finite Cα/P position or one beyond 1e8 Å");
@@ -979,7 +979,7 @@ RibbonMesh ribbon_mesh(const std::vector<RibbonResidue>& residues, const RibbonP
   mesh.segments = ribbon_segments(residues, settings);
   for (std::size_t i = 0; i < residues.size(); ++i)
   {
-    if (residues[i].carbonyl_oxygen && !finite(*residues[i].carbonyl_oxygen))
+    if (residues[i].carbonyl_oxygen && !within_limits(*residues[i].carbonyl_oxygen))
     {
       throw InvalidInput("ribbon: " + describe(residues, i) +
                          " has a non-finite carbonyl O or one beyond 1e8 Å");

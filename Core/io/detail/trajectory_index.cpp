@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <memory>
+#include <string_view>
 
 namespace mesolens {
 namespace detail {
@@ -312,29 +313,30 @@ constexpr std::size_t longest_gro_line = 4000;
 /// number in a field of `width` characters from column 21. `width` comes from the frame's first
 /// atom line, as GROMACS takes it: the distance between its first two decimal points (anywhere
 /// in the line), which must equal the distance between the second and third; at most 32 here
-/// (GROMACS copies a field into a buffer of 256). Returns the width when `width` is 0.
-std::size_t check_gro_atom_line(const std::string& line, std::size_t width,
-                                const std::string& where)
+/// (GROMACS copies a field into a buffer of 256). Returns the width when `width` is 0. `where`
+/// names the line in a message (called only to build one).
+template<typename Where>
+std::size_t check_gro_atom_line(std::string_view text, std::size_t width, const Where& where)
 {
-  std::string text = line;
   if (!text.empty() && text.back() == '\r')
   {
-    text.pop_back();
+    text.remove_suffix(1);
   }
   if (text.size() < 39 || text.size() > longest_gro_line)
   {
-    throw FileError(where + " has " + std::to_string(text.size()) +
+    throw FileError(where() + " has " + std::to_string(text.size()) +
                     " characters: an atom line of a GRO file has at least 39 (names, numbers and "
                     "x, y, z from column 21)");
   }
+  constexpr std::size_t widest_field = 32;
   if (width == 0)
   {
     const std::size_t first = text.find('.');
-    const std::size_t second = first == std::string::npos ? first : text.find('.', first + 1);
-    const std::size_t third = second == std::string::npos ? second : text.find('.', second + 1);
-    if (third == std::string::npos || second - first != third - second || second - first > 32)
+    const std::size_t second = first == text.npos ? first : text.find('.', first + 1);
+    const std::size_t third = second == text.npos ? second : text.find('.', second + 1);
+    if (third == text.npos || second - first != third - second || second - first > widest_field)
     {
-      throw FileError(where +
+      throw FileError(where() +
                       ": the decimal points of x, y and z are not evenly spaced; GRO is "
                       "a fixed-column format");
     }
@@ -343,23 +345,24 @@ std::size_t check_gro_atom_line(const std::string& line, std::size_t width,
   std::size_t column = 20;
   for (const char axis : { 'x', 'y', 'z' })
   {
-    const std::string field = text.substr(std::min(column, text.size()), width);
+    // strtod needs a terminated string: the field into a buffer of its own.
+    char field[widest_field + 1] = {};
+    text.substr(std::min(column, text.size()), width).copy(field, width);
     column += width;
-    const char* begin = field.c_str();
     char* end = nullptr;
-    std::strtod(begin, &end);
+    std::strtod(field, &end);
     char* after = nullptr;
     std::strtod(end, &after);
-    if (end == begin || after != end)
+    if (end == field || after != end)
     {
-      throw FileError(where + ": " + axis + " is not one number in its " + std::to_string(width) +
+      throw FileError(where() + ": " + axis + " is not one number in its " + std::to_string(width) +
                       " columns; GRO is a fixed-column format");
     }
   }
   return width;
 }
 
-FrameIndex index_gro(const std::string& path)
+FrameIndex index_gro(const std::string& path, std::size_t frame_limit)
 {
   std::ifstream stream(path, std::ios::binary);
   if (!stream)
@@ -369,7 +372,7 @@ FrameIndex index_gro(const std::string& path)
   FrameIndex index;
   std::string line;
   std::int64_t offset = 0;
-  for (;;)
+  while (frame_limit == 0 || index.offsets.size() < frame_limit)
   {
     const std::size_t frame = index.offsets.size();
     const std::int64_t start = offset;
@@ -406,9 +409,9 @@ FrameIndex index_gro(const std::string& path)
       offset += std::int64_t(line.size()) + 1;
       if (complete && i < atoms)
       {
-        width = check_gro_atom_line(line, width,
-                                    path + ": frame " + std::to_string(frame) + ", atom line " +
-                                      std::to_string(i + 1));
+        width = check_gro_atom_line(line, width, [&] {
+          return path + ": frame " + std::to_string(frame) + ", atom line " + std::to_string(i + 1);
+        });
       }
       else if (complete)
       {

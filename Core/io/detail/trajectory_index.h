@@ -27,7 +27,8 @@ FrameIndex index_trr(const std::string& path);
 /// Scans a (possibly multi-frame) GRO file by lines, checking every atom and box line as
 /// GROMACS' reader needs them (it overruns its buffers or ends the process otherwise). Same
 /// errors as index_xtc(), and FileError naming the line for one GROMACS could not read.
-FrameIndex index_gro(const std::string& path);
+/// `frame_limit` > 0 stops after that many complete frames.
+FrameIndex index_gro(const std::string& path, std::size_t frame_limit = 0);
 
 } // namespace detail
 } // namespace mesolens

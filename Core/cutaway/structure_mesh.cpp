@@ -45,7 +45,6 @@ namespace PMP = CGAL::Polygon_mesh_processing;
 constexpr double degrees = 180.0 / 3.14159265358979323846;
 /// The repair aims a degree above the bound, so that rounding never decides the check.
 constexpr double repair_goal = structure_mesh_min_angle + 1.0;
-constexpr std::size_t most_vertices = 1000000;
 
 double length(const std::array<double, 3>& a, const std::array<double, 3>& b)
 {
@@ -83,10 +82,11 @@ void require_valid(PointSpan<const double> points, const StructureMeshParams& pa
   }
   if (params.edge_length < 0 || !std::isfinite(params.edge_length) ||
       !std::isfinite(params.mid_surface_radius) ||
-      (params.edge_length == 0 && (params.vertices < 4 || params.vertices > most_vertices)))
+      (params.edge_length == 0 && (params.vertices < 4 || params.vertices > params.vertex_limit)))
   {
     throw InvalidInput("a structure mesh needs a finite target edge length > 0 or a vertex count "
-                       "in [4, 1000000]; got " +
+                       "in [4, " +
+                       std::to_string(params.vertex_limit) + "] (the vertex limit); got " +
                        std::to_string(params.vertices) + " vertices, edge length " +
                        std::to_string(params.edge_length));
   }
@@ -300,6 +300,23 @@ double target_edge(const StructureMeshParams& params, double area)
   return edge;
 }
 
+/// Throws InvalidInput when edges of `edge` over `area` would make more vertices than the
+/// limit: the remeshing would run for hours or exhaust the memory first.
+void require_within_vertex_limit(const StructureMeshParams& params, double edge, double area)
+{
+  const double vertices = area / (std::sqrt(3.0) / 2 * edge * edge);
+  if (!(vertices <= double(params.vertex_limit)))
+  {
+    std::ostringstream message;
+    message.precision(4);
+    message << "a structure mesh with edges of " << edge << " over the sheet's area of " << area
+            << " would have about " << vertices << " vertices, more than the vertex limit of "
+            << params.vertex_limit
+            << "; give a longer edge length, or raise StructureMeshParams::vertex_limit";
+    throw InvalidInput(message.str());
+  }
+}
+
 /// The general path: reconstruction through the middle sheet, remeshing to the asked size.
 SurfaceMesh reconstructed_structure(const std::vector<double>& points,
                                     const StructureMeshParams& params,
@@ -324,7 +341,9 @@ SurfaceMesh reconstructed_structure(const std::vector<double>& points,
     thinned = sheet.points.size() >= 12 ? sheet.points : points;
   }
   const SurfaceMesh surface = reconstructed_sheet(thinned);
-  const double edge = target_edge(params, PMP::area(surface));
+  const double sheet_area = PMP::area(surface);
+  const double edge = target_edge(params, sheet_area);
+  require_within_vertex_limit(params, edge, sheet_area);
   SurfaceMesh mesh = remeshed(surface, edge);
   if (params.edge_length <= 0)
   {
@@ -348,6 +367,11 @@ SurfaceMesh lattice_structure(const std::vector<double>& points, const SheetCell
                               const StructureMeshParams& params, const ParallelFor& parallel_for)
 {
   const double spacing = sheet_spacing(points);
+  if (params.edge_length > 0)
+  {
+    const Eigen::Vector3d a(cell.a[0], cell.a[1], cell.a[2]), b(cell.b[0], cell.b[1], cell.b[2]);
+    require_within_vertex_limit(params, params.edge_length, a.cross(b).norm());
+  }
   const LatticeShape shape = lattice_shape(cell, params.vertices, params.edge_length);
   const double a_length =
     std::sqrt(cell.a[0] * cell.a[0] + cell.a[1] * cell.a[1] + cell.a[2] * cell.a[2]);

@@ -111,6 +111,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     params.vertices = std::size_t(input.byte()) * 3;
     params.edge_length = (options & 8) ? input.ranged(-1, 30) : 0;
     params.mid_surface_radius = (options & 16) ? input.ranged(-1, 60) : 0;
+    // Short edges are refused past this limit rather than remeshed for minutes.
+    params.vertex_limit = 3000;
     try
     {
       structure = mesolens::structure_mesh(centres, params);

@@ -282,6 +282,47 @@ TEST(StructureMesh, BadInputs)
   EXPECT_THROW(mesolens::structure_mesh(same, { 100, 0 }), mesolens::InvalidInput);
 }
 
+namespace {
+
+/// Fails unless structure_mesh() refuses `params` for `points` with an error naming the vertex
+/// limit.
+void expect_vertex_limit_error(const std::vector<double>& points,
+                               const mesolens::StructureMeshParams& params)
+{
+  try
+  {
+    mesolens::structure_mesh(points, params);
+    ADD_FAILURE() << "edges of " << params.edge_length << " gave a mesh";
+  }
+  catch (const mesolens::InvalidInput& error)
+  {
+    EXPECT_NE(std::string(error.what()).find("vertex limit"), std::string::npos) << error.what();
+  }
+}
+
+} // namespace
+
+TEST(StructureMesh, AnEdgeGivingMoreVerticesThanTheLimitIsRefusedBeforeRemeshing)
+{
+  // A subnormal edge once kept CGAL's remeshing splitting edges until the memory ran out.
+  mesolens::StructureMeshParams params;
+  params.edge_length = 2.122e-314;
+  expect_vertex_limit_error(sphere_points(200, 1.0), params);
+  params.box = patch_box(); // the periodic lattice path
+  expect_vertex_limit_error(two_noisy_leaflets(20.0, 11), params);
+  // 100 x 90 Å with edges of 1 Å is about 10 400 vertices: refused under a limit of 5 000,
+  // made under the default.
+  params.edge_length = 1.0;
+  params.vertex_limit = 5000;
+  expect_vertex_limit_error(two_noisy_leaflets(20.0, 11), params);
+  params.edge_length = 0;
+  params.vertices = 6000;
+  expect_vertex_limit_error(two_noisy_leaflets(20.0, 11), params);
+  params.vertex_limit = 1000000;
+  params.edge_length = 4.0;
+  EXPECT_NO_THROW(mesolens::structure_mesh(two_noisy_leaflets(20.0, 11), params));
+}
+
 TEST(StructureMesh, WaterIonsAndProteinsAreNotPartOfTheSheet)
 {
   for (const char* name :

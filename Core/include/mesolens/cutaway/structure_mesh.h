@@ -38,11 +38,12 @@ constexpr double structure_mesh_max_angle = 120.0;
 /// Settings of structure_mesh().
 struct StructureMeshParams
 {
-  /// About how many vertices the mesh has, [4, 1e6]; default 500 (used when edge_length <= 0;
-  /// expect within about 15 %, and for a handful of vertices the nearest count the shape
-  /// allows).
+  /// About how many vertices the mesh has, [4, vertex_limit]; default 500 (used when
+  /// edge_length <= 0; expect within about 15 %, and for a handful of vertices the nearest
+  /// count the shape allows).
   std::size_t vertices = 500;
-  /// The target edge length in mesh units; <= 0 (default): from `vertices`.
+  /// The target edge length in mesh units; <= 0 (default): from `vertices`. An edge that
+  /// would give more than vertex_limit vertices over the sheet is refused.
   double edge_length = 0;
   /// How far along the local normal the other leaflet of a bilayer is looked for, in mesh
   /// units: more than the distance between the two leaflets' points (lipid centres about 20 Å
@@ -51,6 +52,10 @@ struct StructureMeshParams
   /// The periodic box of the points (Å); not set (default): none. A flat membrane that spans
   /// two of its vectors is meshed over that cell.
   PeriodicBox box;
+  /// The most vertices a structure mesh may be asked for, by `vertices` or by `edge_length`;
+  /// default 1e6 (the remeshing needs about 1 kB per vertex and minutes per million). Raise it
+  /// for finer meshes of larger sheets.
+  std::size_t vertex_limit = 1000000;
 };
 
 /// A sheet through the middle of `points` (the centres of a membrane's
@@ -75,8 +80,9 @@ struct StructureMeshParams
 ///
 /// The mesh is one connected 2-manifold; a closed one is oriented outwards, a lattice towards
 /// a x b. Deterministic whatever `parallel_for`. Throws InvalidInput for fewer than 4 points,
-/// non-finite points, N outside [4, 1e6] (when edge_length <= 0), a negative or non-finite
-/// length, or points that all coincide; TopologyError when the points describe no surface (all
+/// non-finite points, N outside [4, vertex_limit] (when edge_length <= 0), a negative or
+/// non-finite length, an edge length that would give more than vertex_limit vertices, or
+/// points that all coincide; TopologyError when the points describe no surface (all
 /// on a line, for instance) or when the angle bound cannot be met everywhere (the message says
 /// where).
 TriangleMesh structure_mesh(PointSpan<const double> points, const StructureMeshParams& params,

@@ -9,10 +9,14 @@ if (NOT status EQUAL 0)
 endif ()
 set(consumer_flags "")
 set(python_environment "PYTHONPATH=${PREFIX}/lib/python3/dist-packages")
-if (SANITIZERS)
-  # Libraries built with the sanitizers need the runtime in whatever links them.
-  set(consumer_flags "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=address,undefined")
-  list(APPEND python_environment "LD_PRELOAD=${PRELOAD}" "ASAN_OPTIONS=detect_leaks=0")
+if (SANITIZE)
+  # Libraries built with the sanitizers (SANITIZE: their -fsanitize= list) need the runtime in
+  # whatever links them, and preloaded in Python.
+  set(consumer_flags "-DCMAKE_EXE_LINKER_FLAGS=-fsanitize=${SANITIZE}")
+  list(APPEND python_environment "LD_PRELOAD=${PRELOAD}")
+  if (SANITIZE MATCHES "address")
+    list(APPEND python_environment "ASAN_OPTIONS=detect_leaks=0")
+  endif ()
 endif ()
 execute_process(COMMAND "${CMAKE_COMMAND}" -S "${SOURCE}" -B "${CONSUMER_BUILD}"
   "-DCMAKE_PREFIX_PATH=${PREFIX}" -DCMAKE_BUILD_TYPE=Release ${consumer_flags}

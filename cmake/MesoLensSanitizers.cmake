@@ -1,6 +1,5 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # AddressSanitizer + UndefinedBehaviorSanitizer for the whole build (tests included).
-# Run the Python tests of such a build with LD_PRELOAD of libasan; the CTest setup does that.
 option(MESOLENS_ENABLE_SANITIZERS "Build with AddressSanitizer and UndefinedBehaviorSanitizer" OFF)
 if (MESOLENS_ENABLE_SANITIZERS)
   set(mesolens_sanitizer_flags -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
@@ -16,6 +15,28 @@ if (MESOLENS_ENABLE_THREAD_SANITIZER)
   endif ()
   add_compile_options(-fsanitize=thread -fno-omit-frame-pointer)
   add_link_options(-fsanitize=thread)
+endif ()
+# A sanitized build's Python modules need the sanitizer's runtime loaded first, and libstdc++
+# with it (otherwise ASan cannot intercept C++ exceptions thrown in our libraries): every Python
+# the build runs (the ParaView proxies, the tests) gets LD_PRELOAD=MESOLENS_SANITIZER_PRELOAD.
+# Python itself leaks by design, so leak detection is off there.
+set(MESOLENS_SANITIZER_PRELOAD "")
+set(MESOLENS_SANITIZED_PYTHON_ENVIRONMENT "")
+if (MESOLENS_ENABLE_SANITIZERS OR MESOLENS_ENABLE_THREAD_SANITIZER)
+  if (MESOLENS_ENABLE_SANITIZERS)
+    set(runtime libasan.so)
+  else ()
+    set(runtime libtsan.so)
+  endif ()
+  execute_process(COMMAND ${CMAKE_CXX_COMPILER} -print-file-name=${runtime}
+    OUTPUT_VARIABLE sanitizer_library OUTPUT_STRIP_TRAILING_WHITESPACE)
+  execute_process(COMMAND ${CMAKE_CXX_COMPILER} -print-file-name=libstdc++.so.6
+    OUTPUT_VARIABLE stdcxx_library OUTPUT_STRIP_TRAILING_WHITESPACE)
+  set(MESOLENS_SANITIZER_PRELOAD "${sanitizer_library}:${stdcxx_library}")
+  set(MESOLENS_SANITIZED_PYTHON_ENVIRONMENT "LD_PRELOAD=${MESOLENS_SANITIZER_PRELOAD}")
+  if (MESOLENS_ENABLE_SANITIZERS)
+    list(APPEND MESOLENS_SANITIZED_PYTHON_ENVIRONMENT "ASAN_OPTIONS=detect_leaks=0")
+  endif ()
 endif ()
 # Fuzz targets: every library instrumented for libFuzzer's coverage, with the sanitizers.
 if (MESOLENS_BUILD_FUZZERS)

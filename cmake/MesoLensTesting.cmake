@@ -22,7 +22,7 @@ function(mesolens_add_gtest name)
   if (NOT arg_TIMEOUT)
     set(arg_TIMEOUT 300)
   endif ()
-  set(environment "")
+  set(environment ${mesolens_tsan_environment})
   if (MESOLENS_ENABLE_SANITIZERS AND arg_LABEL STREQUAL "render")
     # As for the image tests: Mesa's GL driver leaks a few bytes LeakSanitizer cannot attribute.
     set(environment "ASAN_OPTIONS=detect_leaks=0")
@@ -34,15 +34,12 @@ function(mesolens_add_gtest name)
     DISCOVERY_TIMEOUT 60)
 endfunction()
 
-# A sanitized build's Python modules need the ASan runtime loaded first, and libstdc++ with it
-# (otherwise ASan cannot intercept C++ exceptions thrown in our libraries). Python itself leaks
-# by design, so leak detection is off there; it stays on for the C++ tests.
-if (MESOLENS_ENABLE_SANITIZERS)
-  execute_process(COMMAND ${CMAKE_CXX_COMPILER} -print-file-name=libasan.so
-    OUTPUT_VARIABLE asan_library OUTPUT_STRIP_TRAILING_WHITESPACE)
-  execute_process(COMMAND ${CMAKE_CXX_COMPILER} -print-file-name=libstdc++.so.6
-    OUTPUT_VARIABLE stdcxx_library OUTPUT_STRIP_TRAILING_WHITESPACE)
-  set(MESOLENS_SANITIZER_PRELOAD "${asan_library}:${stdcxx_library}")
+# ThreadSanitizer's reports from inside Mesa's software GL driver (its own threads, not
+# instrumented) are suppressed (Testing/Support/tsan.supp); every other report fails a test.
+set(mesolens_tsan_environment "")
+if (MESOLENS_ENABLE_THREAD_SANITIZER)
+  set(mesolens_tsan_environment
+    "TSAN_OPTIONS=suppressions=${CMAKE_SOURCE_DIR}/Testing/Support/tsan.supp")
 endif ()
 
 # Python tests run with Debian's interpreter (which has vtkmodules) and the build's package.
@@ -65,6 +62,8 @@ function(mesolens_add_python_test name script)
     "PYTHONDONTWRITEBYTECODE=1")
   if (MESOLENS_ENABLE_SANITIZERS)
     list(APPEND environment "LD_PRELOAD=${MESOLENS_SANITIZER_PRELOAD}" "ASAN_OPTIONS=detect_leaks=0")
+  elseif (MESOLENS_ENABLE_THREAD_SANITIZER)
+    list(APPEND environment "LD_PRELOAD=${MESOLENS_SANITIZER_PRELOAD}" ${mesolens_tsan_environment})
   endif ()
   set_tests_properties(${name} PROPERTIES
     LABELS "${arg_LABEL}" ENVIRONMENT "${environment}" SKIP_RETURN_CODE 77 TIMEOUT 300)
@@ -80,8 +79,9 @@ target_link_libraries(mesolens_compare_images PRIVATE VTK::IOImage VTK::CommonDa
 # @IMAGE@ in the arguments), then compares that image with Testing/Baseline/<png> (by default
 # strictly: 16 levels per pixel, 0.2 % of the pixels; THRESHOLDS loosens that for pictures drawn
 # by a different method). WILL_FAIL: the test passes only when the comparison finds the picture
-# different (a render that fails is no pass). PYTHON: the program runs the wrapped modules in
-# Debian's Python (which needs the sanitizer runtime preloaded in a sanitizer build).
+# different (a render that fails is no pass). PYTHON: the program runs the wrapped modules or the
+# plugin in a Python (python3, pvbatch, pvpython), which needs the sanitizer runtime preloaded
+# in a sanitizer build.
 function(mesolens_add_image_test name)
   cmake_parse_arguments(arg "WILL_FAIL;PYTHON" "BASELINE;LABEL" "COMMAND;THRESHOLDS" ${ARGN})
   if (NOT arg_LABEL)
@@ -89,8 +89,12 @@ function(mesolens_add_image_test name)
   endif ()
   set(image "${CMAKE_BINARY_DIR}/Testing/Output/${name}.png")
   string(REPLACE "@IMAGE@" "${image}" command "${arg_COMMAND}")
+  set(preload "")
+  if (arg_PYTHON)
+    set(preload "${MESOLENS_SANITIZER_PRELOAD}")
+  endif ()
   add_test(NAME ${name} COMMAND "${CMAKE_COMMAND}"
-    "-DCOMMAND=${command}" "-DIMAGE=${image}"
+    "-DCOMMAND=${command}" "-DIMAGE=${image}" "-DPRELOAD=${preload}"
     "-DBASELINE=${CMAKE_SOURCE_DIR}/Testing/Baseline/${arg_BASELINE}"
     "-DCOMPARE=$<TARGET_FILE:mesolens_compare_images>" "-DTHRESHOLDS=${arg_THRESHOLDS}"
     -P "${CMAKE_SOURCE_DIR}/cmake/MesoLensRunImageTest.cmake")
@@ -103,10 +107,8 @@ function(mesolens_add_image_test name)
   if (MESOLENS_ENABLE_SANITIZERS)
     # Mesa's GL driver, loaded and unloaded at run time, leaks a few hundred bytes that
     # LeakSanitizer cannot attribute to a module; leak checks stay on for the other tests.
-    set(environment "ASAN_OPTIONS=detect_leaks=0")
-    if (arg_PYTHON)
-      list(APPEND environment "LD_PRELOAD=${MESOLENS_SANITIZER_PRELOAD}")
-    endif ()
-    set_tests_properties(${name} PROPERTIES ENVIRONMENT "${environment}")
+    set_tests_properties(${name} PROPERTIES ENVIRONMENT "ASAN_OPTIONS=detect_leaks=0")
+  elseif (MESOLENS_ENABLE_THREAD_SANITIZER)
+    set_tests_properties(${name} PROPERTIES ENVIRONMENT "${mesolens_tsan_environment}")
   endif ()
 endfunction()

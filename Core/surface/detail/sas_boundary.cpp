@@ -325,8 +325,11 @@ void reset_lists(std::vector<List>& lists, std::size_t count)
 
 /// Drops the caps inside another cap: they bound nothing (cap b lies in cap a when the angle
 /// between their axes plus b's radius is at most a's radius; compared as cosines, without acos).
+/// Caps equal to rounding count as nested: those of coincident neighbours, whose circles
+/// coincide and have no crossings to trace (h^2 + s^2 may round above 1 = axis . axis).
 void drop_nested_caps(std::vector<Cap>& caps, std::vector<Cap>& kept)
 {
+  constexpr double rounding = 1e-14;
   kept.clear();
   for (const Cap& cap : caps)
   {
@@ -335,7 +338,8 @@ void drop_nested_caps(std::vector<Cap>& caps, std::vector<Cap>& kept)
     {
       // between <= larger.angle - cap.angle  <=>  cos(between) >= cos(larger - cap)
       // (larger.height <= cap.height: sorted, the larger angular radius first.)
-      inside = cap.axis.dot(larger.axis) >= larger.height * cap.height + larger.sine * cap.sine;
+      inside =
+        cap.axis.dot(larger.axis) >= larger.height * cap.height + larger.sine * cap.sine - rounding;
       if (inside)
       {
         break;

@@ -76,6 +76,34 @@ TEST(SphereUnionArea, OneSphereAndTwoOverlapping)
   EXPECT_NEAR(same.volume, 4.0 / 3.0 * pi * 8, 1e-9);
 }
 
+TEST(SphereUnionArea, ANeighbourOfTwoCoincidentSpheresCountsTheirCapOnce)
+{
+  // Two coincident spheres cut the same cap from a third: the caps' circles coincide to
+  // rounding, and the third sphere lost its whole area and the volume went negative (the
+  // spheres fuzz_surface met, 1e-4 Å with the third 1.6e-6 Å away). The union is that of two
+  // spheres, at any scale.
+  for (const double scale : { 1.0, 100.0, 1e4 })
+  {
+    const Centres centres{ { -7.6862745098039218 * scale, -8 * scale, -6.3686274509803926 * scale },
+                           { -7.6862745098039218 * scale, -8 * scale, -6.3686274509803926 * scale },
+                           { -7.6862752588235299 * scale, -8.0000009999999993 * scale,
+                             -6.3686284509803928 * scale } };
+    const double r = 1e-4 * scale;
+    const auto three = mesolens::sphere_union_area(centres, { r, r, r });
+    double d = 0;
+    for (int k = 0; k < 3; ++k)
+    {
+      d += (centres[2][k] - centres[0][k]) * (centres[2][k] - centres[0][k]);
+    }
+    d = std::sqrt(d);
+    const double h = d / (2 * r); // each keeps 1 + h of its half
+    EXPECT_NEAR(three.total, 4 * pi * r * r * (1 + h), 1e-9 * r * r) << scale;
+    EXPECT_NEAR(three.per_sphere[2], 2 * pi * r * r * (1 + h), 1e-9 * r * r) << scale;
+    const double lens = pi * std::pow(2 * r - d, 2) * (d * d + 4 * d * r) / (12 * d);
+    EXPECT_NEAR(three.volume, 8.0 / 3.0 * pi * r * r * r - lens, 1e-6 * r * r * r) << scale;
+  }
+}
+
 TEST(SphereUnionArea, ThreeInARowAndAClusterAgreeWithSampling)
 {
   // Three in a row: the middle one loses two disjoint caps (closed form).

@@ -367,8 +367,14 @@ private:
         }
       }
       this->split_edge(current, k, neighbour);
+      // Checked at every split: one propagation path may itself run long.
+      this->require_within_limits();
       path.pop_back();
     }
+  }
+
+  void require_within_limits() const
+  {
     if (this->Corners.size() > this->MaxTriangles)
     {
       throw SolverFailure("refining the surface around the seed needs more than " +

@@ -2,6 +2,7 @@
 #include "mesolens/mapping/geodesic_disk.h"
 
 #include "mesolens/common/errors.h"
+#include "mesolens/io/obj_file.h"
 #include "mesolens_test_meshes.h"
 
 #include <gtest/gtest.h>
@@ -114,6 +115,39 @@ TEST(GeodesicDisk, TooCoarseAndCurvedAMeshFailsFast)
     EXPECT_NE(std::string(e.what()).find("more than 200000 new triangles: the mesh is too coarse "
                                          "and curved there for a disk this small"),
               std::string::npos)
+      << e.what();
+  }
+}
+
+// Found by fuzz_geodesic: on a damaged coarse sphere, one longest-edge bisection path (a single
+// bisection's propagation) kept splitting, the smooth surface's midpoints lengthening edges as
+// fast as it split them, until the memory ran out; the limit on new triangles was checked only
+// between paths.
+TEST(GeodesicDisk, ARunawayBisectionPathStopsAtTheTriangleLimit)
+{
+  const mesolens::MeshFileContents file =
+    mesolens::read_obj(std::string(MESOLENS_SOURCE_DIR) +
+                       "/Testing/Data/meshes/fuzz_geodesic_runaway_bisection_path.obj");
+  mesolens::TriangleMesh mesh;
+  mesh.points = file.soup.points;
+  for (const auto& polygon : file.soup.polygons)
+  {
+    mesh.triangles.insert(mesh.triangles.end(), polygon.begin(), polygon.end());
+  }
+  ASSERT_EQ(mesh.triangle_count(), 263u);
+  const mesolens::CellSurface surface(mesh);
+  mesolens::GeodesicDiskParams params;
+  params.radius = 13.603366047245311;
+  params.min_triangles = 338;
+  params.max_triangles = 544;
+  try
+  {
+    mesolens::geodesic_disk(surface, surface.closest_point({ -5, -5, -5 }), params);
+    ADD_FAILURE() << "a disk was grown";
+  }
+  catch (const mesolens::SolverFailure& e)
+  {
+    EXPECT_NE(std::string(e.what()).find("more than 200000 new triangles"), std::string::npos)
       << e.what();
   }
 }

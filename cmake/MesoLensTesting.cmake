@@ -34,8 +34,9 @@ function(mesolens_add_gtest name)
     DISCOVERY_TIMEOUT 60)
 endfunction()
 
-# ThreadSanitizer's reports from inside Mesa's software GL driver (its own threads, not
-# instrumented) are suppressed (Testing/Support/tsan.supp); every other report fails a test.
+# ThreadSanitizer's reports wholly inside uninstrumented third-party code (Mesa's software GL
+# driver, Open MPI's runtime) are suppressed (Testing/Support/tsan.supp); every other report
+# fails a test.
 set(mesolens_tsan_environment "")
 if (MESOLENS_ENABLE_THREAD_SANITIZER)
   set(mesolens_tsan_environment
@@ -60,11 +61,7 @@ function(mesolens_add_python_test name script)
     "MESOLENS_BASELINE_DIR=${CMAKE_SOURCE_DIR}/Testing/Baseline"
     "MESOLENS_TEST_OUTPUT_DIR=${CMAKE_BINARY_DIR}/Testing/Output"
     "PYTHONDONTWRITEBYTECODE=1")
-  if (MESOLENS_ENABLE_SANITIZERS)
-    list(APPEND environment "LD_PRELOAD=${MESOLENS_SANITIZER_PRELOAD}" "ASAN_OPTIONS=detect_leaks=0")
-  elseif (MESOLENS_ENABLE_THREAD_SANITIZER)
-    list(APPEND environment "LD_PRELOAD=${MESOLENS_SANITIZER_PRELOAD}" ${mesolens_tsan_environment})
-  endif ()
+  list(APPEND environment ${MESOLENS_SANITIZED_PYTHON_ENVIRONMENT} ${mesolens_tsan_environment})
   set_tests_properties(${name} PROPERTIES
     LABELS "${arg_LABEL}" ENVIRONMENT "${environment}" SKIP_RETURN_CODE 77 TIMEOUT 300)
 endfunction()

@@ -175,9 +175,10 @@ std::int64_t ProbeDistance::cell_of(const Vec& x, std::array<std::int64_t, 3>& i
 {
   for (int a = 0; a < 3; ++a)
   {
-    ijk[a] =
-      std::clamp(static_cast<std::int64_t>(std::floor((x[a] - this->origin_[a]) / this->cell_)),
-                 std::int64_t(0), this->dims_[a] - 1);
+    // Clamped as a double first: a point far out (or not finite) has no integer cell.
+    const double cell = std::floor((x[a] - this->origin_[a]) / this->cell_);
+    const double last = double(this->dims_[a] - 1);
+    ijk[a] = cell >= 0 ? static_cast<std::int64_t>(std::min(cell, last)) : 0;
   }
   return ijk[0] + this->dims_[0] * (ijk[1] + this->dims_[1] * ijk[2]);
 }
@@ -299,18 +300,17 @@ void ProbeDistance::arcs_within(const Vec& x, double radius, std::vector<std::ui
 double ProbeDistance::union_depth(const Vec& x, std::uint32_t* sphere) const
 {
   double depth = -this->reach_;
-  this->for_cells(x, this->outside_exact_, this->spheres_,
-                  [&](std::uint32_t i) {
-                    const double d = this->radii_[i] - (x - this->centres_[i]).norm();
-                    if (d > depth)
-                    {
-                      depth = d;
-                      if (sphere)
-                      {
-                        *sphere = i;
-                      }
-                    }
-                  });
+  this->for_cells(x, this->outside_exact_, this->spheres_, [&](std::uint32_t i) {
+    const double d = this->radii_[i] - (x - this->centres_[i]).norm();
+    if (d > depth)
+    {
+      depth = d;
+      if (sphere)
+      {
+        *sphere = i;
+      }
+    }
+  });
   return depth;
 }
 
@@ -546,13 +546,12 @@ bool ProbeDistance::sphere_reaches(std::uint32_t i, const Vec& centre, double ra
 void ProbeDistance::spheres_near(const Vec& centre, double radius,
                                  std::vector<std::uint32_t>& spheres) const
 {
-  this->for_cells(centre, this->largest_ + radius, this->spheres_,
-                  [&](std::uint32_t i) {
-                    if (this->sphere_reaches(i, centre, radius))
-                    {
-                      spheres.push_back(i);
-                    }
-                  });
+  this->for_cells(centre, this->largest_ + radius, this->spheres_, [&](std::uint32_t i) {
+    if (this->sphere_reaches(i, centre, radius))
+    {
+      spheres.push_back(i);
+    }
+  });
 }
 
 void ProbeDistance::spheres_near(const std::vector<std::uint32_t>& candidates, const Vec& centre,
@@ -588,17 +587,15 @@ void ProbeDistance::gather(const Vec& centre, double radius, double limit, Local
     return; // the ball lies outside the union: spheres alone matter
   }
   std::uint32_t last_arc = UINT32_MAX;
-  this->for_cells(centre, bound + this->arc_extent_, this->arc_cells_,
-                  [&](std::uint32_t entry) {
-                    const double reach = bound + this->arc_extent_;
-                    const std::uint32_t k = this->arc_items_[entry];
-                    if (k != last_arc &&
-                        (centre - this->arc_piece_middle_[entry]).squaredNorm() < reach * reach)
-                    {
-                      last_arc = k;
-                      local.arcs.push_back({ 0.0, k });
-                    }
-                  });
+  this->for_cells(centre, bound + this->arc_extent_, this->arc_cells_, [&](std::uint32_t entry) {
+    const double reach = bound + this->arc_extent_;
+    const std::uint32_t k = this->arc_items_[entry];
+    if (k != last_arc && (centre - this->arc_piece_middle_[entry]).squaredNorm() < reach * reach)
+    {
+      last_arc = k;
+      local.arcs.push_back({ 0.0, k });
+    }
+  });
   std::sort(local.arcs.begin(), local.arcs.end(),
             [](const auto& a, const auto& b) { return a.second < b.second; });
   local.arcs.erase(std::unique(local.arcs.begin(), local.arcs.end(),
@@ -738,21 +735,20 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Filter& filter, double l
   ClosestPiece best;
   // Spheres holding x: only the deepest can carry the nearest face point (see nearest_face).
   SphereScan scan;
-  this->for_cells(x, this->largest_, this->spheres_,
-                  [&](std::uint32_t i) {
-                    const double squared = (x - this->centres_[i]).squaredNorm();
-                    const double r = this->radii_[i];
-                    if (squared < r * r)
-                    {
-                      scan.hold(i, r - std::sqrt(squared)); // a root only for those holding x
-                    }
-                  });
+  this->for_cells(x, this->largest_, this->spheres_, [&](std::uint32_t i) {
+    const double squared = (x - this->centres_[i]).squaredNorm();
+    const double r = this->radii_[i];
+    if (squared < r * r)
+    {
+      scan.hold(i, r - std::sqrt(squared)); // a root only for those holding x
+    }
+  });
   if (scan.deepest == -std::numeric_limits<double>::max())
   {
     // Outside every sphere: the nearest may lie farther.
-    this->for_cells(
-      x, this->outside_exact_, this->spheres_,
-      [&](std::uint32_t i) { scan.consider(i, this->radii_[i] - (x - this->centres_[i]).norm()); });
+    this->for_cells(x, this->outside_exact_, this->spheres_, [&](std::uint32_t i) {
+      scan.consider(i, this->radii_[i] - (x - this->centres_[i]).norm());
+    });
     // Spheres beyond the search are at least this far below zero: when none nearer was found,
     // the distance is reported as that bound (nearer zero than the truth may be), so that a
     // ball around x is never judged farther from the surface than it is.
@@ -774,25 +770,24 @@ ClosestPiece ProbeDistance::closest(const Vec& x, const Filter& filter, double l
     return best;
   }
   std::uint32_t last_arc = UINT32_MAX;
-  this->for_cells(x, best.distance + this->arc_extent_, this->arc_cells_,
-                  [&](std::uint32_t entry) {
-                    // A piece whose bounding ball lies beyond the best so far is skipped cheaply.
-                    const double reach = best.distance + this->arc_extent_;
-                    if ((x - this->arc_piece_middle_[entry]).squaredNorm() >= reach * reach)
-                    {
-                      return;
-                    }
-                    const std::uint32_t k = this->arc_items_[entry];
-                    if (k == last_arc)
-                    {
-                      return; // the next piece of the same arc
-                    }
-                    last_arc = k;
-                    if (filter.admits(this->boundary_.arcs[k]))
-                    {
-                      this->try_arc(k, x, best);
-                    }
-                  });
+  this->for_cells(x, best.distance + this->arc_extent_, this->arc_cells_, [&](std::uint32_t entry) {
+    // A piece whose bounding ball lies beyond the best so far is skipped cheaply.
+    const double reach = best.distance + this->arc_extent_;
+    if ((x - this->arc_piece_middle_[entry]).squaredNorm() >= reach * reach)
+    {
+      return;
+    }
+    const std::uint32_t k = this->arc_items_[entry];
+    if (k == last_arc)
+    {
+      return; // the next piece of the same arc
+    }
+    last_arc = k;
+    if (filter.admits(this->boundary_.arcs[k]))
+    {
+      this->try_arc(k, x, best);
+    }
+  });
   this->for_cells(x, best.distance, this->vertices_,
                   [&](std::uint32_t k) { this->try_vertex(k, x, filter, best); });
   return best;

@@ -18,6 +18,14 @@ inline Eigen::Vector3d on_segment(const Eigen::Vector3d& a, const Eigen::Vector3
   return a + std::clamp(t, 1e-5, 1.0 - 1e-5) * (b - a);
 }
 
+/// t when it lies in the bracket [t0, t1], else (NaN included) the bracket's middle: a step
+/// from values that break the precondition (both ends on one side, an infinite value) stays on
+/// the segment.
+inline double within_bracket(double t, double t0, double t1)
+{
+  return t >= t0 && t <= t1 ? t : 0.5 * (t0 + t1);
+}
+
 /// The parameters along the line a + t (b - a) where it enters (`entry`) and leaves (`exit`) the
 /// sphere (`centre`, `radius`), from the quadratic formula in its cancellation-free form; false
 /// when the line misses it. Precondition: a != b.
@@ -48,10 +56,10 @@ Eigen::Vector3d segment_root(const Eigen::Vector3d& a, double value_a, const Eig
   double t0 = 0, t1 = 1, f0 = value_a, f1 = value_b;
   const double length = (b - a).norm();
   int side = 0;
-  double t = f0 / (f0 - f1);
+  double t = within_bracket(f0 / (f0 - f1), t0, t1);
   for (int iteration = 0; iteration < 60 && (t1 - t0) * length > 1e-9; ++iteration)
   {
-    t = (t0 * f1 - t1 * f0) / (f1 - f0);
+    t = within_bracket((t0 * f1 - t1 * f0) / (f1 - f0), t0, t1);
     const double f = value(a + t * (b - a));
     if (f == 0)
     {
@@ -91,7 +99,7 @@ Eigen::Vector3d segment_root_newton(const Eigen::Vector3d& a, double value_a,
 {
   double t0 = 0, t1 = 1, f0 = value_a, f1 = value_b;
   const double length = (b - a).norm();
-  double t = f0 / (f0 - f1);
+  double t = within_bracket(f0 / (f0 - f1), t0, t1);
   for (int iteration = 0; iteration < 60; ++iteration)
   {
     double slope = 0;
@@ -113,7 +121,7 @@ Eigen::Vector3d segment_root_newton(const Eigen::Vector3d& a, double value_a,
     double next = slope > 0 ? t - f / slope : -1.0;
     if (!(next > t0 && next < t1))
     {
-      next = (t0 * f1 - t1 * f0) / (f1 - f0);
+      next = within_bracket((t0 * f1 - t1 * f0) / (f1 - f0), t0, t1);
     }
     const bool converged = std::abs(next - t) * length <= 1e-10 || (t1 - t0) * length <= 1e-9;
     t = next;

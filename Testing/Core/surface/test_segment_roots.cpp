@@ -9,7 +9,9 @@
 #include <Eigen/Dense>
 
 #include <cmath>
+#include <limits>
 #include <random>
+#include <vector>
 
 namespace {
 using Vec = Eigen::Vector3d;
@@ -76,8 +78,8 @@ TEST(SegmentRoots, LineSphereGivesTheEntryAndTheExit)
   EXPECT_NEAR(entry, -1.5, 1e-15);
   EXPECT_NEAR(exit, 0.5, 1e-15);
   // A line passing by misses it.
-  EXPECT_FALSE(mesolens::line_sphere(centre + Vec(-2, 1.5, 0), centre + Vec(2, 1.5, 0), centre,
-                                     1.0, entry, exit));
+  EXPECT_FALSE(mesolens::line_sphere(centre + Vec(-2, 1.5, 0), centre + Vec(2, 1.5, 0), centre, 1.0,
+                                     entry, exit));
 }
 
 TEST(SegmentRoots, NewtonFindsTheRootOfACircleTubeInFewSteps)
@@ -94,21 +96,21 @@ TEST(SegmentRoots, NewtonFindsTheRootOfACircleTubeInFewSteps)
   const Vec a(1.1, 0.1, 0.2), b(1.9, 0.6, 0.1);
   int calls = 0;
   double slope = 0;
-  const Vec root = mesolens::segment_root_newton(
-    a, tube(a, b - a, slope), b, tube(b, b - a, slope), [&](const Vec& x, double& s) {
-      ++calls;
-      return tube(x, b - a, s);
-    });
+  const Vec root = mesolens::segment_root_newton(a, tube(a, b - a, slope), b, tube(b, b - a, slope),
+                                                 [&](const Vec& x, double& s) {
+                                                   ++calls;
+                                                   return tube(x, b - a, s);
+                                                 });
   EXPECT_NEAR(tube(root, b - a, slope), 0.0, 1e-12);
   EXPECT_LE(calls, 8);
   // Regula falsi to the same root takes more.
   int falsi_calls = 0;
-  const Vec falsi = mesolens::segment_root(a, tube(a, b - a, slope), b, tube(b, b - a, slope),
-                                           [&](const Vec& x) {
-                                             ++falsi_calls;
-                                             double s = 0;
-                                             return tube(x, b - a, s);
-                                           });
+  const Vec falsi =
+    mesolens::segment_root(a, tube(a, b - a, slope), b, tube(b, b - a, slope), [&](const Vec& x) {
+      ++falsi_calls;
+      double s = 0;
+      return tube(x, b - a, s);
+    });
   EXPECT_NEAR((falsi - root).norm(), 0.0, 1e-9);
   EXPECT_LT(calls, falsi_calls);
   // A slope that points the wrong way falls back to regula falsi and still brackets the root.
@@ -119,4 +121,39 @@ TEST(SegmentRoots, NewtonFindsTheRootOfACircleTubeInFewSteps)
       return f;
     });
   EXPECT_NEAR((wrong - root).norm(), 0.0, 1e-9);
+}
+
+// Found by fuzz_surface: end values that break the precondition (both of one sign, equal, or
+// infinite, as a distance search with nothing in reach gives) sent the first step off the
+// segment to infinity, and the grid lookup there converted -inf to an integer.
+TEST(SegmentRoots, EndValuesThatBreakThePreconditionKeepTheRootOnTheSegment)
+{
+  const Vec a(1, 2, 3), b(2, 2, 3);
+  const double inf = std::numeric_limits<double>::infinity();
+  const double cases[][2] = { { -1, -1 },  { 1, 1 },      { 0, 0 },       { -inf, 1 },
+                              { -1, inf }, { -inf, inf }, { -inf, -inf }, { std::nan(""), 1 } };
+  for (const auto& ends : cases)
+  {
+    std::vector<Vec> asked;
+    const auto value = [&](const Vec& x) {
+      asked.push_back(x);
+      return ends[0];
+    };
+    const auto value_and_slope = [&](const Vec& x, double& slope) {
+      asked.push_back(x);
+      slope = 0;
+      return ends[1];
+    };
+    for (const Vec& root :
+         { mesolens::segment_root(a, ends[0], b, ends[1], value),
+           mesolens::segment_root_newton(a, ends[0], b, ends[1], value_and_slope) })
+    {
+      EXPECT_GE(root[0], 1.0) << ends[0] << " " << ends[1];
+      EXPECT_LE(root[0], 2.0) << ends[0] << " " << ends[1];
+    }
+    for (const Vec& x : asked)
+    {
+      EXPECT_TRUE(x[0] >= 1.0 && x[0] <= 2.0) << x[0] << " for " << ends[0] << " " << ends[1];
+    }
+  }
 }

@@ -3,6 +3,8 @@
 
 #include "surface/detail/contour_tetrahedra.h"
 
+#include "mesolens/common/errors.h"
+
 #include "surface/detail/balanced_loop.h"
 #include "common/detail/grid_cells.h"
 
@@ -718,8 +720,11 @@ ContourMesh contour_tetrahedra(ContourField& field, const Vec& low, const Vec& h
   const bool complete = join_blocks(blocks, keys, parallel_for, mesh);
   if (blocks.one_sided || !complete)
   {
-    throw std::logic_error("contour_tetrahedra: a field gave a lattice point different signs in "
-                           "different blocks, or a zero in one grid of a block and not the other");
+    // A defect of the field, not of the input; an error the caller reports rather than a
+    // crash of the application around it.
+    throw SolverFailure("the molecular surface's contour is inconsistent: a field gave a lattice "
+                        "point different signs in different blocks, or a zero in one grid of a "
+                        "block and not the other; please report the input");
   }
   return mesh;
 }

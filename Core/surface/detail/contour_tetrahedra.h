@@ -101,7 +101,7 @@ public:
 
 /// The field to contour. Values at a grid point must not depend on the block asking (their
 /// signs at least), as neighbouring blocks share points; contour_tetrahedra() throws
-/// std::logic_error when they do.
+/// SolverFailure ("contour is inconsistent") when they do.
 class ContourField
 {
 public:

@@ -755,9 +755,11 @@ bool neighbour_caps(std::size_t i, const Spheres& spheres, std::vector<Cap>& cap
           {
             continue; // apart
           }
-          if (d + r <= rj && !(d == 0 && rj == r && j > i))
+          // Equal spheres, to rounding, each hold the other (a centre 1e-127 away is absorbed
+          // in d + r): of these the first stays.
+          if (d + r <= rj && !(d + rj <= r && j > i))
           {
-            return true; // inside j (of coincident equal spheres the first stays)
+            return true; // inside j
           }
           if (d + rj <= r)
           {

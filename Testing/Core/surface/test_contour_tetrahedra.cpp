@@ -5,6 +5,8 @@
 #include "surface/detail/block_bins.h"
 #include "surface/detail/contour_tetrahedra.h"
 
+#include "mesolens/common/errors.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
@@ -258,5 +260,5 @@ TEST(ContourTetrahedra, AFieldWhoseSignsDependOnTheBlockIsRefused)
   SphereField field(Vec(5.3, 4.9, 5.1), 4.0, true);
   EXPECT_THROW(
     mesolens::contour_tetrahedra(field, Vec(0, 0, 0), Vec(11, 11, 11), 0.3, {}, [](double) {}),
-    std::logic_error);
+    mesolens::SolverFailure);
 }

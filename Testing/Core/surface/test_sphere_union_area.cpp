@@ -104,6 +104,24 @@ TEST(SphereUnionArea, ANeighbourOfTwoCoincidentSpheresCountsTheirCapOnce)
   }
 }
 
+TEST(SphereUnionArea, EqualSpheresATinyDistanceApartCountOnce)
+{
+  // Centres 8e-128 Å apart: d + r rounds to r, so each sphere held the other and both were
+  // dropped as buried (found by fuzz_surface). The first stays. 1e-20 Å apart (more than half
+  // an ulp of r) they are two spheres that each keep half.
+  for (const double offset : { 8.1207038992666975e-128, 1e-20, 0.0 })
+  {
+    const auto two = mesolens::sphere_union_area(Centres{ { -7.6, 7.8, offset }, { -7.6, 7.8, 0 } },
+                                                 { 1e-4, 1e-4 });
+    EXPECT_NEAR(two.total, 4 * pi * 1e-8, 1e-20) << offset;
+    EXPECT_NEAR(two.volume, 4.0 / 3.0 * pi * 1e-12, 1e-24) << offset;
+    if (offset != 1e-20)
+    {
+      EXPECT_EQ(two.per_sphere[1], 0.0) << offset;
+    }
+  }
+}
+
 TEST(SphereUnionArea, ThreeInARowAndAClusterAgreeWithSampling)
 {
   // Three in a row: the middle one loses two disjoint caps (closed form).

@@ -178,7 +178,8 @@ SurfaceInput surface_input(PointSpan<const double> centre_list,
   SurfaceInput input{ options, atom_radii };
   input.excluded = options.kind == SurfaceKind::SolventExcluded;
   input.figures = !input.excluded || options.exact_figures;
-  input.probe = options.probe_radius;
+  // The van der Waals surface has no probe: whatever the option holds (unchecked, NaN too).
+  input.probe = options.kind == SurfaceKind::VanDerWaals ? 0.0 : options.probe_radius;
   const std::size_t n = centre_list.size();
   input.centres.resize(n);
   input.radii.resize(n);
@@ -274,7 +275,7 @@ std::unique_ptr<const ProbeDistance> piece_index(const SurfaceInput& input,
   const double patch_reach =
     input.excluded && input.figures ? 2.0 * p + 0.6 * input.largest_sphere : 0.0;
   const double mesh_reach =
-    input.options.tessellate ? p * (input.excluded ? 1.0 : 0.0) + 3.0 * lattice.spacing : 0.0;
+    input.options.tessellate ? (input.excluded ? p : 0.0) + 3.0 * lattice.spacing : 0.0;
   if (patch_reach > 0 || mesh_reach > 0)
   {
     return std::make_unique<const ProbeDistance>(input.centres, input.radii, boundary,

@@ -376,6 +376,23 @@ TEST(MolecularSurface, AccessibleAndVanDerWaalsFiguresAreTheSphereUnions)
   EXPECT_NEAR(mesh_figures(mesh).volume, mesh.volume, 0.01 * mesh.volume);
 }
 
+// Found by fuzz_surface: the van der Waals surface ignores the probe radius, but a NaN there
+// made the mesh's search reach NaN, no search index was built, and tessellating dereferenced it.
+TEST(MolecularSurface, TheVanDerWaalsSurfaceIgnoresAnyProbeRadius)
+{
+  const std::vector<double> centre{ 8, 7.5e-320, -8 };
+  MolecularSurfaceParams options;
+  options.kind = SurfaceKind::VanDerWaals;
+  options.tolerance = 0.5;
+  for (const double probe : { std::nan(""), -1.0, 1e300, 1.4 })
+  {
+    options.probe_radius = probe;
+    const MolecularSurface s = mesolens::molecular_surface(centre, { 1.5 }, options);
+    EXPECT_NEAR(s.area, 4 * pi * 1.5 * 1.5, 1e-9) << probe;
+    EXPECT_GT(s.triangles.size(), 0u) << probe;
+  }
+}
+
 TEST(MolecularSurface, CrambinAgainstItsRefinedMeshAndEdtSurf)
 {
   std::vector<double> radii;

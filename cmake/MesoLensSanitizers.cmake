@@ -1,20 +1,26 @@
 # SPDX-License-Identifier: GPL-3.0-or-later
 # AddressSanitizer + UndefinedBehaviorSanitizer for the whole build (tests included).
 option(MESOLENS_ENABLE_SANITIZERS "Build with AddressSanitizer and UndefinedBehaviorSanitizer" OFF)
-if (MESOLENS_ENABLE_SANITIZERS)
-  set(mesolens_sanitizer_flags -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined)
-  add_compile_options(${mesolens_sanitizer_flags})
-  add_link_options(-fsanitize=address,undefined)
-endif ()
 # ThreadSanitizer for the whole build (not with the two above): the determinism test's two
 # pipelines in two threads are its race check.
 option(MESOLENS_ENABLE_THREAD_SANITIZER "Build with ThreadSanitizer" OFF)
+# MESOLENS_SANITIZE: the build's -fsanitize= list, empty without sanitizers (what links the
+# libraries needs it too, as the installed-package test's consumer does).
+set(MESOLENS_SANITIZE "")
+if (MESOLENS_ENABLE_SANITIZERS)
+  set(MESOLENS_SANITIZE "address,undefined")
+  add_compile_options(-fsanitize=${MESOLENS_SANITIZE} -fno-omit-frame-pointer
+                      -fno-sanitize-recover=undefined)
+endif ()
 if (MESOLENS_ENABLE_THREAD_SANITIZER)
   if (MESOLENS_ENABLE_SANITIZERS)
     message(FATAL_ERROR "ThreadSanitizer cannot be combined with MESOLENS_ENABLE_SANITIZERS")
   endif ()
-  add_compile_options(-fsanitize=thread -fno-omit-frame-pointer)
-  add_link_options(-fsanitize=thread)
+  set(MESOLENS_SANITIZE "thread")
+  add_compile_options(-fsanitize=${MESOLENS_SANITIZE} -fno-omit-frame-pointer)
+endif ()
+if (MESOLENS_SANITIZE)
+  add_link_options(-fsanitize=${MESOLENS_SANITIZE})
 endif ()
 # A sanitized build's Python modules need the sanitizer's runtime loaded first, and libstdc++
 # with it (otherwise ASan cannot intercept C++ exceptions thrown in our libraries): every Python
@@ -22,7 +28,7 @@ endif ()
 # Python itself leaks by design, so leak detection is off there.
 set(MESOLENS_SANITIZER_PRELOAD "")
 set(MESOLENS_SANITIZED_PYTHON_ENVIRONMENT "")
-if (MESOLENS_ENABLE_SANITIZERS OR MESOLENS_ENABLE_THREAD_SANITIZER)
+if (MESOLENS_SANITIZE)
   if (MESOLENS_ENABLE_SANITIZERS)
     set(runtime libasan.so)
   else ()

@@ -186,7 +186,7 @@ SurfaceInput surface_input(PointSpan<const double> centre_list,
   for (std::size_t i = 0; i < n; ++i)
   {
     input.centres[i] = Vec(centre_list[i][0], centre_list[i][1], centre_list[i][2]);
-    input.radii[i] = atom_radii[i] + (options.kind == SurfaceKind::VanDerWaals ? 0.0 : input.probe);
+    input.radii[i] = atom_radii[i] + input.probe;
     input.smallest_atom = std::min(input.smallest_atom, atom_radii[i]);
     input.largest_sphere = std::max(input.largest_sphere, input.radii[i]);
   }

@@ -2,6 +2,7 @@
 // Analytic test surfaces: spheres, planes, cylinders, saddles, as mesolens::TriangleMesh.
 #pragma once
 
+#include "mesolens/io/polygon_soup.h"
 #include "mesolens/mesh/triangle_mesh.h"
 
 #include <array>
@@ -14,6 +15,21 @@
 #include <vector>
 
 namespace mesolens_test {
+
+/// The polygons of `soup` as triangles, each polygon fanned from its first corner.
+inline mesolens::TriangleMesh fan_triangulated(const mesolens::PolygonSoup& soup)
+{
+  mesolens::TriangleMesh mesh;
+  mesh.points = soup.points;
+  for (const auto& polygon : soup.polygons)
+  {
+    for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
+    {
+      mesh.triangles.insert(mesh.triangles.end(), { polygon[0], polygon[k], polygon[k + 1] });
+    }
+  }
+  return mesh;
+}
 
 /// `count` points spread evenly over a sphere of `radius` around the origin (a Fibonacci
 /// lattice), 3 coordinates each.

@@ -12,7 +12,6 @@
 #include <array>
 #include <atomic>
 #include <cmath>
-#include <stdexcept>
 
 namespace mesolens {
 

@@ -310,8 +310,8 @@ TEST(StructureMesh, AnEdgeGivingMoreVerticesThanTheLimitIsRefusedBeforeRemeshing
   expect_vertex_limit_error(sphere_points(200, 1.0), params);
   params.box = patch_box(); // the periodic lattice path
   expect_vertex_limit_error(two_noisy_leaflets(20.0, 11), params);
-  // 100 x 90 Å with edges of 1 Å is about 10 400 vertices: refused under a limit of 5 000,
-  // made under the default.
+  // 100 x 90 Å with edges of 1 Å is about 10 400 vertices: refused under a limit of 5 000, as
+  // is a count of 6 000; edges of 4 Å under the default limit give a mesh.
   params.edge_length = 1.0;
   params.vertex_limit = 5000;
   expect_vertex_limit_error(two_noisy_leaflets(20.0, 11), params);

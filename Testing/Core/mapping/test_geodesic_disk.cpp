@@ -125,15 +125,10 @@ TEST(GeodesicDisk, TooCoarseAndCurvedAMeshFailsFast)
 // between paths.
 TEST(GeodesicDisk, ARunawayBisectionPathStopsAtTheTriangleLimit)
 {
-  const mesolens::MeshFileContents file =
+  const mesolens::TriangleMesh mesh = mesolens_test::fan_triangulated(
     mesolens::read_obj(std::string(MESOLENS_SOURCE_DIR) +
-                       "/Testing/Data/meshes/fuzz_geodesic_runaway_bisection_path.obj");
-  mesolens::TriangleMesh mesh;
-  mesh.points = file.soup.points;
-  for (const auto& polygon : file.soup.polygons)
-  {
-    mesh.triangles.insert(mesh.triangles.end(), polygon.begin(), polygon.end());
-  }
+                       "/Testing/Data/meshes/fuzz_geodesic_runaway_bisection_path.obj")
+      .soup);
   ASSERT_EQ(mesh.triangle_count(), 263u);
   const mesolens::CellSurface surface(mesh);
   mesolens::GeodesicDiskParams params;

@@ -4,11 +4,13 @@
 #include "mesolens/common/errors.h"
 #include "mesolens/io/off_file.h"
 #include "mesolens_test_data.h"
+#include "mesolens_test_meshes.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace {
 struct Mesh
@@ -32,17 +34,8 @@ Mesh tetrahedron()
 
 Mesh from_off(const std::string& path)
 {
-  const mesolens::PolygonSoup soup = mesolens::read_off(path);
-  Mesh mesh;
-  mesh.points = soup.points;
-  for (const auto& polygon : soup.polygons)
-  {
-    for (std::size_t k = 1; k + 1 < polygon.size(); ++k)
-    {
-      mesh.triangles.insert(mesh.triangles.end(), { polygon[0], polygon[k], polygon[k + 1] });
-    }
-  }
-  return mesh;
+  mesolens::TriangleMesh mesh = mesolens_test::fan_triangulated(mesolens::read_off(path));
+  return { std::move(mesh.points), std::move(mesh.triangles) };
 }
 } // namespace
 

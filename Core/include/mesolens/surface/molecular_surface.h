@@ -126,7 +126,8 @@ using SurfaceProgress = std::function<void(double)>;
 /// range, a tolerance that would need more than 2e7 triangles, or atoms spread so far apart
 /// (thousands of Å along each axis) that the search grid would need more than about 12 GB;
 /// SolverFailure ("contour is inconsistent") should the surface's field contradict itself (a
-/// defect: please report the input). No atoms give an empty surface. Deterministic whatever `parallel_for`.
+/// defect: please report the input). No atoms give an empty surface. Deterministic whatever
+/// `parallel_for`.
 MolecularSurface molecular_surface(PointSpan<const double> centres,
                                    const std::vector<double>& radii,
                                    const MolecularSurfaceParams& options = {},

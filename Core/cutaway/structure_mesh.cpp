@@ -10,6 +10,9 @@
 #include "cutaway/detail/mid_sheet.h"
 #include "cutaway/detail/sheet_lattice.h"
 
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
 #include <CGAL/Advancing_front_surface_reconstruction.h>
 #include <CGAL/Polygon_mesh_processing/angle_and_area_smoothing.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
@@ -22,6 +25,7 @@
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 #include <CGAL/Polygon_mesh_processing/repair.h>
 #include <CGAL/Polygon_mesh_processing/repair_degeneracies.h>
+#include <CGAL/Polygon_mesh_processing/tangential_relaxation.h>
 #include <CGAL/Polygon_mesh_processing/triangulate_hole.h>
 
 #include <Eigen/Eigenvalues>
@@ -41,6 +45,8 @@ using Point = RepairKernel::Point_3;
 using Vector = RepairKernel::Vector_3;
 using SurfaceMesh = RepairMesh;
 namespace PMP = CGAL::Polygon_mesh_processing;
+using ReconstructionTree = CGAL::AABB_tree<
+  CGAL::AABB_traits<RepairKernel, CGAL::AABB_face_graph_triangle_primitive<SurfaceMesh>>>;
 
 constexpr double degrees = 180.0 / 3.14159265358979323846;
 /// The repair aims a degree above the bound, so that rounding never decides the check.
@@ -254,12 +260,35 @@ SurfaceMesh reconstructed_sheet(const std::vector<double>& sheet)
 
 /// `reconstructed` remeshed isotropically to edges of `edge`, its boundary vertices sliding
 /// along the boundary, then its angles evened (CGAL's angle smoothing, with Delaunay flips).
+///
+/// The five rounds of split, collapse, flip, relaxation and projection are CGAL's isotropic
+/// remeshing, with its relaxation and projection made here: inside the remesher (CGAL 5.5), a
+/// vertex whose faces all became degenerate reads past the end of its halfedge statuses
+/// (CGAL issue 7345); outside it, the same relaxation has no such read.
 SurfaceMesh remeshed(const SurfaceMesh& reconstructed, double edge)
 {
+  const ReconstructionTree surface(faces(reconstructed).first, faces(reconstructed).second,
+                                   reconstructed);
   SurfaceMesh mesh = reconstructed;
-  PMP::isotropic_remeshing(faces(mesh), edge, mesh,
-                           CGAL::parameters::number_of_iterations(5).relax_constraints(true));
-  mesh.collect_garbage();
+  for (int round = 0; round < 5; ++round)
+  {
+    // A projection given (never called) spares the remesher a search tree of its own.
+    const auto unused_projection = [&mesh](SurfaceMesh::Vertex_index v) { return mesh.point(v); };
+    PMP::isotropic_remeshing(
+      faces(mesh), edge, mesh,
+      CGAL::parameters::number_of_relaxation_steps(0).do_project(false).projection_functor(
+        unused_projection));
+    mesh.collect_garbage();
+    PMP::tangential_relaxation(mesh, CGAL::parameters::relax_constraints(true));
+    // Back onto the reconstruction, as the remesher would: every vertex but the border's.
+    for (const auto v : mesh.vertices())
+    {
+      if (!mesh.is_isolated(v) && !mesh.is_border(v))
+      {
+        mesh.point(v) = surface.closest_point(mesh.point(v));
+      }
+    }
+  }
   PMP::angle_and_area_smoothing(
     mesh, CGAL::parameters::number_of_iterations(3).use_area_smoothing(false));
   mesh.collect_garbage();

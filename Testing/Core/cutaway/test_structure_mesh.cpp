@@ -8,6 +8,8 @@
 
 #include <cmath>
 #include <random>
+#include <string>
+#include <vector>
 
 namespace {
 constexpr double pi = 3.14159265358979323846;
@@ -321,6 +323,28 @@ TEST(StructureMesh, AnEdgeGivingMoreVerticesThanTheLimitIsRefusedBeforeRemeshing
   params.vertex_limit = 1000000;
   params.edge_length = 4.0;
   EXPECT_NO_THROW(mesolens::structure_mesh(two_noisy_leaflets(20.0, 11), params));
+}
+
+TEST(StructureMesh, ASheetOfFourPointsRemeshedToDegenerateFacesGivesAClearError)
+{
+  // Remeshing these four points to 72 vertices leaves a vertex whose faces are all degenerate:
+  // CGAL 5.5's remesher then read past its halfedge statuses (a crash under AddressSanitizer).
+  // The sheet cannot meet the angle bound, which is what the caller must be told.
+  const std::vector<double> points = {
+    0, 0, -20, 0, 5.647, 20, 5.647, 5.647, -20, 5.647, 5.647, 20
+  };
+  mesolens::StructureMeshParams params;
+  params.vertices = 72;
+  try
+  {
+    mesolens::structure_mesh(points, params);
+    FAIL() << "a mesh meeting the angle bound through four points";
+  }
+  catch (const mesolens::TopologyError& error)
+  {
+    EXPECT_NE(std::string(error.what()).find("angles within 30-120"), std::string::npos)
+      << error.what();
+  }
 }
 
 TEST(StructureMesh, WaterIonsAndProteinsAreNotPartOfTheSheet)

@@ -1,16 +1,17 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// libFuzzer target: the structured cutaway: the structure mesh of a molecule cloud
-// (mesolens::structure_mesh; one input in eight, it is the costly part) and the cutaway on it
-// (mesolens::StructuredCutaway) for arbitrary molecules, types and cuts (planes, balls, boxes,
-// NaN among them) and every setting at and past its limits. Every input must give a mesh and a
-// visibility mask, or a mesolens::Error; the mask must keep every molecule outside the cut and
-// hide, per type, round(fraction x molecules inside) of those inside.
+// libFuzzer target: the structured cutaway (mesolens::StructuredCutaway) for arbitrary
+// molecules, types and cuts (planes, balls, boxes, NaN among them) on arbitrary structure meshes
+// (a closed sphere, a bent grid, a soup of triangles that may be degenerate, far or NaN), with
+// every setting at and past its limits. Every input must give a visibility mask or a
+// mesolens::Error; the mask must keep every molecule outside the cut and hide, per type,
+// round(fraction x molecules inside) of those inside. The structure mesh itself, the costly
+// part, has its own target (fuzz_structure_mesh).
 #include "fuzz_input.h"
+#include "fuzz_molecule_cloud.h"
 
 #include "mesolens/common/errors.h"
-#include "mesolens/cutaway/structure_mesh.h"
 #include "mesolens/cutaway/structured_cutaway.h"
-#include "mesolens/mesh/mesh_report.h"
+#include "mesolens/mesh/triangle_mesh.h"
 
 #include <array>
 #include <cmath>
@@ -23,52 +24,56 @@ namespace {
 
 using mesolens_fuzz::require;
 
-/// A cloud of molecule centres: a flat bilayer, a vesicle's two shells, or scattered points, with
-/// some made to coincide or line up.
-std::vector<double> molecule_cloud(mesolens_fuzz::FuzzInput& input)
-{
-  const std::uint8_t shape = input.byte();
-  const std::size_t count = 4 + input.byte() % 120;
-  std::vector<double> points;
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    const double u = input.ranged(0, 1), v = input.ranged(0, 1);
-    const double leaflet = (i % 2) ? 1.0 : -1.0;
-    switch (shape % 3)
-    {
-      case 0:
-        points.insert(points.end(), { 60 * u, 60 * v, 20 * leaflet });
-        break;
-      case 1: {
-        const double theta = std::acos(1 - 2 * u), phi = 2 * M_PI * v, r = 50 + 10 * leaflet;
-        points.insert(points.end(),
-                      { r * std::sin(theta) * std::cos(phi), r * std::sin(theta) * std::sin(phi),
-                        r * std::cos(theta) });
-        break;
-      }
-      default:
-        points.insert(points.end(),
-                      { input.ranged(-50, 50), input.ranged(-50, 50), input.ranged(-50, 50) });
-    }
-    const std::uint8_t twist = input.byte();
-    if (twist < 8 && i > 0) // onto the previous point
-    {
-      std::copy_n(&points[3 * (i - 1)], 3, &points[3 * i]);
-    }
-    else if (twist < 12) // onto one line
-    {
-      points[3 * i + 1] = points[3 * i + 2] = 0;
-    }
-  }
-  return points;
-}
-
-/// A closed, fine enough sphere of radius 50 for the cutaway when the structure mesh is not made.
+/// A closed, fine enough sphere of radius 50 around the clouds.
 mesolens::TriangleMesh octahedron_sphere()
 {
   mesolens::TriangleMesh mesh;
   mesh.points = { 50, 0, 0, -50, 0, 0, 0, 50, 0, 0, -50, 0, 0, 0, 50, 0, 0, -50 };
   mesh.triangles = { 0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4, 2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5 };
+  return mesh;
+}
+
+/// A grid of n x n quads over the flat bilayer's 60 x 60 Å, its heights from the input.
+mesolens::TriangleMesh bent_grid(mesolens_fuzz::FuzzInput& input)
+{
+  const std::size_t n = 1 + input.byte() % 8;
+  mesolens::TriangleMesh mesh;
+  for (std::size_t j = 0; j <= n; ++j)
+  {
+    for (std::size_t i = 0; i <= n; ++i)
+    {
+      mesh.points.insert(
+        mesh.points.end(),
+        { 60.0 * double(i) / double(n), 60.0 * double(j) / double(n), input.ranged(-30, 30) });
+    }
+  }
+  for (std::size_t j = 0; j < n; ++j)
+  {
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      const auto corner = std::int64_t(j * (n + 1) + i), row = std::int64_t(n + 1);
+      mesh.triangles.insert(
+        mesh.triangles.end(),
+        { corner, corner + 1, corner + row + 1, corner, corner + row + 1, corner + row });
+    }
+  }
+  return mesh;
+}
+
+/// Up to 16 triangles anywhere, corners shared or repeated at random.
+mesolens::TriangleMesh triangle_soup(mesolens_fuzz::FuzzInput& input)
+{
+  mesolens::TriangleMesh mesh;
+  const std::size_t points = 3 + input.byte() % 14;
+  for (std::size_t p = 0; p < 3 * points; ++p)
+  {
+    mesh.points.push_back(input.ranged(-60, 60));
+  }
+  const std::size_t triangles = input.byte() % 17;
+  for (std::size_t k = 0; k < 3 * triangles; ++k)
+  {
+    mesh.triangles.push_back(std::int64_t(input.byte() % points));
+  }
   return mesh;
 }
 
@@ -104,28 +109,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::vector<double> centres = molecule_cloud(input);
   const std::size_t molecules = centres.size() / 3;
 
-  mesolens::TriangleMesh structure = octahedron_sphere();
-  if ((options & 7) == 0)
-  {
-    mesolens::StructureMeshParams params;
-    params.vertices = std::size_t(input.byte()) * 3;
-    params.edge_length = (options & 8) ? input.ranged(-1, 30) : 0;
-    params.mid_surface_radius = (options & 16) ? input.ranged(-1, 60) : 0;
-    // Meshes past this limit are refused (counts asked here reach 765, so both ways are
-    // tried): the angle repair of a poor first mesh takes about 1.5 ms per vertex, ten times
-    // that under the sanitizers, and 800 vertices overran the 10 s timeout.
-    params.vertex_limit = 400;
-    try
-    {
-      structure = mesolens::structure_mesh(centres, params);
-      const mesolens::MeshReport report = mesolens::mesh_report(structure.view());
-      require(report.is_manifold() && report.components == 1);
-    }
-    catch (const mesolens::Error&)
-    {
-      return 0;
-    }
-  }
+  const mesolens::TriangleMesh structure = (options & 3) == 1 ? bent_grid(input)
+    : (options & 3) == 2                                      ? triangle_soup(input)
+                                                              : octahedron_sphere();
 
   std::vector<int> types(molecules);
   for (int& type : types)

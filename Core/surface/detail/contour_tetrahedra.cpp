@@ -12,6 +12,8 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <memory>
+#include <mutex>
 
 namespace mesolens {
 
@@ -257,6 +259,59 @@ struct BlockBuffers
   /// plus one, in the high half) and the vertex's index: entries of earlier blocks are
   /// stale, so the table is never cleared.
   std::vector<std::uint64_t> made;
+};
+
+/// Block buffers kept from round to round of contour_blocks: a round's ranges each take one
+/// (made on first use) and give it back when they end. Made afresh every round, they cost a
+/// zeroed table of about 0.5 MB per round, which on a grid of many empty blocks was most of the
+/// time.
+class BlockBufferPool
+{
+public:
+  std::unique_ptr<BlockBuffers> take()
+  {
+    const std::lock_guard<std::mutex> lock(this->mutex_);
+    if (this->free_.empty())
+    {
+      return std::make_unique<BlockBuffers>();
+    }
+    std::unique_ptr<BlockBuffers> buffers = std::move(this->free_.back());
+    this->free_.pop_back();
+    return buffers;
+  }
+  void give(std::unique_ptr<BlockBuffers> buffers)
+  {
+    const std::lock_guard<std::mutex> lock(this->mutex_);
+    this->free_.push_back(std::move(buffers));
+  }
+
+private:
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<BlockBuffers>> free_;
+};
+
+/// One range's buffers from the pool, given back when the range ends.
+struct PooledBlockBuffers
+{
+  BlockBufferPool* pool = nullptr;
+  std::unique_ptr<BlockBuffers> buffers;
+
+  BlockBuffers& from(BlockBufferPool& source)
+  {
+    if (!this->buffers)
+    {
+      this->pool = &source;
+      this->buffers = source.take();
+    }
+    return *this->buffers;
+  }
+  ~PooledBlockBuffers()
+  {
+    if (this->buffers)
+    {
+      this->pool->give(std::move(this->buffers));
+    }
+  }
 };
 
 /// How the field's samples of a block came out.
@@ -506,23 +561,26 @@ ContouredBlocks contour_blocks(const ContourField& field, const ContourGrid& gri
   std::atomic<bool> one_sided_block{ false };
   const std::size_t round = 256;
   std::vector<BlockOutput> round_outputs(round);
+  BlockBufferPool pool;
   for (std::size_t first = 0; first < block_count; first += round)
   {
     const std::size_t count = std::min(round, block_count - first);
     // Blocks the surface crosses cost far more than the others: taken one at a time.
-    run_balanced<BlockBuffers>(parallel_for, count, [&](std::size_t k, BlockBuffers& buffers) {
-      const std::size_t block = first + k;
-      const Sampled sampled = sample_block(field, grid, centred, block, buffers);
-      if (sampled == Sampled::OneSided)
-      {
-        one_sided_block = true;
-      }
-      else if (sampled == Sampled::Crossed)
-      {
-        BlockContour(grid, centred, keys, tables, block, buffers, round_outputs[k])
-          .contour_crossed_cells();
-      }
-    });
+    run_balanced<PooledBlockBuffers>(
+      parallel_for, count, [&](std::size_t k, PooledBlockBuffers& pooled) {
+        BlockBuffers& buffers = pooled.from(pool);
+        const std::size_t block = first + k;
+        const Sampled sampled = sample_block(field, grid, centred, block, buffers);
+        if (sampled == Sampled::OneSided)
+        {
+          one_sided_block = true;
+        }
+        else if (sampled == Sampled::Crossed)
+        {
+          BlockContour(grid, centred, keys, tables, block, buffers, round_outputs[k])
+            .contour_crossed_cells();
+        }
+      });
     for (std::size_t k = 0; k < count; ++k)
     {
       BlockOutput& out = round_outputs[k];

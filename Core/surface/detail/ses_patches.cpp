@@ -671,7 +671,11 @@ SesPatchIntegrals ses_patch_integrals(const std::vector<Vec>& centres,
           }
           total += kept;
         });
-      out.arc_area[k] = total.area;
+      // No patch has a negative area: a few ulps below zero, where the torus shrinks to nothing
+      // (atoms of no size), are the closed forms' rounding at the torus' scale.
+      const double rounding =
+        1e-12 * torus.probe * std::max(torus.first_radius, torus.second_radius);
+      out.arc_area[k] = total.area < 0 && total.area >= -rounding ? 0.0 : total.area;
       out.arc_volume[k] = total.flux / 3.0;
     }
   });

@@ -393,6 +393,29 @@ TEST(MolecularSurface, TheVanDerWaalsSurfaceIgnoresAnyProbeRadius)
   }
 }
 
+TEST(MolecularSurface, TwoAtomsOfNoSizeGiveNoNegativeArea)
+{
+  // Radii of 1e-101 and a subnormal 1e-319 Å: the saddle between them shrinks to nothing, and
+  // its closed-form area came out at -3e-17 Å², which made the total negative.
+  const std::vector<double> centres{
+    -5.678431372549019,  -0.47058823529411775, -5.678431372549019,
+    -5.1532304050522262, -0.47058823529411775, -5.6297643358909246
+  };
+  MolecularSurfaceParams options;
+  options.kind = SurfaceKind::SolventExcluded;
+  options.probe_radius = 0.50588235294117645;
+  options.tolerance = 0.41673725490196079;
+  const MolecularSurface s = mesolens::molecular_surface(
+    centres, { 1.4287792843499598e-101, 1.4357547668146625e-319 }, options);
+  EXPECT_EQ(s.degenerate_vertex_count, 0u);
+  for (const double area : s.patch_area)
+  {
+    EXPECT_GE(area, 0.0);
+  }
+  EXPECT_GE(s.area, 0.0);
+  EXPECT_LT(s.area, 1e-12);
+}
+
 TEST(MolecularSurface, CrambinAgainstItsRefinedMeshAndEdtSurf)
 {
   std::vector<double> radii;

@@ -20,6 +20,7 @@
 #include <functional>
 #include <initializer_list>
 #include <limits>
+#include <sstream>
 #include <memory>
 #include <string>
 
@@ -29,6 +30,9 @@ namespace {
 using Vec = Eigen::Vector3d;
 constexpr double largest_radius = 20.0;        // Å: no atom, bead or probe is larger
 constexpr double largest_triangle_count = 2e7; // about 2 GB: a finer tolerance is refused
+/// The contour's tables take tens of bytes per block of the lattice's box, empty or not: up to
+/// about 1 GB at this many. (A compact molecule reaches the triangle limit first.)
+constexpr double largest_lattice_block_count = 2e7;
 /// The lattice's resolution, the farthest any point lies from a lattice point (its reach), is
 /// that of a cubic grid whose cells' diagonals have a chord error of the tolerance's times
 /// grid_tolerance_ratio, at most coarse_grid_tolerance (Å); the splits bring the mesh to the
@@ -341,6 +345,19 @@ ContourMesh contour_lattice(ContourField& field, const SurfaceInput& input, cons
   }
   low -= Vec(2.0 + 0.318309886, 2.0 + 0.271828183, 2.0 + 0.141421356) * spacing;
   high += Vec::Constant(3.0 * spacing);
+  const Vec blocks = ((high - low) / (spacing * ContourGrid::block_cells)).array().ceil();
+  if (!(blocks.prod() <= largest_lattice_block_count))
+  {
+    std::ostringstream message;
+    message.precision(3);
+    message << "the surface's lattice would span " << (high - low).x() << " x " << (high - low).y()
+            << " x " << (high - low).z() << " Å at a spacing of " << spacing << " Å, about "
+            << blocks.prod() << " blocks of " << ContourGrid::block_cells << "^3 cells, more than "
+            << "the limit of " << largest_lattice_block_count
+            << " (up to about 1 GB of tables): atoms far apart make the box large; give them "
+               "separately, or choose a larger tolerance";
+    throw InvalidInput(message.str());
+  }
   return contour_tetrahedra(field, low, high, spacing, parallel_for, progress);
 }
 

@@ -726,6 +726,26 @@ TEST(MolecularSurface, BadInputsAreRefused)
   // (the same pair 1000 Å apart is surrounded as two spheres; BenchmarkMolecularSurface reports
   // its time and peak memory).
   refused({ { 0, 0, 0 }, { 20000, 20000, 20000 } }, { 1.5, 1.5 });
+  // Atoms 3.4e7 Å apart along one axis (found by fuzz_surface): the search grid fits, but the
+  // lattice's box would take about 2 GB of block tables. Refused, naming the limit.
+  {
+    MolecularSurfaceParams options;
+    options.probe_radius = 0.011764705882352941;
+    options.tolerance = 0.15408627450980392;
+    options.exact_figures = false;
+    try
+    {
+      const Centres apart_on_a_line{ { 6.3686274509803926, 0, 6.3686274509803926 },
+                                     { 33554440.125070572, -6.0549019607843135, -8 } };
+      mesolens::molecular_surface(apart_on_a_line, { 0.86274509803921573, 0.0001 }, options);
+      ADD_FAILURE() << "a lattice of 3.4e7 Å was made";
+    }
+    catch (const mesolens::InvalidInput& error)
+    {
+      EXPECT_NE(std::string(error.what()).find("more than the limit of"), std::string::npos)
+        << error.what();
+    }
+  }
   const MolecularSurface apart =
     surface_of({ { 0, 0, 0 }, { 1000, 1000, 1000 } }, { 1.5, 1.5 }, 0.2);
   EXPECT_NEAR(apart.area, 2 * 4 * pi * 1.5 * 1.5, 1e-9);

@@ -10,9 +10,6 @@
 #include "cutaway/detail/mid_sheet.h"
 #include "cutaway/detail/sheet_lattice.h"
 
-#include <CGAL/AABB_face_graph_triangle_primitive.h>
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
 #include <CGAL/Advancing_front_surface_reconstruction.h>
 #include <CGAL/Polygon_mesh_processing/angle_and_area_smoothing.h>
 #include <CGAL/Polygon_mesh_processing/border.h>
@@ -45,8 +42,6 @@ using Point = RepairKernel::Point_3;
 using Vector = RepairKernel::Vector_3;
 using SurfaceMesh = RepairMesh;
 namespace PMP = CGAL::Polygon_mesh_processing;
-using ReconstructionTree = CGAL::AABB_tree<
-  CGAL::AABB_traits<RepairKernel, CGAL::AABB_face_graph_triangle_primitive<SurfaceMesh>>>;
 
 constexpr double degrees = 180.0 / 3.14159265358979323846;
 /// The repair aims a degree above the bound, so that rounding never decides the check.
@@ -267,8 +262,8 @@ SurfaceMesh reconstructed_sheet(const std::vector<double>& sheet)
 /// (CGAL issue 7345); outside it, the same relaxation has no such read.
 SurfaceMesh remeshed(const SurfaceMesh& reconstructed, double edge)
 {
-  const ReconstructionTree surface(faces(reconstructed).first, faces(reconstructed).second,
-                                   reconstructed);
+  const RepairSurfaceTree surface(faces(reconstructed).first, faces(reconstructed).second,
+                                  reconstructed);
   SurfaceMesh mesh = reconstructed;
   for (int round = 0; round < 5; ++round)
   {

@@ -20,8 +20,8 @@
 #include <functional>
 #include <initializer_list>
 #include <limits>
-#include <sstream>
 #include <memory>
+#include <sstream>
 #include <string>
 
 namespace mesolens {
@@ -345,14 +345,15 @@ ContourMesh contour_lattice(ContourField& field, const SurfaceInput& input, cons
   }
   low -= Vec(2.0 + 0.318309886, 2.0 + 0.271828183, 2.0 + 0.141421356) * spacing;
   high += Vec::Constant(3.0 * spacing);
-  const Vec blocks = ((high - low) / (spacing * ContourGrid::block_cells)).array().ceil();
-  if (!(blocks.prod() <= largest_lattice_block_count))
+  const ContourGrid grid(low, high, spacing);
+  const double blocks = double(grid.blocks[0]) * double(grid.blocks[1]) * double(grid.blocks[2]);
+  if (!(blocks <= largest_lattice_block_count))
   {
     std::ostringstream message;
     message.precision(3);
     message << "the surface's lattice would span " << (high - low).x() << " x " << (high - low).y()
             << " x " << (high - low).z() << " Å at a spacing of " << spacing << " Å, about "
-            << blocks.prod() << " blocks of " << ContourGrid::block_cells << "^3 cells, more than "
+            << blocks << " blocks of " << ContourGrid::block_cells << "^3 cells, more than "
             << "the limit of " << largest_lattice_block_count
             << " (up to about 1 GB of tables): atoms far apart make the box large; give them "
                "separately, or choose a larger tolerance";

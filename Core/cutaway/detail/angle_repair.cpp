@@ -1,9 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "cutaway/detail/angle_repair.h"
 
-#include <CGAL/AABB_face_graph_triangle_primitive.h>
-#include <CGAL/AABB_traits.h>
-#include <CGAL/AABB_tree.h>
 #include <CGAL/boost/graph/Euler_operations.h>
 #include <CGAL/boost/graph/helpers.h>
 
@@ -21,8 +18,6 @@ using Vector = RepairKernel::Vector_3;
 using VertexIndex = RepairMesh::Vertex_index;
 using HalfedgeIndex = RepairMesh::Halfedge_index;
 using FaceIndex = RepairMesh::Face_index;
-using Primitive = CGAL::AABB_face_graph_triangle_primitive<RepairMesh>;
-using Tree = CGAL::AABB_tree<CGAL::AABB_traits<RepairKernel, Primitive>>;
 
 constexpr double degrees = 180.0 / 3.14159265358979323846;
 /// Below this cosine between two triangles' normals their edge is a crease: not flipped.
@@ -67,8 +62,8 @@ public:
     , Reference(mesh)
     , Goal(goal)
   {
-    this->Surface = std::make_unique<Tree>(faces(this->Reference).first,
-                                           faces(this->Reference).second, this->Reference);
+    this->Surface = std::make_unique<RepairSurfaceTree>(
+      faces(this->Reference).first, faces(this->Reference).second, this->Reference);
     this->Surface->accelerate_distance_queries();
     this->TrimsLeft = std::max<std::size_t>(1, mesh.number_of_faces() / 20);
   }
@@ -137,7 +132,7 @@ private:
 
   RepairMesh& Mesh;
   RepairMesh Reference;
-  std::unique_ptr<Tree> Surface;
+  std::unique_ptr<RepairSurfaceTree> Surface;
   double Goal;
   std::size_t TrimsLeft = 0; ///< at most 5 % of the triangles are trimmed off the boundary
 };

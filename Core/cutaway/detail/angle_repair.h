@@ -4,6 +4,9 @@
 // be near-equilateral.
 #pragma once
 
+#include <CGAL/AABB_face_graph_triangle_primitive.h>
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Surface_mesh.h>
 
@@ -11,6 +14,9 @@ namespace mesolens {
 
 using RepairKernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using RepairMesh = CGAL::Surface_mesh<RepairKernel::Point_3>;
+/// Closest points on a RepairMesh's triangles (the surface a repair or remeshing keeps to).
+using RepairSurfaceTree = CGAL::AABB_tree<
+  CGAL::AABB_traits<RepairKernel, CGAL::AABB_face_graph_triangle_primitive<RepairMesh>>>;
 
 /// The smallest and largest corner angle (degrees) over a mesh's triangles.
 struct AngleRange

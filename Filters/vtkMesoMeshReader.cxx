@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoMeshReader.h"
 
+#include "vtkMesoXMLPolyDataReader.h"
+
 #include "mesolens/common/errors.h"
 #include "mesolens/io/file_names.h"
 #include "mesolens/io/off_file.h"
@@ -22,7 +24,6 @@
 #include <vtkPolyData.h>
 #include <vtkSTLReader.h>
 #include <vtkSmartPointer.h>
-#include <vtkXMLPolyDataReader.h>
 
 #include <algorithm>
 #include <array>
@@ -268,7 +269,7 @@ bool vtkMesoMeshReader::ReadWithVTK(const std::string& extension, vtkPolyData* o
   }
   else
   {
-    auto vtp = vtkSmartPointer<vtkXMLPolyDataReader>::New();
+    auto vtp = vtkSmartPointer<vtkMesoXMLPolyDataReader>::New();
     vtp->SetFileName(this->FileName.c_str());
     reader = vtp;
   }

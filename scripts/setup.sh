@@ -11,9 +11,14 @@ BUILD_DIR=${BUILD_DIR:-build}
 
 # ParaView 5.11 brings the VTK 9.2 everything builds on (and vtkmodules for /usr/bin/python3);
 # it replaces Debian's separate VTK 9.1 packages, which cannot be installed beside it.
+# paraview-dev does not pull in the -dev packages its CMake configuration looks for (MPI,
+# double-conversion, LZ4, HDF5, NetCDF, ...): they are listed here.
 packages="cmake g++ make pkg-config zlib1g-dev
-  paraview-dev python3-paraview libglew-dev libfreetype-dev openmpi-bin
-  python3-numpy libeigen3-dev libcgal-dev libopenmesh-dev
+  paraview-dev python3-paraview libglew-dev libfreetype-dev openmpi-bin libopenmpi-dev
+  libdouble-conversion-dev liblz4-dev liblzma-dev libexpat1-dev libxml2-dev libpng-dev
+  libjpeg-dev libtiff-dev libutfcpp-dev libgl2ps-dev libnetcdf-dev libhdf5-openmpi-dev
+  libtheora-dev libogg-dev libx11-dev libxt-dev libgl-dev
+  python3-numpy python3-mdanalysis libeigen3-dev libcgal-dev libopenmesh-dev
   libgtest-dev gemmi-dev tao-pegtl-dev libgromacs-dev dssp freesasa edtsurf python3-pymol
   xvfb xauth mesa-utils libgl1-mesa-dri
   clang libclang-rt-dev"

@@ -199,6 +199,7 @@ bool FromPolyData(vtkPolyData* atoms, double length_scale, mesolens::AtomTable& 
   strings(vtkMesoArrayNames::AtomName, table.atom_names);
   strings(vtkMesoArrayNames::ResidueName, table.residue_names);
   strings(vtkMesoArrayNames::ChainId, table.chain_ids);
+  table.label_asym_ids.assign(count, std::string());
   std::vector<std::string> alternates;
   strings(vtkMesoArrayNames::AltLoc, alternates);
   table.alt_locs.assign(count, ' ');

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "mesolens/io/structure_file.h"
 
+#include "io/detail/assembly_records.h"
 #include "io/detail/file_checks.h"
 #include "io/detail/pdb_text_scan.h"
 #include "mesolens/molecules/bond_consensus.h"
@@ -183,10 +184,11 @@ void mark_alternate_locations(const AtomTable& table, const ResidueRange& range,
 
 /// Converts one gemmi model; fills `ranges` with the residue layout for secondary structure.
 /// `pdb_atoms` (empty for mmCIF) holds each PDB record's serial, residue number and residue
-/// name end, which gemmi reads wrongly from MD files; gemmi's serial indexes it.
+/// name end, which gemmi reads wrongly from MD files; gemmi's serial indexes it. `label_asym`:
+/// the residues' subchains are mmCIF label_asym_ids (gemmi makes up others for PDB files).
 AtomTable convert_model(const gemmi::Model& model,
                         const std::vector<detail::PdbAtomFields>& pdb_atoms,
-                        std::vector<ChainResidues>& chains)
+                        std::vector<ChainResidues>& chains, bool label_asym)
 {
   AtomTable table;
   std::size_t atom_count = 0;
@@ -217,6 +219,10 @@ AtomTable convert_model(const gemmi::Model& model,
         table.residue_numbers.back() = residue.seqid.num.has_value() ? int(residue.seqid.num) : 0;
         table.insertion_codes.back() = residue.seqid.icode == '\0' ? ' ' : residue.seqid.icode;
         table.chain_ids.back() = chain.name;
+        if (label_asym)
+        {
+          table.label_asym_ids.back() = residue.subchain;
+        }
         table.alt_locs.back() = atom.altloc == '\0' ? ' ' : atom.altloc;
         table.occupancies.back() = atom.occ;
         table.b_factors.back() = atom.b_iso;
@@ -546,7 +552,10 @@ void refuse_overflowing_integers(const gemmi::cif::Document& document, const std
   }
 }
 
-gemmi::Structure parse_with_gemmi(const std::string& path, detail::PdbTextScan& pdb)
+/// Parses the file with gemmi; reads its assemblies (with their warnings) on the way.
+gemmi::Structure parse_with_gemmi(const std::string& path, detail::PdbTextScan& pdb,
+                                  std::vector<Assembly>& assemblies,
+                                  std::vector<std::string>& warnings)
 {
   detail::require_readable_file(path);
   try
@@ -574,15 +583,20 @@ gemmi::Structure parse_with_gemmi(const std::string& path, detail::PdbTextScan& 
     if (format == gemmi::CoorFormat::Pdb)
     {
       pdb = detail::scan_pdb_text(buffer.data(), buffer.size(), path);
+      assemblies = detail::read_pdb_assemblies(buffer.data(), buffer.size(), warnings);
       const std::optional<std::string> padded = pdb_text_for_gemmi(buffer.data(), buffer.size());
       return padded ? gemmi::read_pdb_from_memory(padded->data(), padded->size(), path)
                     : gemmi::read_pdb_from_memory(buffer.data(), buffer.size(), path);
     }
     if (format == gemmi::CoorFormat::Mmcif)
     {
-      const gemmi::cif::Document document =
+      gemmi::cif::Document document =
         gemmi::cif::read_memory(buffer.data(), buffer.size(), path.c_str());
       refuse_overflowing_integers(document, path);
+      if (!document.blocks.empty())
+      {
+        assemblies = detail::read_mmcif_assemblies(document.blocks.front(), warnings);
+      }
       return gemmi::make_structure(document);
     }
     throw FileError(path + ": neither a PDB nor an mmCIF file");
@@ -670,25 +684,32 @@ StructureFile read_structure(const std::string& path, const StructureReadParams&
     }
   };
   detail::PdbTextScan pdb;
-  const gemmi::Structure structure = parse_with_gemmi(path, pdb);
+  StructureFile file;
+  std::vector<std::string> assembly_warnings;
+  const gemmi::Structure structure =
+    parse_with_gemmi(path, pdb, file.assemblies, assembly_warnings);
   // mmCIF always names elements (type_symbol); a PDB file does when most records fill 77-78.
   const bool elements_given =
     structure.input_format != gemmi::CoorFormat::Pdb || 2 * pdb.element_records > pdb.atoms.size();
   report(0.5);
 
-  StructureFile file;
   file.title = structure.get_info("_struct.title");
   bool emptied_by_selection = false; // a model whose atoms the params all removed
   for (std::size_t m = 0; m < structure.models.size(); ++m)
   {
     const gemmi::Model& model = structure.models[m];
     std::vector<ChainResidues> chains;
-    AtomTable table = convert_model(model, pdb.atoms, chains);
+    AtomTable table =
+      convert_model(model, pdb.atoms, chains, structure.input_format == gemmi::CoorFormat::Mmcif);
     if (table.size() == 0)
     {
       continue;
     }
     check_finite(table, path);
+    if (m == 0)
+    {
+      detail::warn_missing_chains(file.assemblies, table, assembly_warnings);
+    }
     int span_id = 0;
     if (!structure.helices.empty() || !structure.sheets.empty())
     {
@@ -744,6 +765,7 @@ StructureFile read_structure(const std::string& path, const StructureReadParams&
   {
     throw FileError(path + ": the file contains no atoms");
   }
+  file.warnings.insert(file.warnings.end(), assembly_warnings.begin(), assembly_warnings.end());
   return file;
 }
 

@@ -20,6 +20,7 @@ void AtomTable::reserve(std::size_t count)
   this->residue_numbers.reserve(count);
   this->insertion_codes.reserve(count);
   this->chain_ids.reserve(count);
+  this->label_asym_ids.reserve(count);
   this->alt_locs.reserve(count);
   this->occupancies.reserve(count);
   this->b_factors.reserve(count);
@@ -41,6 +42,7 @@ void AtomTable::append_atom(const std::string& name, float x, float y, float z)
   this->residue_numbers.push_back(0);
   this->insertion_codes.push_back(' ');
   this->chain_ids.emplace_back();
+  this->label_asym_ids.emplace_back();
   this->alt_locs.push_back(' ');
   this->occupancies.push_back(1.0f);
   this->b_factors.push_back(0.0f);
@@ -115,6 +117,7 @@ void AtomTable::filter(const std::vector<bool>& keep)
   keep_entries(this->residue_numbers, keep);
   keep_entries(this->insertion_codes, keep);
   keep_entries(this->chain_ids, keep);
+  keep_entries(this->label_asym_ids, keep);
   keep_entries(this->alt_locs, keep);
   keep_entries(this->occupancies, keep);
   keep_entries(this->b_factors, keep);
@@ -144,12 +147,13 @@ void AtomTable::filter(const std::vector<bool>& keep)
 void AtomTable::check_consistent() const
 {
   const std::size_t n = this->size();
-  const std::array<std::size_t, 16> sizes = { this->positions.size() / 3,
+  const std::array<std::size_t, 17> sizes = { this->positions.size() / 3,
                                               this->atomic_numbers.size(),
                                               this->residue_names.size(),
                                               this->residue_numbers.size(),
                                               this->insertion_codes.size(),
                                               this->chain_ids.size(),
+                                              this->label_asym_ids.size(),
                                               this->alt_locs.size(),
                                               this->occupancies.size(),
                                               this->b_factors.size(),

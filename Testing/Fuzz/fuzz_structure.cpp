@@ -6,11 +6,14 @@
 //   bit 2     every alternate location kept (else the most occupied)
 //   bit 3     waters removed          bit 4  hydrogens removed
 //   bit 5     no bond perception      bit 6  coarse-grained beads forced
-// The rest is the file. Every input must give a structure or a mesolens::Error.
+// The rest is the file. Every input must give a structure or a mesolens::Error. The file's
+// assemblies are counted and given as instances, and expanded when small: each of these gives
+// a consistent result or a mesolens::Error.
 #include "fuzz_input.h"
 
 #include "mesolens/common/errors.h"
 #include "mesolens/io/structure_file.h"
+#include "mesolens/protein/assembly.h"
 
 #include <zlib.h>
 
@@ -37,6 +40,41 @@ void check_model(const mesolens::AtomTable& table)
   {
     require(std::size_t(bond.first) < atoms && std::size_t(bond.second) < atoms &&
             bond.first != bond.second);
+  }
+}
+
+/// Every assembly: within the copy limit, as many instances as copies, and (when small) the
+/// expansion as many atoms as counted, consistent, finite and numbered by copy.
+void check_assemblies(const mesolens::StructureFile& structure)
+{
+  using mesolens_fuzz::require;
+  const mesolens::AtomTable& unit = structure.models.front();
+  std::size_t copies = 0;
+  for (const mesolens::Assembly& assembly : structure.assemblies)
+  {
+    copies += assembly.copy_count();
+    require(assembly.copy_count() > 0 && copies <= mesolens::max_assembly_copies);
+    std::size_t atoms = 0;
+    mesolens::AssemblyExpansion expanded;
+    try // an operator may move atoms beyond float's range: InvalidInput
+    {
+      atoms = mesolens::assembly_atom_count(unit, assembly);
+      const mesolens::AssemblyInstances instances = mesolens::assembly_instances(unit, assembly);
+      require(instances.instances.size() == assembly.copy_count());
+      if (atoms == 0 || atoms > 100000)
+      {
+        continue;
+      }
+      expanded = mesolens::expand_assembly(unit, assembly);
+    }
+    catch (const mesolens::InvalidInput&)
+    {
+      continue;
+    }
+    require(expanded.atoms.size() == atoms && expanded.copy_of_atom.size() == atoms);
+    require(expanded.atoms.label_asym_ids.size() == atoms);
+    check_model(expanded.atoms);
+    require(std::size_t(expanded.copy_of_atom.back()) < assembly.copy_count());
   }
 }
 
@@ -87,6 +125,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     {
       check_model(model);
     }
+    check_assemblies(structure);
   }
   catch (const mesolens::Error&)
   {

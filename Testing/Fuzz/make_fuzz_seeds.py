@@ -168,6 +168,49 @@ def ply_ascii(points, triangles):
     return "\n".join(lines) + "\n"
 
 
+def biomt(serial, rows, shifted=False):
+    """The three REMARK 350 BIOMT lines of one operator; `shifted`: the serial pushes the numbers
+    one column right, as 1m4x.pdb writes serials past 999."""
+    serial_field = ("%6d" if shifted else "%4d") % serial
+    return ["REMARK 350   BIOMT%d%s%10.6f%10.6f%10.6f     %10.5f" % ((i + 1, serial_field) + row)
+            for i, row in enumerate(rows)]
+
+
+def assembly_seeds(proteins):
+    """A PDB file with REMARK 350 (chain lists continued by AND CHAINS, two generators, a shifted
+    serial) and an mmCIF file with assembly categories (ranges, an id that is no number, a
+    product of lists), both over crambin's first atoms."""
+    identity = ((1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0))
+    turn = ((0, -1, 0, 10.5), (1, 0, 0, -3.25), (0, 0, 1, 0))
+    remarks = ["REMARK 350 BIOMOLECULE: 1",
+               "REMARK 350 AUTHOR DETERMINED BIOLOGICAL UNIT: DIMERIC",
+               "REMARK 350 APPLY THE FOLLOWING TO CHAINS: A, B,",
+               "REMARK 350                    AND CHAINS: C"]
+    remarks += biomt(1, identity) + biomt(1000, turn, shifted=True)
+    remarks += ["REMARK 350 BIOMOLECULE: 2", "REMARK 350 APPLY THE FOLLOWING TO CHAINS: A"]
+    remarks += biomt(1, turn) + ["REMARK 350 APPLY THE FOLLOWING TO CHAINS: B"] + biomt(2, identity)
+    pdb = cut_pdb((proteins / "1crn.pdb").read_text("latin-1"))
+    write("fuzz_structure", "assembly_biomt.pdb", 0, "\n".join(remarks) + "\n" + pdb)
+    operators = ["loop_", "_pdbx_struct_oper_list.id", "_pdbx_struct_oper_list.type"]
+    for i in range(1, 4):
+        operators += ["_pdbx_struct_oper_list.matrix[%d][%d]" % (i, j) for j in range(1, 4)]
+        operators.append("_pdbx_struct_oper_list.vector[%d]" % i)
+    for name, rows in (("1", identity), ("2", turn), ("3", turn), ("P", turn)):
+        operators.append(name + " 'point symmetry operation' " +
+                         " ".join("%g" % v for row in rows for v in row))
+    assemblies = ["loop_", "_pdbx_struct_assembly.id", "_pdbx_struct_assembly.details",
+                  "_pdbx_struct_assembly.method_details", "_pdbx_struct_assembly.oligomeric_details",
+                  "_pdbx_struct_assembly.oligomeric_count",
+                  "1 'complete point assembly' ? ? ?", "2 author_defined_assembly ? ? ?",
+                  "#", "loop_", "_pdbx_struct_assembly_gen.assembly_id",
+                  "_pdbx_struct_assembly_gen.oper_expression",
+                  "_pdbx_struct_assembly_gen.asym_id_list",
+                  "1 '(1-3)(P,1)' A", "2 '1,2' A", "2 (3) A"]
+    cif = cut_cif((proteins / "1crn.cif").read_text("latin-1"))
+    write("fuzz_structure", "assembly_product.cif", 1,
+          cif + "#\n" + "\n".join(operators + ["#"] + assemblies) + "\n#\n")
+
+
 def write(target, name, option, payload):
     folder = SEEDS / target
     folder.mkdir(parents=True, exist_ok=True)
@@ -203,6 +246,7 @@ def main():
         if index % 3 == 2:
             options = (1 if is_cif else 0) | (4 << (index // 3 % 5))
             write("fuzz_structure", path.stem + "_options" + path.suffix, options, text)
+    assembly_seeds(proteins)
 
     # GRO: the awkward files as they are, the membranes cut; then as trajectories too.
     for path in sorted(awkward.glob("*.gro")):

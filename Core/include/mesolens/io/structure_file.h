@@ -5,6 +5,7 @@
 #include "mesolens/molecules/atom_table.h"
 #include "mesolens/molecules/bond_perception.h"
 #include "mesolens/common/parallel_for.h"
+#include "mesolens/protein/assembly.h"
 
 #include <functional>
 #include <string>
@@ -52,6 +53,10 @@ struct StructureFile
   std::string title;                 ///< TITLE / _struct.title, may be empty
   bool coarse_grained = false;       ///< bonds were perceived with the bead cutoff
   std::vector<std::string> warnings; ///< things a user should know (ignored CONECT serials...)
+  /// The biological assemblies the file defines, in its order (see read_structure()); the
+  /// models hold the asymmetric unit. Build one with expand_assembly() or draw it with
+  /// assembly_instances() (mesolens/protein/assembly.h).
+  std::vector<Assembly> assemblies;
 };
 
 /// Progress callback: fraction in [0, 1]. Return false to abort (read_structure then throws
@@ -72,6 +77,17 @@ using ProgressCallback = std::function<bool(double)>;
 /// residue names in columns 18-21 ("DPPC") are kept whole unless the file uses two-letter chain
 /// ids there. StructureFile::warnings says when any of this was needed. VMD's hexadecimal
 /// numbers past 99999 and 9999 are not recognized.
+///
+/// Biological assemblies come from REMARK 350 (PDB: BIOMOLECULE, APPLY THE FOLLOWING TO
+/// CHAINS with its AND CHAINS continuations, BIOMT1-3 read as blank-separated words, so
+/// serials past 99 that push the numbers right are read right) and from
+/// `_pdbx_struct_assembly`, `_pdbx_struct_assembly_gen` and `_pdbx_struct_oper_list` (mmCIF:
+/// generators name label_asym_ids, kept per atom in AtomTable::label_asym_ids; operator
+/// expressions, products included, expanded by expand_operator_expression()). An assembly with
+/// a malformed record or expression, an undefined operator, a non-finite matrix, no operators
+/// or chains, a repeated name, or past max_assembly_copies copies (in one assembly or all
+/// together) is left out with a warning; the atoms are read all the same. An assembly that
+/// names chains the file lacks is kept, with a warning.
 ///
 /// Throws FileError for a missing, empty, truncated or unparsable file (an ATOM/HETATM record
 /// without coordinates in the standard or a consistently shifted place names its line), or one

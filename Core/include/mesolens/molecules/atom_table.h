@@ -46,7 +46,9 @@ struct Bond
 
 /// Atoms of one model (or one trajectory frame) as parallel arrays (structure of arrays).
 /// Every per-atom vector has size() entries, except positions (3 per atom). Lengths are in
-/// Ångström. Strings are trimmed of the blanks of fixed-column formats.
+/// Ångström. Strings are trimmed of the blanks of fixed-column formats. label_asym_ids are
+/// mmCIF's ids of chain instances (a polymer, a ligand, the waters of a chain: several per
+/// author chain), which mmCIF assemblies list (mesolens/protein/assembly.h).
 struct AtomTable
 {
   std::vector<float> positions;                  ///< x, y, z per atom, Å
@@ -56,6 +58,7 @@ struct AtomTable
   std::vector<int> residue_numbers;              ///< author residue number (PDB resSeq, GRO resnr)
   std::vector<char> insertion_codes;             ///< ' ' when none
   std::vector<std::string> chain_ids;            ///< author chain id, "" when none
+  std::vector<std::string> label_asym_ids;       ///< mmCIF label_asym_id (see above), else ""
   std::vector<char> alt_locs;                    ///< ' ' when none
   std::vector<float> occupancies;                ///< 1 when the format has none
   std::vector<float> b_factors;                  ///< Å², 0 when the format has none

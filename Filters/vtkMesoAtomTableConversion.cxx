@@ -207,12 +207,24 @@ bool FromPolyData(vtkPolyData* atoms, double length_scale, mesolens::AtomTable& 
   {
     table.alt_locs[i] = alternates[i].empty() ? ' ' : alternates[i][0];
   }
+  std::vector<std::string> insertion_codes;
+  strings(vtkMesoArrayNames::InsertionCode, insertion_codes);
+  table.insertion_codes.assign(count, ' ');
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    table.insertion_codes[i] = insertion_codes[i].empty() ? ' ' : insertion_codes[i][0];
+  }
   numbers(vtkMesoArrayNames::ResidueIndex, table.residue_indices, 0);
   numbers(vtkMesoArrayNames::MoleculeId, table.molecule_ids, 0);
   numbers(vtkMesoArrayNames::ResidueNumber, table.residue_numbers, 0);
   numbers(vtkMesoArrayNames::Occupancy, table.occupancies, 1.0f);
   numbers(vtkMesoArrayNames::AtomicNumber, table.atomic_numbers, std::uint8_t(0));
   numbers(vtkMesoArrayNames::SecondaryStructure, table.secondary_structure, std::uint8_t(0));
+  numbers(vtkMesoArrayNames::SecondaryStructureId, table.secondary_structure_ids, -1);
+  numbers(vtkMesoArrayNames::BFactor, table.b_factors, 0.0f);
+  numbers(vtkMesoArrayNames::IsHetAtm, table.is_hetero, std::uint8_t(0));
+  numbers(vtkMesoArrayNames::SerialNumber, table.serials, 0);
+  numbers(vtkMesoArrayNames::FormalCharge, table.formal_charges, std::int8_t(0));
   return true;
 }
 

@@ -26,9 +26,10 @@ void ToPolyData(const mesolens::AtomTable& table, double length_scale, vtkPolyDa
 
 /// The atoms of a polydata laid out as ToPolyData makes them, back as an AtomTable: positions
 /// (Å, divided by `length_scale`) and whichever of the named arrays are present (names,
-/// residues, chains, alternates, occupancies, secondary structure, residue indices, molecule
-/// ids); bonds are not read. Returns false, naming what is missing in `missing`, without
-/// `AtomName` or `ResidueIndex`.
+/// elements, residues, insertion codes, chains, alternates, occupancies, B-factors, HETATM
+/// flags, serials, formal charges, secondary structure, residue indices, molecule ids); every
+/// per-atom vector is filled (defaults where an array is absent); bonds are not read. Returns
+/// false, naming what is missing in `missing`, without `AtomName` or `ResidueIndex`.
 bool FromPolyData(vtkPolyData* atoms, double length_scale, mesolens::AtomTable& table,
                   std::string* missing = nullptr);
 

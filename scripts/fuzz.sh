@@ -9,7 +9,8 @@
 #   scripts/fuzz.sh --build           builds every target, runs none
 #
 # TARGET: fuzz_ply, fuzz_structure, fuzz_gro, fuzz_trajectory, fuzz_mesh (files); fuzz_surface,
-# fuzz_ribbons, fuzz_geodesic, fuzz_cutaway, fuzz_structure_mesh (geometry).
+# fuzz_ribbons, fuzz_geodesic, fuzz_cutaway, fuzz_structure_mesh (geometry); fuzz_selection
+# (atom-selection text).
 # BUILD is build-fuzz/ in the checkout, or $MESOLENS_FUZZ_BUILD_DIR.
 set -eu
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -38,6 +39,7 @@ case "$target" in
   fuzz_gro) dict=gro.dict; quiet=1 ;;
   fuzz_trajectory) dict=trajectory.dict; quiet=1 ;;
   fuzz_mesh) dict=mesh.dict ;;
+  fuzz_selection) dict=selection.dict ;;
   fuzz_surface | fuzz_ribbons | fuzz_geodesic | fuzz_cutaway | fuzz_structure_mesh) dict= ;;
   *) echo "unknown fuzz target $target" >&2; exit 2 ;;
 esac

@@ -3,7 +3,9 @@
 
 #include <gemmi/resinfo.hpp>
 
+#include <algorithm>
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <string>
 #include <unordered_map>
@@ -140,6 +142,27 @@ bool is_amino_acid_residue(const std::string& residue_name)
 bool is_nucleotide_residue(const std::string& residue_name)
 {
   return gemmi::find_tabulated_residue(residue_name).is_nucleic_acid();
+}
+
+bool is_lipid_residue(const std::string& residue_name)
+{
+  std::string name = residue_name;
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::toupper(c)); });
+  // AMBER's lauroyl (LA) and arachidonoyl (AR) tails are left out: ion residues use those names.
+  static const std::array<const char*, 19> named = { "CHOL", "CHL1", "CLR",  "ERG",  "CDL0",
+                                                     "CDL1", "CDL2", "TOCL", "POCL", "PSM",
+                                                     "PC",   "PE",   "PS",   "PGR",  "PA",
+                                                     "OL",   "ST",   "MY",   "DHA" };
+  if (std::any_of(named.begin(), named.end(), [&name](const char* n) { return name == n; }))
+  {
+    return true;
+  }
+  static const std::array<const char*, 7> heads = { "PC", "PE", "PS", "PG", "PA", "PI", "SM" };
+  return name.size() == 4 && std::isalpha(static_cast<unsigned char>(name[0])) &&
+    std::isalpha(static_cast<unsigned char>(name[1])) &&
+    std::any_of(heads.begin(), heads.end(),
+                [&name](const char* head) { return name.compare(2, 2, head) == 0; });
 }
 
 void assign_residues(AtomTable& table)

@@ -22,5 +22,11 @@ void assign_molecules(AtomTable& table);
 bool is_amino_acid_residue(const std::string& residue_name);
 /// True when the residue name is a standard nucleotide (DNA or RNA).
 bool is_nucleotide_residue(const std::string& residue_name);
+/// True when the residue name is a lipid of the common force fields (case-insensitive): four
+/// letters of two tail codes and a head group PC, PE, PS, PG, PA, PI or SM (CHARMM36, Slipids,
+/// Martini: DPPC, POPE, DOPS...), sterols (CHOL, CHL1, CLR, ERG), cardiolipins (CDL0-2, TOCL,
+/// POCL), PSM, and AMBER Lipid14/21's head and tail residues (PC, PE, PS, PGR, PA, OL, ST, MY,
+/// DHA; not LA and AR, which ion residues use).
+bool is_lipid_residue(const std::string& residue_name);
 
 } // namespace mesolens

@@ -29,6 +29,8 @@ constexpr const char* IsHetAtm = "IsHetAtm";
 constexpr const char* AtomicNumber = "AtomicNumber";
 constexpr const char* SecondaryStructure = "SecondaryStructure";
 constexpr const char* SecondaryStructureId = "SecondaryStructureId";
+// vtkMesoStructureReader with an Assembly: the copy of the asymmetric unit an atom belongs to.
+constexpr const char* AssemblyCopy = "AssemblyCopy";
 
 // Atoms: field data of the readers (PeriodicBoxVectors: 9 values, the box vectors a, b, c row by
 // row).

@@ -4,16 +4,21 @@
 #include "vtkMesoArrayNames.h"
 #include "vtkMesoAtomPieces.h"
 
-#include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoAtomReaderParameters.h"
+#include "vtkMesoAtomTableConversion.h"
+#include "vtkMesoParallelFor.h"
 
 #include "mesolens/common/errors.h"
 #include "mesolens/io/file_names.h"
 #include "mesolens/io/structure_file.h"
+#include "mesolens/protein/assembly.h"
 
+#include <vtkIntArray.h>
 #include <vtkInformation.h>
 #include <vtkInformationVector.h>
+#include <vtkNew.h>
 #include <vtkObjectFactory.h>
+#include <vtkPointData.h>
 #include <vtkPolyData.h>
 #include <vtkStreamingDemandDrivenPipeline.h>
 
@@ -170,7 +175,38 @@ int vtkMesoStructureReader::RequestData(vtkInformation*, vtkInformationVector**,
       model = static_cast<std::size_t>(std::lround(clamped));
     }
   }
-  vtkMesoAtomTableConversion::ToPolyData(models[model], 1.0, output);
+  const mesolens::Assembly* assembly = nullptr;
+  if (!this->ChosenAssembly(assembly))
+  {
+    return 0;
+  }
+  if (assembly)
+  {
+    mesolens::AssemblyExpansionParams params;
+    params.max_atoms = std::size_t(this->MaximumAssemblyAtoms);
+    params.parallel_for = vtkMesoParallelFor::Get();
+    mesolens::AssemblyExpansion expansion;
+    try
+    {
+      expansion = mesolens::expand_assembly(models[model], *assembly, params);
+    }
+    catch (const mesolens::Error& e)
+    {
+      vtkErrorMacro("Cannot build assembly '" << this->Assembly << "' of " << this->FileName << ": "
+                                              << e.what());
+      return 0;
+    }
+    vtkMesoAtomTableConversion::ToPolyData(expansion.atoms, 1.0, output);
+    vtkNew<vtkIntArray> copies;
+    copies->SetName(vtkMesoArrayNames::AssemblyCopy);
+    copies->SetNumberOfValues(vtkIdType(expansion.copy_of_atom.size()));
+    std::copy(expansion.copy_of_atom.begin(), expansion.copy_of_atom.end(), copies->GetPointer(0));
+    output->GetPointData()->AddArray(copies);
+  }
+  else
+  {
+    vtkMesoAtomTableConversion::ToPolyData(models[model], 1.0, output);
+  }
   vtkMesoAtomTableConversion::SetFieldValue(output, vtkMesoArrayNames::ModelIndex, double(model));
   vtkMesoAtomTableConversion::SetFieldValue(output, vtkMesoArrayNames::CoarseGrained,
                                             this->Parsed->File.coarse_grained ? 1.0 : 0.0);
@@ -198,6 +234,84 @@ const char* vtkMesoStructureReader::GetTitle()
   return this->Parsed->File.title.c_str();
 }
 
+bool vtkMesoStructureReader::ChosenAssembly(const mesolens::Assembly*& assembly)
+{
+  assembly = nullptr;
+  if (this->Assembly.empty())
+  {
+    return true;
+  }
+  const std::vector<mesolens::Assembly>& assemblies = this->Parsed->File.assemblies;
+  assembly = mesolens::find_assembly(assemblies, this->Assembly);
+  if (assembly)
+  {
+    return true;
+  }
+  std::string names;
+  for (const mesolens::Assembly& a : assemblies)
+  {
+    names += (names.empty() ? "'" : ", '") + a.name + "'";
+  }
+  vtkErrorMacro(<< this->FileName << " defines no assembly '" << this->Assembly << "' ("
+                << (names.empty() ? std::string("it defines none") : "it defines " + names)
+                << "); Assembly \"\" gives the asymmetric unit.");
+  return false;
+}
+
+int vtkMesoStructureReader::GetNumberOfAssemblies()
+{
+  this->UpdateInformation();
+  return this->Parsed->Valid ? static_cast<int>(this->Parsed->File.assemblies.size()) : 0;
+}
+
+namespace {
+const mesolens::Assembly* AssemblyAt(const mesolens::StructureFile& file, int index)
+{
+  return index >= 0 && std::size_t(index) < file.assemblies.size()
+    ? &file.assemblies[std::size_t(index)]
+    : nullptr;
+}
+}
+
+const char* vtkMesoStructureReader::GetAssemblyName(int index)
+{
+  this->UpdateInformation();
+  const mesolens::Assembly* assembly = AssemblyAt(this->Parsed->File, index);
+  return assembly ? assembly->name.c_str() : "";
+}
+
+const char* vtkMesoStructureReader::GetAssemblyDetails(int index)
+{
+  this->UpdateInformation();
+  const mesolens::Assembly* assembly = AssemblyAt(this->Parsed->File, index);
+  return assembly ? assembly->details.c_str() : "";
+}
+
+vtkIdType vtkMesoStructureReader::GetAssemblyCopyCount(int index)
+{
+  this->UpdateInformation();
+  const mesolens::Assembly* assembly = AssemblyAt(this->Parsed->File, index);
+  return assembly ? vtkIdType(assembly->copy_count()) : 0;
+}
+
+vtkIdType vtkMesoStructureReader::GetAssemblyAtomCount(int index)
+{
+  this->UpdateInformation();
+  const mesolens::Assembly* assembly = AssemblyAt(this->Parsed->File, index);
+  if (!assembly || this->Parsed->File.models.empty())
+  {
+    return 0;
+  }
+  try
+  {
+    return vtkIdType(mesolens::assembly_atom_count(this->Parsed->File.models.front(), *assembly));
+  }
+  catch (const mesolens::Error&)
+  {
+    return 0;
+  }
+}
+
 const char* vtkMesoStructureReader::GetWarnings()
 {
   return this->Parsed->Warnings.c_str();
@@ -209,4 +323,7 @@ void vtkMesoStructureReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "FileName: " << (this->FileName.empty() ? "(none)" : this->FileName) << "\n";
   os << indent << "KeepAllAlternateLocations: " << this->KeepAllAlternateLocations << "\n";
   os << indent << "RemoveHydrogens: " << this->RemoveHydrogens << "\n";
+  os << indent << "Assembly: " << (this->Assembly.empty() ? "(asymmetric unit)" : this->Assembly)
+     << "\n";
+  os << indent << "MaximumAssemblyAtoms: " << this->MaximumAssemblyAtoms << "\n";
 }

@@ -30,6 +30,13 @@
  * BondTolerance, in O(n) with a spatial grid. Files of coarse-grained beads (detected, or forced
  * with ForceCoarseGrained) bond beads of a molecule closer than CoarseGrainedBeadCutoff.
  *
+ * Biological assemblies (PDB REMARK 350, mmCIF _pdbx_struct_assembly*; see
+ * mesolens::read_structure): Assembly names one (as the file does: "1", "2", "PAU"); the output
+ * is then its atoms, every copy of the asymmetric unit that makes it (mesolens::expand_assembly),
+ * with the int point array `AssemblyCopy` (0-based copy; copy c of chain "A" is named "A" for
+ * c = 0 and "A-(c + 1)" after) and no periodic box. GetNumberOfAssemblies() and the
+ * GetAssembly*() functions list what the file has.
+ *
  * Models (NMR ensembles) are time steps: TIME_STEPS = 0, 1, ..., NumberOfModels - 1, and
  * UPDATE_TIME_STEP t selects model round(t), clamped to the valid range.
  *
@@ -44,6 +51,10 @@
 
 #include <memory>
 #include <string>
+
+namespace mesolens {
+struct Assembly;
+}
 
 class MESOLENSFILTERS_EXPORT vtkMesoStructureReader : public vtkMesoAtomReader
 {
@@ -76,8 +87,34 @@ public:
   vtkBooleanMacro(RemoveHydrogens, bool);
   ///@}
 
+  ///@{
+  /// The biological assembly to build, by the file's name for it ("1"); "" (default): the
+  /// asymmetric unit, the atoms as the file gives them. A name the file does not define is an
+  /// error naming the ones it does.
+  vtkSetStdStringFromCharMacro(Assembly);
+  vtkGetCharFromStdStringMacro(Assembly);
+  ///@}
+
+  ///@{
+  /// The most atoms an assembly may have (about 175 bytes each); a larger one is an error that
+  /// says how many it has. Range [1, 2^31 - 1]; default 3e7 (1m4x, a whole PBCV-1 capsid: 16.3
+  /// million).
+  vtkSetClampMacro(MaximumAssemblyAtoms, int, 1, 2147483647);
+  vtkGetMacro(MaximumAssemblyAtoms, int);
+  ///@}
+
   /// Number of models in the file (valid after UpdateInformation; 0 on error).
   int GetNumberOfModels();
+
+  /// Number of biological assemblies the file defines (after UpdateInformation; 0 on error).
+  int GetNumberOfAssemblies();
+  /// Name (what Assembly takes), description and copies of assembly `index` in [0,
+  /// GetNumberOfAssemblies()); "" and 0 out of range.
+  const char* GetAssemblyName(int index);
+  const char* GetAssemblyDetails(int index);
+  vtkIdType GetAssemblyCopyCount(int index);
+  /// Atoms of assembly `index` built from the first model with the reader's options.
+  vtkIdType GetAssemblyAtomCount(int index);
 
   /// Title of the entry (TITLE or _struct.title), valid after UpdateInformation.
   const char* GetTitle();
@@ -97,6 +134,8 @@ protected:
   bool RemoveHydrogens;
   // The reader's own.
   std::string FileName;
+  std::string Assembly;
+  int MaximumAssemblyAtoms = 30000000;
 
 private:
   vtkMesoStructureReader(const vtkMesoStructureReader&) = delete;
@@ -104,6 +143,10 @@ private:
 
   /// Parses the file unless the cached parse is newer than every setting.
   bool ReadIfNeeded();
+
+  /// The assembly Assembly names, or nullptr for the asymmetric unit; false (after an error
+  /// naming the file's assemblies) when the file has no such assembly.
+  bool ChosenAssembly(const mesolens::Assembly*& assembly);
 
   struct Cache;
   std::unique_ptr<Cache> Parsed;

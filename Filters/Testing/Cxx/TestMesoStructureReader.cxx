@@ -188,3 +188,122 @@ TEST(vtkMesoStructureReader, BadInputsFailCleanly)
   EXPECT_EQ(unset->GetExecutive()->Update(), 0);
   EXPECT_NE(events.AllErrors().find("FileName"), std::string::npos);
 }
+
+namespace {
+/// Crambin with a REMARK 350 assembly of three copies, the second and third shifted by 100 Å
+/// and 200 Å along x.
+std::string CrambinTrimer()
+{
+  std::string remarks = "REMARK 350 BIOMOLECULE: 1\n"
+                        "REMARK 350 APPLY THE FOLLOWING TO CHAINS: A\n";
+  for (int copy = 1; copy <= 3; ++copy)
+  {
+    char line[256];
+    const double shift = 100.0 * (copy - 1);
+    std::snprintf(line, sizeof line,
+                  "REMARK 350   BIOMT1 %3d  1.000000  0.000000  0.000000 %14.5f\n"
+                  "REMARK 350   BIOMT2 %3d  0.000000  1.000000  0.000000 %14.5f\n"
+                  "REMARK 350   BIOMT3 %3d  0.000000  0.000000  1.000000 %14.5f\n",
+                  copy, shift, copy, 0.0, copy, 0.0);
+    remarks += line;
+  }
+  // The file's own REMARK 350 (a monomer) is left out.
+  std::istringstream crambin(mesolens_test::read_bytes(data_file("proteins/1crn.pdb")));
+  std::string records;
+  for (std::string record; std::getline(crambin, record);)
+  {
+    if (record.rfind("REMARK 350", 0) != 0)
+    {
+      records += record + "\n";
+    }
+  }
+  return mesolens_test::write_bytes("crambin_trimer.pdb", remarks + records);
+}
+}
+
+TEST(vtkMesoStructureReader, AnAssemblyGivesEveryCopyWithItsIndex)
+{
+  vtkNew<vtkMesoStructureReader> reader;
+  reader->SetFileName(CrambinTrimer().c_str());
+  ASSERT_EQ(reader->GetNumberOfAssemblies(), 1);
+  EXPECT_STREQ(reader->GetAssemblyName(0), "1");
+  EXPECT_EQ(reader->GetAssemblyCopyCount(0), 3);
+  EXPECT_EQ(reader->GetAssemblyAtomCount(0), 3 * 327);
+  EXPECT_STREQ(reader->GetAssemblyName(1), "");
+  reader->Update();
+  const vtkIdType lines = reader->GetOutput()->GetNumberOfLines();
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 327);
+  EXPECT_EQ(reader->GetOutput()->GetPointData()->GetArray(vtkMesoArrayNames::AssemblyCopy),
+            nullptr);
+
+  reader->SetAssembly("1");
+  ASSERT_EQ(reader->GetExecutive()->Update(), 1);
+  vtkPolyData* atoms = reader->GetOutput();
+  ASSERT_EQ(atoms->GetNumberOfPoints(), 3 * 327);
+  EXPECT_EQ(atoms->GetNumberOfVerts(), 3 * 327);
+  EXPECT_EQ(atoms->GetNumberOfLines(), 3 * lines);
+  vtkDataArray* copies = atoms->GetPointData()->GetArray(vtkMesoArrayNames::AssemblyCopy);
+  ASSERT_NE(copies, nullptr);
+  auto* chains = vtkStringArray::SafeDownCast(
+    atoms->GetPointData()->GetAbstractArray(vtkMesoArrayNames::ChainId));
+  for (vtkIdType copy = 0; copy < 3; ++copy)
+  {
+    const vtkIdType first = copy * 327;
+    EXPECT_EQ(copies->GetTuple1(first), double(copy));
+    EXPECT_EQ(copies->GetTuple1(first + 326), double(copy));
+    EXPECT_EQ(chains->GetValue(first), copy == 0 ? "A" : "A-" + std::to_string(copy + 1));
+    EXPECT_NEAR(atoms->GetPoint(first)[0], atoms->GetPoint(0)[0] + 100.0 * copy, 1e-3);
+    EXPECT_NEAR(atoms->GetPoint(first + 5)[2], atoms->GetPoint(5)[2], 1e-4);
+  }
+  EXPECT_EQ(atoms->GetFieldData()->GetArray(vtkMesoArrayNames::PeriodicBoxVectors), nullptr);
+
+  // Back to the asymmetric unit.
+  reader->SetAssembly("");
+  reader->Update();
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 327);
+}
+
+TEST(vtkMesoStructureReader, BadAssembliesFailCleanly)
+{
+  vtkNew<vtkMesoStructureReader> reader;
+  reader->SetFileName(CrambinTrimer().c_str());
+  mesolens_test::EventRecorder events(reader);
+  reader->SetAssembly("7");
+  EXPECT_EQ(reader->GetExecutive()->Update(), 0);
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_NE(events.AllErrors().find("no assembly '7' (it defines '1')"), std::string::npos)
+    << events.AllErrors();
+  events.Clear();
+  reader->SetAssembly("1");
+  reader->SetMaximumAssemblyAtoms(500);
+  EXPECT_EQ(reader->GetExecutive()->Update(), 0);
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_NE(events.AllErrors().find("981"), std::string::npos) << events.AllErrors();
+  EXPECT_NE(events.AllErrors().find("500"), std::string::npos) << events.AllErrors();
+  events.Clear();
+  vtkNew<vtkMesoStructureReader> none;
+  mesolens_test::EventRecorder none_events(none);
+  none->SetFileName(data_file("proteins/1crn.cif").c_str());
+  EXPECT_EQ(none->GetNumberOfAssemblies(), 1);
+  none->SetAssembly("PAU");
+  EXPECT_EQ(none->GetExecutive()->Update(), 0);
+  EXPECT_NE(none_events.AllErrors().find("it defines '1'"), std::string::npos)
+    << none_events.AllErrors();
+}
+
+TEST(vtkMesoStructureReader, PhiX174VirionHasSixtyCopies)
+{
+  const std::string path = mesolens_test::shared_file("proteins/1rb8.pdb");
+  if (!mesolens_test::exists(path))
+  {
+    GTEST_SKIP() << "needs ../shared/data";
+  }
+  vtkNew<vtkMesoStructureReader> reader;
+  reader->SetFileName(path.c_str());
+  reader->SetAssembly("1");
+  ASSERT_EQ(reader->GetExecutive()->Update(), 1);
+  EXPECT_EQ(reader->GetOutput()->GetNumberOfPoints(), 306720); // gemmi's make_assembly
+  EXPECT_EQ(
+    reader->GetOutput()->GetPointData()->GetArray(vtkMesoArrayNames::AssemblyCopy)->GetRange()[1],
+    59.0);
+}

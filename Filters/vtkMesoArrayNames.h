@@ -31,6 +31,14 @@ constexpr const char* SecondaryStructure = "SecondaryStructure";
 constexpr const char* SecondaryStructureId = "SecondaryStructureId";
 // vtkMesoStructureReader with an Assembly: the copy of the asymmetric unit an atom belongs to.
 constexpr const char* AssemblyCopy = "AssemblyCopy";
+// vtkMesoStructureReader's output 1: the copies of an assembly (vtkMesoAssemblyInstances.h).
+constexpr const char* AssemblyAtomSet = "AssemblyAtomSet";
+constexpr const char* AssemblyMatrix = "AssemblyMatrix";
+constexpr const char* AssemblyOrientation = "AssemblyOrientation";
+constexpr const char* AssemblyBoundingSphere = "AssemblyBoundingSphere";
+constexpr const char* AssemblyAtomSetOffsets = "AssemblyAtomSetOffsets";
+constexpr const char* AssemblyAtomSetAtoms = "AssemblyAtomSetAtoms";
+constexpr const char* AssemblyAtomSetWhole = "AssemblyAtomSetWhole";
 
 // Atoms: field data of the readers (PeriodicBoxVectors: 9 values, the box vectors a, b, c row by
 // row).

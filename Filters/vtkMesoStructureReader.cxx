@@ -2,6 +2,7 @@
 #include "vtkMesoStructureReader.h"
 
 #include "vtkMesoArrayNames.h"
+#include "vtkMesoAssemblyInstances.h"
 #include "vtkMesoAtomPieces.h"
 
 #include "vtkMesoAtomReaderParameters.h"
@@ -40,6 +41,7 @@ struct vtkMesoStructureReader::Cache
 vtkMesoStructureReader::vtkMesoStructureReader()
   : Parsed(new Cache)
 {
+  this->SetNumberOfOutputPorts(2);
   const mesolens::StructureReadParams defaults;
   this->KeepAllAlternateLocations = defaults.alt_locs == mesolens::AltLocPolicy::KeepAll;
   this->RemoveHydrogens = defaults.remove_hydrogens;
@@ -160,6 +162,8 @@ int vtkMesoStructureReader::RequestData(vtkInformation*, vtkInformationVector**,
   vtkInformation* outInfo = outputVector->GetInformationObject(0);
   vtkPolyData* output = vtkPolyData::GetData(outInfo);
   output->Initialize();
+  vtkPolyData* copies = vtkPolyData::GetData(outputVector, 1);
+  copies->Initialize();
   if (!this->ReadIfNeeded())
   {
     return 0;
@@ -180,30 +184,13 @@ int vtkMesoStructureReader::RequestData(vtkInformation*, vtkInformationVector**,
   {
     return 0;
   }
-  if (assembly)
+  if (assembly && !this->WriteAssembly(models[model], *assembly, output, copies))
   {
-    mesolens::AssemblyExpansionParams params;
-    params.max_atoms = std::size_t(this->MaximumAssemblyAtoms);
-    params.parallel_for = vtkMesoParallelFor::Get();
-    mesolens::AssemblyExpansion expansion;
-    try
-    {
-      expansion = mesolens::expand_assembly(models[model], *assembly, params);
-    }
-    catch (const mesolens::Error& e)
-    {
-      vtkErrorMacro("Cannot build assembly '" << this->Assembly << "' of " << this->FileName << ": "
-                                              << e.what());
-      return 0;
-    }
-    vtkMesoAtomTableConversion::ToPolyData(expansion.atoms, 1.0, output);
-    vtkNew<vtkIntArray> copies;
-    copies->SetName(vtkMesoArrayNames::AssemblyCopy);
-    copies->SetNumberOfValues(vtkIdType(expansion.copy_of_atom.size()));
-    std::copy(expansion.copy_of_atom.begin(), expansion.copy_of_atom.end(), copies->GetPointer(0));
-    output->GetPointData()->AddArray(copies);
+    output->Initialize();
+    copies->Initialize();
+    return 0;
   }
-  else
+  if (!assembly || !this->ExpandAssembly)
   {
     vtkMesoAtomTableConversion::ToPolyData(models[model], 1.0, output);
   }
@@ -232,6 +219,45 @@ const char* vtkMesoStructureReader::GetTitle()
 {
   this->UpdateInformation();
   return this->Parsed->File.title.c_str();
+}
+
+bool vtkMesoStructureReader::WriteAssembly(const mesolens::AtomTable& asymmetric_unit,
+                                           const mesolens::Assembly& assembly, vtkPolyData* atoms,
+                                           vtkPolyData* copies)
+{
+  try
+  {
+    if (!vtkMesoAssemblyInstances::Write(mesolens::assembly_instances(asymmetric_unit, assembly),
+                                         copies))
+    {
+      vtkWarningMacro("Assembly '" << this->Assembly << "' of " << this->FileName
+                                   << " has operators that are not rotations: its copies "
+                                      "have no AssemblyOrientation (expand it to draw it)");
+    }
+    if (!this->ExpandAssembly)
+    {
+      return true;
+    }
+    mesolens::AssemblyExpansionParams params;
+    params.max_atoms = std::size_t(this->MaximumAssemblyAtoms);
+    params.parallel_for = vtkMesoParallelFor::Get();
+    const mesolens::AssemblyExpansion expansion =
+      mesolens::expand_assembly(asymmetric_unit, assembly, params);
+    vtkMesoAtomTableConversion::ToPolyData(expansion.atoms, 1.0, atoms);
+    vtkNew<vtkIntArray> copy_of_atom;
+    copy_of_atom->SetName(vtkMesoArrayNames::AssemblyCopy);
+    copy_of_atom->SetNumberOfValues(vtkIdType(expansion.copy_of_atom.size()));
+    std::copy(expansion.copy_of_atom.begin(), expansion.copy_of_atom.end(),
+              copy_of_atom->GetPointer(0));
+    atoms->GetPointData()->AddArray(copy_of_atom);
+    return true;
+  }
+  catch (const mesolens::Error& e)
+  {
+    vtkErrorMacro("Cannot build assembly '" << this->Assembly << "' of " << this->FileName << ": "
+                                            << e.what());
+    return false;
+  }
 }
 
 bool vtkMesoStructureReader::ChosenAssembly(const mesolens::Assembly*& assembly)
@@ -326,4 +352,5 @@ void vtkMesoStructureReader::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Assembly: " << (this->Assembly.empty() ? "(asymmetric unit)" : this->Assembly)
      << "\n";
   os << indent << "MaximumAssemblyAtoms: " << this->MaximumAssemblyAtoms << "\n";
+  os << indent << "ExpandAssembly: " << this->ExpandAssembly << "\n";
 }

@@ -35,7 +35,11 @@
  * is then its atoms, every copy of the asymmetric unit that makes it (mesolens::expand_assembly),
  * with the int point array `AssemblyCopy` (0-based copy; copy c of chain "A" is named "A" for
  * c = 0 and "A-(c + 1)" after) and no periodic box. GetNumberOfAssemblies() and the
- * GetAssembly*() functions list what the file has.
+ * GetAssembly*() functions list what the file has. Output 1 holds the chosen assembly's copies
+ * as instances (vtkMesoAssemblyInstances.h: a point per copy with its matrix and orientation;
+ * empty without an assembly); with ExpandAssembly off, output 0 stays the asymmetric unit, and
+ * a vtkGlyph3DMapper of output 1 (orientation `AssemblyOrientation` as a quaternion, no
+ * scaling) draws one copy's ribbons or surface as the whole assembly, in one instanced call.
  *
  * Models (NMR ensembles) are time steps: TIME_STEPS = 0, 1, ..., NumberOfModels - 1, and
  * UPDATE_TIME_STEP t selects model round(t), clamped to the valid range.
@@ -54,6 +58,7 @@
 
 namespace mesolens {
 struct Assembly;
+struct AtomTable;
 }
 
 class MESOLENSFILTERS_EXPORT vtkMesoStructureReader : public vtkMesoAtomReader
@@ -93,6 +98,14 @@ public:
   /// error naming the ones it does.
   vtkSetStdStringFromCharMacro(Assembly);
   vtkGetCharFromStdStringMacro(Assembly);
+  ///@}
+
+  ///@{
+  /// Output 0 is the assembly's atoms (on, default) or the asymmetric unit's (off: draw the
+  /// copies from output 1 instead). Without an Assembly, output 0 is the asymmetric unit.
+  vtkSetMacro(ExpandAssembly, bool);
+  vtkGetMacro(ExpandAssembly, bool);
+  vtkBooleanMacro(ExpandAssembly, bool);
   ///@}
 
   ///@{
@@ -136,6 +149,7 @@ protected:
   std::string FileName;
   std::string Assembly;
   int MaximumAssemblyAtoms = 30000000;
+  bool ExpandAssembly = true;
 
 private:
   vtkMesoStructureReader(const vtkMesoStructureReader&) = delete;
@@ -147,6 +161,11 @@ private:
   /// The assembly Assembly names, or nullptr for the asymmetric unit; false (after an error
   /// naming the file's assemblies) when the file has no such assembly.
   bool ChosenAssembly(const mesolens::Assembly*& assembly);
+
+  /// Output 1 (the copies) and, with ExpandAssembly, output 0 (the atoms) of `assembly`; false
+  /// after an error.
+  bool WriteAssembly(const mesolens::AtomTable& asymmetric_unit, const mesolens::Assembly& assembly,
+                     vtkPolyData* atoms, vtkPolyData* copies);
 
   struct Cache;
   std::unique_ptr<Cache> Parsed;

@@ -3,6 +3,9 @@
 
 #include "mesolens/common/errors.h"
 
+#include <Eigen/Geometry>
+
+#include <cmath>
 #include <unordered_set>
 
 namespace mesolens {
@@ -30,6 +33,32 @@ std::array<double, 3> transform_point(const AssemblyMatrix& m, const std::array<
   return { m[0] * p[0] + m[1] * p[1] + m[2] * p[2] + m[3],
            m[4] * p[0] + m[5] * p[1] + m[6] * p[2] + m[7],
            m[8] * p[0] + m[9] * p[1] + m[10] * p[2] + m[11] };
+}
+
+std::array<double, 4> rotation_quaternion(const AssemblyMatrix& matrix)
+{
+  Eigen::Matrix3d rotation;
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      rotation(i, j) = matrix[std::size_t(4 * i + j)];
+    }
+  }
+  constexpr double tolerance = 1e-3;
+  const double off_identity =
+    (rotation * rotation.transpose() - Eigen::Matrix3d::Identity()).cwiseAbs().maxCoeff();
+  if (!(off_identity <= tolerance) || !(std::abs(rotation.determinant() - 1.0) <= tolerance))
+  {
+    throw InvalidInput("the assembly operator is not a rotation (R R^T differs from I by " +
+                       std::to_string(off_identity) +
+                       ", det R = " + std::to_string(rotation.determinant()) +
+                       "): its copy cannot be drawn as a rotated instance");
+  }
+  Eigen::Quaterniond q(rotation);
+  q.normalize();
+  const double sign = q.w() < 0.0 ? -1.0 : 1.0;
+  return { sign * q.w(), sign * q.x(), sign * q.y(), sign * q.z() };
 }
 
 std::size_t Assembly::copy_count() const

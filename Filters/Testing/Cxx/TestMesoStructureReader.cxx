@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 #include "vtkMesoArrayNames.h"
+#include "vtkMesoAssemblyInstances.h"
 #include "vtkMesoStructureReader.h"
 
 #include "mesolens_test_data.h"
@@ -306,4 +307,46 @@ TEST(vtkMesoStructureReader, PhiX174VirionHasSixtyCopies)
   EXPECT_EQ(
     reader->GetOutput()->GetPointData()->GetArray(vtkMesoArrayNames::AssemblyCopy)->GetRange()[1],
     59.0);
+}
+
+TEST(vtkMesoStructureReader, AssemblyCopiesAsInstances)
+{
+  vtkNew<vtkMesoStructureReader> reader;
+  reader->SetFileName(CrambinTrimer().c_str());
+  reader->Update();
+  EXPECT_EQ(reader->GetOutput(1)->GetNumberOfPoints(), 0); // no assembly chosen
+  reader->SetAssembly("1");
+  reader->ExpandAssemblyOff();
+  ASSERT_EQ(reader->GetExecutive()->Update(), 1);
+  EXPECT_EQ(reader->GetOutput(0)->GetNumberOfPoints(), 327);
+  EXPECT_EQ(reader->GetOutput(0)->GetPointData()->GetArray(vtkMesoArrayNames::AssemblyCopy),
+            nullptr);
+  vtkPolyData* copies = reader->GetOutput(1);
+  ASSERT_EQ(copies->GetNumberOfPoints(), 3);
+  EXPECT_EQ(copies->GetNumberOfVerts(), 3);
+  vtkDataArray* orientation =
+    copies->GetPointData()->GetArray(vtkMesoArrayNames::AssemblyOrientation);
+  ASSERT_NE(orientation, nullptr);
+  for (vtkIdType c = 0; c < 3; ++c)
+  {
+    EXPECT_NEAR(copies->GetPoint(c)[0], 100.0 * c, 1e-9);
+    EXPECT_NEAR(orientation->GetComponent(c, 0), 1.0, 1e-12);
+  }
+  mesolens::AssemblyInstances read;
+  ASSERT_TRUE(vtkMesoAssemblyInstances::Read(copies, read));
+  ASSERT_EQ(read.instances.size(), 3u);
+  ASSERT_EQ(read.atom_sets.size(), 1u);
+  EXPECT_TRUE(read.atom_sets[0].whole_table);
+  EXPECT_EQ(read.atom_sets[0].atoms.size(), 327u);
+  EXPECT_EQ(read.instances[2].matrix[3], 200.0);
+  EXPECT_GT(read.instances[1].radius, 10.0);
+  // Expanded, output 1 still holds the copies.
+  reader->ExpandAssemblyOn();
+  reader->Update();
+  EXPECT_EQ(reader->GetOutput(0)->GetNumberOfPoints(), 3 * 327);
+  EXPECT_EQ(reader->GetOutput(1)->GetNumberOfPoints(), 3);
+  // Not the reader's copies: refused.
+  vtkNew<vtkPolyData> other;
+  EXPECT_FALSE(vtkMesoAssemblyInstances::Read(other, read));
+  EXPECT_FALSE(vtkMesoAssemblyInstances::Read(nullptr, read));
 }

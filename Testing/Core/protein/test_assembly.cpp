@@ -815,3 +815,44 @@ TEST(Assembly, Mmcif1m4xProductIsThePdbBiomtList)
 }
 
 } // namespace
+
+TEST(Assembly, RotationsAsQuaternions)
+{
+  const double half = std::sqrt(0.5);
+  // 90 degrees about z: (cos 45, 0, 0, sin 45).
+  const mesolens::AssemblyMatrix quarter = { 0, -1, 0, 5, 1, 0, 0, 6, 0, 0, 1, 7 };
+  const auto q = mesolens::rotation_quaternion(quarter);
+  EXPECT_NEAR(q[0], half, 1e-12);
+  EXPECT_NEAR(q[1], 0.0, 1e-12);
+  EXPECT_NEAR(q[2], 0.0, 1e-12);
+  EXPECT_NEAR(q[3], half, 1e-12);
+  // 180 degrees about x keeps w = 0; the identity gives (1, 0, 0, 0).
+  const auto flip = mesolens::rotation_quaternion({ 1, 0, 0, 0, 0, -1, 0, 0, 0, 0, -1, 0 });
+  EXPECT_NEAR(std::abs(flip[1]), 1.0, 1e-12);
+  EXPECT_EQ(mesolens::rotation_quaternion(mesolens::identity_assembly_matrix())[0], 1.0);
+  // The quaternion's matrix is R again, for a BIOMT-like rotation written with six decimals.
+  const mesolens::AssemblyMatrix written = { 0.309017, -0.809017, 0.5,  0,        0.809017, 0.5,
+                                             0.309017, 0,         -0.5, 0.309017, 0.809017, 0 };
+  const auto r = mesolens::rotation_quaternion(written);
+  const double w = r[0], x = r[1], y = r[2], z = r[3];
+  const double back[9] = {
+    1 - 2 * (y * y + z * z), 2 * (x * y - w * z),     2 * (x * z + w * y),
+    2 * (x * y + w * z),     1 - 2 * (x * x + z * z), 2 * (y * z - w * x),
+    2 * (x * z - w * y),     2 * (y * z + w * x),     1 - 2 * (x * x + y * y)
+  };
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      EXPECT_NEAR(back[3 * i + j], written[std::size_t(4 * i + j)], 1e-5);
+    }
+  }
+  EXPECT_GE(r[0], 0.0);
+  // A reflection, a scaling and NaN are no rotations.
+  EXPECT_THROW(mesolens::rotation_quaternion({ -1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0 }),
+               mesolens::InvalidInput);
+  EXPECT_THROW(mesolens::rotation_quaternion({ 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0 }),
+               mesolens::InvalidInput);
+  EXPECT_THROW(mesolens::rotation_quaternion({ NAN, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0 }),
+               mesolens::InvalidInput);
+}

@@ -36,6 +36,13 @@ AssemblyMatrix compose(const AssemblyMatrix& left, const AssemblyMatrix& right);
 /// R·p + t for a point p (Å).
 std::array<double, 3> transform_point(const AssemblyMatrix& matrix, const std::array<double, 3>& p);
 
+/// The rotation R of `matrix` as a unit quaternion (w, x, y, z), w >= 0: what instanced
+/// drawing (vtkGlyph3DMapper's QUATERNION orientation) takes. Precondition: R is a proper
+/// rotation to 1e-3 (R Rᵀ = I and det R = 1 within 1e-3 per entry, as the PDB writes them with
+/// six decimals); throws InvalidInput otherwise (a reflection or a scaling cannot be drawn as a
+/// rotated copy: expand the assembly instead).
+std::array<double, 4> rotation_quaternion(const AssemblyMatrix& matrix);
+
 /// One copy of the atoms an AssemblyGenerator names.
 struct AssemblyOperator
 {

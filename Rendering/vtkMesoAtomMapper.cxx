@@ -5,6 +5,7 @@
 
 #include "vtkMesoAtomGPUData.h"
 #include "vtkMesoParallelFor.h"
+#include "vtkMesoSelectAtoms.h"
 
 #include "vtkMesoAtomColorFS.h"
 #include "vtkMesoAtomSphereFSDec.h"
@@ -38,6 +39,11 @@
 #include <vtkOpenGLRenderWindow.h>
 #include <vtkOpenGLVertexArrayObject.h>
 #include <vtkPolyData.h>
+#include <vtkDataArray.h>
+#include <vtkNew.h>
+#include <vtkSmartPointer.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkPointData.h>
 #include <vtkProperty.h>
 #include <vtkRenderer.h>
 #include <vtkShaderProgram.h>
@@ -153,9 +159,76 @@ struct ViewHistory
   std::vector<std::uint8_t> Seen;
 };
 
+/// The mapper's AtomSelection as a mask: a vtkMesoSelectAtoms of the input, its mask combined with
+/// the input's visibility mask; kept while the input, the text and the mask name stay.
+class SelectionMask
+{
+public:
+  static constexpr const char* MaskName = "MesoLensAtomMapperSelection";
+
+  /// The input with the combined mask array MaskName (every atom hidden after an error, which
+  /// `mapper` reports), or `input` itself when `selection` is empty.
+  vtkPolyData* Apply(vtkPolyData* input, const std::string& selection, const char* visibility,
+                     vtkMapper* mapper)
+  {
+    if (selection.empty() || !input)
+    {
+      return input;
+    }
+    const std::string mask_name = visibility ? visibility : "";
+    if (input == this->Input && input->GetMTime() == this->InputTime && selection == this->Text &&
+        mask_name == this->Visibility)
+    {
+      return this->Output;
+    }
+    this->Input = input;
+    this->InputTime = input->GetMTime();
+    this->Text = selection;
+    this->Visibility = mask_name;
+    this->Select->SetInputData(input);
+    this->Select->SetSelection(selection.c_str());
+    this->Select->SetMaskArrayName(MaskName);
+    this->Output = vtkSmartPointer<vtkPolyData>::New();
+    vtkNew<vtkUnsignedCharArray> mask;
+    if (this->Select->GetExecutive()->Update())
+    {
+      this->Output->ShallowCopy(this->Select->GetOutput());
+      mask->DeepCopy(this->Output->GetPointData()->GetArray(MaskName));
+    }
+    else
+    {
+      vtkErrorWithObjectMacro(mapper,
+                              "Selection \"" << selection
+                                             << "\" failed (see the error above): "
+                                                "no atom is drawn");
+      this->Output->ShallowCopy(input);
+      mask->SetNumberOfValues(input->GetNumberOfPoints());
+      mask->FillValue(0);
+    }
+    mask->SetName(MaskName);
+    vtkDataArray* visible =
+      mask_name.empty() ? nullptr : input->GetPointData()->GetArray(mask_name.c_str());
+    for (vtkIdType i = 0; visible && i < mask->GetNumberOfValues(); ++i)
+    {
+      mask->SetValue(i, mask->GetValue(i) && visible->GetComponent(i, 0) != 0.0 ? 1 : 0);
+    }
+    this->Output->GetPointData()->AddArray(mask);
+    return this->Output;
+  }
+
+private:
+  vtkNew<vtkMesoSelectAtoms> Select;
+  vtkPolyData* Input = nullptr;
+  vtkMTimeType InputTime = 0;
+  std::string Text;
+  std::string Visibility;
+  vtkSmartPointer<vtkPolyData> Output;
+};
+
 struct vtkMesoAtomMapper::Internals
 {
   vtkMesoAtomGPUData Data;
+  SelectionMask Selected;
   vtkNew<vtkOpenGLBufferObject> Positions;
   vtkNew<vtkOpenGLBufferObject> Types;
   vtkNew<vtkOpenGLBufferObject> Molecules;
@@ -422,7 +495,11 @@ void vtkMesoAtomMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*)
   vtkMesoAtomGPUData::Style style{ this->Style, this->RadiusScale, this->BallScale,
                                    this->BondRadius };
   std::size_t atoms_per_cell = 0;
-  const vtkIdType input_atoms = this->CurrentInput ? this->CurrentInput->GetNumberOfPoints() : 0;
+  vtkPolyData* drawn =
+    in.Selected.Apply(this->CurrentInput, this->AtomSelection, this->VisibilityArrayName, this);
+  const char* mask_name =
+    this->AtomSelection.empty() ? this->VisibilityArrayName : SelectionMask::MaskName;
+  const vtkIdType input_atoms = drawn ? drawn->GetNumberOfPoints() : 0;
   if (this->OcclusionCulling && this->AtomsPerCell > 0)
   {
     atoms_per_cell = static_cast<std::size_t>(this->AtomsPerCell);
@@ -440,8 +517,7 @@ void vtkMesoAtomMapper::BuildBufferObjects(vtkRenderer* ren, vtkActor*)
   {
     atoms_per_cell = static_cast<std::size_t>(std::clamp<vtkIdType>(input_atoms / 1024, 256, 2048));
   }
-  if (!in.Data.Update(this->CurrentInput, this->WarpInput(), style, this, atoms_per_cell,
-                      this->VisibilityArrayName))
+  if (!in.Data.Update(drawn, this->WarpInput(), style, this, atoms_per_cell, mask_name))
   {
     this->VBOBuildTime.Modified();
     return;
@@ -1024,5 +1100,8 @@ void vtkMesoAtomMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "CellPaddingFactor: " << this->CellPaddingFactor << "\n";
   os << indent << "VisibilityArrayName: "
      << (this->VisibilityArrayName ? this->VisibilityArrayName : "(none)") << "\n";
+  os << indent
+     << "AtomSelection: " << (this->AtomSelection.empty() ? "(all atoms)" : this->AtomSelection)
+     << "\n";
   os << indent << "Warp: " << (this->GetNumberOfInputConnections(1) ? "connected" : "none") << "\n";
 }

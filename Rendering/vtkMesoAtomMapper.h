@@ -92,6 +92,7 @@
 #include "vtkOpenGLPolyDataMapper.h"
 
 #include <memory>
+#include <string>
 #include <vector>
 
 namespace mesolens {
@@ -186,6 +187,17 @@ public:
   vtkGetStringMacro(VisibilityArrayName);
   ///@}
 
+  ///@{
+  /// Draw only the atoms this selection matches (the language of
+  /// mesolens/molecules/atom_selection.h, e.g. "not water and not hydrogen", "within 8 of resname
+  /// LIG"), on top of the VisibilityArrayName mask; evaluated on the input (its coordinates,
+  /// Å for MesoLens readers) whenever the input or the text changes, so a trajectory is selected
+  /// frame by frame. Default "": every atom. A bad expression is an error naming the character,
+  /// and then no atom is drawn. Like the mask, a new selection uploads the type bytes only.
+  vtkSetStdStringFromCharMacro(AtomSelection);
+  vtkGetCharFromStdStringMacro(AtomSelection);
+  ///@}
+
   /// Atoms hidden by the visibility masks at the last buffer update (in all tiles of a warp:
   /// the patch's hidden atoms times the tiles, plus the atoms of the molecules hidden per tile).
   vtkIdType GetHiddenAtomCount() const;
@@ -239,6 +251,7 @@ protected:
   int AtomsPerCell = 0;
   double CellPaddingFactor = 1;
   char* VisibilityArrayName = nullptr;
+  std::string AtomSelection;
 
 private:
   vtkMesoAtomMapper(const vtkMesoAtomMapper&) = delete;

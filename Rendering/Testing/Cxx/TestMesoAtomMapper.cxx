@@ -632,6 +632,49 @@ TEST(MesoAtomMapper, VisibilityMaskHidesAtomsAndBondsWithoutNewPositions)
   EXPECT_GT(picked_atoms, 100);
 }
 
+TEST(MesoAtomMapper, SelectionDrawsOnlyTheAtomsItMatches)
+{
+  auto reader = mesolens_test::crambin();
+  vtkNew<vtkPolyData> atoms;
+  atoms->DeepCopy(reader->GetOutput());
+  const vtkIdType n = atoms->GetNumberOfPoints();
+  auto* residues = atoms->GetPointData()->GetArray(vtkMesoArrayNames::ResidueNumber);
+  std::vector<bool> in_selection(static_cast<std::size_t>(n));
+  for (vtkIdType a = 0; a < n; ++a)
+    in_selection[std::size_t(a)] = residues->GetTuple1(a) <= 10.0;
+  Scene selected = make_scene(atoms, vtkMesoAtomMapper::BALL_AND_STICK);
+  Scene alone = make_scene(visible_subset(atoms, in_selection), vtkMesoAtomMapper::BALL_AND_STICK);
+  for (Scene* scene : { &selected, &alone })
+    scene->Window->SetSize(160, 160);
+  mesolens_test::look_at(selected.Renderer, atoms, 45.0);
+  alone.Renderer->SetActiveCamera(selected.Renderer->GetActiveCamera());
+  selected.Mapper->SetAtomSelection("resid 1-10");
+  selected.Window->Render();
+  alone.Window->Render();
+  EXPECT_EQ(selected.Mapper->GetHiddenAtomCount(), n - 70);
+  EXPECT_LT(differing_pixels(capture(selected.Window), capture(alone.Window)), 5);
+  // With a visibility mask as well, an atom shows when both keep it.
+  std::vector<bool> visible(static_cast<std::size_t>(n));
+  vtkIdType shown = 0;
+  for (vtkIdType a = 0; a < n; ++a)
+  {
+    visible[std::size_t(a)] = a % 2 == 0;
+    shown += visible[std::size_t(a)] && in_selection[std::size_t(a)];
+  }
+  set_mask(atoms, visible);
+  selected.Window->Render();
+  EXPECT_EQ(selected.Mapper->GetHiddenAtomCount(), n - shown);
+  // A bad selection is an error and draws nothing; none draws every atom the mask keeps.
+  mesolens_test::EventRecorder events(selected.Mapper);
+  selected.Mapper->SetAtomSelection("resid 1-10 and (name CA");
+  selected.Window->Render();
+  EXPECT_EQ(selected.Mapper->GetHiddenAtomCount(), n);
+  EXPECT_NE(events.AllErrors().find("no atom is drawn"), std::string::npos) << events.AllErrors();
+  selected.Mapper->SetAtomSelection("");
+  selected.Window->Render();
+  EXPECT_EQ(selected.Mapper->GetHiddenAtomCount(), n - (n + 1) / 2);
+}
+
 TEST(MesoAtomMapper, VisibilityMaskWithCulling)
 {
   // Half a 27 000-atom block hidden (x below the middle), drawn in culling cells: the same

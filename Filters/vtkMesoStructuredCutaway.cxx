@@ -6,6 +6,7 @@
 
 #include "vtkMesoIntValues.h"
 #include "vtkMesoParallelFor.h"
+#include "vtkMesoSelectAtoms.h"
 #include "vtkMesoStamp.h"
 #include "vtkMesoSurfaceConversion.h"
 
@@ -17,6 +18,7 @@
 
 #include <vtkDataArray.h>
 #include <vtkDoubleArray.h>
+#include <vtkExecutive.h>
 #include <vtkFieldData.h>
 #include <vtkFloatArray.h>
 #include <vtkCellArray.h>
@@ -276,6 +278,7 @@ struct vtkMesoStructuredCutaway::Internals
   std::pair<double, int> PriorityFrom{ 2.0, -1 };
 
   std::map<std::string, double> ResidueFractions;
+  vtkNew<vtkMesoSelectAtoms> Select; // the hideable selection
 
   /// The fractions set per residue name, for the molecule types that have them.
   void AddResidueFractions(mesolens::CutawayParams& settings) const
@@ -374,11 +377,12 @@ struct vtkMesoStructuredCutaway::Internals
   }
 
   /// Stage 4: the removal order for the cut (kept while only the fractions change) and the
-  /// molecules it leaves visible.
+  /// molecules it leaves visible, of those that may be hidden (`hideable`; empty: all).
   template<typename OrderKey>
   std::vector<std::uint8_t> Visibility(vtkImplicitFunction* cut,
                                        const mesolens::CutawayParams& settings,
-                                       const OrderKey& order_from)
+                                       const OrderKey& order_from,
+                                       const std::vector<std::uint8_t>& hideable)
   {
     if (!this->HasOrder || this->OrderFrom != order_from)
     {
@@ -392,7 +396,47 @@ struct vtkMesoStructuredCutaway::Internals
       this->HasOrder = true;
       ++this->Orderings;
     }
-    return this->Solver->visibility(this->Order, settings);
+    if (hideable.empty())
+    {
+      return this->Solver->visibility(this->Order, settings);
+    }
+    // The fractions apply to the molecules that may be hidden: the others leave the order.
+    mesolens::RemovalOrder order = this->Order;
+    for (auto& entry : order.by_type)
+    {
+      std::vector<std::uint32_t>& molecules = entry.second;
+      molecules.erase(std::remove_if(molecules.begin(), molecules.end(),
+                                     [&hideable](std::uint32_t m) { return !hideable[m]; }),
+                      molecules.end());
+    }
+    return this->Solver->visibility(order, settings);
+  }
+
+  /// Per molecule, 1 when the selection matches every one of its atoms; empty for no selection.
+  std::vector<std::uint8_t> Hideable(vtkPolyData* atoms, const std::string& selection)
+  {
+    if (selection.empty())
+    {
+      return {};
+    }
+    this->Select->SetInputData(atoms);
+    this->Select->SetSelection(selection.c_str());
+    this->Select->SetMaskArrayName("Hideable");
+    if (!this->Select->GetExecutive()->Update())
+    {
+      throw mesolens::InvalidInput("the hideable selection failed (see the error above)");
+    }
+    vtkDataArray* mask = this->Select->GetOutput()->GetPointData()->GetArray("Hideable");
+    const mesolens::MoleculeGroups& groups = this->Groups.Groups;
+    std::vector<std::uint8_t> hideable(groups.count(), 1);
+    for (std::size_t a = 0; a < groups.of_atom.size(); ++a)
+    {
+      if (mask->GetComponent(vtkIdType(a), 0) == 0.0)
+      {
+        hideable[groups.of_atom[a]] = 0;
+      }
+    }
+    return hideable;
   }
 
   /// Stage 5, the per-atom arrays: each atom's removal priority (kept per K and assignment)
@@ -555,9 +599,12 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
   structure_output->Initialize();
   // On many processes every one cuts every process's atoms, so that all hide the molecules one
   // process would, and keeps its own.
+  // What AtomInput reads; every array for a selection.
+  static const std::initializer_list<const char*> grouping = { vtkMesoArrayNames::MoleculeId,
+                                                               vtkMesoArrayNames::ResidueName };
   const vtkMesoAtomPieces::GatheredInput gathered(
     inputVector[0], outputVector, vtkMesoAtomPieces::GatheredInput::KeepWhole,
-    { vtkMesoArrayNames::MoleculeId, vtkMesoArrayNames::ResidueName }); // what AtomInput reads
+    this->HideableSelection.empty() ? grouping : std::initializer_list<const char*>{});
   vtkPolyData* atoms = gathered.Whole();
   const vtkIdType first = gathered.FirstOwn();
   const vtkMesoAtomPieces::GatheredInput whole_structure(
@@ -595,8 +642,8 @@ int vtkMesoStructuredCutaway::RequestData(vtkInformation*, vtkInformationVector*
     const auto order_from = std::make_tuple(
       this->K, this->Inverted, this->RandomOrder, this->ProbabilisticOrder, this->Seed,
       vtkMesoStamp::Of(this->CutFunction), in.CentresVersion, in.Assignments);
-    const std::vector<std::uint8_t> visible =
-      in.Visibility(this->CutFunction, settings, order_from);
+    const std::vector<std::uint8_t> visible = in.Visibility(
+      this->CutFunction, settings, order_from, in.Hideable(atoms, this->HideableSelection));
 
     vtkNew<vtkPolyData> all;
     all->ShallowCopy(local_atoms);
@@ -662,6 +709,8 @@ void vtkMesoStructuredCutaway::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "StructureVertices: " << this->StructureVertices << "\n";
   os << indent << "StructureMidSurfaceRadius: " << this->StructureMidSurfaceRadius << "\n";
   os << indent << "ExtractVisibleAtoms: " << this->ExtractVisibleAtoms << "\n";
+  os << indent << "HideableSelection: "
+     << (this->HideableSelection.empty() ? "(every molecule)" : this->HideableSelection) << "\n";
   os << indent << "Orderings: " << this->Internal->Orderings << "\n";
   os << indent << "MakeAssemblyWhole: " << this->MakeAssemblyWhole << "\n";
   os << indent << "Assignments: " << this->Internal->Assignments << "\n";

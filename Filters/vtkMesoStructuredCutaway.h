@@ -59,6 +59,7 @@
 #include "vtkPolyDataAlgorithm.h"
 
 #include <memory>
+#include <string>
 
 class vtkImplicitFunction;
 
@@ -160,6 +161,16 @@ public:
   vtkBooleanMacro(ExtractVisibleAtoms, bool);
   ///@}
 
+  ///@{
+  /// Which molecules may be hidden: those whose every atom this selection matches (the language
+  /// of mesolens/molecules/atom_selection.h, e.g. "lipid and not resname CHOL"; coordinates in
+  /// the input's units); the others always show, and the fractions apply to the molecules that
+  /// may be hidden. Needs a MesoLens reader's atom arrays (`AtomName`, `ResidueIndex`). Default
+  /// "": every molecule. A bad expression is an error and empties the outputs.
+  vtkSetStdStringFromCharMacro(HideableSelection);
+  vtkGetCharFromStdStringMacro(HideableSelection);
+  ///@}
+
   /// Molecules whose first atom has residue name `residue` (e.g. "CHOL") get their own
   /// fraction hidden, [0, 1] (clamped), instead of FractionHidden.
   void SetFractionHiddenOfResidue(const char* residue, double fraction);
@@ -202,6 +213,7 @@ protected:
   vtkImplicitFunction* CutFunction = nullptr;
   bool MakeAssemblyWhole = true;
   bool ExtractVisibleAtoms = false;
+  std::string HideableSelection;
 
 private:
   vtkMesoStructuredCutaway(const vtkMesoStructuredCutaway&) = delete;

@@ -544,6 +544,67 @@ TEST(vtkMesoStructuredCutaway, PerResidueFractionsAndVisibleAtomsOnly)
   EXPECT_EQ(cutaway->GetOutput()->GetNumberOfPoints(), atom_count);
 }
 
+TEST(vtkMesoStructuredCutaway, OnlyTheMoleculesAHideableSelectionMatchesAreHidden)
+{
+  // The Martini DPPC/cholesterol bilayer, all of a ball's molecules to be hidden, but only
+  // DPPC may be: every hidden atom is DPPC, every DPPC in the ball is hidden, CHOL stays.
+  vtkNew<vtkMesoTrajectoryReader> bilayer;
+  bilayer->SetTopologyFileName(
+    mesolens_test::data_file("membranes/martini_dppc_chol_bilayer.gro").c_str());
+  bilayer->Update();
+  double bounds[6];
+  bilayer->GetOutput()->GetBounds(bounds);
+  vtkNew<vtkSphere> ball;
+  ball->SetCenter(0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
+                  0.5 * (bounds[4] + bounds[5]));
+  ball->SetRadius(40);
+  vtkNew<vtkMesoStructuredCutaway> cutaway;
+  cutaway->SetInputConnection(bilayer->GetOutputPort());
+  cutaway->SetStructureVertices(100);
+  cutaway->SetCutFunction(ball);
+  cutaway->SetFractionHidden(1.0);
+  mesolens_test::EventRecorder events(cutaway);
+  cutaway->Update();
+  const double everything = cutaway->GetOutput()
+                              ->GetFieldData()
+                              ->GetArray(vtkMesoArrayNames::MoleculesHidden)
+                              ->GetTuple1(0);
+  cutaway->SetHideableSelection("lipid and not resname CHOL");
+  cutaway->Update();
+  ASSERT_TRUE(events.Errors.empty()) << events.AllErrors();
+  vtkPolyData* output = cutaway->GetOutput();
+  auto* names = vtkStringArray::SafeDownCast(
+    output->GetPointData()->GetAbstractArray(vtkMesoArrayNames::ResidueName));
+  vtkDataArray* visible = output->GetPointData()->GetArray(vtkMesoArrayNames::Visible);
+  vtkIdType hidden_dppc = 0;
+  for (vtkIdType a = 0; a < output->GetNumberOfPoints(); ++a)
+  {
+    if (visible->GetTuple1(a) == 0)
+    {
+      EXPECT_EQ(names->GetValue(a), "DPPC");
+      ++hidden_dppc;
+    }
+  }
+  const double hidden =
+    output->GetFieldData()->GetArray(vtkMesoArrayNames::MoleculesHidden)->GetTuple1(0);
+  EXPECT_EQ(vtkIdType(hidden) * 12, hidden_dppc); // 12 beads per Martini DPPC
+  EXPECT_GT(hidden, 10.0);
+  EXPECT_LT(hidden, everything); // the ball's cholesterols stay
+  // A bad selection is an error with empty outputs; "" hides every molecule again.
+  cutaway->SetHideableSelection("lipid and");
+  events.Clear();
+  EXPECT_EQ(cutaway->GetExecutive()->Update(), 0);
+  EXPECT_EQ(cutaway->GetOutput()->GetNumberOfPoints(), 0);
+  EXPECT_FALSE(events.Errors.empty());
+  cutaway->SetHideableSelection("");
+  cutaway->Update();
+  EXPECT_EQ(cutaway->GetOutput()
+              ->GetFieldData()
+              ->GetArray(vtkMesoArrayNames::MoleculesHidden)
+              ->GetTuple1(0),
+            everything);
+}
+
 namespace {
 /// The made structure of `atoms` with 300 vertices, checked to be one sheet of even triangles
 /// with `loops` boundary loops; empty when the filter failed.

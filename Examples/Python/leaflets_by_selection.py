@@ -19,12 +19,11 @@ import os
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.vtkCommonCore import vtkLookupTable
-from vtkmodules.vtkIOImage import vtkPNGWriter
-from vtkmodules.vtkRenderingCore import (vtkActor, vtkRenderer, vtkRenderWindow,
-                                         vtkWindowToImageFilter)
+from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkRenderWindow
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL factory)
 
 import mesolens
+from mesolens.lens import write_png
 
 DATA = os.environ.get("MESOLENS_DATA_DIR",
                       os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "Data"))
@@ -110,12 +109,7 @@ def main():
     window.SetSize(args.size, args.size)
     window.AddRenderer(renderer)
     window.Render()
-    capture = vtkWindowToImageFilter()
-    capture.SetInput(window)
-    writer = vtkPNGWriter()
-    writer.SetFileName(args.output)
-    writer.SetInputConnection(capture.GetOutputPort())
-    writer.Write()
+    write_png(window, args.output)
     print("wrote", args.output)
 
 

@@ -18,12 +18,11 @@ import sys
 import time
 
 from vtkmodules.vtkCommonCore import vtkLookupTable
-from vtkmodules.vtkIOImage import vtkPNGWriter
-from vtkmodules.vtkRenderingCore import (vtkActor, vtkRenderer, vtkRenderWindow,
-                                         vtkWindowToImageFilter)
+from vtkmodules.vtkRenderingCore import vtkActor, vtkRenderer, vtkRenderWindow
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL factory)
 
 import mesolens
+from mesolens.lens import write_png
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 SHARED = os.environ.get("MESOLENS_SHARED_DATA_DIR",
@@ -94,12 +93,7 @@ def main():
     start = time.perf_counter()
     window.Render()
     print("first frame %.2f s" % (time.perf_counter() - start))
-    capture = vtkWindowToImageFilter()
-    capture.SetInput(window)
-    writer = vtkPNGWriter()
-    writer.SetFileName(args.output)
-    writer.SetInputConnection(capture.GetOutputPort())
-    writer.Write()
+    write_png(window, args.output)
     print("wrote", args.output)
 
 

@@ -480,24 +480,34 @@ TEST(vtkMesoStructuredCutaway, MartiniVesicleCutOpenAndStableOverFrames)
   EXPECT_EQ(cutaway->GetNumberOfAssignments(), 1);
 }
 
+namespace {
+/// The Martini DPPC bilayer with 20 % cholesterol read by `bilayer`, and `cutaway` of it (a
+/// structure of 100 vertices) cut by `ball`, 40 Å around its middle.
+void CutTheCholesterolBilayerByABall(vtkMesoTrajectoryReader* bilayer, vtkSphere* ball,
+                                     vtkMesoStructuredCutaway* cutaway)
+{
+  bilayer->SetTopologyFileName(
+    mesolens_test::data_file("membranes/martini_dppc_chol_bilayer.gro").c_str());
+  bilayer->Update();
+  double bounds[6];
+  bilayer->GetOutput()->GetBounds(bounds);
+  ball->SetCenter(0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
+                  0.5 * (bounds[4] + bounds[5]));
+  ball->SetRadius(40);
+  cutaway->SetInputConnection(bilayer->GetOutputPort());
+  cutaway->SetStructureVertices(100);
+  cutaway->SetCutFunction(ball);
+}
+}
+
 TEST(vtkMesoStructuredCutaway, PerResidueFractionsAndVisibleAtomsOnly)
 {
   // A Martini DPPC bilayer with 20 % cholesterol, cut by a ball around its middle.
   vtkNew<vtkMesoTrajectoryReader> bilayer;
-  bilayer->SetTopologyFileName(
-    mesolens_test::data_file("membranes/martini_dppc_chol_bilayer.gro").c_str());
-  bilayer->Update();
-  const vtkIdType atom_count = bilayer->GetOutput()->GetNumberOfPoints();
-  double bounds[6];
-  bilayer->GetOutput()->GetBounds(bounds);
   vtkNew<vtkSphere> ball;
-  ball->SetCenter(0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
-                  0.5 * (bounds[4] + bounds[5]));
-  ball->SetRadius(40);
   vtkNew<vtkMesoStructuredCutaway> cutaway;
-  cutaway->SetInputConnection(bilayer->GetOutputPort());
-  cutaway->SetStructureVertices(100);
-  cutaway->SetCutFunction(ball);
+  CutTheCholesterolBilayerByABall(bilayer, ball, cutaway);
+  const vtkIdType atom_count = bilayer->GetOutput()->GetNumberOfPoints();
   cutaway->SetFractionHidden(0.0);
   cutaway->SetFractionHiddenOfResidue("CHOL", 1.0);
   mesolens_test::EventRecorder events(cutaway);
@@ -549,19 +559,9 @@ TEST(vtkMesoStructuredCutaway, OnlyTheMoleculesAHideableSelectionMatchesAreHidde
   // The Martini DPPC/cholesterol bilayer, all of a ball's molecules to be hidden, but only
   // DPPC may be: every hidden atom is DPPC, every DPPC in the ball is hidden, CHOL stays.
   vtkNew<vtkMesoTrajectoryReader> bilayer;
-  bilayer->SetTopologyFileName(
-    mesolens_test::data_file("membranes/martini_dppc_chol_bilayer.gro").c_str());
-  bilayer->Update();
-  double bounds[6];
-  bilayer->GetOutput()->GetBounds(bounds);
   vtkNew<vtkSphere> ball;
-  ball->SetCenter(0.5 * (bounds[0] + bounds[1]), 0.5 * (bounds[2] + bounds[3]),
-                  0.5 * (bounds[4] + bounds[5]));
-  ball->SetRadius(40);
   vtkNew<vtkMesoStructuredCutaway> cutaway;
-  cutaway->SetInputConnection(bilayer->GetOutputPort());
-  cutaway->SetStructureVertices(100);
-  cutaway->SetCutFunction(ball);
+  CutTheCholesterolBilayerByABall(bilayer, ball, cutaway);
   cutaway->SetFractionHidden(1.0);
   mesolens_test::EventRecorder events(cutaway);
   cutaway->Update();

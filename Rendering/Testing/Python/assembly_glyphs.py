@@ -23,12 +23,12 @@ import os
 
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
-from vtkmodules.vtkIOImage import vtkPNGWriter
 from vtkmodules.vtkRenderingCore import (vtkActor, vtkGlyph3DMapper, vtkPolyDataMapper,
-                                         vtkRenderer, vtkRenderWindow, vtkWindowToImageFilter)
+                                         vtkRenderer, vtkRenderWindow)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL factory)
 
 import mesolens
+from mesolens.lens import write_png
 
 DATA = os.environ["MESOLENS_DATA_DIR"]
 OUTPUT = os.environ.get("MESOLENS_TEST_OUTPUT_DIR", ".")
@@ -127,12 +127,7 @@ def main():
     window.SetSize(args.size, args.size)
     window.AddRenderer(renderer)
     window.Render()
-    capture = vtkWindowToImageFilter()
-    capture.SetInput(window)
-    writer = vtkPNGWriter()
-    writer.SetFileName(args.output)
-    writer.SetInputConnection(capture.GetOutputPort())
-    writer.Write()
+    write_png(window, args.output)
 
 
 if __name__ == "__main__":

@@ -11,7 +11,8 @@
  * - OutputMode Mask (default): the atoms pass through unchanged with an unsigned char point
  *   array (MaskArrayName, default "Selected"): 1 for selected atoms, 0 for the others.
  * - OutputMode Extract: only the selected atoms, with every point array and the bonds (lines)
- *   between two selected atoms; field data is kept, cell data is not.
+ *   between two selected atoms, their cell data and the field data (vtkMesoAtomPieces::
+ *   ExtractAtoms, as vtkMesoStructuredCutaway's ExtractVisibleAtoms).
  *
  * Distances and coordinates in the expression are in Å; LengthScale says what the input's
  * length unit is in Å (0.1 for nm), like the readers' LengthScale. A bad expression, an array

@@ -30,8 +30,10 @@ namespace {
 using Vec = Eigen::Vector3d;
 constexpr double largest_radius = 20.0;        // Å: no atom, bead or probe is larger
 constexpr double largest_triangle_count = 2e7; // about 2 GB: a finer tolerance is refused
-/// The contour's tables take tens of bytes per block of the lattice's box, empty or not: up to
-/// about 1 GB at this many. (A compact molecule reaches the triangle limit first.)
+/// The most blocks the lattice's box may hold. Only blocks near atoms cost memory and time, so
+/// this bounds the box rather than the work: a box of more blocks means atoms kilometres apart
+/// at a fine tolerance, far likelier an input in the wrong unit than a molecule. (A compact
+/// molecule reaches the triangle limit first.)
 constexpr double largest_lattice_block_count = 2e7;
 /// The lattice's resolution, the farthest any point lies from a lattice point (its reach), is
 /// that of a cubic grid whose cells' diagonals have a chord error of the tolerance's times
@@ -355,8 +357,8 @@ ContourMesh contour_lattice(ContourField& field, const SurfaceInput& input, cons
             << " x " << (high - low).z() << " Å at a spacing of " << spacing << " Å, about "
             << blocks << " blocks of " << ContourGrid::block_cells << "^3 cells, more than "
             << "the limit of " << largest_lattice_block_count
-            << " (up to about 1 GB of tables): atoms far apart make the box large; give them "
-               "separately, or choose a larger tolerance";
+            << ": atoms far apart make the box large; give them separately, or choose a larger "
+               "tolerance";
     throw InvalidInput(message.str());
   }
   return contour_tetrahedra(field, low, high, spacing, parallel_for, progress);

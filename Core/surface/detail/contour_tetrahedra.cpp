@@ -556,7 +556,9 @@ ContouredBlocks contour_blocks(const ContourField& field, const ContourGrid& gri
 {
   static const CellTables tables = cell_tables();
   const ContourGrid centred = grid.centred();
-  const std::size_t block_count = grid.block_count();
+  std::vector<std::size_t> to_sample;
+  field.blocks_to_sample(to_sample);
+  const std::size_t block_count = to_sample.size();
   ContouredBlocks blocks;
   std::atomic<bool> one_sided_block{ false };
   const std::size_t round = 256;
@@ -569,7 +571,7 @@ ContouredBlocks contour_blocks(const ContourField& field, const ContourGrid& gri
     run_balanced<PooledBlockBuffers>(
       parallel_for, count, [&](std::size_t k, PooledBlockBuffers& pooled) {
         BlockBuffers& buffers = pooled.from(pool);
-        const std::size_t block = first + k;
+        const std::size_t block = to_sample[first + k];
         const Sampled sampled = sample_block(field, grid, centred, block, buffers);
         if (sampled == Sampled::OneSided)
         {
@@ -586,7 +588,7 @@ ContouredBlocks contour_blocks(const ContourField& field, const ContourGrid& gri
       BlockOutput& out = round_outputs[k];
       if (!out.vertices.empty() || !out.triangles.empty() || !out.foreign_keys.empty())
       {
-        blocks.active.push_back(first + k);
+        blocks.active.push_back(to_sample[first + k]);
         blocks.outputs.push_back(std::move(out));
         out = {};
       }

@@ -109,6 +109,9 @@ public:
   /// Called once, before any local(), with the grid about to be sampled (to gather what each
   /// block needs: the points of both its grids, see ContourGrid::blocks_meeting()).
   virtual void prepare(const ContourGrid& grid, const ParallelFor& parallel_for) = 0;
+  /// After prepare(): the blocks that may hold a zero, in increasing order, into `blocks`. The
+  /// others are not sampled, so that space far from any atom costs nothing.
+  virtual void blocks_to_sample(std::vector<std::size_t>& blocks) const = 0;
   /// A new local view of the field (called once per thread, from that thread).
   virtual std::unique_ptr<LocalContourField> local() const = 0;
 };

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <string>
 
 namespace mesolens {
@@ -17,8 +18,11 @@ namespace mesolens {
 namespace {
 using Vec = Eigen::Vector3d;
 constexpr double two_pi = 6.28318530717958647692;
-/// The most rows of cells the index may have (three tables of 12 bytes per row: 360 MB).
+/// The most rows of cells the index may have (three tables of 4 bytes per row: 120 MB).
 constexpr double largest_row_count = 1e7;
+/// Empty cells a row's span may bridge (4 bytes each) before the row is split in two spans
+/// (12 bytes and a step more for queries crossing the gap).
+constexpr std::int64_t largest_span_gap = 16;
 
 /// Sorts pieces by distance; lists refined from a parent's come nearly sorted, where insertion
 /// is linear.
@@ -79,18 +83,20 @@ ProbeDistance::ProbeDistance(const std::vector<Vec>& centres, const std::vector<
     this->dims_[a] =
       static_cast<std::int64_t>(std::ceil((high[a] - low[a] + 2 * margin) / this->cell_)) + 1;
   }
-  // Three tables of 12 bytes per row of cells along x: atoms spread so far apart (over about
-  // 5000 Å along both y and z) that they would take gigabytes are refused rather than exhaust
+  // Three tables of 4 bytes per row of cells along x: atoms spread so far apart (over about
+  // 5000 Å along both y and z) that they would take over 120 MB are refused rather than exhaust
   // the memory.
   const double rows = double(this->dims_[1]) * double(this->dims_[2]);
   if (rows > largest_row_count || double(this->dims_[0]) > 1e9)
   {
-    throw InvalidInput("the spheres span " + std::to_string(int(high[0] - low[0])) + " x " +
-                       std::to_string(int(high[1] - low[1])) + " x " +
-                       std::to_string(int(high[2] - low[2])) +
-                       " Å: too far apart for one surface (its search grid would need " +
-                       std::to_string(int(36.0 * rows / 1e9)) +
-                       " GB); surround groups of atoms that lie close together separately");
+    std::ostringstream message;
+    message.precision(3);
+    message << "the spheres span " << high[0] - low[0] << " x " << high[1] - low[1] << " x "
+            << high[2] - low[2] << " Å: too far apart for one surface (its search grid would "
+            << "need " << rows << " rows of " << double(this->dims_[0]) << " cells, more than "
+            << largest_row_count << " rows or 1e9 cells); surround groups of atoms that lie "
+            << "close together separately";
+    throw InvalidInput(message.str());
   }
   // The three tables are independent: built side by side, the arcs' (the largest) first.
   const auto index_points = [this](std::size_t count, const auto& point_of, CellTable& table) {
@@ -188,27 +194,30 @@ void ProbeDistance::build_table(std::vector<std::pair<std::int64_t, std::uint32_
 {
   std::sort(pairs.begin(), pairs.end());
   const std::size_t rows = static_cast<std::size_t>(this->dims_[1] * this->dims_[2]);
-  table.row_first.assign(rows, 0);
-  table.row_last.assign(rows, -1);
-  table.row_offset.assign(rows, 0);
+  table.row_spans.assign(rows + 1, 0);
+  table.spans.clear();
   table.starts.clear();
   table.items.resize(pairs.size());
   const std::int64_t width = this->dims_[0];
+  std::size_t next_row = 0; // rows before it have their first span set
   for (std::size_t k = 0; k < pairs.size();)
   {
-    // One row's pairs: its span of cells, and each cell's first item (the next cell's first
-    // closes it).
-    const std::size_t row = static_cast<std::size_t>(pairs[k].first / width);
-    std::size_t end = k;
-    while (end < pairs.size() && static_cast<std::size_t>(pairs[end].first / width) == row)
+    // One span's pairs: cells of one row with gaps of at most largest_span_gap between them,
+    // and each cell's first item (the next cell's first closes it).
+    const std::int64_t row = pairs[k].first / width;
+    std::size_t end = k + 1;
+    while (end < pairs.size() && pairs[end].first / width == row &&
+           pairs[end].first - pairs[end - 1].first <= largest_span_gap + 1)
     {
       ++end;
     }
-    const std::int32_t first = static_cast<std::int32_t>(pairs[k].first % width);
-    const std::int32_t last = static_cast<std::int32_t>(pairs[end - 1].first % width);
-    table.row_first[row] = first;
-    table.row_last[row] = last;
-    table.row_offset[row] = static_cast<std::uint32_t>(table.starts.size());
+    for (; next_row <= static_cast<std::size_t>(row); ++next_row)
+    {
+      table.row_spans[next_row] = static_cast<std::uint32_t>(table.spans.size());
+    }
+    const auto first = static_cast<std::int32_t>(pairs[k].first % width);
+    const auto last = static_cast<std::int32_t>(pairs[end - 1].first % width);
+    table.spans.push_back({ first, last, static_cast<std::uint32_t>(table.starts.size()) });
     std::size_t item = k;
     for (std::int32_t x = first; x <= last + 1; ++x)
     {
@@ -219,6 +228,10 @@ void ProbeDistance::build_table(std::vector<std::pair<std::int64_t, std::uint32_
       table.starts.push_back(static_cast<std::uint32_t>(item));
     }
     k = end;
+  }
+  for (; next_row <= rows; ++next_row)
+  {
+    table.row_spans[next_row] = static_cast<std::uint32_t>(table.spans.size());
   }
   for (std::size_t k = 0; k < pairs.size(); ++k)
   {
@@ -236,22 +249,37 @@ void ProbeDistance::for_cells(const Vec& x, double radius, const CellTable& tabl
   for (std::int64_t z = from[2]; z <= to[2]; ++z)
     for (std::int64_t y = from[1]; y <= to[1]; ++y)
     {
-      // Cells along x are consecutive in a row: one range of items.
+      // Cells along x are consecutive in a span: one range of items per span met.
       const std::size_t row = static_cast<std::size_t>(y + this->dims_[1] * z);
-      const std::int64_t first = std::max<std::int64_t>(from[0], table.row_first[row]);
-      const std::int64_t last = std::min<std::int64_t>(to[0], table.row_last[row]);
-      if (first > last)
+      for (std::uint32_t s = table.row_spans[row]; s < table.row_spans[row + 1]; ++s)
       {
-        continue;
-      }
-      const std::uint32_t* starts = table.starts.data() + table.row_offset[row];
-      const std::uint32_t begin = starts[first - table.row_first[row]];
-      const std::uint32_t end = starts[last - table.row_first[row] + 1];
-      for (std::uint32_t k = begin; k < end; ++k)
-      {
-        visit(table.items[k]);
+        const CellSpan& span = table.spans[s];
+        const std::int64_t first = std::max<std::int64_t>(from[0], span.first);
+        const std::int64_t last = std::min<std::int64_t>(to[0], span.last);
+        if (first > last)
+        {
+          continue;
+        }
+        const std::uint32_t* starts = table.starts.data() + span.offset;
+        const std::uint32_t end = starts[last - span.first + 1];
+        for (std::uint32_t k = starts[first - span.first]; k < end; ++k)
+        {
+          visit(table.items[k]);
+        }
       }
     }
+}
+
+std::size_t ProbeDistance::table_bytes() const
+{
+  std::size_t bytes = 0;
+  for (const CellTable* table : { &this->arc_cells_, &this->vertices_, &this->spheres_ })
+  {
+    bytes += sizeof(std::uint32_t) *
+        (table->row_spans.size() + table->starts.size() + table->items.size()) +
+      sizeof(CellSpan) * table->spans.size();
+  }
+  return bytes;
 }
 
 double ProbeDistance::piece_distance(const Vec& x, PieceKind kind, std::uint32_t index) const

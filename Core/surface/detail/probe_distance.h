@@ -249,14 +249,24 @@ public:
   /// it inside. -reach when no sphere is within reach. `sphere` gets the maximising sphere.
   double union_depth(const Eigen::Vector3d& x, std::uint32_t* sphere = nullptr) const;
 
+  /// The bytes its cell tables hold (for checks that empty space costs little).
+  std::size_t table_bytes() const;
+
 private:
-  /// Items per cell, stored by rows of cells along x: each row only over the cells from its
-  /// first occupied one to its last, so that empty space costs a few bytes per row.
+  /// Items per cell, stored by rows of cells along x. A row holds spans of consecutive cells
+  /// from an occupied one to an occupied one, split where more than `largest_span_gap` empty
+  /// cells lie between two, so that empty space costs a few bytes per row wherever the items
+  /// lie (two atoms a kilometre apart on one row need two spans, not a billion cells).
+  struct CellSpan
+  {
+    std::int32_t first = 0, last = -1; ///< cells along x
+    std::uint32_t offset = 0;          ///< where the span's cells' first items are in `starts`
+  };
   struct CellTable
   {
-    std::vector<std::int32_t> row_first, row_last; ///< occupied cells along x (last < first: none)
-    std::vector<std::uint32_t> row_offset;         ///< where the row's starts begin in `starts`
-    std::vector<std::uint32_t> starts;             ///< per occupied span, the cells' first items
+    std::vector<std::uint32_t> row_spans; ///< per row and one past, its first span in `spans`
+    std::vector<CellSpan> spans;
+    std::vector<std::uint32_t> starts; ///< per span's cell and one past, its first item
     std::vector<std::uint32_t> items;
   };
   /// The arcs' table, their pieces' middles and their ends' directions.

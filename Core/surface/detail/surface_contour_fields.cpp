@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <limits>
 
 namespace mesolens {
@@ -170,6 +171,18 @@ public:
       parallel_for);
   }
 
+  void blocks_to_sample(std::vector<std::size_t>& blocks) const override
+  {
+    // Blocks with no piece near sample nothing (see ExcludedSurfaceBlock::sample_block).
+    std::vector<std::size_t> pieces;
+    std::set_union(this->arcs_.occupied_blocks().begin(), this->arcs_.occupied_blocks().end(),
+                   this->vertices_.occupied_blocks().begin(),
+                   this->vertices_.occupied_blocks().end(), std::back_inserter(pieces));
+    blocks.clear();
+    std::set_union(pieces.begin(), pieces.end(), this->spheres_.occupied_blocks().begin(),
+                   this->spheres_.occupied_blocks().end(), std::back_inserter(blocks));
+  }
+
   std::unique_ptr<LocalContourField> local() const override;
 
   /// How far outside sphere `i` its points are visited: the exposed ones carry the union's
@@ -210,11 +223,14 @@ public:
     const ExcludedSurfaceContour& field = this->field_;
     // Without a piece within the limit, every point lies outside the union, or inside it
     // deeper than the limit: no zero.
-    bool near_pieces = !field.arcs_.empty(block) || !field.vertices_.empty(block);
-    for (const std::uint32_t* i = field.spheres_.begin(block);
-         i != field.spheres_.end(block) && !near_pieces; ++i)
+    bool near_pieces = !field.arcs_.items(block).empty() || !field.vertices_.items(block).empty();
+    for (const std::uint32_t i : field.spheres_.items(block))
     {
-      near_pieces = boundary.area[*i] > 0;
+      if (near_pieces)
+      {
+        break;
+      }
+      near_pieces = boundary.area[i] > 0;
     }
     if (!near_pieces)
     {
@@ -366,11 +382,10 @@ private:
     const ExcludedSurfaceContour& field = this->field_;
     const double limit = this->surface_.limit;
     const Vec reach = Vec::Constant(limit + box_slack);
-    for (const std::uint32_t* k = field.vertices_.begin(block); k != field.vertices_.end(block);
-         ++k)
+    for (const std::uint32_t k : field.vertices_.items(block))
     {
-      const Vec& v = this->surface_.boundary.vertices[*k].position;
-      const std::uint32_t label = encode_piece(PieceKind::Vertex, *k);
+      const Vec& v = this->surface_.boundary.vertices[k].position;
+      const std::uint32_t label = encode_piece(PieceKind::Vertex, k);
       for_points(grid, block, v - reach, v + reach, v, reach[0], [&](std::size_t at, const Vec& x) {
         const double squared = (x - v).squaredNorm();
         if (squared < limit * limit)
@@ -388,12 +403,12 @@ private:
   {
     const ExcludedSurfaceContour& field = this->field_;
     const double limit = this->surface_.limit;
-    for (const std::uint32_t* k = field.arcs_.begin(block); k != field.arcs_.end(block); ++k)
+    for (const std::uint32_t k : field.arcs_.items(block))
     {
-      const SasArc& arc = this->surface_.boundary.arcs[*k];
-      const std::uint32_t label = encode_piece(PieceKind::Arc, *k);
-      const auto& box = field.arc_boxes_[*k];
-      const auto& ball = field.arc_balls_[*k];
+      const SasArc& arc = this->surface_.boundary.arcs[k];
+      const std::uint32_t label = encode_piece(PieceKind::Arc, k);
+      const auto& box = field.arc_boxes_[k];
+      const auto& ball = field.arc_balls_[k];
       const Vec ball_centre(ball[0], ball[1], ball[2]);
       for_points(
         grid, block, box[0], box[1], ball_centre, ball[3], [&](std::size_t at, const Vec& x) {
@@ -412,7 +427,7 @@ private:
           }
           const double distance = std::sqrt(squared);
           if (this->improves(at, distance, label) &&
-              (radial <= 1e-12 || this->surface_.distance.within_span(*k, a1, a2)))
+              (radial <= 1e-12 || this->surface_.distance.within_span(k, a1, a2)))
           {
             this->take(at, distance, label);
           }
@@ -427,9 +442,8 @@ private:
   void visit_spheres(const ContourGrid& grid, std::size_t block)
   {
     const ExcludedSurfaceContour& field = this->field_;
-    for (const std::uint32_t* s = field.spheres_.begin(block); s != field.spheres_.end(block); ++s)
+    for (const std::uint32_t i : field.spheres_.items(block))
     {
-      const std::uint32_t i = *s;
       const Vec& c = this->surface_.centres[i];
       const double r = field.radii_[i], outer = r + field.outside_reach(i);
       const bool exposed = this->surface_.boundary.area[i] > 0;
@@ -582,6 +596,11 @@ public:
       parallel_for);
   }
 
+  void blocks_to_sample(std::vector<std::size_t>& blocks) const override
+  {
+    blocks = this->spheres_.occupied_blocks();
+  }
+
   std::unique_ptr<LocalContourField> local() const override;
 
   const std::vector<Vec>& centres_;
@@ -602,8 +621,9 @@ public:
                     std::uint32_t* hints) override
   {
     const UnionSurfaceContour& field = this->field_;
-    this->first_ = field.spheres_.begin(block);
-    this->last_ = field.spheres_.end(block);
+    const BlockBins::Items spheres = field.spheres_.items(block);
+    this->first_ = spheres.begin();
+    this->last_ = spheres.end();
     if (this->first_ == this->last_)
     {
       return false;

@@ -13,6 +13,7 @@
 
 #include <cmath>
 #include <map>
+#include <numeric>
 #include <random>
 #include <set>
 #include <stdexcept>
@@ -39,6 +40,21 @@ std::set<Point> points_in_box(const mesolens::ContourGrid& grid, const Vec& from
         }
       }
   return inside;
+}
+
+/// `count` cubes (from, to) of half-sides up to 4 around centres in [-3, 33]^3.
+std::vector<std::pair<Vec, Vec>> random_boxes(unsigned seed, int count)
+{
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> where(-3.0, 33.0), reach(0.0, 4.0);
+  std::vector<std::pair<Vec, Vec>> boxes;
+  for (int k = 0; k < count; ++k)
+  {
+    const Vec centre(where(random), where(random), where(random));
+    const Vec half = Vec::Constant(reach(random));
+    boxes.emplace_back(centre - half, centre + half);
+  }
+  return boxes;
 }
 
 /// A sphere's field (positive inside) with a label per grid point, sampled a block at a time.
@@ -108,6 +124,11 @@ public:
   {
     this->blocks = grid.block_count();
   }
+  void blocks_to_sample(std::vector<std::size_t>& blocks) const override
+  {
+    blocks.resize(this->blocks);
+    std::iota(blocks.begin(), blocks.end(), std::size_t(0));
+  }
   std::unique_ptr<mesolens::LocalContourField> local() const override
   {
     return std::make_unique<SphereBlock>(this->centre_, this->radius_, this->inconsistent_);
@@ -175,15 +196,7 @@ TEST(ContourTetrahedra, ItemsAreBinnedToTheBlocksTheirBoxesMeet)
   const mesolens::ContourGrid centred = grid.centred();
   EXPECT_EQ(centred.low, Vec::Constant(-0.25));
   EXPECT_EQ(centred.blocks, grid.blocks);
-  std::mt19937 random(11);
-  std::uniform_real_distribution<double> where(-3.0, 33.0), reach(0.0, 4.0);
-  std::vector<std::pair<Vec, Vec>> boxes;
-  for (int k = 0; k < 300; ++k)
-  {
-    const Vec centre(where(random), where(random), where(random));
-    const Vec half = Vec::Constant(reach(random));
-    boxes.emplace_back(centre - half, centre + half);
-  }
+  const std::vector<std::pair<Vec, Vec>> boxes = random_boxes(11, 300);
   const mesolens::BlockBins bins(grid, boxes.size(), [&](std::size_t k, Vec& from, Vec& to) {
     from = boxes[k].first;
     to = boxes[k].second;
@@ -204,13 +217,59 @@ TEST(ContourTetrahedra, ItemsAreBinnedToTheBlocksTheirBoxesMeet)
     }
     // Each block lists (in order) at least every item with a point of it (of either grid) in
     // its box; items binned but holding none of its points only cost a look.
-    std::vector<std::uint32_t> listed(bins.begin(b), bins.end(b));
+    const mesolens::BlockBins::Items items = bins.items(b);
+    std::vector<std::uint32_t> listed(items.begin(), items.end());
     EXPECT_TRUE(std::is_sorted(listed.begin(), listed.end()));
     for (const std::uint32_t k : expected)
     {
       EXPECT_TRUE(std::binary_search(listed.begin(), listed.end(), k)) << "block " << b;
     }
-    EXPECT_EQ(bins.empty(b), listed.empty());
+    EXPECT_EQ(items.empty(), listed.empty());
+    EXPECT_EQ(std::binary_search(bins.occupied_blocks().begin(), bins.occupied_blocks().end(), b),
+              !listed.empty());
+  }
+}
+
+TEST(ContourTetrahedra, BinsHoldOnlyTheOccupiedBlocksOfAnyGrid)
+{
+  // The same boxes binned on a grid of a few thousand blocks (counted per block) and on one
+  // of 60 million, nearly all empty (sorted): the same items per block, blocks no box meets
+  // stored nowhere.
+  std::vector<std::pair<Vec, Vec>> boxes = random_boxes(5, 200);
+  boxes.emplace_back(Vec(29990, 1, 1), Vec(29991, 2, 2)); // far along x, alone
+  for (const double high_x : { 40.0, 30000.0 })
+  {
+    const mesolens::ContourGrid grid(Vec(0, 0, 0), Vec(high_x, 30.0, 30.0), 0.1);
+    std::map<std::size_t, std::vector<std::uint32_t>> expected;
+    for (std::size_t k = 0; k < boxes.size(); ++k)
+    {
+      std::array<std::int64_t, 3> first{}, last{};
+      if (grid.blocks_meeting(boxes[k].first, boxes[k].second, first, last))
+      {
+        for (std::int64_t z = first[2]; z <= last[2]; ++z)
+          for (std::int64_t y = first[1]; y <= last[1]; ++y)
+            for (std::int64_t x = first[0]; x <= last[0]; ++x)
+            {
+              const auto block = std::size_t(x + grid.blocks[0] * (y + grid.blocks[1] * z));
+              expected[block].push_back(static_cast<std::uint32_t>(k));
+            }
+      }
+    }
+    const mesolens::BlockBins bins(grid, boxes.size(), [&](std::size_t k, Vec& from, Vec& to) {
+      from = boxes[k].first;
+      to = boxes[k].second;
+      return true;
+    });
+    std::vector<std::size_t> occupied;
+    for (const auto& [block, items] : expected)
+    {
+      occupied.push_back(block);
+      const mesolens::BlockBins::Items listed = bins.items(block);
+      EXPECT_EQ(std::vector<std::uint32_t>(listed.begin(), listed.end()), items) << block;
+    }
+    EXPECT_EQ(bins.occupied_blocks(), occupied) << "grid of " << grid.block_count() << " blocks";
+    EXPECT_TRUE(bins.items(grid.block_count() - 1).empty());
+    EXPECT_GT(expected.size(), 1000u);
   }
 }
 

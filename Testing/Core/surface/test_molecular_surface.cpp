@@ -727,7 +727,7 @@ TEST(MolecularSurface, BadInputsAreRefused)
   // its time and peak memory).
   refused({ { 0, 0, 0 }, { 20000, 20000, 20000 } }, { 1.5, 1.5 });
   // Atoms 3.4e7 Å apart along one axis (found by fuzz_surface): the search grid fits, but the
-  // lattice's box would take about 2 GB of block tables. Refused, naming the limit.
+  // lattice's box would pass 2e7 blocks of 16^3 cells. Refused, naming the limit.
   {
     MolecularSurfaceParams options;
     options.probe_radius = 0.011764705882352941;
@@ -750,6 +750,14 @@ TEST(MolecularSurface, BadInputsAreRefused)
     surface_of({ { 0, 0, 0 }, { 1000, 1000, 1000 } }, { 1.5, 1.5 }, 0.2);
   EXPECT_NEAR(apart.area, 2 * 4 * pi * 1.5 * 1.5, 1e-9);
   EXPECT_EQ(apart.component_count, 2u);
+  // Atoms 3.4e7 Å apart along x, on one row of the search grid's cells and of the lattice's
+  // blocks (4e6 of them, a few occupied; found by fuzz_surface, where it took 15 s under the
+  // sanitizers): two spheres, at the cost of their neighbourhoods.
+  const MolecularSurface far_on_a_row =
+    surface_of({ { 0, 0, 0 }, { 3.4e7, 0.5, 0 } }, { 1.5, 1.8 }, 0.4);
+  EXPECT_NEAR(far_on_a_row.area, 4 * pi * (1.5 * 1.5 + 1.8 * 1.8), 1e-9);
+  EXPECT_EQ(far_on_a_row.component_count, 2u);
+  expect_closed_surface(far_on_a_row);
   // No atoms: an empty surface.
   const MolecularSurface none = mesolens::molecular_surface(Centres{}, {});
   EXPECT_TRUE(none.points.empty());

@@ -143,7 +143,7 @@ bool Read(vtkPolyData* input, mesolens::AssemblyInstances& instances)
     mesolens::AssemblyAtomSet set;
     const vtkIdType begin = offsets->GetValue(s);
     const vtkIdType end = offsets->GetValue(s + 1);
-    if (begin > end)
+    if (begin < 0 || begin > end || end > atoms->GetNumberOfTuples())
     {
       return false;
     }

@@ -2,6 +2,7 @@
 #include "vtkMesoAtomGPUData.h"
 
 #include "vtkMesoArrayNames.h"
+#include "vtkMesoAssemblyInstances.h"
 #include "vtkMesoElementLookupTable.h"
 #include "vtkMesoMembraneWarp.h"
 #include "vtkMesoIntValues.h"
@@ -13,6 +14,7 @@
 #include "mesolens/molecules/molecule_groups.h"
 #include "mesolens/mapping/polynomial_warp.h"
 #include "mesolens/mapping/warped_cells.h"
+#include "mesolens/protein/assembly.h"
 
 #include <vtkCellArray.h>
 #include <vtkCellArrayIterator.h>
@@ -173,6 +175,97 @@ bool molecule_slots(vtkPolyData* atoms, const mesolens::MembraneWarp& warp,
   }
   return true;
 }
+/// Whether a warp input is an assembly's copies (vtkMesoStructureReader's output 1) rather than
+/// a membrane mapping's output.
+bool is_assembly(vtkPolyData* warp_data)
+{
+  return warp_data->GetPointData()->GetArray(vtkMesoArrayNames::AssemblyMatrix) != nullptr;
+}
+
+/// An assembly's copies as an instancing warp over the asymmetric unit (`atoms`): a tile per
+/// copy, a motion per atom class (mesolens::assembly_atom_classes) in each, the copy's matrix.
+/// `slots`: each atom's class (input order); `hidden`: a bit per class and copy (copy c's class
+/// k is bit c classes + k), set where the copy's atom set leaves the class out.
+bool assembly_warp(vtkPolyData* atoms, vtkPolyData* copies, mesolens::MembraneWarp& warp,
+                   std::vector<unsigned short>& slots, int& classes_per_copy,
+                   std::vector<std::uint32_t>& hidden, std::string& problem)
+{
+  mesolens::AssemblyInstances instances;
+  if (!vtkMesoAssemblyInstances::Read(copies, instances))
+  {
+    problem = "the assembly input is not a vtkMesoStructureReader's output 1 (its copies' "
+              "arrays are missing or inconsistent)";
+    return false;
+  }
+  if (instances.instances.empty())
+  {
+    problem = "the assembly has no copies";
+    return false;
+  }
+  const auto n = static_cast<std::size_t>(atoms->GetNumberOfPoints());
+  mesolens::AssemblyAtomClasses classes;
+  try
+  {
+    classes = mesolens::assembly_atom_classes(instances, n);
+  }
+  catch (const mesolens::Error& e)
+  {
+    problem = std::string(e.what()) +
+      " (draw the reader's output 0 with ExpandAssembly off, the asymmetric unit)";
+    return false;
+  }
+  if (classes.count > 65536)
+  {
+    problem = "the assembly's atom sets split the asymmetric unit into " +
+      std::to_string(classes.count) + " groups, more than the 65536 an instanced draw holds";
+    return false;
+  }
+  const std::size_t copy_count = instances.instances.size();
+  warp = {};
+  warp.method = mesolens::MappingMethod::MoleculeInstancing;
+  warp.copy_tiles = copy_count;
+  warp.a = { 1, 0 };
+  warp.b = { 0, 1 };
+  warp.instance_matrices.reserve(16 * copy_count * classes.count);
+  hidden.assign((copy_count * classes.count + 31) / 32, 0u);
+  bool any_hidden = false;
+  for (std::size_t c = 0; c < copy_count; ++c)
+  {
+    const mesolens::AssemblyMatrix& m = instances.instances[c].matrix;
+    for (const double value : m)
+    {
+      if (!std::isfinite(value) || std::abs(value) > 3.4e38)
+      {
+        problem = "copy " + std::to_string(c) + "'s matrix is not finite in float";
+        return false;
+      }
+    }
+    for (std::size_t k = 0; k < classes.count; ++k)
+    {
+      warp.instance_matrices.insert(warp.instance_matrices.end(), m.begin(), m.end());
+      warp.instance_matrices.insert(warp.instance_matrices.end(), { 0.0, 0.0, 0.0, 1.0 });
+      warp.instance_molecules.push_back(static_cast<int>(k));
+      warp.instance_tiles.push_back(static_cast<int>(c));
+      if (!classes.shows(instances, c, k))
+      {
+        const std::size_t bit = c * classes.count + k;
+        hidden[bit / 32] |= 1u << (bit % 32);
+        any_hidden = true;
+      }
+    }
+  }
+  if (!any_hidden)
+  {
+    hidden.clear();
+  }
+  slots.resize(n);
+  for (std::size_t a = 0; a < n; ++a)
+  {
+    slots[a] = static_cast<unsigned short>(classes.class_of_atom[a]);
+  }
+  classes_per_copy = static_cast<int>(classes.count);
+  return true;
+}
 } // namespace
 
 std::vector<float> vtkMesoAtomGPUData::StyleRadii(const Style& style)
@@ -274,6 +367,7 @@ void vtkMesoAtomGPUData::ClearWarp()
   this->MoleculeSizes.clear();
   this->MoleculeMask.clear();
   this->MoleculeMaskKey = {};
+  this->AssemblyCopies = false;
 }
 
 bool vtkMesoAtomGPUData::UpdatePositions(vtkPolyData* atoms, vtkMapper* mapper,
@@ -521,6 +615,10 @@ bool vtkMesoAtomGPUData::UpdateBonds(vtkPolyData* atoms, vtkMapper* mapper)
 
 bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp_data, vtkMapper* mapper)
 {
+  if (is_assembly(warp_data))
+  {
+    return this->ReadAssembly(atoms, warp_data, mapper);
+  }
   mesolens::MembraneWarp warp;
   if (!vtkMesoMembraneWarp::Read(warp_data->GetFieldData(), warp))
   {
@@ -621,12 +719,91 @@ bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp_data, vt
   ++this->WarpVersion;
   this->Warp = std::move(warp);
   this->WarpKey = std::move(key);
+  return this->CarryCellsIntoTiles(mapper);
+}
+
+bool vtkMesoAtomGPUData::ReadAssembly(vtkPolyData* atoms, vtkPolyData* copies, vtkMapper* mapper)
+{
+  // The same copies of the same atoms (a new colour or mask): nothing to read again.
+  vtkPointData* data = copies->GetPointData();
+  vtkFieldData* fields = copies->GetFieldData();
+  std::vector<std::pair<const void*, vtkMTimeType>> key{
+    { nullptr, this->PositionsVersion },
+    { nullptr, this->CellsVersion },
+    { nullptr, static_cast<vtkMTimeType>(this->AtomCount) },
+  };
+  for (vtkAbstractArray* array :
+       { data->GetAbstractArray(vtkMesoArrayNames::AssemblyMatrix),
+         data->GetAbstractArray(vtkMesoArrayNames::AssemblyAtomSet),
+         fields->GetAbstractArray(vtkMesoArrayNames::AssemblyAtomSetOffsets),
+         fields->GetAbstractArray(vtkMesoArrayNames::AssemblyAtomSetAtoms) })
+  {
+    key.emplace_back(array, array ? array->GetMTime() : 0);
+  }
+  if (key == this->WarpKey && this->WarpMethod != NoWarp)
+  {
+    return true;
+  }
+  this->ClearWarp();
+  mesolens::MembraneWarp warp;
+  std::vector<unsigned short> class_of_atom;
+  std::vector<std::uint32_t> hidden;
+  int classes = 0;
+  std::string problem;
+  if (!assembly_warp(atoms, copies, warp, class_of_atom, classes, hidden, problem))
+  {
+    vtkErrorWithObjectMacro(mapper, "Cannot draw the assembly: " << problem);
+    return false;
+  }
+  this->AssemblyCopies = true;
+  this->TileCount = static_cast<vtkIdType>(warp.tile_count());
+  this->MoleculesPerTile = classes;
+  this->PatchMolecules = classes;
+  this->MoleculeSizes.assign(std::size_t(classes), 0);
+  this->MoleculeSlots.resize(class_of_atom.size());
+  for (std::size_t atom = 0; atom < class_of_atom.size(); ++atom)
+  {
+    this->MoleculeSlots[this->SlotOf(vtkIdType(atom))] = class_of_atom[atom];
+    ++this->MoleculeSizes[class_of_atom[atom]];
+  }
+  ++this->MoleculeSlotsVersion;
+  const std::size_t motions = warp.instance_tiles.size();
+  this->WarpTexels.resize(12 * motions);
+  for (std::size_t m = 0; m < motions; ++m)
+  {
+    for (std::size_t k = 0; k < 12; ++k)
+    {
+      this->WarpTexels[12 * m + k] = static_cast<float>(warp.instance_matrices[16 * m + k]);
+    }
+  }
+  // The classes a copy's atom set leaves out are hidden in that copy, as a cutaway hides a
+  // mapped membrane's molecules.
+  this->MoleculeMask = std::move(hidden);
+  ++this->MoleculeMaskVersion;
+  this->HiddenInTiles = 0;
+  for (std::size_t bit = 0; bit < 32 * this->MoleculeMask.size(); ++bit)
+  {
+    if (this->MoleculeMask[bit / 32] & (1u << (bit % 32)))
+    {
+      this->HiddenInTiles += this->MoleculeSizes[bit % std::size_t(classes)];
+    }
+  }
+  this->WarpMethod = static_cast<int>(warp.method);
+  ++this->WarpVersion;
+  this->Warp = std::move(warp);
+  this->WarpKey = std::move(key);
+  return this->CarryCellsIntoTiles(mapper);
+}
+
+bool vtkMesoAtomGPUData::CarryCellsIntoTiles(vtkMapper* mapper)
+{
   if (this->Cells.cell_start.empty())
   {
     return true;
   }
   // Draw-list entries count tile x atoms in 32 bits: beyond, every atom is drawn.
-  if (double(this->AtomCount) * double(tiles) > double(std::numeric_limits<std::uint32_t>::max()))
+  if (double(this->AtomCount) * double(this->TileCount) >
+      double(std::numeric_limits<std::uint32_t>::max()))
   {
     return true;
   }
@@ -697,6 +874,10 @@ bool vtkMesoAtomGPUData::ReadPatchMolecules(vtkPolyData* atoms, const mesolens::
 bool vtkMesoAtomGPUData::ReadMoleculeMask(vtkPolyData* warp_data, vtkMapper* mapper,
                                           const char* mask_name)
 {
+  if (this->AssemblyCopies)
+  {
+    return true; // the copies' atom sets made the mask
+  }
   const vtkIdType points = warp_data->GetNumberOfPoints();
   const vtkIdType expected = this->TileCount * this->PatchMolecules;
   if (points > 0 && points != expected)
@@ -775,7 +956,18 @@ void vtkMesoAtomGPUData::PaddedBounds(vtkPolyData* atoms, vtkPolyData* warp_data
   {
     // A warp that cannot be drawn leaves the bounds as they are.
     mesolens::MembraneWarp warp;
-    if (!vtkMesoMembraneWarp::Read(warp_data->GetFieldData(), warp))
+    std::vector<unsigned short> assembly_slots;
+    int assembly_classes = 0;
+    if (is_assembly(warp_data))
+    {
+      std::vector<std::uint32_t> hidden;
+      std::string problem;
+      if (!assembly_warp(atoms, warp_data, warp, assembly_slots, assembly_classes, hidden, problem))
+      {
+        return;
+      }
+    }
+    else if (!vtkMesoMembraneWarp::Read(warp_data->GetFieldData(), warp))
     {
       return;
     }
@@ -794,10 +986,10 @@ void vtkMesoAtomGPUData::PaddedBounds(vtkPolyData* atoms, vtkPolyData* warp_data
     }
     else
     {
-      std::vector<unsigned short> slots;
-      int molecules = 0;
+      std::vector<unsigned short> slots = std::move(assembly_slots);
+      int molecules = assembly_classes;
       std::string problem;
-      if (!molecule_slots(atoms, warp, slots, molecules, problem))
+      if (molecules == 0 && !molecule_slots(atoms, warp, slots, molecules, problem))
       {
         return;
       }

@@ -114,6 +114,9 @@ public:
   std::vector<std::uint32_t> MoleculeMask;
   unsigned long MoleculeMaskVersion = 0; ///< counts readings of MoleculeMask
   vtkIdType HiddenInTiles = 0;           ///< atoms of all tiles hidden by MoleculeMask
+  /// The warp input is an assembly's copies (a tile per copy, a molecule per atom class; the
+  /// mask hides the classes a copy leaves out) rather than a membrane mapping.
+  bool AssemblyCopies = false;
 
   /// Whether the GPU needs MoleculeSlots: instancing, or a molecule mask.
   bool UsesMoleculeSlots() const
@@ -159,6 +162,10 @@ private:
                           vtkMapper* mapper);
   /// MoleculeMask from the warp input's points (one per molecule and tile, or none).
   bool ReadMoleculeMask(vtkPolyData* warp, vtkMapper* mapper, const char* mask_name);
+  /// The warp, the molecule slots (atom classes) and the mask of an assembly's copies.
+  bool ReadAssembly(vtkPolyData* atoms, vtkPolyData* copies, vtkMapper* mapper);
+  /// WarpedAtoms from the cells and the warp just read (none without cells).
+  bool CarryCellsIntoTiles(vtkMapper* mapper);
   void ClearWarp();
   void Clear();
 

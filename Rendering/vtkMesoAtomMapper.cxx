@@ -456,6 +456,11 @@ void vtkMesoAtomMapper::SetWarpConnection(vtkAlgorithmOutput* output)
   this->SetInputConnection(1, output);
 }
 
+void vtkMesoAtomMapper::SetAssemblyConnection(vtkAlgorithmOutput* output)
+{
+  this->SetInputConnection(1, output);
+}
+
 vtkPolyData* vtkMesoAtomMapper::WarpInput()
 {
   if (this->GetNumberOfInputConnections(1) == 0)
@@ -1053,6 +1058,13 @@ double vtkMesoAtomMapper::GetLastDrawListBytesPerAtom() const
 vtkIdType vtkMesoAtomMapper::GetLastDrawnAtomCount() const
 {
   return this->Internal->LastDrawnAtoms;
+}
+
+vtkIdType vtkMesoAtomMapper::GetWarpBufferBytes() const
+{
+  const vtkMesoAtomGPUData& data = this->Internal->Data;
+  return static_cast<vtkIdType>(sizeof(float) * data.WarpTexels.size() +
+                                sizeof(std::uint32_t) * data.MoleculeMask.size());
 }
 
 vtkIdType vtkMesoAtomMapper::GetLastUploadBytes() const

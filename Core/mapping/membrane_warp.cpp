@@ -126,7 +126,7 @@ std::size_t molecules_per_tile(const MembraneWarp& warp)
 
 void check_drawable(const MembraneWarp& warp)
 {
-  if (warp.tiles < 1)
+  if (warp.tile_count() < 1)
   {
     throw InvalidInput("the warp has no tiles");
   }

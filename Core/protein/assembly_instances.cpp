@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // assembly_instances(): an assembly as instance matrices over the asymmetric unit.
 #include "mesolens/protein/assembly.h"
+
+#include "mesolens/common/errors.h"
 #include "protein/detail/assembly_reach.h"
 
 #include <Eigen/Dense>
@@ -9,6 +11,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <string>
 
 namespace mesolens {
 
@@ -90,6 +93,66 @@ AssemblyInstances assembly_instances(const AtomTable& asymmetric_unit, const Ass
       instance.center = transform_point(op.matrix, set.center);
       instance.radius = set.radius * largest_stretch(op.matrix);
       result.instances.push_back(instance);
+    }
+  }
+  return result;
+}
+
+AssemblyAtomClasses assembly_atom_classes(const AssemblyInstances& instances,
+                                          std::size_t atom_count)
+{
+  const std::size_t sets = instances.atom_sets.size();
+  for (std::size_t copy = 0; copy < instances.instances.size(); ++copy)
+  {
+    if (instances.instances[copy].atom_set >= sets)
+    {
+      throw InvalidInput("assembly copy " + std::to_string(copy) + " names atom set " +
+                         std::to_string(instances.instances[copy].atom_set) + " of " +
+                         std::to_string(sets));
+    }
+  }
+  // Partition refinement: each set splits every class it meets into its part and the rest.
+  std::vector<std::uint32_t> class_of(atom_count, 0);
+  std::uint32_t classes = 1;
+  std::vector<std::int64_t> split_to;
+  for (std::size_t s = 0; s < sets; ++s)
+  {
+    split_to.assign(classes, -1);
+    for (const std::uint32_t atom : instances.atom_sets[s].atoms)
+    {
+      if (atom >= atom_count)
+      {
+        throw InvalidInput("assembly atom set " + std::to_string(s) + " holds row " +
+                           std::to_string(atom) + " of a table of " + std::to_string(atom_count) +
+                           " atoms: the copies were made for another asymmetric unit");
+      }
+      std::int64_t& target = split_to[class_of[atom]];
+      if (target < 0)
+      {
+        target = classes++;
+      }
+      class_of[atom] = static_cast<std::uint32_t>(target);
+    }
+  }
+  // Numbered by first row, without the classes that splitting emptied.
+  AssemblyAtomClasses result;
+  std::vector<std::int64_t> number(classes, -1);
+  result.class_of_atom.resize(atom_count);
+  for (std::size_t atom = 0; atom < atom_count; ++atom)
+  {
+    std::int64_t& k = number[class_of[atom]];
+    if (k < 0)
+    {
+      k = static_cast<std::int64_t>(result.count++);
+    }
+    result.class_of_atom[atom] = static_cast<std::uint32_t>(k);
+  }
+  result.in_set.assign(result.count * sets, 0);
+  for (std::size_t s = 0; s < sets; ++s)
+  {
+    for (const std::uint32_t atom : instances.atom_sets[s].atoms)
+    {
+      result.in_set[result.class_of_atom[atom] * sets + s] = 1;
     }
   }
   return result;

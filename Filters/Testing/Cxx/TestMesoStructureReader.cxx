@@ -10,6 +10,7 @@
 #include <vtkDataArray.h>
 #include <vtkFieldData.h>
 #include <vtkInformation.h>
+#include <vtkIdTypeArray.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
@@ -349,4 +350,25 @@ TEST(vtkMesoStructureReader, AssemblyCopiesAsInstances)
   vtkNew<vtkPolyData> other;
   EXPECT_FALSE(vtkMesoAssemblyInstances::Read(other, read));
   EXPECT_FALSE(vtkMesoAssemblyInstances::Read(nullptr, read));
+  // Atom-set offsets past the atoms they index (a damaged or hand-made copy list): refused,
+  // not read out of bounds.
+  vtkNew<vtkPolyData> damaged;
+  damaged->DeepCopy(copies);
+  vtkIdTypeArray* offsets = vtkIdTypeArray::SafeDownCast(
+    damaged->GetFieldData()->GetArray(vtkMesoArrayNames::AssemblyAtomSetOffsets));
+  ASSERT_NE(offsets, nullptr);
+  vtkDataArray* whole = damaged->GetFieldData()->GetArray(vtkMesoArrayNames::AssemblyAtomSetWhole);
+  ASSERT_NE(whole, nullptr);
+  ASSERT_EQ(offsets->GetNumberOfTuples(), 2);
+  // Two sets, the first of rows 0..399 of the 327 listed.
+  offsets->SetValue(1, 400);
+  offsets->InsertNextValue(327);
+  whole->InsertNextTuple1(0);
+  EXPECT_FALSE(vtkMesoAssemblyInstances::Read(damaged, read));
+  offsets->SetNumberOfTuples(2);
+  offsets->SetValue(1, 327);
+  whole->SetNumberOfTuples(1);
+  ASSERT_TRUE(vtkMesoAssemblyInstances::Read(damaged, read));
+  offsets->SetValue(0, -5);
+  EXPECT_FALSE(vtkMesoAssemblyInstances::Read(damaged, read));
 }

@@ -6,8 +6,10 @@
 #include "mesolens_vtk_test_utilities.h"
 
 #include "mesolens/molecules/elements.h"
+#include "mesolens/protein/assembly.h"
 #include "mesolens/render/impostor_geometry.h"
 
+#include "vtkMesoAssemblyInstances.h"
 #include "vtkMesoAtomTableConversion.h"
 
 #include <vtkCamera.h>
@@ -806,6 +808,84 @@ TEST(MesoAtomMapper, WarpNeedsThePatchNotTheMappedAtoms)
   scene.Window->Render();
   EXPECT_NE(events.AllErrors().find("must be the membrane patch"), std::string::npos)
     << events.AllErrors();
+}
+
+namespace {
+/// Copies of an asymmetric unit: one per translation (Å, along x), all of the set `rows`.
+vtkSmartPointer<vtkPolyData> assembly_copies(const std::vector<double>& shifts,
+                                             const std::vector<std::uint32_t>& rows)
+{
+  mesolens::AssemblyInstances instances;
+  instances.atom_sets.resize(1);
+  instances.atom_sets[0].atoms = rows;
+  for (const double shift : shifts)
+  {
+    mesolens::AssemblyInstance copy;
+    copy.matrix[3] = shift;
+    copy.center = { shift, 0, 0 };
+    copy.radius = 2;
+    instances.instances.push_back(copy);
+  }
+  auto copies = vtkSmartPointer<vtkPolyData>::New();
+  vtkMesoAssemblyInstances::Write(instances, copies);
+  return copies;
+}
+} // namespace
+
+TEST(MesoAtomMapper, AssemblyCopiesAreDrawnWhereTheirMatricesPutThem)
+{
+  Scene scene = make_scene(two_atoms(), vtkMesoAtomMapper::SPACE_FILLING);
+  scene.Mapper->SetInputDataObject(1, assembly_copies({ 0.0, 10.0, -20.0 }, { 0, 1 }));
+  mesolens_test::EventRecorder events(scene.Mapper);
+  double bounds[6];
+  scene.Mapper->GetBounds(bounds);
+  const double r = 1.0; // beads without elements
+  EXPECT_NEAR(bounds[0], -20.0 - r, 1e-6);
+  EXPECT_NEAR(bounds[1], 11.5 + r, 1e-6);
+  scene.Renderer->ResetCamera();
+  scene.Window->Render();
+  EXPECT_TRUE(events.AllErrors().empty()) << events.AllErrors();
+  EXPECT_TRUE(drew_something(scene.Window));
+  EXPECT_EQ(scene.Mapper->GetLastDrawnAtomCount(), 6);
+  EXPECT_EQ(scene.Mapper->GetHiddenAtomCount(), 0);
+  EXPECT_DOUBLE_EQ(scene.Mapper->GetBufferBytesPerAtom(), 16.0);
+  // A set of atom 1 alone: atom 0 is hidden in every copy.
+  scene.Mapper->SetInputDataObject(1, assembly_copies({ 0.0, 10.0, -20.0 }, { 1 }));
+  scene.Window->Render();
+  EXPECT_EQ(scene.Mapper->GetHiddenAtomCount(), 3);
+}
+
+TEST(MesoAtomMapper, AssemblyCopiesOfAnotherUnitAreAnError)
+{
+  // Copies made for a unit of three atoms, drawn over two; then a copy with a matrix that is no
+  // number; then copies that lost their arrays.
+  Scene scene = make_scene(two_atoms(), vtkMesoAtomMapper::SPACE_FILLING);
+  scene.Renderer->GetActiveCamera()->SetPosition(0, 0, 10);
+  scene.Renderer->GetActiveCamera()->SetFocalPoint(0, 0, 0);
+  mesolens_test::EventRecorder events(scene.Mapper);
+  scene.Mapper->SetInputDataObject(1, assembly_copies({ 0.0, 10.0 }, { 0, 1, 2 }));
+  scene.Window->Render();
+  EXPECT_NE(events.AllErrors().find("another asymmetric unit"), std::string::npos)
+    << events.AllErrors();
+  EXPECT_FALSE(drew_something(scene.Window));
+
+  auto not_a_number = assembly_copies({ 0.0, 10.0 }, { 0, 1 });
+  not_a_number->GetPointData()
+    ->GetArray(vtkMesoArrayNames::AssemblyMatrix)
+    ->SetComponent(1, 5, std::nan(""));
+  scene.Mapper->SetInputDataObject(1, not_a_number);
+  scene.Window->Render();
+  EXPECT_NE(events.AllErrors().find("copy 1's matrix is not finite"), std::string::npos)
+    << events.AllErrors();
+  EXPECT_FALSE(drew_something(scene.Window));
+
+  auto damaged = assembly_copies({ 0.0 }, { 0, 1 });
+  damaged->GetFieldData()->RemoveArray(vtkMesoArrayNames::AssemblyAtomSetAtoms);
+  scene.Mapper->SetInputDataObject(1, damaged);
+  scene.Window->Render();
+  EXPECT_NE(events.AllErrors().find("not a vtkMesoStructureReader's output 1"), std::string::npos)
+    << events.AllErrors();
+  EXPECT_FALSE(drew_something(scene.Window));
 }
 
 namespace {

@@ -433,6 +433,48 @@ TEST(Assembly, MmcifGeneratorsSelectLabelAsymIds)
     mesolens::assembly_instances(dry_file.models[0], dry_file.assemblies[0]).instances.size(), 3u);
 }
 
+TEST(Assembly, AtomClassesFollowTheSetsHoldingEachAtom)
+{
+  // Sets over 8 rows: {0..5}, {6, 7}, {2, 3, 6}; row 4 appears in the first only, and so on.
+  mesolens::AssemblyInstances instances;
+  for (const std::vector<std::uint32_t>& rows :
+       { std::vector<std::uint32_t>{ 0, 1, 2, 3, 4, 5 }, std::vector<std::uint32_t>{ 6, 7 },
+         std::vector<std::uint32_t>{ 2, 3, 6 } })
+  {
+    mesolens::AssemblyAtomSet set;
+    set.atoms = rows;
+    instances.atom_sets.push_back(set);
+  }
+  for (const std::size_t set : { 0, 1, 2, 0 })
+  {
+    mesolens::AssemblyInstance copy;
+    copy.atom_set = set;
+    instances.instances.push_back(copy);
+  }
+  const mesolens::AssemblyAtomClasses classes = mesolens::assembly_atom_classes(instances, 9);
+  // {0,1,4,5} in set 0 alone, {2,3} in 0 and 2, {6} in 1 and 2, {7} in 1, {8} in none.
+  EXPECT_EQ(classes.count, 5u);
+  EXPECT_EQ(classes.class_of_atom, (std::vector<std::uint32_t>{ 0, 0, 1, 1, 0, 0, 2, 3, 4 }));
+  EXPECT_EQ(classes.in_set,
+            (std::vector<std::uint8_t>{ 1, 0, 0, 1, 0, 1, 0, 1, 1, 0, 1, 0, 0, 0, 0 }));
+  EXPECT_TRUE(classes.shows(instances, 3, 1));  // copy 3 uses set 0, which holds rows 2 and 3
+  EXPECT_FALSE(classes.shows(instances, 2, 0)); // copy 2 uses set 2: not rows 0, 1, 4, 5
+  EXPECT_FALSE(classes.shows(instances, 0, 4)); // row 8 is in no set
+  // One set of every row: one class, shown by every copy.
+  mesolens::AssemblyInstances whole;
+  whole.atom_sets.resize(1);
+  whole.atom_sets[0].atoms = { 0, 1, 2 };
+  whole.instances.resize(60);
+  const mesolens::AssemblyAtomClasses one = mesolens::assembly_atom_classes(whole, 3);
+  EXPECT_EQ(one.count, 1u);
+  EXPECT_EQ(one.in_set, std::vector<std::uint8_t>{ 1 });
+  // Copies of another table, or a copy naming a set that does not exist: refused.
+  EXPECT_THROW(mesolens::assembly_atom_classes(whole, 2), mesolens::InvalidInput);
+  whole.instances[5].atom_set = 1;
+  EXPECT_THROW(mesolens::assembly_atom_classes(whole, 3), mesolens::InvalidInput);
+  EXPECT_EQ(mesolens::assembly_atom_classes(mesolens::AssemblyInstances{}, 4).count, 1u);
+}
+
 TEST(Assembly, MalformedMmcifAssembliesAreLeftOutWithAWarning)
 {
   std::string products;

@@ -62,10 +62,15 @@ struct MembraneWarp
   std::vector<int> instance_molecules;
   std::vector<int> instance_tiles;
 
-  /// k x k.
+  /// Tiles that are no k x k grid of a patch (an assembly's copies drawn by instancing, one
+  /// tile per copy); 0: `tiles` x `tiles`.
+  std::size_t copy_tiles = 0;
+
+  /// k x k, or copy_tiles.
   std::size_t tile_count() const
   {
-    return std::size_t(this->tiles) * std::size_t(this->tiles);
+    return this->copy_tiles > 0 ? this->copy_tiles
+                                : std::size_t(this->tiles) * std::size_t(this->tiles);
   }
   /// The frame as a MembranePatch without atoms (for polynomial_coordinates()).
   MembranePatch frame() const;

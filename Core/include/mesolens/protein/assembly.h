@@ -230,4 +230,28 @@ struct AssemblyInstances
 /// InvalidInput as expand_assembly() does for operators beyond float's range and missing ids.
 AssemblyInstances assembly_instances(const AtomTable& asymmetric_unit, const Assembly& assembly);
 
+/// The asymmetric unit's atoms grouped by the atom sets holding them, so that an instanced
+/// draw can give every copy one motion per group and hide the groups its set leaves out.
+struct AssemblyAtomClasses
+{
+  /// Per row of the asymmetric unit, its class: rows in the same sets share one. Classes are
+  /// numbered by their first row.
+  std::vector<std::uint32_t> class_of_atom;
+  std::size_t count = 0; ///< classes
+  /// Per class and atom set (class k, set s at k * sets + s): 1 where the set holds the class.
+  std::vector<std::uint8_t> in_set;
+  /// Whether copy `copy` of `instances` shows class `k`.
+  bool shows(const AssemblyInstances& instances, std::size_t copy, std::size_t k) const
+  {
+    return this->in_set[k * instances.atom_sets.size() + instances.instances[copy].atom_set] != 0;
+  }
+};
+
+/// The classes of the `atom_count` rows of the asymmetric unit under `instances`' atom sets (a
+/// single class when one set holds every row). Linear in the sets' sizes. Throws InvalidInput
+/// when a set names a row beyond `atom_count` (copies of another table) or a copy names a set
+/// that does not exist.
+AssemblyAtomClasses assembly_atom_classes(const AssemblyInstances& instances,
+                                          std::size_t atom_count);
+
 } // namespace mesolens

@@ -11,6 +11,7 @@
 // neither tool reads (goal 3 s), also as a mesh alone.
 //
 //   BenchmarkMolecularSurface [--repeats N]
+//   BenchmarkMolecularSurface --smoke    (CI: crambin alone, at 0.3 and 0.1 Å, once each)
 #include "vtkMesoArrayNames.h"
 #include "vtkMesoParallelFor.h"
 #include "mesolens_benchmark_timing.h"
@@ -40,6 +41,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 namespace {
 using mesolens_test::median_seconds;
@@ -209,7 +211,8 @@ Baseline pymol(const std::string& path)
 
 int main(int argc, char* argv[])
 {
-  const int repeats = mesolens_test::count_argument(argc, argv, "--repeats", 3);
+  const bool smoke = argc > 1 && std::string(argv[1]) == "--smoke";
+  const int repeats = smoke ? 1 : mesolens_test::count_argument(argc, argv, "--repeats", 3);
   std::printf("BENCH ses threads: %d\n", vtkMesoParallelFor::ThreadCount());
   const bool have_edtsurf = mesolens_test::program_available("command -v EDTSurf");
   const bool have_pymol = mesolens_test::program_available("/usr/bin/python3 -c 'import pymol'");
@@ -244,10 +247,17 @@ int main(int argc, char* argv[])
                 apart, seconds, peak_mib(),
                 static_cast<long long>(surface->GetOutput()->GetNumberOfPolys()));
   }
-  for (const std::string& path : { mesolens_test::data_file("proteins/1crn.pdb"),
-                                   mesolens_test::data_file("proteins/1tii.pdb"),
-                                   mesolens_test::shared_file("proteins/3wip.pdb"),
-                                   mesolens_test::shared_file("proteins/4jsv.pdb") })
+  std::vector<std::string> files{ mesolens_test::data_file("proteins/1crn.pdb"),
+                                  mesolens_test::data_file("proteins/1tii.pdb"),
+                                  mesolens_test::shared_file("proteins/3wip.pdb"),
+                                  mesolens_test::shared_file("proteins/4jsv.pdb") };
+  std::vector<double> tolerances{ 0.3, 0.15, 0.13, 0.12, 0.11, 0.1, 0.09, 0.08, 0.06, 0.02 };
+  if (smoke)
+  {
+    files.resize(1);
+    tolerances = { 0.3, 0.1 };
+  }
+  for (const std::string& path : files)
   {
     if (!mesolens_test::exists(path))
     {
@@ -265,7 +275,7 @@ int main(int argc, char* argv[])
     double exact_area = 0, exact_volume = 0; // the same at every tolerance
     // The fastest tolerance whose mesh area lies within 0.5 % of the exact area.
     double accurate_seconds = 0, accurate_tolerance = 0;
-    for (const double tolerance : { 0.3, 0.15, 0.13, 0.12, 0.11, 0.1, 0.09, 0.08, 0.06, 0.02 })
+    for (const double tolerance : tolerances)
     {
       surface->SetTolerance(tolerance);
       reset_peak();
@@ -339,7 +349,7 @@ int main(int argc, char* argv[])
     }
   }
   const std::string gro = mesolens_test::shared_file("proteins/3l5q.gro");
-  if (mesolens_test::exists(gro))
+  if (!smoke && mesolens_test::exists(gro))
   {
     vtkNew<vtkMesoTrajectoryReader> reader;
     reader->SetTopologyFileName(gro.c_str());

@@ -47,6 +47,7 @@ struct vtkMesoRibbons::Internals
 {
   vtkMesoAtomInput Atoms;
   mesolens::RibbonTrace Trace;
+  mesolens::RibbonMesh Mesh; ///< the last update's, its memory reused by the next
 };
 
 vtkMesoRibbons::vtkMesoRibbons()
@@ -231,8 +232,10 @@ int vtkMesoRibbons::RequestData(vtkInformation*, vtkInformationVector** inputVec
     }
     in.Trace.update(in.Atoms.Positions(atoms),
                     in.Atoms.Bytes(atoms, vtkMesoArrayNames::SecondaryStructure));
-    const mesolens::RibbonMesh mesh = mesolens::ribbon_mesh(
-      in.Trace.residues, ribbon_params(this, in.Trace.residues), vtkMesoParallelFor::Get());
+    // Into the last update's mesh: its memory is reused (see mesolens::ribbon_mesh).
+    mesolens::RibbonMesh& mesh = in.Mesh;
+    mesolens::ribbon_mesh(in.Trace.residues, ribbon_params(this, in.Trace.residues),
+                          vtkMesoParallelFor::Get(), mesh);
     write_mesh(mesh, in.Trace, atoms, output);
     add_segment_fields(mesh, in.Trace.residues, output);
   }

@@ -974,8 +974,22 @@ std::vector<RibbonSegment> ribbon_segments(const std::vector<RibbonResidue>& res
 RibbonMesh ribbon_mesh(const std::vector<RibbonResidue>& residues, const RibbonParams& settings,
                        const ParallelFor& parallel_for)
 {
-  check_settings(settings);
   RibbonMesh mesh;
+  ribbon_mesh(residues, settings, parallel_for, mesh);
+  return mesh;
+}
+
+void ribbon_mesh(const std::vector<RibbonResidue>& residues, const RibbonParams& settings,
+                 const ParallelFor& parallel_for, RibbonMesh& mesh)
+{
+  check_settings(settings);
+  mesh.points.clear();
+  mesh.normals.clear();
+  mesh.triangles.clear();
+  mesh.vertex_residue_id.clear();
+  mesh.vertex_secondary_structure.clear();
+  mesh.pieces.clear();
+  mesh.centre_line.clear();
   mesh.segments = ribbon_segments(residues, settings);
   for (std::size_t i = 0; i < residues.size(); ++i)
   {
@@ -1006,7 +1020,6 @@ RibbonMesh ribbon_mesh(const std::vector<RibbonResidue>& residues, const RibbonP
                   sample_offset[segment]);
     }
   });
-  return mesh;
 }
 
 } // namespace mesolens

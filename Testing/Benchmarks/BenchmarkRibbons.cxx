@@ -3,7 +3,7 @@
 // and DSSP + ribbons against the goal of 100 ms; then against VTK's vtkProteinRibbonFilter on
 // PDB files it reads (its own reader's output, the file's HELIX/SHEET records), in the same run.
 //
-//   BenchmarkRibbons [--repeats N]
+//   BenchmarkRibbons [--repeats N] [--levels 1,2,3,6,12]   (samples per residue on 3l5q)
 #include "mesolens_benchmark_timing.h"
 #include "vtkMesoParallelFor.h"
 #include "mesolens_test_data.h"
@@ -20,7 +20,9 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <sstream>
 #include <string>
+#include <vector>
 
 namespace {
 using mesolens_test::median_seconds;
@@ -29,6 +31,20 @@ using mesolens_test::median_seconds;
 int main(int argc, char* argv[])
 {
   const int repeats = mesolens_test::count_argument(argc, argv, "--repeats", 5);
+  std::vector<int> levels{ 1, 2, 3, 6, 12 };
+  for (int i = 1; i + 1 < argc; ++i)
+  {
+    if (std::string(argv[i]) == "--levels")
+    {
+      levels.clear();
+      std::stringstream list(argv[i + 1]);
+      std::string item;
+      while (std::getline(list, item, ','))
+      {
+        levels.push_back(std::max(1, std::atoi(item.c_str())));
+      }
+    }
+  }
   std::printf("BENCH ribbons threads: %d\n", vtkMesoParallelFor::ThreadCount());
 
   // 1. The proteasome, from a GRO file (no records: DSSP needed).
@@ -47,7 +63,7 @@ int main(int argc, char* argv[])
     vtkNew<vtkMesoRibbons> ribbons;
     ribbons->SetInputData(dssp->GetOutput());
     ribbons->Update(); // the atom layout is learnt once; the timings below are per frame
-    for (int level : { 1, 2, 3, 6, 12 })
+    for (const int level : levels)
     {
       ribbons->SetSubdivisions(level);
       const double seconds = median_seconds(repeats, [&] {

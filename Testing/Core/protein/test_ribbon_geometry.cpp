@@ -852,3 +852,37 @@ TEST(RibbonGeometry, DeterministicWhateverTheThreadSplit)
     EXPECT_EQ(serial.centre_line[k].first_ring_vertex, split.centre_line[k].first_ring_vertex);
   }
 }
+
+TEST(RibbonGeometry, AReusedMeshIsTheFreshMeshAndKeepsItsMemory)
+{
+  // Into one mesh: fine, then coarse (smaller arrays), then fine again: each the same as a mesh
+  // made afresh, nothing left over from the larger one, and the fine arrays' memory kept.
+  const Chain chain = mixed_chain();
+  RibbonParams fine, coarse;
+  fine.subdivisions = 8;
+  coarse.subdivisions = 2;
+  RibbonMesh reused;
+  mesolens::ribbon_mesh(chain, fine, {}, reused);
+  const double* first_points = reused.points.data();
+  for (const RibbonParams& settings : { coarse, fine })
+  {
+    mesolens::ribbon_mesh(chain, settings, {}, reused);
+    const RibbonMesh fresh = mesolens::ribbon_mesh(chain, settings);
+    EXPECT_EQ(reused.points, fresh.points);
+    EXPECT_EQ(reused.normals, fresh.normals);
+    EXPECT_EQ(reused.triangles, fresh.triangles);
+    EXPECT_EQ(reused.vertex_residue_id, fresh.vertex_residue_id);
+    EXPECT_EQ(reused.vertex_secondary_structure, fresh.vertex_secondary_structure);
+    EXPECT_EQ(reused.pieces.size(), fresh.pieces.size());
+    EXPECT_EQ(reused.segments.size(), fresh.segments.size());
+    ASSERT_EQ(reused.centre_line.size(), fresh.centre_line.size());
+    EXPECT_EQ(reused.centre_line.back().position, fresh.centre_line.back().position);
+  }
+  EXPECT_EQ(reused.points.data(), first_points);
+  // A refused input leaves the mesh to be refilled, not a crash.
+  Chain broken = chain;
+  broken[1].trace[0] = std::nan("");
+  EXPECT_THROW(mesolens::ribbon_mesh(broken, fine, {}, reused), mesolens::InvalidInput);
+  mesolens::ribbon_mesh(chain, coarse, {}, reused);
+  EXPECT_EQ(reused.triangles, mesolens::ribbon_mesh(chain, coarse).triangles);
+}

@@ -227,4 +227,11 @@ std::vector<RibbonSegment> ribbon_segments(const std::vector<RibbonResidue>& res
 RibbonMesh ribbon_mesh(const std::vector<RibbonResidue>& residues,
                        const RibbonParams& settings = {}, const ParallelFor& parallel_for = {});
 
+/// ribbon_mesh() into `mesh`, whose arrays' memory is reused (cleared, not freed): a filter that
+/// redraws the ribbons of every frame keeps its pages instead of faulting fresh ones in, which
+/// is most of the time of a large mesh. Throws as ribbon_mesh() does (`mesh` then holds
+/// nothing valid).
+void ribbon_mesh(const std::vector<RibbonResidue>& residues, const RibbonParams& settings,
+                 const ParallelFor& parallel_for, RibbonMesh& mesh);
+
 } // namespace mesolens

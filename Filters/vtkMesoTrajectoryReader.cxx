@@ -72,6 +72,7 @@ struct vtkMesoTrajectoryReader::State
   bool TrajectoryIsTopology = false;              // the frames are those of the topology file
   std::vector<double> Times;                      // ps
   std::unique_ptr<mesolens::MoleculeContinuity> Continuity;
+  mesolens::MoleculeGroups Molecules; // the topology's, grouped once for every frame
 
   /// Frame `index` of the file (the topology's own when there is no trajectory, or when the
   /// trajectory is the topology file and index is 0), its molecules made whole when asked.
@@ -93,8 +94,7 @@ struct vtkMesoTrajectoryReader::State
     }
     if (make_whole)
     {
-      mesolens::make_molecules_whole(frame.positions, this->Topology.molecule_ids.data(),
-                                     frame.box);
+      mesolens::make_molecules_whole(frame.positions, this->Molecules, frame.box);
     }
     return frame;
   }
@@ -210,6 +210,8 @@ bool vtkMesoTrajectoryReader::OpenIfNeeded()
   try
   {
     state.Topology = load_topology(topology, params);
+    state.Molecules =
+      mesolens::group_molecules(state.Topology.molecule_ids.data(), state.Topology.size());
     this->UpdateProgress(0.5);
     std::string trajectory = this->TrajectoryFileName;
     if (trajectory.empty() && mesolens::file_extension(topology) == "gro")

@@ -31,14 +31,34 @@ Eigen::Matrix3d box_columns(const PeriodicBox& box)
 void make_molecules_whole(PointSpan<float> positions, const int* molecule_ids,
                           const PeriodicBox& box)
 {
-  const std::size_t atom_count = positions.size();
-  if (!box.is_set() || atom_count == 0)
+  if (!box.is_set() || positions.size() == 0)
   {
     return;
   }
+  make_molecules_whole(positions, group_molecules(molecule_ids, positions.size()), box);
+}
+
+void make_molecules_whole(PointSpan<float> positions, const MoleculeGroups& molecules,
+                          const PeriodicBox& box)
+{
+  if (!box.is_set() || positions.size() == 0)
+  {
+    return;
+  }
+  if (molecules.of_atom.size() != positions.size())
+  {
+    throw InvalidInput("make_molecules_whole: molecules grouped for " +
+                       std::to_string(molecules.of_atom.size()) + " atoms, " +
+                       std::to_string(positions.size()) + " positions");
+  }
   const MinimumImage minimum_image(box);
+  // Steps shorter than half the smallest box height are their own minimum image (any other
+  // image is longer by a box-vector combination, at least that height long): the bonded
+  // neighbours that most steps are keep their place without a reduction. (The kept position
+  // is bit for bit the one the reduction would give: float differences are exact in double.)
+  const double half_height = 0.5 * box.smallest_height();
+  const double short_step2 = half_height * half_height * (1.0 - 1e-9);
   // Each atom next to the previous atom of its molecule.
-  const MoleculeGroups molecules = group_molecules(molecule_ids, atom_count);
   for (std::size_t m = 0; m < molecules.count(); ++m)
   {
     const std::uint32_t* atom = molecules.atoms.data() + molecules.first[m];
@@ -46,8 +66,13 @@ void make_molecules_whole(PointSpan<float> positions, const int* molecule_ids,
     {
       float* p = positions[atom[k]];
       const float* q = positions[atom[k - 1]];
-      const std::array<double, 3> d =
-        minimum_image({ double(p[0]) - q[0], double(p[1]) - q[1], double(p[2]) - q[2] });
+      const std::array<double, 3> step{ double(p[0]) - q[0], double(p[1]) - q[1],
+                                        double(p[2]) - q[2] };
+      if (step[0] * step[0] + step[1] * step[1] + step[2] * step[2] < short_step2)
+      {
+        continue;
+      }
+      const std::array<double, 3> d = minimum_image(step);
       for (int c = 0; c < 3; ++c)
       {
         p[c] = float(double(q[c]) + d[std::size_t(c)]);
@@ -152,18 +177,28 @@ void MoleculeContinuity::shift_atoms(const std::vector<std::int32_t>& shifts,
   {
     return;
   }
-  for (std::size_t i = 0; i < this->Molecules.of_atom.size(); ++i)
+  // One offset per molecule; the molecules that kept their image (nearly all) are skipped.
+  for (std::size_t mol = 0; mol < this->Molecules.count(); ++mol)
   {
-    const std::size_t mol = this->Molecules.of_atom[i];
-    for (int k = 0; k < 3; ++k)
+    const std::int32_t* shift = shifts.data() + 3 * mol;
+    if (shift[0] == 0 && shift[1] == 0 && shift[2] == 0)
     {
-      double offset = 0;
-      for (int v = 0; v < 3; ++v)
+      continue;
+    }
+    double offset[3] = { 0, 0, 0 };
+    for (std::size_t k = 0; k < 3; ++k)
+    {
+      for (std::size_t v = 0; v < 3; ++v)
       {
-        offset +=
-          double(shifts[3 * mol + std::size_t(v)]) * box.vectors[std::size_t(v)][std::size_t(k)];
+        offset[k] += double(shift[v]) * box.vectors[v][k];
       }
-      positions[i][k] = float(positions[i][k] + offset);
+    }
+    for (const std::uint32_t atom : this->Molecules.atoms_of(mol))
+    {
+      for (std::size_t k = 0; k < 3; ++k)
+      {
+        positions[atom][k] = float(positions[atom][k] + offset[k]);
+      }
     }
   }
 }

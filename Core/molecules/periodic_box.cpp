@@ -53,6 +53,26 @@ std::array<double, 3> PeriodicBox::minimum_image(const std::array<double, 3>& d)
   return MinimumImage(*this)(d);
 }
 
+double PeriodicBox::smallest_height() const
+{
+  if (!this->is_set())
+  {
+    return 0;
+  }
+  const auto cross = [](const std::array<double, 3>& u, const std::array<double, 3>& v) {
+    return std::array<double, 3>{ u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                                  u[0] * v[1] - u[1] * v[0] };
+  };
+  const auto& [a, b, c] = this->vectors;
+  double largest_face = 0;
+  for (const auto& face : { cross(b, c), cross(c, a), cross(a, b) })
+  {
+    largest_face =
+      std::max(largest_face, std::sqrt(face[0] * face[0] + face[1] * face[1] + face[2] * face[2]));
+  }
+  return std::abs(this->volume()) / largest_face;
+}
+
 MinimumImage::MinimumImage(const PeriodicBox& box)
   : Box(box)
   , Set(box.is_set())

@@ -211,6 +211,12 @@ void benchmark_trajectory(const std::string& label, const std::string& gro, cons
       reader->UpdateTimeStep(*it);
     }
   });
+  const double forward = median_seconds(5, [&] {
+    for (const double time : times)
+    {
+      reader->UpdateTimeStep(time);
+    }
+  });
   const double n = double(frames);
   std::printf(
     "BENCH xtc input=%s frames=%d atoms=%zu | TrajectoryFile %.1f frames/s %.2f Matoms/s "
@@ -219,6 +225,31 @@ void benchmark_trajectory(const std::string& label, const std::string& gro, cons
     label.c_str(), frames, atoms, n / core, n * double(atoms) / core / 1e6, n / pipeline,
     n * double(atoms) / pipeline / 1e6, n / baseline, n * double(atoms) / baseline / 1e6,
     baseline / core);
+  // MDAnalysis reading the same files in order (its coordinates as stored), where installed.
+  const std::string script =
+    std::string(MESOLENS_SOURCE_DIR) + "/Testing/Benchmarks/mdanalysis_trajectory.py";
+  std::FILE* pipe =
+    popen(("/usr/bin/python3 " + script + " " + gro + " " + xtc + " 5 2>/dev/null").c_str(), "r");
+  int mda_frames = 0;
+  double mda_rate = 0;
+  const bool have_mda = pipe && std::fscanf(pipe, "%d %lf", &mda_frames, &mda_rate) == 2;
+  if (pipe)
+  {
+    pclose(pipe);
+  }
+  if (have_mda && mda_rate > 0)
+  {
+    std::printf("BENCH xtc input=%s in order | vtkMesoTrajectoryReader (whole, continuous) %.1f "
+                "frames/s | MDAnalysis (as stored) %.1f frames/s | ratio ours/MDAnalysis %.2f "
+                "(goal >= 0.8)\n",
+                label.c_str(), n / forward, mda_rate, n / forward / mda_rate);
+  }
+  else
+  {
+    std::printf("BENCH xtc input=%s in order | vtkMesoTrajectoryReader (whole, continuous) %.1f "
+                "frames/s | MDAnalysis not installed (python3-mdanalysis): no ratio\n",
+                label.c_str(), n / forward);
+  }
 }
 } // namespace
 

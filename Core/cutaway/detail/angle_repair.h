@@ -37,7 +37,8 @@ AngleRange angle_range(const RepairMesh& mesh);
 /// triangles that stay bad. No operation is kept unless it raises the smallest angle around it
 /// and tilts no triangle by more than 60°. When none helps, bad triangles on the boundary of an
 /// open mesh are removed (not where that would pinch it; at most 5 % of the triangles). The
-/// shape and topology stay (the boundary may lose a few triangles). Returns the angle range
+/// shape and topology stay (the boundary may lose a few triangles). Stops early when five
+/// rounds in a row leave no fewer bad triangles than the fewest so far. Returns the angle range
 /// reached, which may still miss the goal: the caller checks.
 AngleRange repair_angles(RepairMesh& mesh, double goal, int rounds = 30);
 

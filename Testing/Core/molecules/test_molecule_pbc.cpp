@@ -5,7 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <random>
+#include <vector>
 
 namespace {
 mesolens::PeriodicBox cube(double edge)
@@ -42,6 +45,64 @@ TEST(MoleculePbc, TriclinicBoxWhole)
   EXPECT_NEAR(p[3], 2.0f, 1e-4);
   EXPECT_NEAR(p[4], 1.0f, 1e-4);
   EXPECT_NEAR(p[5], 1.0f, 1e-4);
+}
+
+TEST(MoleculePbc, WholeMoleculesEqualTheReductionOfEveryStep)
+{
+  // Random chains of steps from 0.5 to 14 Å in a skewed box, each atom moved by a random number
+  // of box vectors (so some raw steps are short and the rest span the box): the same floats as
+  // reducing every step to its minimum image, as it was done before short steps were left alone.
+  const auto box = mesolens::PeriodicBox::from_cell(40, 45, 50, 70, 80, 100);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), length(0.5, 14.0), where(0.0, 40.0);
+  std::vector<float> positions;
+  std::vector<int> molecules;
+  for (int m = 0; m < 50; ++m)
+  {
+    std::array<double, 3> at{ where(random), where(random), where(random) };
+    for (int k = 0; k < 30; ++k)
+    {
+      std::array<double, 3> direction{ unit(random), unit(random), unit(random) };
+      const double norm = std::sqrt(direction[0] * direction[0] + direction[1] * direction[1] +
+                                    direction[2] * direction[2]);
+      const double step = length(random);
+      for (int c = 0; c < 3; ++c)
+      {
+        at[c] += step * direction[c] / norm;
+      }
+      // Wrapped by a random whole number of each box vector.
+      std::array<double, 3> wrapped = at;
+      for (int v = 0; v < 3; ++v)
+      {
+        const int times = int(std::floor(3 * unit(random)));
+        for (int c = 0; c < 3; ++c)
+        {
+          wrapped[c] += times * box.vectors[v][c];
+        }
+      }
+      positions.insert(positions.end(),
+                       { float(wrapped[0]), float(wrapped[1]), float(wrapped[2]) });
+      molecules.push_back(m);
+    }
+  }
+  std::vector<float> reference = positions;
+  for (std::size_t a = 1; a < molecules.size(); ++a)
+  {
+    if (molecules[a] != molecules[a - 1])
+    {
+      continue;
+    }
+    float* p = reference.data() + 3 * a;
+    const float* q = reference.data() + 3 * (a - 1);
+    const auto d =
+      box.minimum_image({ double(p[0]) - q[0], double(p[1]) - q[1], double(p[2]) - q[2] });
+    for (int c = 0; c < 3; ++c)
+    {
+      p[c] = float(double(q[c]) + d[std::size_t(c)]);
+    }
+  }
+  mesolens::make_molecules_whole(positions, molecules.data(), box);
+  EXPECT_EQ(positions, reference);
 }
 
 TEST(MoleculePbc, UnsetBoxIsNoOp)

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -63,6 +64,39 @@ TEST(PeriodicBox, TriclinicImageIsShortest)
     const std::array<double, 3> d{ coordinate(random), coordinate(random), coordinate(random) };
     EXPECT_NEAR(length(box.minimum_image(d)), length(brute_force_image(box, d)), 1e-6);
   }
+}
+
+TEST(PeriodicBox, SmallestHeightBoundsEveryBoxVectorCombination)
+{
+  mesolens::PeriodicBox slab;
+  slab.vectors = { { { 10, 0, 0 }, { 0, 20, 0 }, { 0, 0, 30 } } };
+  EXPECT_NEAR(slab.smallest_height(), 10.0, 1e-12);
+  // Hexagonal: a and b at 120 degrees are 10 sin 60 apart across their faces.
+  const auto hexagonal = mesolens::PeriodicBox::from_cell(10, 10, 20, 90, 90, 120);
+  EXPECT_NEAR(hexagonal.smallest_height(), 10 * std::sqrt(3.0) / 2, 1e-9);
+  EXPECT_EQ(mesolens::PeriodicBox{}.smallest_height(), 0.0);
+  const auto skewed = mesolens::PeriodicBox::from_cell(40, 45, 50, 70, 80, 100);
+  const double height = skewed.smallest_height();
+  double shortest = 1e300;
+  for (int i = -3; i <= 3; ++i)
+    for (int j = -3; j <= 3; ++j)
+      for (int k = -3; k <= 3; ++k)
+      {
+        if (i == 0 && j == 0 && k == 0)
+        {
+          continue;
+        }
+        double squared = 0;
+        for (int c = 0; c < 3; ++c)
+        {
+          const double x =
+            i * skewed.vectors[0][c] + j * skewed.vectors[1][c] + k * skewed.vectors[2][c];
+          squared += x * x;
+        }
+        shortest = std::min(shortest, std::sqrt(squared));
+      }
+  EXPECT_GE(shortest, height);
+  EXPECT_LT(height, 40.0);
 }
 
 TEST(PeriodicBox, FromCellHexagonal)

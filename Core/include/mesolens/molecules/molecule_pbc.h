@@ -23,6 +23,11 @@ namespace mesolens {
 void make_molecules_whole(PointSpan<float> positions, const int* molecule_ids,
                           const PeriodicBox& box);
 
+/// The same for molecules already grouped (group_molecules() of the ids, one entry per atom of
+/// `positions`): a trajectory groups its atoms once, not per frame.
+void make_molecules_whole(PointSpan<float> positions, const MoleculeGroups& molecules,
+                          const PeriodicBox& box);
+
 /// Keeps molecules from jumping across the box between frames: the centroid of each molecule
 /// in frame k is moved to the periodic image closest to its centroid in frame k-1. Shifts are
 /// remembered per frame, so frames can be requested in any order (frames before the requested

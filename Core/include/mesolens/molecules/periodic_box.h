@@ -19,6 +19,10 @@ struct PeriodicBox
   double volume() const;
   /// True when the off-diagonal terms are zero (to 1e-9 Å).
   bool is_orthorhombic() const;
+  /// The smallest of the box's three heights (the distances between opposite faces), Å; 0 when
+  /// not set. Every nonzero box-vector combination is at least this long, so a displacement
+  /// shorter than half of it is its own minimum image.
+  double smallest_height() const;
 
   /// The shortest periodic image of the displacement d (Å): d + i·a + j·b + k·c with integer
   /// i, j, k minimising the length. Exact for any triclinic box (searches the neighbouring

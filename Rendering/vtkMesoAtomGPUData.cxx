@@ -175,6 +175,21 @@ bool molecule_slots(vtkPolyData* atoms, const mesolens::MembraneWarp& warp,
   }
   return true;
 }
+/// The first `motions` of an instancing warp's motions as texels: the first 3 rows (12 floats)
+/// of each 4 x 4 matrix.
+std::vector<float> motion_texels(const mesolens::MembraneWarp& warp, std::size_t motions)
+{
+  std::vector<float> texels(12 * motions);
+  for (std::size_t m = 0; m < motions; ++m)
+  {
+    for (std::size_t k = 0; k < 12; ++k)
+    {
+      texels[12 * m + k] = static_cast<float>(warp.instance_matrices[16 * m + k]);
+    }
+  }
+  return texels;
+}
+
 /// Whether a warp input is an assembly's copies (vtkMesoStructureReader's output 1) rather than
 /// a membrane mapping's output.
 bool is_assembly(vtkPolyData* warp_data)
@@ -704,16 +719,7 @@ bool vtkMesoAtomGPUData::ReadWarp(vtkPolyData* atoms, vtkPolyData* warp_data, vt
   }
   else
   {
-    const vtkIdType motions = tiles * this->MoleculesPerTile;
-    this->WarpTexels.resize(static_cast<std::size_t>(12 * motions));
-    for (vtkIdType m = 0; m < motions; ++m)
-    {
-      for (int k = 0; k < 12; ++k)
-      {
-        this->WarpTexels[std::size_t(12 * m + k)] =
-          static_cast<float>(warp.instance_matrices[std::size_t(16 * m + k)]);
-      }
-    }
+    this->WarpTexels = motion_texels(warp, std::size_t(tiles * this->MoleculesPerTile));
   }
   this->WarpMethod = static_cast<int>(warp.method);
   ++this->WarpVersion;
@@ -758,24 +764,8 @@ bool vtkMesoAtomGPUData::ReadAssembly(vtkPolyData* atoms, vtkPolyData* copies, v
   this->AssemblyCopies = true;
   this->TileCount = static_cast<vtkIdType>(warp.tile_count());
   this->MoleculesPerTile = classes;
-  this->PatchMolecules = classes;
-  this->MoleculeSizes.assign(std::size_t(classes), 0);
-  this->MoleculeSlots.resize(class_of_atom.size());
-  for (std::size_t atom = 0; atom < class_of_atom.size(); ++atom)
-  {
-    this->MoleculeSlots[this->SlotOf(vtkIdType(atom))] = class_of_atom[atom];
-    ++this->MoleculeSizes[class_of_atom[atom]];
-  }
-  ++this->MoleculeSlotsVersion;
-  const std::size_t motions = warp.instance_tiles.size();
-  this->WarpTexels.resize(12 * motions);
-  for (std::size_t m = 0; m < motions; ++m)
-  {
-    for (std::size_t k = 0; k < 12; ++k)
-    {
-      this->WarpTexels[12 * m + k] = static_cast<float>(warp.instance_matrices[16 * m + k]);
-    }
-  }
+  this->SetMoleculeSlots(class_of_atom);
+  this->WarpTexels = motion_texels(warp, warp.instance_tiles.size());
   // The classes a copy's atom set leaves out are hidden in that copy, as a cutaway hides a
   // mapped membrane's molecules.
   this->MoleculeMask = std::move(hidden);
@@ -859,6 +849,12 @@ bool vtkMesoAtomGPUData::ReadPatchMolecules(vtkPolyData* atoms, const mesolens::
   {
     return true; // no molecules
   }
+  this->SetMoleculeSlots(slot_of_atom);
+  return true;
+}
+
+void vtkMesoAtomGPUData::SetMoleculeSlots(const std::vector<unsigned short>& slot_of_atom)
+{
   this->PatchMolecules = static_cast<vtkIdType>(this->MoleculesPerTile);
   this->MoleculeSizes.assign(std::size_t(this->MoleculesPerTile), 0);
   this->MoleculeSlots.resize(slot_of_atom.size());
@@ -868,7 +864,6 @@ bool vtkMesoAtomGPUData::ReadPatchMolecules(vtkPolyData* atoms, const mesolens::
     ++this->MoleculeSizes[slot_of_atom[atom]];
   }
   ++this->MoleculeSlotsVersion;
-  return true;
 }
 
 bool vtkMesoAtomGPUData::ReadMoleculeMask(vtkPolyData* warp_data, vtkMapper* mapper,

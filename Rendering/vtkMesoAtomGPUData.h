@@ -162,6 +162,9 @@ private:
                           vtkMapper* mapper);
   /// MoleculeMask from the warp input's points (one per molecule and tile, or none).
   bool ReadMoleculeMask(vtkPolyData* warp, vtkMapper* mapper, const char* mask_name);
+  /// MoleculeSlots (slot order), PatchMolecules and MoleculeSizes from each input atom's
+  /// molecule index (< MoleculesPerTile, set first).
+  void SetMoleculeSlots(const std::vector<unsigned short>& slot_of_atom);
   /// The warp, the molecule slots (atom classes) and the mask of an assembly's copies.
   bool ReadAssembly(vtkPolyData* atoms, vtkPolyData* copies, vtkMapper* mapper);
   /// WarpedAtoms from the cells and the warp just read (none without cells).

@@ -16,6 +16,7 @@
 #include "vtkMesoStructureReader.h"
 
 #include "atom_stage.h"
+#include "mesolens_benchmark_timing.h"
 #include "mesolens_test_data.h"
 
 #include <vtkCamera.h>
@@ -204,13 +205,7 @@ int main(int argc, char* argv[])
     const std::string arg = argv[i];
     if (arg == "--files" && i + 1 < argc)
     {
-      files.clear();
-      std::stringstream list(argv[++i]);
-      std::string item;
-      while (std::getline(list, item, ','))
-      {
-        files.push_back(item);
-      }
+      files = mesolens_test::comma_list(argv[++i]);
     }
     else if (arg == "--frames" && i + 1 < argc)
     {

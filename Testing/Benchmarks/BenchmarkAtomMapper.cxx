@@ -22,6 +22,7 @@
 #include "vtkMesoTrajectoryReader.h"
 
 #include "atom_stage.h"
+#include "mesolens_benchmark_timing.h"
 #include "mesolens_test_data.h"
 
 #include <vtkCamera.h>
@@ -38,7 +39,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -263,9 +263,7 @@ int main(int argc, char* argv[])
     if (arg == "--atoms" && i + 1 < argc)
     {
       sizes.clear();
-      std::stringstream list(argv[++i]);
-      std::string item;
-      while (std::getline(list, item, ','))
+      for (const std::string& item : mesolens_test::comma_list(argv[++i]))
       {
         sizes.push_back(std::atoll(item.c_str()));
       }
@@ -281,9 +279,7 @@ int main(int argc, char* argv[])
     else if (arg == "--warp-tiles" && i + 1 < argc)
     {
       warp_tiles.clear();
-      std::stringstream list(argv[++i]);
-      std::string item;
-      while (std::getline(list, item, ','))
+      for (const std::string& item : mesolens_test::comma_list(argv[++i]))
       {
         warp_tiles.push_back(std::max(1, std::atoi(item.c_str())));
       }

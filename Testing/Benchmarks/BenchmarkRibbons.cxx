@@ -20,7 +20,6 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -37,9 +36,7 @@ int main(int argc, char* argv[])
     if (std::string(argv[i]) == "--levels")
     {
       levels.clear();
-      std::stringstream list(argv[i + 1]);
-      std::string item;
-      while (std::getline(list, item, ','))
+      for (const std::string& item : mesolens_test::comma_list(argv[i + 1]))
       {
         levels.push_back(std::max(1, std::atoi(item.c_str())));
       }

@@ -16,6 +16,7 @@
 // camera looks down the normal, then 40 degrees off it, framing the mapped tiles; each timed
 // frame turns it 2 degrees; times are medians.
 #include "atom_stage.h"
+#include "mesolens_benchmark_timing.h"
 #include "mesolens_test_data.h"
 #include "vtkMesoAtomMapper.h"
 #include "vtkMesoMembraneMapping.h"
@@ -28,25 +29,12 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <sstream>
 #include <string>
 #include <vector>
 
 namespace {
 using mesolens_bench::Stage;
 using mesolens_bench::VTKSpheres;
-
-std::vector<std::string> split(const std::string& text)
-{
-  std::vector<std::string> items;
-  std::stringstream list(text);
-  std::string item;
-  while (std::getline(list, item, ','))
-  {
-    items.push_back(item);
-  }
-  return items;
-}
 
 /// The renderer string of the window's OpenGL context.
 std::string renderer_of(vtkOpenGLRenderWindow* window)
@@ -165,18 +153,18 @@ int main(int argc, char* argv[])
     else if (arg == "--tiles")
     {
       tiles.clear();
-      for (const std::string& k : split(value))
+      for (const std::string& k : mesolens_test::comma_list(value))
       {
         tiles.push_back(std::max(1, std::atoi(k.c_str())));
       }
     }
     else if (arg == "--patches")
     {
-      patches = split(value);
+      patches = mesolens_test::comma_list(value);
     }
     else if (arg == "--methods")
     {
-      methods = split(value);
+      methods = mesolens_test::comma_list(value);
     }
     else if (arg == "--frames")
     {

@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <functional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,19 @@ inline double median_seconds(int repeats, const std::function<void()>& work)
   }
   std::sort(times.begin(), times.end());
   return times[times.size() / 2];
+}
+
+/// The items of a comma-separated command-line value ("1,2,3": "1", "2", "3").
+inline std::vector<std::string> comma_list(const std::string& text)
+{
+  std::vector<std::string> items;
+  std::stringstream list(text);
+  std::string item;
+  while (std::getline(list, item, ','))
+  {
+    items.push_back(item);
+  }
+  return items;
 }
 
 /// The value after `--name` on the command line as an integer >= 1, or `fallback`.

@@ -498,6 +498,26 @@ void CutTheCholesterolBilayerByABall(vtkMesoTrajectoryReader* bilayer, vtkSphere
   cutaway->SetStructureVertices(100);
   cutaway->SetCutFunction(ball);
 }
+
+/// The atoms `output` hides, each expected to be of residue `only`.
+vtkIdType HiddenAtomsAllOf(vtkPolyData* output, const std::string& only)
+{
+  auto* names = vtkStringArray::SafeDownCast(
+    output->GetPointData()->GetAbstractArray(vtkMesoArrayNames::ResidueName));
+  vtkDataArray* visible = output->GetPointData()->GetArray(vtkMesoArrayNames::Visible);
+  EXPECT_NE(names, nullptr);
+  EXPECT_NE(visible, nullptr);
+  vtkIdType hidden = 0;
+  for (vtkIdType a = 0; names && visible && a < output->GetNumberOfPoints(); ++a)
+  {
+    if (visible->GetTuple1(a) == 0)
+    {
+      EXPECT_EQ(names->GetValue(a), only);
+      ++hidden;
+    }
+  }
+  return hidden;
+}
 }
 
 TEST(vtkMesoStructuredCutaway, PerResidueFractionsAndVisibleAtomsOnly)
@@ -514,23 +534,9 @@ TEST(vtkMesoStructuredCutaway, PerResidueFractionsAndVisibleAtomsOnly)
   cutaway->Update();
   ASSERT_TRUE(events.Errors.empty()) << events.AllErrors();
   vtkPolyData* output = cutaway->GetOutput();
-  auto* names = vtkStringArray::SafeDownCast(
-    output->GetPointData()->GetAbstractArray(vtkMesoArrayNames::ResidueName));
-  vtkDataArray* visible = output->GetPointData()->GetArray(vtkMesoArrayNames::Visible);
-  ASSERT_NE(names, nullptr);
-  vtkIdType hidden_chol = 0;
-  vtkIdType visible_count = 0;
-  for (vtkIdType a = 0; a < atom_count; ++a)
-  {
-    double p[3];
-    output->GetPoint(a, p);
-    visible_count += visible->GetTuple1(a) != 0;
-    if (visible->GetTuple1(a) == 0)
-    {
-      EXPECT_EQ(names->GetValue(a), "CHOL") << "only cholesterol is hidden";
-      ++hidden_chol;
-    }
-  }
+  ASSERT_EQ(output->GetNumberOfPoints(), atom_count);
+  const vtkIdType hidden_chol = HiddenAtomsAllOf(output, "CHOL"); // only cholesterol is hidden
+  const vtkIdType visible_count = atom_count - hidden_chol;
   EXPECT_GT(hidden_chol, 8 * 5); // beads of at least 5 cholesterols
   const vtkIdType hidden =
     vtkIdType(output->GetFieldData()->GetArray(vtkMesoArrayNames::MoleculesHidden)->GetTuple1(0));
@@ -573,18 +579,7 @@ TEST(vtkMesoStructuredCutaway, OnlyTheMoleculesAHideableSelectionMatchesAreHidde
   cutaway->Update();
   ASSERT_TRUE(events.Errors.empty()) << events.AllErrors();
   vtkPolyData* output = cutaway->GetOutput();
-  auto* names = vtkStringArray::SafeDownCast(
-    output->GetPointData()->GetAbstractArray(vtkMesoArrayNames::ResidueName));
-  vtkDataArray* visible = output->GetPointData()->GetArray(vtkMesoArrayNames::Visible);
-  vtkIdType hidden_dppc = 0;
-  for (vtkIdType a = 0; a < output->GetNumberOfPoints(); ++a)
-  {
-    if (visible->GetTuple1(a) == 0)
-    {
-      EXPECT_EQ(names->GetValue(a), "DPPC");
-      ++hidden_dppc;
-    }
-  }
+  const vtkIdType hidden_dppc = HiddenAtomsAllOf(output, "DPPC");
   const double hidden =
     output->GetFieldData()->GetArray(vtkMesoArrayNames::MoleculesHidden)->GetTuple1(0);
   EXPECT_EQ(vtkIdType(hidden) * 12, hidden_dppc); // 12 beads per Martini DPPC

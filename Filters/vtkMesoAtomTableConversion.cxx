@@ -44,29 +44,36 @@ void add_array(vtkPointData* data, const char* name, const std::vector<ValueT>& 
   data->AddArray(array);
 }
 
-void add_strings(vtkPointData* data, const char* name, const std::vector<std::string>& values)
+/// A string array of `count` values, `text_of(i)` each, written in place (SetValue would mark
+/// the array changed once per value).
+template<typename TextOf>
+void add_strings(vtkPointData* data, const char* name, std::size_t count, const TextOf& text_of)
 {
   vtkNew<vtkStringArray> array;
   array->SetName(name);
-  array->SetNumberOfValues(static_cast<vtkIdType>(values.size()));
-  for (std::size_t i = 0; i < values.size(); ++i)
+  array->SetNumberOfValues(static_cast<vtkIdType>(count));
+  vtkStdString* values = array->GetPointer(0);
+  for (std::size_t i = 0; i < count; ++i)
   {
-    array->SetValue(static_cast<vtkIdType>(i), values[i]);
+    values[i] = text_of(i);
   }
+  array->DataChanged();
   data->AddArray(array);
 }
 
-std::vector<std::string> as_strings(const std::vector<char>& codes)
+void add_strings(vtkPointData* data, const char* name, const std::vector<std::string>& values)
 {
-  std::vector<std::string> out(codes.size());
-  for (std::size_t i = 0; i < codes.size(); ++i)
-  {
-    if (codes[i] != ' ' && codes[i] != '\0')
-    {
-      out[i] = std::string(1, codes[i]);
-    }
-  }
-  return out;
+  add_strings(data, name, values.size(),
+              [&values](std::size_t i) -> const std::string& { return values[i]; });
+}
+
+/// One-letter codes as strings; blank and NUL give the empty string.
+void add_codes(vtkPointData* data, const char* name, const std::vector<char>& codes)
+{
+  add_strings(data, name, codes.size(), [&codes](std::size_t i) {
+    const char code = codes[i];
+    return code != ' ' && code != '\0' ? std::string(1, code) : std::string();
+  });
 }
 } // namespace
 
@@ -116,20 +123,17 @@ void ToPolyData(const mesolens::AtomTable& table, double length_scale, vtkPolyDa
   output->SetLines(lines);
 
   vtkPointData* data = output->GetPointData();
-  std::vector<std::string> symbols(table.size());
-  for (std::size_t i = 0; i < table.size(); ++i)
-  {
-    symbols[i] = mesolens::element_symbol(table.atomic_numbers[i]);
-  }
   add_strings(data, vtkMesoArrayNames::AtomName, table.atom_names);
-  add_strings(data, vtkMesoArrayNames::Element, symbols);
+  add_strings(data, vtkMesoArrayNames::Element, table.size(), [&table](std::size_t i) {
+    return mesolens::element_symbol(table.atomic_numbers[i]);
+  });
   // Not unsigned char: VTK would take an unsigned char active scalar for colours, not values.
   add_array<vtkUnsignedShortArray>(data, vtkMesoArrayNames::AtomicNumber, table.atomic_numbers);
   add_strings(data, vtkMesoArrayNames::ResidueName, table.residue_names);
   add_array<vtkIntArray>(data, vtkMesoArrayNames::ResidueNumber, table.residue_numbers);
-  add_strings(data, vtkMesoArrayNames::InsertionCode, as_strings(table.insertion_codes));
+  add_codes(data, vtkMesoArrayNames::InsertionCode, table.insertion_codes);
   add_strings(data, vtkMesoArrayNames::ChainId, table.chain_ids);
-  add_strings(data, vtkMesoArrayNames::AltLoc, as_strings(table.alt_locs));
+  add_codes(data, vtkMesoArrayNames::AltLoc, table.alt_locs);
   add_array<vtkFloatArray>(data, vtkMesoArrayNames::Occupancy, table.occupancies);
   add_array<vtkFloatArray>(data, vtkMesoArrayNames::BFactor, table.b_factors);
   add_array<vtkUnsignedCharArray>(data, vtkMesoArrayNames::IsHetAtm, table.is_hetero);

@@ -3,6 +3,7 @@
 
 #include "io/detail/assembly_records.h"
 #include "io/detail/file_checks.h"
+#include "io/detail/pdb_atom_records.h"
 #include "io/detail/pdb_text_scan.h"
 #include "mesolens/molecules/bond_consensus.h"
 #include "mesolens/common/errors.h"
@@ -18,6 +19,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <map>
 #include <optional>
@@ -50,19 +52,8 @@ SecondaryStructure helix_kind(gemmi::Helix::HelixClass helix_class)
   }
 }
 
-/// Where a residue's atoms start and end in the table, per chain in file order.
-struct ResidueRange
-{
-  const gemmi::Residue* residue;
-  std::size_t begin;
-  std::size_t end;
-};
-
-struct ChainResidues
-{
-  std::string name;
-  std::vector<ResidueRange> residues;
-};
+using detail::ChainResidues;
+using detail::ResidueRange;
 
 /// Finds the residues of HELIX/SHEET spans: per chain, the position of each residue number.
 class ResidueLocator
@@ -76,7 +67,7 @@ public:
       auto& positions = this->Positions[chains[c].name];
       for (std::size_t r = 0; r < chains[c].residues.size(); ++r)
       {
-        const gemmi::SeqId& id = chains[c].residues[r].residue->seqid;
+        const gemmi::SeqId& id = chains[c].residues[r].seqid;
         // The first residue of a number wins (microheterogeneity repeats numbers).
         positions.emplace(key(id), std::make_pair(c, r));
       }
@@ -182,13 +173,10 @@ void mark_alternate_locations(const AtomTable& table, const ResidueRange& range,
   }
 }
 
-/// Converts one gemmi model; fills `ranges` with the residue layout for secondary structure.
-/// `pdb_atoms` (empty for mmCIF) holds each PDB record's serial, residue number and residue
-/// name end, which gemmi reads wrongly from MD files; gemmi's serial indexes it. `label_asym`:
-/// the residues' subchains are mmCIF label_asym_ids (gemmi makes up others for PDB files).
-AtomTable convert_model(const gemmi::Model& model,
-                        const std::vector<detail::PdbAtomFields>& pdb_atoms,
-                        std::vector<ChainResidues>& chains, bool label_asym)
+/// Converts one model of an mmCIF file; fills `chains` with the residue layout. `label_asym`:
+/// the residues' subchains are mmCIF label_asym_ids.
+AtomTable convert_model(const gemmi::Model& model, std::vector<ChainResidues>& chains,
+                        bool label_asym)
 {
   AtomTable table;
   std::size_t atom_count = 0;
@@ -229,27 +217,60 @@ AtomTable convert_model(const gemmi::Model& model,
         table.is_hetero.back() = residue.het_flag == 'H' ? 1 : 0;
         table.serials.back() = atom.serial;
         table.formal_charges.back() = atom.charge;
-        if (atom.serial >= 1 && std::size_t(atom.serial) <= pdb_atoms.size())
-        {
-          const detail::PdbAtomFields& fields = pdb_atoms[std::size_t(atom.serial) - 1];
-          table.serials.back() = fields.serial;
-          if (fields.residue_number_read)
-          {
-            table.residue_numbers.back() = fields.residue_number;
-          }
-          if (fields.residue_name_end != ' ')
-          {
-            table.residue_names.back() += fields.residue_name_end;
-          }
-        }
       }
-      chains.back().residues.push_back({ &residue, begin, table.size() });
+      chains.back().residues.push_back(
+        { residue.seqid, residue.name, residue.segment, begin, table.size() });
     }
   }
   return table;
 }
 
-std::vector<Bond> explicit_bonds(const gemmi::Structure& structure, const gemmi::Model& model,
+/// Table index of each atom serial (the first atom holding it). Files list serials in rising
+/// order, so that case searches the serials themselves; others get a sorted copy.
+class SerialIndex
+{
+public:
+  static constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
+
+  explicit SerialIndex(const std::vector<int>& serials)
+    : Serials(serials)
+  {
+    if (std::adjacent_find(serials.begin(), serials.end(), std::greater_equal<int>()) ==
+        serials.end())
+    {
+      return;
+    }
+    this->Sorted.reserve(serials.size());
+    for (std::size_t i = 0; i < serials.size(); ++i)
+    {
+      this->Sorted.emplace_back(serials[i], i);
+    }
+    std::stable_sort(this->Sorted.begin(), this->Sorted.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+  }
+
+  std::size_t find(int serial) const
+  {
+    if (this->Sorted.empty())
+    {
+      const auto at = std::lower_bound(this->Serials.begin(), this->Serials.end(), serial);
+      return at != this->Serials.end() && *at == serial ? std::size_t(at - this->Serials.begin())
+                                                        : none;
+    }
+    const auto at = std::lower_bound(
+      this->Sorted.begin(), this->Sorted.end(), serial,
+      [](const std::pair<int, std::size_t>& entry, int value) { return entry.first < value; });
+    return at != this->Sorted.end() && at->first == serial ? at->second : none;
+  }
+
+private:
+  const std::vector<int>& Serials;
+  std::vector<std::pair<int, std::size_t>> Sorted;
+};
+
+/// CONECT records and covalent and disulfide links as bonds; warnings for what the text pass
+/// found.
+std::vector<Bond> explicit_bonds(const std::vector<gemmi::Connection>& connections,
                                  const std::vector<ChainResidues>& chains, const AtomTable& table,
                                  const detail::PdbTextScan& pdb, std::vector<std::string>& warnings)
 {
@@ -262,22 +283,18 @@ std::vector<Bond> explicit_bonds(const gemmi::Structure& structure, const gemmi:
   };
   if (!pdb.conect_pairs.empty())
   {
-    std::unordered_map<int, std::size_t> by_serial;
-    for (std::size_t i = 0; i < table.size(); ++i)
-    {
-      by_serial.emplace(table.serials[i], i);
-    }
+    const SerialIndex by_serial(table.serials);
     std::size_t unresolved = 0;
     for (const auto& pair : pdb.conect_pairs)
     {
-      const auto a = by_serial.find(pair.first);
-      const auto b = by_serial.find(pair.second);
-      if (a == by_serial.end() || b == by_serial.end())
+      const std::size_t a = by_serial.find(pair.first);
+      const std::size_t b = by_serial.find(pair.second);
+      if (a == SerialIndex::none || b == SerialIndex::none)
       {
         ++unresolved;
         continue;
       }
-      add(a->second, b->second);
+      add(a, b);
     }
     if (unresolved > 0)
     {
@@ -323,37 +340,24 @@ std::vector<Bond> explicit_bonds(const gemmi::Structure& structure, const gemmi:
       "residue numbers restart after 9999 (written modulo 10000, as GROMACS does); " +
       std::to_string(pdb.continued_residue_numbers) + " atom records were numbered on from 10000");
   }
-  // Table index of each residue's first atom, to turn gemmi atom pointers into indices.
-  std::unordered_map<const gemmi::Residue*, std::size_t> first_atom_of;
-  if (!structure.connections.empty())
-  {
-    for (const ChainResidues& chain : chains)
-    {
-      for (const ResidueRange& range : chain.residues)
-      {
-        first_atom_of.emplace(range.residue, range.begin);
-      }
-    }
-  }
-  for (const gemmi::Connection& connection : structure.connections)
+  for (const gemmi::Connection& connection : connections)
   {
     if (connection.type == gemmi::Connection::Hydrog ||
         connection.type == gemmi::Connection::MetalC)
     {
       continue;
     }
-    const gemmi::const_CRA a = model.find_cra(connection.partner1, true);
-    const gemmi::const_CRA b = model.find_cra(connection.partner2, true);
-    if (!a.atom || !b.atom)
+    const ResidueRange* residue_a = detail::find_linked_residue(connection.partner1, chains, true);
+    const ResidueRange* residue_b = detail::find_linked_residue(connection.partner2, chains, true);
+    if (!residue_a || !residue_b)
     {
       continue;
     }
-    const auto ia = first_atom_of.find(a.residue);
-    const auto ib = first_atom_of.find(b.residue);
-    if (ia != first_atom_of.end() && ib != first_atom_of.end())
+    const std::size_t a = detail::find_linked_atom(connection.partner1, *residue_a, table);
+    const std::size_t b = detail::find_linked_atom(connection.partner2, *residue_b, table);
+    if (a != detail::no_atom && b != detail::no_atom)
     {
-      add(ia->second + std::size_t(a.atom - a.residue->atoms.data()),
-          ib->second + std::size_t(b.atom - b.residue->atoms.data()));
+      add(a, b);
     }
   }
   std::sort(bonds.begin(), bonds.end());
@@ -552,10 +556,49 @@ void refuse_overflowing_integers(const gemmi::cif::Document& document, const std
   }
 }
 
-/// Parses the file with gemmi; reads its assemblies (with their warnings) on the way.
-gemmi::Structure parse_with_gemmi(const std::string& path, detail::PdbTextScan& pdb,
-                                  std::vector<Assembly>& assemblies,
-                                  std::vector<std::string>& warnings)
+bool is_binary_byte(char c)
+{
+  const auto byte = static_cast<unsigned char>(c);
+  return byte < 0x09 || (byte > 0x0d && byte < 0x20 && byte != 0x1b);
+}
+
+/// Offset of the first byte that no text file holds (control characters other than tab, line
+/// ends, form feed and escape), or `size`. The test runs over every byte of every file read:
+/// blocks of a fixed size are tested without branches, which the compiler vectorizes.
+std::size_t first_binary_byte(const char* data, std::size_t size)
+{
+  constexpr std::size_t block = 64;
+  std::size_t start = 0;
+  for (; start + block <= size; start += block)
+  {
+    unsigned char any = 0;
+    for (std::size_t i = 0; i < block; ++i)
+    {
+      const auto byte = static_cast<unsigned char>(data[start + i]);
+      any |= static_cast<unsigned char>(
+        (byte < 0x09) | ((static_cast<unsigned char>(byte - 0x0e) < 0x12) & (byte != 0x1b)));
+    }
+    if (any)
+    {
+      break;
+    }
+  }
+  for (std::size_t i = start; i < size; ++i)
+  {
+    if (is_binary_byte(data[i]))
+    {
+      return i;
+    }
+  }
+  return size;
+}
+
+/// Parses the file: an mmCIF file with gemmi; a PDB file's atoms into `pdb_models` and the
+/// rest with gemmi. Reads the assemblies (with their warnings) on the way.
+gemmi::Structure parse_file(const std::string& path, const ParallelFor& parallel_for,
+                            detail::PdbTextScan& pdb,
+                            std::vector<detail::PdbModelAtoms>& pdb_models,
+                            std::vector<Assembly>& assemblies, std::vector<std::string>& warnings)
 {
   detail::require_readable_file(path);
   try
@@ -566,13 +609,10 @@ gemmi::Structure parse_with_gemmi(const std::string& path, detail::PdbTextScan& 
     {
       throw FileError(path + ": the file is empty");
     }
-    const auto binary = std::find_if(buffer.data(), buffer.data() + buffer.size(), [](char c) {
-      const auto byte = static_cast<unsigned char>(c);
-      return byte < 0x09 || (byte > 0x0d && byte < 0x20 && byte != 0x1b);
-    });
-    if (binary != buffer.data() + buffer.size())
+    const std::size_t binary = first_binary_byte(buffer.data(), buffer.size());
+    if (binary != buffer.size())
     {
-      throw FileError(path + ": binary data at byte " + std::to_string(binary - buffer.data()) +
+      throw FileError(path + ": binary data at byte " + std::to_string(binary) +
                       "; not a PDB or mmCIF text file");
     }
     gemmi::CoorFormat format = gemmi::coor_format_from_ext(input.basepath());
@@ -584,9 +624,13 @@ gemmi::Structure parse_with_gemmi(const std::string& path, detail::PdbTextScan& 
     {
       pdb = detail::scan_pdb_text(buffer.data(), buffer.size(), path);
       assemblies = detail::read_pdb_assemblies(buffer.data(), buffer.size(), warnings);
-      const std::optional<std::string> padded = pdb_text_for_gemmi(buffer.data(), buffer.size());
+      detail::PdbAtomsAndHeader split =
+        detail::read_pdb_atoms(buffer.data(), buffer.size(), pdb, parallel_for, path);
+      pdb_models = std::move(split.models);
+      const std::string& header = split.header;
+      const std::optional<std::string> padded = pdb_text_for_gemmi(header.data(), header.size());
       return padded ? gemmi::read_pdb_from_memory(padded->data(), padded->size(), path)
-                    : gemmi::read_pdb_from_memory(buffer.data(), buffer.size(), path);
+                    : gemmi::read_pdb_from_memory(header.data(), header.size(), path);
     }
     if (format == gemmi::CoorFormat::Mmcif)
     {
@@ -684,23 +728,48 @@ StructureFile read_structure(const std::string& path, const StructureReadParams&
     }
   };
   detail::PdbTextScan pdb;
+  std::vector<detail::PdbModelAtoms> pdb_models;
   StructureFile file;
   std::vector<std::string> assembly_warnings;
   const gemmi::Structure structure =
-    parse_with_gemmi(path, pdb, file.assemblies, assembly_warnings);
+    parse_file(path, params.parallel_for, pdb, pdb_models, file.assemblies, assembly_warnings);
+  const bool is_pdb = structure.input_format == gemmi::CoorFormat::Pdb;
+  std::vector<gemmi::Connection> connections = structure.connections;
+  if (is_pdb && !pdb_models.empty())
+  {
+    // gemmi completes SSBOND partners from the atoms, which it did not read here.
+    for (gemmi::Connection& connection : connections)
+    {
+      if (connection.type == gemmi::Connection::Disulf)
+      {
+        detail::complete_disulfide_partner(connection.partner1, pdb_models.front().chains,
+                                           pdb_models.front().table);
+        detail::complete_disulfide_partner(connection.partner2, pdb_models.front().chains,
+                                           pdb_models.front().table);
+      }
+    }
+  }
   // mmCIF always names elements (type_symbol); a PDB file does when most records fill 77-78.
-  const bool elements_given =
-    structure.input_format != gemmi::CoorFormat::Pdb || 2 * pdb.element_records > pdb.atoms.size();
+  const bool elements_given = !is_pdb || 2 * pdb.element_records > pdb.atoms.size();
   report(0.5);
 
   file.title = structure.get_info("_struct.title");
   bool emptied_by_selection = false; // a model whose atoms the params all removed
-  for (std::size_t m = 0; m < structure.models.size(); ++m)
+  const std::size_t model_count = is_pdb ? pdb_models.size() : structure.models.size();
+  for (std::size_t m = 0; m < model_count; ++m)
   {
-    const gemmi::Model& model = structure.models[m];
     std::vector<ChainResidues> chains;
-    AtomTable table =
-      convert_model(model, pdb.atoms, chains, structure.input_format == gemmi::CoorFormat::Mmcif);
+    AtomTable table;
+    if (is_pdb)
+    {
+      table = std::move(pdb_models[m].table);
+      chains = std::move(pdb_models[m].chains);
+    }
+    else
+    {
+      table = convert_model(structure.models[m], chains,
+                            structure.input_format == gemmi::CoorFormat::Mmcif);
+    }
     if (table.size() == 0)
     {
       continue;
@@ -727,7 +796,7 @@ StructureFile read_structure(const std::string& path, const StructureReadParams&
       }
     }
     std::vector<std::string> warnings;
-    table.bonds = explicit_bonds(structure, model, chains, table, pdb, warnings);
+    table.bonds = explicit_bonds(connections, chains, table, pdb, warnings);
     if (m == 0)
     {
       file.warnings = warnings;
@@ -751,7 +820,7 @@ StructureFile read_structure(const std::string& path, const StructureReadParams&
                                structure.cell.alpha, structure.cell.beta, structure.cell.gamma);
     }
     file.models.push_back(std::move(table));
-    report(0.5 + 0.5 * double(m + 1) / double(structure.models.size()));
+    report(0.5 + 0.5 * double(m + 1) / double(model_count));
   }
   if (file.models.empty() && emptied_by_selection)
   {

@@ -33,6 +33,28 @@ void AtomTable::reserve(std::size_t count)
   this->molecule_ids.reserve(count);
 }
 
+void AtomTable::resize(std::size_t count)
+{
+  this->positions.resize(3 * count, 0.0f);
+  this->atom_names.resize(count);
+  this->atomic_numbers.resize(count, 0);
+  this->residue_names.resize(count);
+  this->residue_numbers.resize(count, 0);
+  this->insertion_codes.resize(count, ' ');
+  this->chain_ids.resize(count);
+  this->label_asym_ids.resize(count);
+  this->alt_locs.resize(count, ' ');
+  this->occupancies.resize(count, 1.0f);
+  this->b_factors.resize(count, 0.0f);
+  this->is_hetero.resize(count, 0);
+  this->serials.resize(count, 0);
+  this->formal_charges.resize(count, 0);
+  this->secondary_structure.resize(count, static_cast<std::uint8_t>(SecondaryStructure::Coil));
+  this->secondary_structure_ids.resize(count, -1);
+  this->residue_indices.resize(count, 0);
+  this->molecule_ids.resize(count, 0);
+}
+
 void AtomTable::append_atom(const std::string& name, float x, float y, float z)
 {
   this->positions.insert(this->positions.end(), { x, y, z });

@@ -264,6 +264,28 @@ std::vector<Bond> perceive_bonds(const BondPerceptionInput& input,
   // Atoms alone in their molecule (ions, crystal waters) cannot bond: leave them out of the grid
   // and out of the cell size, which the largest radius sets.
   std::vector<std::uint8_t> has_partner(n, 0);
+  const bool ids_index_atoms = std::all_of(input.molecule_ids, input.molecule_ids + n, [n](int id) {
+    return id >= 0 && static_cast<std::size_t>(id) < n;
+  });
+  if (ids_index_atoms)
+  {
+    // The usual case (ids from assign_molecules are dense from 0): a table, not a hash map.
+    constexpr std::size_t unseen = static_cast<std::size_t>(-1);
+    std::vector<std::size_t> first_of_molecule(n, unseen);
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      std::size_t& first = first_of_molecule[static_cast<std::size_t>(input.molecule_ids[i])];
+      if (first == unseen)
+      {
+        first = i;
+      }
+      else
+      {
+        has_partner[i] = has_partner[first] = 1;
+      }
+    }
+  }
+  else
   {
     std::unordered_map<int, std::size_t> first_of_molecule;
     for (std::size_t i = 0; i < n; ++i)

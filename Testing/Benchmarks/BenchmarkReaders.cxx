@@ -19,6 +19,8 @@
 #include "mesolens_benchmark_timing.h"
 #include "mesolens_test_data.h"
 
+#include <gemmi/gz.hpp>
+#include <gemmi/mmread.hpp>
 #include <gromacs/fileio/confio.h>
 #include <gromacs/fileio/oenv.h>
 #include <gromacs/fileio/trxio.h>
@@ -54,18 +56,41 @@ double median(std::vector<double> values)
   return values[values.size() / 2];
 }
 
-/// Medians of `repeats` runs of `a` and `b`, interleaved so both see the same machine load.
-std::pair<double, double> interleaved_medians(int repeats, const std::function<void()>& a,
-                                              const std::function<void()>& b)
+/// Times of `repeats` runs of each of `work`, interleaved so all see the same machine load.
+std::vector<std::vector<double>> interleaved_times(int repeats,
+                                                   const std::vector<std::function<void()>>& work)
 {
-  std::vector<double> times_a;
-  std::vector<double> times_b;
+  std::vector<std::vector<double>> times(work.size());
   for (int r = 0; r < repeats; ++r)
   {
-    times_a.push_back(seconds_of(a));
-    times_b.push_back(seconds_of(b));
+    for (std::size_t w = 0; w < work.size(); ++w)
+    {
+      times[w].push_back(seconds_of(work[w]));
+    }
   }
-  return { median(times_a), median(times_b) };
+  return times;
+}
+
+/// How far reads of one file in one process stray from their median: the second slowest and
+/// the second fastest of the runs (one outlier each way is the machine, not the reader), as
+/// the larger relative distance from the median.
+double run_to_run_spread(std::vector<double> times)
+{
+  std::sort(times.begin(), times.end());
+  const double middle = times[times.size() / 2];
+  const std::size_t skip = times.size() >= 5 ? 1 : 0;
+  return std::max(times[times.size() - 1 - skip] / middle - 1.0, 1.0 - times[skip] / middle);
+}
+
+/// gemmi's own parse of a PDB or mmCIF file into its Structure (no bonds, no conversion): the
+/// baseline the structure reader is held to.
+void gemmi_bare_parse(const std::string& path)
+{
+  const gemmi::Structure structure = gemmi::read_structure(gemmi::MaybeGzipped(path));
+  if (structure.models.empty())
+  {
+    std::printf("gemmi read no model from %s\n", path.c_str());
+  }
 }
 
 /// Writes 3l5q.gro as PDB with GROMACS' own writer.
@@ -118,24 +143,26 @@ void pdb_to_mmcif(const std::string& pdb, const std::string& cif)
   std::fclose(out);
 }
 
-void benchmark_structure(const std::string& label, const std::string& pdb, const std::string& cif)
+void benchmark_structure(const std::string& label, const std::string& pdb, const std::string& cif,
+                         int repeats)
 {
   vtkNew<vtkMesoStructureReader> ours;
   ours->SetFileName(pdb.c_str());
   vtkNew<vtkPDBReader> vtk;
   vtk->SetFileName(pdb.c_str());
-  const auto pdb_times = interleaved_medians(
-    9,
-    [&] {
-      ours->Modified();
-      ours->Update();
-    },
-    [&] {
-      vtk->Modified();
-      vtk->Update();
-    });
-  const double ours_pdb = pdb_times.first;
-  const double vtk_pdb = pdb_times.second;
+  const auto pdb_times = interleaved_times(repeats,
+                                           { [&] {
+                                              ours->Modified();
+                                              ours->Update();
+                                            },
+                                             [&] {
+                                               vtk->Modified();
+                                               vtk->Update();
+                                             },
+                                             [&] { gemmi_bare_parse(pdb); } });
+  const double ours_pdb = median(pdb_times[0]);
+  const double vtk_pdb = median(pdb_times[1]);
+  const double gemmi_pdb = median(pdb_times[2]);
   const vtkIdType ours_atoms = ours->GetOutput()->GetNumberOfPoints();
   const vtkIdType ours_bonds = ours->GetOutput()->GetNumberOfLines();
   const vtkIdType vtk_atoms = vtk->GetOutput()->GetNumberOfPoints();
@@ -147,20 +174,36 @@ void benchmark_structure(const std::string& label, const std::string& pdb, const
               static_cast<long long>(ours_atoms), static_cast<long long>(ours_bonds),
               1e6 * vtk_pdb / double(std::max<vtkIdType>(vtk_atoms, 1)), 1e3 * vtk_pdb,
               static_cast<long long>(vtk_atoms), vtk_pdb / ours_pdb);
+  std::printf("BENCH structure-pdb-vs-gemmi input=%s | vtkMesoStructureReader (bonds included) "
+              "%.1f ms | gemmi read_structure (bare parse) %.1f ms | ratio ours/gemmi %.2f (goal "
+              "<= 1.5) | run-to-run spread ours %.0f%% gemmi %.0f%% (goal ours <= 20%%)\n",
+              label.c_str(), 1e3 * ours_pdb, 1e3 * gemmi_pdb, ours_pdb / gemmi_pdb,
+              100 * run_to_run_spread(pdb_times[0]), 100 * run_to_run_spread(pdb_times[2]));
   if (cif.empty())
   {
     return;
   }
   ours->SetFileName(cif.c_str());
-  const double ours_cif = median_seconds(9, [&] {
-    ours->Modified();
-    ours->Update();
-  });
+  const auto cif_times = interleaved_times(repeats,
+                                           { [&] {
+                                              ours->Modified();
+                                              ours->Update();
+                                            },
+                                             [&] { gemmi_bare_parse(cif); } });
+  const double ours_cif = median(cif_times[0]);
+  const double gemmi_cif = median(cif_times[1]);
   std::printf("BENCH structure-mmcif input=%s atoms=%lld | vtkMesoStructureReader %.3f us/atom "
-              "(%.1f ms) | vtkPDBReader on the PDB form %.3f us/atom | speedup %.1fx\n",
+              "(%.1f ms) | vtkPDBReader on the PDB form %.3f us/atom | speedup %.1fx | mmCIF/PDB "
+              "time %.2f\n",
               label.c_str(), static_cast<long long>(ours->GetOutput()->GetNumberOfPoints()),
               1e6 * ours_cif / double(ours->GetOutput()->GetNumberOfPoints()), 1e3 * ours_cif,
-              1e6 * vtk_pdb / double(std::max<vtkIdType>(vtk_atoms, 1)), vtk_pdb / ours_cif);
+              1e6 * vtk_pdb / double(std::max<vtkIdType>(vtk_atoms, 1)), vtk_pdb / ours_cif,
+              ours_cif / ours_pdb);
+  std::printf("BENCH structure-mmcif-vs-gemmi input=%s | vtkMesoStructureReader (bonds included) "
+              "%.1f ms | gemmi read_structure %.1f ms | ratio ours/gemmi %.2f (goal <= 1.5) | "
+              "run-to-run spread ours %.0f%%\n",
+              label.c_str(), 1e3 * ours_cif, 1e3 * gemmi_cif, ours_cif / gemmi_cif,
+              100 * run_to_run_spread(cif_times[0]));
 }
 
 /// Sequential decoding of every frame with GROMACS alone: the baseline.
@@ -253,8 +296,14 @@ void benchmark_trajectory(const std::string& label, const std::string& gro, cons
 }
 } // namespace
 
-int main()
+int main(int argc, char* argv[])
 {
+  // --repeats N: reads of each structure file per reader (default 15); --structures: skip the
+  // trajectories.
+  const int repeats = mesolens_test::count_argument(argc, argv, "--repeats", 15);
+  const bool structures_only = std::find_if(argv + 1, argv + argc, [](const char* a) {
+                                 return std::string(a) == "--structures";
+                               }) != argv + argc;
   using mesolens_test::data_file;
   using mesolens_test::exists;
   using mesolens_test::shared_file;
@@ -265,7 +314,7 @@ int main()
     const std::string cif = mesolens_test::output_file("3l5q_from_gro.cif");
     gro_to_pdb(big_gro, pdb);
     pdb_to_mmcif(pdb, cif);
-    benchmark_structure("3l5q (proteasome, written from 3l5q.gro)", pdb, cif);
+    benchmark_structure("3l5q (proteasome, written from 3l5q.gro)", pdb, cif, repeats);
   }
   else
   {
@@ -274,15 +323,25 @@ int main()
   const std::string mtor = shared_file("proteins/4jsv.pdb");
   if (exists(mtor))
   {
-    benchmark_structure("4jsv.pdb (real PDB entry)", mtor, "");
+    benchmark_structure("4jsv.pdb (real PDB entry)", mtor, "", repeats);
   }
   const std::string achbp = shared_file("proteins/3wip.pdb");
   if (exists(achbp))
   {
     benchmark_structure("3wip (real PDB and mmCIF entries)", achbp,
-                        shared_file("proteins/3wip.cif"));
+                        shared_file("proteins/3wip.cif"), repeats);
   }
-  benchmark_structure("1tii.pdb (Data/)", data_file("proteins/1tii.pdb"), "");
+  const std::string capsid = shared_file("proteins/1m4x.pdb");
+  if (exists(capsid))
+  {
+    benchmark_structure("1m4x (real PDB and mmCIF entries)", capsid,
+                        shared_file("proteins/1m4x.cif"), repeats);
+  }
+  benchmark_structure("1tii.pdb (Data/)", data_file("proteins/1tii.pdb"), "", repeats);
+  if (structures_only)
+  {
+    return 0;
+  }
   benchmark_trajectory("yiip_popepopg.xtc (all-atom)", data_file("membranes/yiip_popepopg.gro"),
                        data_file("membranes/yiip_popepopg.xtc"));
   benchmark_trajectory("martini_dppc_vesicle.xtc (coarse-grained, triclinic)",

@@ -4,11 +4,11 @@
 #include "mesolens/molecules/elements.h"
 #include "mesolens/common/errors.h"
 
+#include <gemmi/elem.hpp>
 #include <gemmi/resinfo.hpp>
 
 #include <algorithm>
 #include <cctype>
-#include <cstdio>
 #include <cstring>
 
 namespace mesolens {
@@ -55,8 +55,9 @@ bool is_element_field(char a, char b)
   {
     return true;
   }
-  const std::string symbol = std::string(1, a) + std::string(1, b);
-  return atomic_number_from_symbol(symbol) != 0 || symbol == " X" || symbol == "X ";
+  const char symbol[3] = { a, b, '\0' };
+  return gemmi::find_element(symbol) != gemmi::El::X || (a == ' ' && b == 'X') ||
+    (a == 'X' && b == ' ');
 }
 
 /// True when the fixed-width field holds one decimal number (blanks around it allowed), or
@@ -187,21 +188,29 @@ bool read_hybrid36(const char* field, std::size_t width, int& value)
 void write_hybrid36(int value, std::size_t width, char* field)
 {
   const long decimal_limit = width == serial_width ? 100000 : 10000;
-  char text[16];
-  if (value < decimal_limit)
-  {
-    std::snprintf(text, sizeof(text), "%*d", int(width), value);
-  }
-  else
+  if (value >= decimal_limit)
   {
     long code = value - decimal_limit + 10 * (width == serial_width ? pow36_4 : pow36_3);
     for (std::size_t i = width; i-- > 0; code /= 36)
     {
       const int digit = int(code % 36);
-      text[i] = char(digit < 10 ? '0' + digit : 'A' + digit - 10);
+      field[i] = char(digit < 10 ? '0' + digit : 'A' + digit - 10);
     }
+    return;
   }
-  std::memcpy(field, text, width);
+  // Right-justified decimal, as "%*d" writes it (negative residue numbers included).
+  long magnitude = value < 0 ? -long(value) : long(value);
+  std::size_t i = width;
+  do
+  {
+    field[--i] = char('0' + magnitude % 10);
+    magnitude /= 10;
+  } while (magnitude > 0 && i > 0);
+  if (value < 0 && i > 0)
+  {
+    field[--i] = '-';
+  }
+  std::memset(field, ' ', i);
 }
 
 /// A "%8.3f" field: a number with its decimal point five characters in, where every PDB writer
@@ -456,10 +465,11 @@ public:
 private:
   AtomRecordLayout find_layout(const char* line, std::size_t length, std::size_t line_number) const
   {
-    const std::string where = this->Path + ": line " + std::to_string(line_number);
+    // Built only for an error: this runs once per atom record.
+    const auto where = [&] { return this->Path + ": line " + std::to_string(line_number); };
     if (length < coordinates_end)
     {
-      throw FileError(where + " is an " + std::string(line, std::min<std::size_t>(length, 6)) +
+      throw FileError(where() + " is an " + std::string(line, std::min<std::size_t>(length, 6)) +
                       " record of " + std::to_string(length) +
                       " columns, too short to hold coordinates (54); the file looks truncated");
     }
@@ -481,7 +491,7 @@ private:
     {
       if (!is_number_field(line + column, 8))
       {
-        throw FileError(where + " has '" + std::string(line + column, 8) +
+        throw FileError(where() + " has '" + std::string(line + column, 8) +
                         "' in coordinate columns " + std::to_string(column + 1) + "-" +
                         std::to_string(column + 8) + ", not a number");
       }

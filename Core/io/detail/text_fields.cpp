@@ -7,17 +7,25 @@
 namespace mesolens {
 namespace detail {
 
+namespace {
+/// std::isspace in the "C" locale, without its per-character locale lookup.
+bool is_blank(char c)
+{
+  return c == ' ' || (c >= '\t' && c <= '\r');
+}
+} // namespace
+
 std::vector<std::string_view> split_words(std::string_view line)
 {
   std::vector<std::string_view> words;
   for (std::size_t i = 0; i < line.size();)
   {
-    while (i < line.size() && std::isspace(static_cast<unsigned char>(line[i])))
+    while (i < line.size() && is_blank(line[i]))
     {
       ++i;
     }
     const std::size_t start = i;
-    while (i < line.size() && !std::isspace(static_cast<unsigned char>(line[i])))
+    while (i < line.size() && !is_blank(line[i]))
     {
       ++i;
     }

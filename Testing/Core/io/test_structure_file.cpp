@@ -6,6 +6,7 @@
 #include "mesolens/common/errors.h"
 #include "mesolens_test_data.h"
 
+#include <gemmi/pdb.hpp>
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -683,4 +684,143 @@ TEST(StructureFile, ConnectionRecordsCutInTheirDistanceColumns)
   ASSERT_EQ(atoms.bonds.size(), 1u);
   EXPECT_EQ(atoms.bonds.front().first, 0u);
   EXPECT_EQ(atoms.bonds.front().second, 1u);
+}
+
+namespace {
+/// Every atom of every model as plain gemmi reads the file, in its order, against ours (all
+/// alternate locations kept): the reader parses PDB atom records itself and must group, order
+/// and read them as gemmi does.
+void expect_atoms_as_gemmi_reads_them(const std::string& path)
+{
+  SCOPED_TRACE(path);
+  const gemmi::Structure reference = gemmi::read_pdb_file(path);
+  mesolens::StructureReadParams params;
+  params.alt_locs = mesolens::AltLocPolicy::KeepAll;
+  params.perceive_bonds = false;
+  const mesolens::StructureFile file = mesolens::read_structure(path, params);
+  std::size_t model_index = 0;
+  for (const gemmi::Model& model : reference.models)
+  {
+    if (model.chains.empty())
+    {
+      continue;
+    }
+    ASSERT_LT(model_index, file.models.size());
+    const mesolens::AtomTable& t = file.models[model_index++];
+    std::size_t i = 0;
+    for (const gemmi::Chain& chain : model.chains)
+    {
+      for (const gemmi::Residue& residue : chain.residues)
+      {
+        for (const gemmi::Atom& atom : residue.atoms)
+        {
+          ASSERT_LT(i, t.size());
+          EXPECT_EQ(t.atom_names[i], atom.name);
+          EXPECT_EQ(t.atomic_numbers[i],
+                    atom.element.elem == gemmi::El::D ? 1 : static_cast<int>(atom.element.elem));
+          EXPECT_EQ(t.positions[3 * i], float(atom.pos.x));
+          EXPECT_EQ(t.positions[3 * i + 1], float(atom.pos.y));
+          EXPECT_EQ(t.positions[3 * i + 2], float(atom.pos.z));
+          EXPECT_EQ(t.occupancies[i], atom.occ);
+          EXPECT_EQ(t.b_factors[i], atom.b_iso);
+          EXPECT_EQ(t.alt_locs[i], atom.altloc ? atom.altloc : ' ');
+          EXPECT_EQ(t.formal_charges[i], atom.charge);
+          EXPECT_EQ(t.residue_names[i].substr(0, 3), residue.name);
+          EXPECT_EQ(t.residue_numbers[i], int(residue.seqid.num));
+          EXPECT_EQ(t.chain_ids[i], chain.name);
+          EXPECT_EQ(t.is_hetero[i], residue.het_flag == 'H' ? 1 : 0);
+          ++i;
+        }
+      }
+    }
+    EXPECT_EQ(i, t.size());
+  }
+  EXPECT_EQ(model_index, file.models.size());
+}
+} // namespace
+
+TEST(StructureFile, PdbAtomsAreReadAsGemmiReadsThem)
+{
+  for (const char* name : { "1crn.pdb", "1ubq.pdb", "1l2y.pdb", "1aki.pdb", "4we2.pdb", "1dix.pdb",
+                            "3o5r.pdb", "1bna.pdb", "4gxy.pdb", "1tii.pdb", "1d3z.pdb" })
+  {
+    expect_atoms_as_gemmi_reads_them(data_file(std::string("proteins/") + name));
+  }
+  // Records out of order: residue 1 of chain A comes back after residue 2 (its atoms join it),
+  // chain A comes back after chain B (a third run), a record too short for occupancy and B
+  // (1 and 20, as gemmi), names without an element column ("1HB", "C210", "HG21").
+  const std::string text =
+    "ATOM      1  N   ALA A   1      10.000  10.000  10.000  1.00 15.00           N\n"
+    "ATOM      2  CA  ALA A   1      11.000  10.000  10.000  1.00 15.00           C\n"
+    "ATOM      3  N   GLY A   2      12.000  10.000  10.000  1.00 15.00           N\n"
+    "ATOM      4  C   ALA A   1      11.500  11.000  10.000  0.50 16.00           C\n"
+    "ATOM      5 1HB  ALA A   1      11.500  11.000  11.000\n"
+    "HETATM    6 C210 LIG B   1      20.000  20.000  20.000  1.00 30.00\n"
+    "ATOM      7 HG21 THR A   3      -1.250   0.005  -0.000  1.00  5.00\n"
+    "ATOM      8  FE  HEM A   4       0.000   0.000   3.000  1.00  5.00          FE2+\n"
+    "END\n"
+    "ATOM      9  N   ALA A   9      10.000  10.000  10.000  1.00 15.00           N\n";
+  const std::string path = mesolens_test::write_bytes("records_out_of_order.pdb", text);
+  expect_atoms_as_gemmi_reads_them(path);
+  mesolens::StructureReadParams params;
+  params.perceive_bonds = false;
+  const mesolens::AtomTable t = mesolens::read_structure(path, params).models.at(0);
+  ASSERT_EQ(t.size(), 8u); // nothing after END
+  EXPECT_EQ(t.serials, (std::vector<int>{ 1, 2, 4, 5, 3, 6, 7, 8 }));
+  EXPECT_EQ(t.chain_ids, (std::vector<std::string>{ "A", "A", "A", "A", "A", "B", "A", "A" }));
+  EXPECT_EQ(t.b_factors[3], 20.0f);
+  EXPECT_EQ(t.occupancies[3], 1.0f);
+  EXPECT_EQ(t.atomic_numbers[3], 1);  // 1HB
+  EXPECT_EQ(t.atomic_numbers[5], 6);  // C210
+  EXPECT_EQ(t.atomic_numbers[6], 1);  // HG21
+  EXPECT_EQ(t.atomic_numbers[7], 26); // FE
+  EXPECT_EQ(t.formal_charges[7], 2);
+}
+
+TEST(StructureFile, PdbModelRecordsAsGemmiChecksThem)
+{
+  const std::string atom =
+    "ATOM      1  CA  ALA A   1      10.000  10.000  10.000  1.00 15.00           C\n";
+  // Atoms after ENDMDL start the next model, numbered on; that number being taken is an error.
+  EXPECT_EQ(
+    mesolens::read_structure(
+      mesolens_test::write_bytes("implicit_models.pdb", atom + "ENDMDL\n" + atom + "ENDMDL\n"))
+      .models.size(),
+    2u);
+  EXPECT_THROW(mesolens::read_structure(mesolens_test::write_bytes(
+                 "atoms_between_models.pdb",
+                 "MODEL        2\n" + atom + "ENDMDL\n" + atom + "ENDMDL\n" + atom)),
+               mesolens::FileError);
+  EXPECT_THROW(
+    mesolens::read_structure(mesolens_test::write_bytes(
+      "model_without_endmdl.pdb", "MODEL        1\n" + atom + "MODEL        2\n" + atom)),
+    mesolens::FileError);
+  EXPECT_THROW(mesolens::read_structure(mesolens_test::write_bytes(
+                 "repeated_model.pdb",
+                 "MODEL        1\n" + atom + "ENDMDL\nMODEL        1\n" + atom + "ENDMDL\n")),
+               mesolens::FileError);
+  EXPECT_THROW(
+    mesolens::read_structure(mesolens_test::write_bytes(
+      "anisou_first.pdb",
+      "ANISOU    1  CA  ALA A   1      100    200    300      0      0      0       C\n" + atom)),
+    mesolens::FileError);
+}
+
+TEST(StructureFile, DisulfideRecordsFindTheSulfurOfTheirResidues)
+{
+  // SSBOND names residues only: SG, or the residue's first sulfur when it has no SG (here SD).
+  const std::string text =
+    "SSBOND   1 MET A    1    CYS A    2                          1555   1555  2.04\n"
+    "ATOM      1  CA  MET A   1       0.000   0.000   0.000  1.00 10.00           C\n"
+    "ATOM      2  SD  MET A   1       1.000   0.000   0.000  1.00 10.00           S\n"
+    "ATOM      3  CA  CYS A   2      10.000   0.000   0.000  1.00 10.00           C\n"
+    "ATOM      4  SG  CYS A   2       3.000   0.000   0.000  1.00 10.00           S\n";
+  mesolens::StructureReadParams params;
+  params.perceive_bonds = false;
+  const mesolens::AtomTable t =
+    mesolens::read_structure(mesolens_test::write_bytes("ssbond_sd.pdb", text), params)
+      .models.at(0);
+  ASSERT_EQ(t.bonds.size(), 1u);
+  EXPECT_EQ(t.bonds[0].first, 1u);
+  EXPECT_EQ(t.bonds[0].second, 3u);
 }

@@ -80,6 +80,10 @@ struct AtomTable
   /// Reserves room for `count` atoms in every per-atom array.
   void reserve(std::size_t count);
 
+  /// Sets the number of atoms; new atoms get the defaults append_atom() gives (empty name,
+  /// origin).
+  void resize(std::size_t count);
+
   /// Appends one atom with default values for every field but name and position.
   void append_atom(const std::string& name, float x, float y, float z);
 

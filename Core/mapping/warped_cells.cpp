@@ -323,45 +323,6 @@ WarpedCellAtoms::WarpedCellAtoms(const MembraneWarp& warp, const AtomCells& cell
       const auto local = polynomial_coordinates(frame, warp.layer_half_thickness, slot_xyz[slot]);
       std::copy(local.begin(), local.end(), this->LocalCoordinates.begin() + 3 * slot);
     }
-    // Tables for the most common piece counts (at most 8 of them; others computed when loaded).
-    std::vector<int> splits_of_tile(warp.tile_count(), 1);
-    if (!warp.polynomial_splits.empty())
-    {
-      splits_of_tile = warp.polynomial_splits;
-    }
-    this->TableOfTile.assign(splits_of_tile.size(), -1);
-    for (std::size_t tile = 0; tile < splits_of_tile.size(); ++tile)
-    {
-      const int splits = splits_of_tile[tile];
-      auto found = std::find_if(this->PieceTables.begin(), this->PieceTables.end(),
-                                [&](const PieceTable& table) { return table.splits == splits; });
-      if (found == this->PieceTables.end() && this->PieceTables.size() < 8)
-      {
-        PieceTable table;
-        table.splits = splits;
-        table.piece.resize(slots);
-        table.monomials.resize(quadratic_terms * slots);
-        for (std::size_t slot = 0; slot < slots; ++slot)
-        {
-          double local_s = this->LocalCoordinates[3 * slot];
-          double local_t = this->LocalCoordinates[3 * slot + 1];
-          table.piece[slot] =
-            static_cast<std::uint32_t>(polynomial_piece(splits, local_s, local_t));
-          const auto monomials =
-            quadratic_monomials(local_s, local_t, this->LocalCoordinates[3 * slot + 2]);
-          for (std::size_t k = 0; k < quadratic_terms; ++k)
-          {
-            table.monomials[k * slots + slot] = monomials[k];
-          }
-        }
-        this->PieceTables.push_back(std::move(table));
-        found = this->PieceTables.end() - 1;
-      }
-      if (found != this->PieceTables.end())
-      {
-        this->TableOfTile[tile] = static_cast<int>(found - this->PieceTables.begin());
-      }
-    }
   }
   else
   {
@@ -416,23 +377,26 @@ void WarpedCellAtoms::load(std::size_t cell, std::vector<float>& xyz,
       this->RadiusOfElement[this->ElementOfSlot[std::size_t(slot) * this->ElementStride]] +
       static_cast<float>(this->Margin);
   }
-  const int table_index = polynomial ? this->TableOfTile[tile] : -1;
-  if (table_index >= 0 && this->PieceTables[std::size_t(table_index)].splits == 1)
+  const double* local = this->LocalCoordinates.data();
+  if (polynomial && splits == 1)
   {
-    // One polynomial for the whole cell: a loop over the atoms per coordinate, which the
-    // compiler vectorises.
-    const PieceTable& table = this->PieceTables[std::size_t(table_index)];
-    const std::size_t slots = table.piece.size();
-    const double* m = table.monomials.data() + first;
-    for (std::size_t d = 0; d < 3; ++d)
+    // One polynomial for the whole cell: a loop over the atoms, which the compiler vectorises.
+    // The monomials are computed, not kept: a table of them cost 80 bytes per patch atom per
+    // piece count, several times the GPU buffers, for no faster a test.
+    for (std::size_t i = 0; i < count; ++i)
     {
-      const double* c = tile_warp + quadratic_terms * d;
-      for (std::size_t i = 0; i < count; ++i)
+      const double* stu = local + 3 * (std::size_t(first) + i);
+      double s = stu[0]; // the piece's coordinates, rounded as the renderer's
+      double t = stu[1];
+      polynomial_piece(1, s, t);
+      const auto m = quadratic_monomials(s, t, stu[2]);
+      for (std::size_t d = 0; d < 3; ++d)
       {
+        const double* c = tile_warp + quadratic_terms * d;
         double x = 0;
         for (std::size_t k = 0; k < quadratic_terms; ++k)
         {
-          x += c[k] * m[k * slots + i];
+          x += c[k] * m[k];
         }
         xyz[3 * i + d] = static_cast<float>(x);
       }
@@ -442,27 +406,14 @@ void WarpedCellAtoms::load(std::size_t cell, std::vector<float>& xyz,
   for (std::uint32_t slot = first; slot < end; ++slot)
   {
     std::array<double, 3> x{ 0, 0, 0 };
-    if (table_index >= 0)
-    {
-      const PieceTable& table = this->PieceTables[std::size_t(table_index)];
-      const std::size_t slots = table.piece.size();
-      const double* warp = tile_warp + 3 * quadratic_terms * table.piece[slot];
-      for (std::size_t d = 0; d < 3; ++d)
-      {
-        for (std::size_t k = 0; k < quadratic_terms; ++k)
-        {
-          x[d] += warp[quadratic_terms * d + k] * table.monomials[k * slots + slot];
-        }
-      }
-    }
-    else if (polynomial)
+    if (polynomial)
     {
       // As evaluate_tile_polynomial, from the tile-independent coordinates.
-      double s = this->LocalCoordinates[3 * slot];
-      double t = this->LocalCoordinates[3 * slot + 1];
+      double s = local[3 * slot];
+      double t = local[3 * slot + 1];
       const double* warp =
         tile_warp + 3 * quadratic_terms * std::size_t(polynomial_piece(splits, s, t));
-      const auto monomials = quadratic_monomials(s, t, this->LocalCoordinates[3 * slot + 2]);
+      const auto monomials = quadratic_monomials(s, t, local[3 * slot + 2]);
       for (std::size_t d = 0; d < 3; ++d)
       {
         for (std::size_t k = 0; k < quadratic_terms; ++k)

@@ -18,7 +18,6 @@
 #include "vtkMesoAtomMapper.h"
 #include "vtkMesoAtomTableConversion.h"
 #include "vtkMesoMembraneMapping.h"
-#include "vtkMesoMeshReader.h"
 #include "vtkMesoTrajectoryReader.h"
 
 #include "atom_stage.h"
@@ -164,20 +163,10 @@ void compare_mappers(Stage& stage, Stage& small, vtkPolyData* patch, vtkIdType c
 /// as they are.
 void compare_warp(Stage& stage, int tiles, int frames, int atoms_per_cell)
 {
-  vtkNew<vtkMesoMeshReader> surface;
-  surface->SetFileName(mesolens_test::data_file("meshes/mito5_outer_membrane.obj").c_str());
-  surface->Update();
-  vtkNew<vtkMesoTrajectoryReader> membrane;
-  membrane->SetTopologyFileName(
-    mesolens_test::data_file("membranes/dppc128_slipids_323K.gro").c_str());
-  membrane->RemoveWatersOn();
-  vtkNew<vtkMesoMembraneMapping> mapping;
-  mapping->SetSurfaceConnection(surface->GetOutputPort());
-  mapping->SetMembraneConnection(membrane->GetOutputPort());
-  mapping->SetSeedPoint(surface->GetOutput()->GetPoint(1000));
-  mapping->SetTiles(tiles);
-  mapping->SetMembraneToMeshScale(1e-4);
-  mapping->SetMappingMethodToPolynomial();
+  mesolens_bench::MitochondrionMapping mitochondrion(
+    mesolens_test::data_file("membranes/dppc128_slipids_323K.gro"), tiles);
+  vtkMesoTrajectoryReader* membrane = mitochondrion.Membrane;
+  vtkMesoMembraneMapping* mapping = mitochondrion.Mapping;
   if (!mapping->GetExecutive()->Update())
   {
     std::printf("BENCH atom-mapper warp: the mapping of %d x %d tiles failed; skipped\n", tiles,

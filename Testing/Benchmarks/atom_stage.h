@@ -1,12 +1,18 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
 // What the atom-drawing benchmarks share: an offscreen window with one actor and MesoLens' render
-// passes (plain or SSAO), frame timing, and VTK's sphere mapper set up as the demo does.
+// passes (plain or SSAO), frame timing, VTK's sphere mapper set up as the demo does, and a
+// membrane mapped onto the mitochondrion of Data/.
 #pragma once
 
 #include "vtkMesoArrayNames.h"
 #include "vtkMesoAtomProperties.h"
 #include "vtkMesoElementLookupTable.h"
+#include "vtkMesoMembraneMapping.h"
+#include "vtkMesoMeshReader.h"
 #include "vtkMesoRenderPasses.h"
+#include "vtkMesoTrajectoryReader.h"
+
+#include "mesolens_test_data.h"
 
 #include <vtkActor.h>
 #include <vtkCamera.h>
@@ -25,6 +31,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -68,6 +75,30 @@ struct VTKSpheres
       }
     }
     return bytes / double(atoms);
+  }
+};
+
+/// A membrane of Data/ (`topology`, waters removed) mapped onto the mitochondrion's outer
+/// membrane by the polynomial method, `tiles` x `tiles`, in a µm scene (1e-4 per Å), from the
+/// surface's vertex 1000; not updated.
+struct MitochondrionMapping
+{
+  vtkNew<vtkMesoMeshReader> Surface;
+  vtkNew<vtkMesoTrajectoryReader> Membrane;
+  vtkNew<vtkMesoMembraneMapping> Mapping;
+
+  MitochondrionMapping(const std::string& topology, int tiles)
+  {
+    this->Surface->SetFileName(mesolens_test::data_file("meshes/mito5_outer_membrane.obj").c_str());
+    this->Surface->Update();
+    this->Membrane->SetTopologyFileName(topology.c_str());
+    this->Membrane->RemoveWatersOn();
+    this->Mapping->SetSurfaceConnection(this->Surface->GetOutputPort());
+    this->Mapping->SetMembraneConnection(this->Membrane->GetOutputPort());
+    this->Mapping->SetSeedPoint(this->Surface->GetOutput()->GetPoint(1000));
+    this->Mapping->SetTiles(tiles);
+    this->Mapping->SetMembraneToMeshScale(1e-4);
+    this->Mapping->SetMappingMethodToPolynomial();
   }
 };
 

@@ -99,19 +99,9 @@ private:
   WarpedCellBoxes Boxes;
   double Margin = 0;
   std::vector<std::size_t> FirstPiece; ///< polynomial: per tile
-  /// Polynomial: per slot, (s, t, h) (the same in every tile); and, per number of pieces per
-  /// side that tiles have (a few), each slot's piece and its 10 monomials (monomial-major), so
-  /// that a tile costs each atom 30 multiply-adds.
+  /// Polynomial: per slot, (s, t, h), the same in every tile.
   std::vector<double> LocalCoordinates;
-  struct PieceTable
-  {
-    int splits = 1;
-    std::vector<std::uint32_t> piece;
-    std::vector<double> monomials;
-  };
-  std::vector<PieceTable> PieceTables;
-  std::vector<int> TableOfTile; ///< index into PieceTables, -1: computed when loaded
-  std::size_t Molecules = 0;    ///< instancing: per tile
+  std::size_t Molecules = 0; ///< instancing: per tile
 };
 
 } // namespace mesolens

@@ -23,6 +23,7 @@
 #include "mesolens/mapping/warped_cells.h"
 #include "mesolens/render/atom_cells.h"
 #include "mesolens/render/depth_pyramid.h"
+#include "mesolens/render/first_occluders.h"
 
 #include <vtkFloatArray.h>
 #include <vtkOpenGLActor.h>
@@ -944,17 +945,19 @@ void vtkMesoAtomMapper::DrawVisibleAtoms(vtkRenderer* ren, vtkActor* act, vtkSha
   ViewHistory& history = in.History({ ren, viewport[2], viewport[3] }, in.Data.CellsVersion,
                                     atoms.first_slot(cell_count), cell_count);
 
-  // 1. The atoms seen last time; with none (a first frame, a jump), the nearest quarter of the
-  // cells in view, whole.
+  // 1. The atoms seen last time; with none (a first frame, a jump), the cells that make the
+  // nearest surface of what is in view, whole.
   if (std::find(history.Seen.begin(), history.Seen.end(), 1) == history.Seen.end())
   {
-    for (std::size_t k = 0; k < cells.size() && (k < 8 || 4 * k < cells.size()); ++k)
+    history.Seen =
+      mesolens::first_occluders(atoms, boxes, cells, padding, view, viewport[2], viewport[3]);
+    for (std::size_t cell = 0; cell < cell_count; ++cell)
     {
-      const std::uint32_t cell = cells[k].cell;
-      history.Seen[cell] = 1;
-      std::fill(history.Flags.begin() + atoms.first_slot(cell),
-                history.Flags.begin() + atoms.first_slot(std::size_t(cell) + 1),
-                std::uint8_t(mesolens::SEEN));
+      if (history.Seen[cell])
+      {
+        std::fill(history.Flags.begin() + atoms.first_slot(cell),
+                  history.Flags.begin() + atoms.first_slot(cell + 1), std::uint8_t(mesolens::SEEN));
+      }
     }
   }
   in.DrawListBytes = 0;

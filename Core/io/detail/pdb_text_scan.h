@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// The raw-text pass over a PDB file before gemmi parses it (private to Core).
+// The raw-text pass over a PDB file before its records are read (private to Core).
 #pragma once
 
 #include <cstddef>
@@ -22,9 +22,8 @@ struct PdbAtomFields
 /// What the raw-text pass found.
 struct PdbTextScan
 {
-  /// Per ATOM/HETATM record, in file order. The pass writes n into the serial field of the n-th
-  /// record (1-based, whole file), so gemmi's Atom::serial indexes this list even where gemmi
-  /// regroups atoms.
+  /// Per ATOM/HETATM record, in file order (read_pdb_atoms indexes it by the records' order;
+  /// the pass also writes n into the serial field of the n-th record, 1-based, whole file).
   std::vector<PdbAtomFields> atoms;
   std::vector<std::pair<int, int>> conect_pairs; ///< CONECT (serial, bonded serial)
   std::size_t unreadable_conect_fields = 0;      ///< CONECT fields that are no numbers
@@ -36,10 +35,10 @@ struct PdbTextScan
   std::size_t continued_residue_numbers = 0; ///< records whose resSeq restarted after 9999
 };
 
-/// Scans the PDB text once, before gemmi: collects CONECT pairs (gemmi 0.5 ignores CONECT),
-/// rejects ATOM/HETATM records without readable coordinates (the mark of a truncated or
-/// corrupt file; throws FileError naming the line), and rewrites each ATOM/HETATM record into
-/// the standard columns that gemmi reads:
+/// Scans the PDB text once, before its records are read: collects CONECT pairs (gemmi 0.5
+/// ignores CONECT), rejects ATOM/HETATM records without readable coordinates (the mark of a
+/// truncated or corrupt file; throws FileError naming the line), and rewrites each ATOM/HETATM
+/// record into the standard columns that read_pdb_atoms reads, as gemmi would:
 /// - a serial over 99999 or a residue number over 9999 written in full ("%5d", "%4d" without a
 ///   modulo, as Open Babel writes them) pushes the rest of the record right; the shift is found
 ///   from where the three "%8.3f" coordinates really are;

@@ -1,5 +1,6 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Reading PDB and PDBx/mmCIF files (plain or gzipped) with gemmi, losing no atom.
+// Reading PDB and PDBx/mmCIF files (plain or gzipped), losing no atom: PDB atom records by
+// MesoLens (as gemmi reads them), the rest through gemmi.
 #pragma once
 
 #include "mesolens/molecules/atom_table.h"

@@ -370,39 +370,15 @@ void WarpedCellAtoms::load(std::size_t cell, std::vector<float>& xyz,
   const double* tile_warp = polynomial
     ? this->Warp.polynomial_coefficients.data() + 3 * quadratic_terms * this->FirstPiece[tile]
     : nullptr;
-  const std::size_t count = end - first;
   for (std::uint32_t slot = first; slot < end; ++slot)
   {
     radii[slot - first] =
       this->RadiusOfElement[this->ElementOfSlot[std::size_t(slot) * this->ElementStride]] +
       static_cast<float>(this->Margin);
   }
+  // The monomials are computed here, not kept: a table of them cost 80 bytes per patch atom per
+  // piece count, several times the GPU buffers, for no faster a test.
   const double* local = this->LocalCoordinates.data();
-  if (polynomial && splits == 1)
-  {
-    // One polynomial for the whole cell: a loop over the atoms, which the compiler vectorises.
-    // The monomials are computed, not kept: a table of them cost 80 bytes per patch atom per
-    // piece count, several times the GPU buffers, for no faster a test.
-    for (std::size_t i = 0; i < count; ++i)
-    {
-      const double* stu = local + 3 * (std::size_t(first) + i);
-      double s = stu[0]; // the piece's coordinates, rounded as the renderer's
-      double t = stu[1];
-      polynomial_piece(1, s, t);
-      const auto m = quadratic_monomials(s, t, stu[2]);
-      for (std::size_t d = 0; d < 3; ++d)
-      {
-        const double* c = tile_warp + quadratic_terms * d;
-        double x = 0;
-        for (std::size_t k = 0; k < quadratic_terms; ++k)
-        {
-          x += c[k] * m[k];
-        }
-        xyz[3 * i + d] = static_cast<float>(x);
-      }
-    }
-    return;
-  }
   for (std::uint32_t slot = first; slot < end; ++slot)
   {
     std::array<double, 3> x{ 0, 0, 0 };

@@ -2,6 +2,7 @@
 #include "mesolens/molecules/bond_perception.h"
 
 #include "mesolens/molecules/elements.h"
+#include "mesolens/molecules/molecule_groups.h"
 #include "mesolens/common/errors.h"
 
 #include <algorithm>
@@ -10,7 +11,6 @@
 #include <cstdint>
 #include <limits>
 #include <numeric>
-#include <unordered_map>
 #include <vector>
 
 namespace mesolens {
@@ -264,37 +264,11 @@ std::vector<Bond> perceive_bonds(const BondPerceptionInput& input,
   // Atoms alone in their molecule (ions, crystal waters) cannot bond: leave them out of the grid
   // and out of the cell size, which the largest radius sets.
   std::vector<std::uint8_t> has_partner(n, 0);
-  const bool ids_index_atoms = std::all_of(input.molecule_ids, input.molecule_ids + n, [n](int id) {
-    return id >= 0 && static_cast<std::size_t>(id) < n;
-  });
-  if (ids_index_atoms)
   {
-    // The usual case (ids from assign_molecules are dense from 0): a table, not a hash map.
-    constexpr std::size_t unseen = static_cast<std::size_t>(-1);
-    std::vector<std::size_t> first_of_molecule(n, unseen);
+    const MoleculeGroups molecules = group_molecules(input.molecule_ids, n);
     for (std::size_t i = 0; i < n; ++i)
     {
-      std::size_t& first = first_of_molecule[static_cast<std::size_t>(input.molecule_ids[i])];
-      if (first == unseen)
-      {
-        first = i;
-      }
-      else
-      {
-        has_partner[i] = has_partner[first] = 1;
-      }
-    }
-  }
-  else
-  {
-    std::unordered_map<int, std::size_t> first_of_molecule;
-    for (std::size_t i = 0; i < n; ++i)
-    {
-      const auto found = first_of_molecule.emplace(input.molecule_ids[i], i);
-      if (!found.second)
-      {
-        has_partner[i] = has_partner[found.first->second] = 1;
-      }
+      has_partner[i] = molecules.size_of(molecules.of_atom[i]) > 1 ? 1 : 0;
     }
   }
   std::vector<float> radius(n);

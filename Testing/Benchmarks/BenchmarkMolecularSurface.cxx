@@ -110,16 +110,7 @@ double projected_area(vtkPolyData* mesh)
 /// Peak resident memory since the last reset, MiB (Linux: VmHWM, reset through clear_refs).
 double peak_mib()
 {
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while (std::getline(status, line))
-  {
-    if (line.rfind("VmHWM:", 0) == 0)
-    {
-      return std::atof(line.c_str() + 6) / 1024.0;
-    }
-  }
-  return 0;
+  return mesolens_test::process_status_bytes("VmHWM") / 1048576.0;
 }
 void reset_peak()
 {

@@ -3,7 +3,8 @@
 // the same run (these machines are noisy; absolute times only mean something relative to it):
 //  - PDB and mmCIF parse time per atom of vtkMesoStructureReader (everything it does: parse,
 //    alternate locations, secondary structure, molecules, bonds) against VTK's vtkPDBReader on
-//    the same PDB file (which drops hydrogens and alternate atoms);
+//    the same PDB file (which drops hydrogens and alternate atoms), and its time against gemmi's
+//    bare read_structure of the same file, with how far reads stray from run to run;
 //  - XTC decoding: frames and atoms per second of mesolens::TrajectoryFile (random access, frame
 //    validation) and of vtkMesoTrajectoryReader (plus whole, continuous molecules) against a
 //    plain sequential GROMACS read_next_frame loop.
@@ -47,14 +48,9 @@
 #include <vector>
 
 namespace {
+using mesolens_test::median;
 using mesolens_test::median_seconds;
 using mesolens_test::seconds_of;
-
-double median(std::vector<double> values)
-{
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
 
 /// Times of `repeats` runs of each of `work`, interleaved so all see the same machine load.
 std::vector<std::vector<double>> interleaved_times(int repeats,

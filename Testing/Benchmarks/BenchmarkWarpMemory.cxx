@@ -31,8 +31,6 @@
 
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
-#include <fstream>
 #include <string>
 
 namespace {
@@ -40,41 +38,20 @@ namespace {
 double resident_bytes()
 {
   malloc_trim(0);
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while (std::getline(status, line))
-  {
-    if (line.rfind("VmRSS:", 0) == 0)
-    {
-      return 1024.0 * std::stod(line.substr(6));
-    }
-  }
-  return 0.0;
-}
-
-const char* argument(int argc, char* argv[], const char* name, const char* fallback)
-{
-  for (int i = 1; i + 1 < argc; ++i)
-  {
-    if (!std::strcmp(argv[i], name))
-    {
-      return argv[i + 1];
-    }
-  }
-  return fallback;
+  return mesolens_test::process_status_bytes("VmRSS");
 }
 } // namespace
 
 int main(int argc, char* argv[])
 {
-  const std::string draw = argument(argc, argv, "--draw", "");
+  const std::string draw = mesolens_test::text_argument(argc, argv, "--draw", "");
   if (draw.empty())
   {
     // Each case in a fresh process: the rasterizer keeps its scene memory for reuse.
     std::string options;
     for (const char* name : { "--membrane", "--tiles", "--frames" })
     {
-      if (const char* value = argument(argc, argv, name, nullptr))
+      if (const char* value = mesolens_test::text_argument(argc, argv, name, nullptr))
       {
         options += std::string(" ") + name + " " + value;
       }
@@ -87,7 +64,7 @@ int main(int argc, char* argv[])
     }
     return failures == 0 ? 0 : 1;
   }
-  const std::string membrane_name = argument(argc, argv, "--membrane", "yiip");
+  const std::string membrane_name = mesolens_test::text_argument(argc, argv, "--membrane", "yiip");
   const int tiles = mesolens_test::count_argument(argc, argv, "--tiles", 5);
   const int frames = mesolens_test::count_argument(argc, argv, "--frames", 3);
   const std::string topology = membrane_name == "dppc"

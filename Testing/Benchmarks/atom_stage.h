@@ -12,6 +12,7 @@
 #include "vtkMesoRenderPasses.h"
 #include "vtkMesoTrajectoryReader.h"
 
+#include "mesolens_benchmark_timing.h"
 #include "mesolens_test_data.h"
 
 #include <vtkActor.h>
@@ -37,11 +38,7 @@
 
 namespace mesolens_bench {
 
-inline double median(std::vector<double> values)
-{
-  std::sort(values.begin(), values.end());
-  return values[values.size() / 2];
-}
+using mesolens_test::median;
 
 /// VTK's sphere mapper set up as the MesoLens demo does: van der Waals radii, element colours.
 struct VTKSpheres

@@ -1,11 +1,12 @@
 // SPDX-License-Identifier: GPL-3.0-or-later
-// Wall-clock timing for the benchmark programs.
+// Wall-clock timing, medians, process memory and command-line options for the benchmark programs.
 #pragma once
 
 #include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <functional>
 #include <sstream>
 #include <string>
@@ -21,6 +22,13 @@ inline double seconds_of(const std::function<void()>& work)
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+/// The median of `values` (not empty; the upper one of an even count).
+inline double median(std::vector<double> values)
+{
+  std::sort(values.begin(), values.end());
+  return values[values.size() / 2];
+}
+
 /// Median wall time in seconds of `repeats` (>= 1) runs of `work`.
 inline double median_seconds(int repeats, const std::function<void()>& work)
 {
@@ -29,8 +37,23 @@ inline double median_seconds(int repeats, const std::function<void()>& work)
   {
     times.push_back(seconds_of(work));
   }
-  std::sort(times.begin(), times.end());
-  return times[times.size() / 2];
+  return median(times);
+}
+
+/// A memory figure of this process from /proc/self/status (`field`: "VmRSS", "VmHWM", ...), in
+/// bytes; 0 where there is none (not Linux).
+inline double process_status_bytes(const std::string& field)
+{
+  std::ifstream status("/proc/self/status");
+  std::string line;
+  while (std::getline(status, line))
+  {
+    if (line.rfind(field + ":", 0) == 0)
+    {
+      return 1024.0 * std::atof(line.c_str() + field.size() + 1);
+    }
+  }
+  return 0.0;
 }
 
 /// The items of a comma-separated command-line value ("1,2,3": "1", "2", "3").
@@ -54,6 +77,19 @@ inline int count_argument(int argc, char* argv[], const char* name, int fallback
     if (!std::strcmp(argv[i], name))
     {
       return std::max(1, std::atoi(argv[i + 1]));
+    }
+  }
+  return fallback;
+}
+
+/// The value after `--name` on the command line, or `fallback`.
+inline const char* text_argument(int argc, char* argv[], const char* name, const char* fallback)
+{
+  for (int i = 1; i + 1 < argc; ++i)
+  {
+    if (!std::strcmp(argv[i], name))
+    {
+      return argv[i + 1];
     }
   }
   return fallback;

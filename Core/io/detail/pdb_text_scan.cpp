@@ -426,6 +426,9 @@ public:
       throw FileError(this->Path + ": more than " + std::to_string(largest_serial_code) +
                       " atom records, more than the PDB format can number; use mmCIF");
     }
+    // Nothing reads this serial now (read_pdb_atoms keeps the records' order), but a short
+    // "MODEL 1" record's number is read past its end, as gemmi reads it, from an earlier line's
+    // columns 11-14: rewriting them as before keeps such files' models as they were.
     write_hybrid36(int(ordinal), serial_width, line + serial_column);
     this->read_residue_name_end(line, fields);
     this->Chain = line[chain_column];
@@ -551,9 +554,9 @@ private:
     return charmm;
   }
 
-  /// gemmi groups a chain's atoms into residues by the residue number it reads: hybrid-36 keeps
-  /// the true numbers apart up to its largest code, and far beyond it only residues 1213056
-  /// apart could share one (the fields of each atom still come from the scan).
+  /// Atoms are grouped into residues (as gemmi groups them) by the residue number field:
+  /// hybrid-36 keeps the true numbers apart up to its largest code, and far beyond it only residues
+  /// 1213056 apart could share one (the fields of each atom still come from the scan).
   static int residue_number_key(int number)
   {
     if (number < -999)

@@ -23,7 +23,8 @@ struct PdbAtomFields
 struct PdbTextScan
 {
   /// Per ATOM/HETATM record, in file order (read_pdb_atoms indexes it by the records' order;
-  /// the pass also writes n into the serial field of the n-th record, 1-based, whole file).
+  /// the pass also writes n into the serial field of the n-th record, 1-based, whole file, see
+  /// AtomRecordScanner::scan).
   std::vector<PdbAtomFields> atoms;
   std::vector<std::pair<int, int>> conect_pairs; ///< CONECT (serial, bonded serial)
   std::size_t unreadable_conect_fields = 0;      ///< CONECT fields that are no numbers

@@ -622,9 +622,9 @@ gemmi::Structure parse_file(const std::string& path, const ParallelFor& parallel
     if (format == gemmi::CoorFormat::Pdb)
     {
       pdb = detail::scan_pdb_text(buffer.data(), buffer.size(), path);
-      assemblies = detail::read_pdb_assemblies(buffer.data(), buffer.size(), warnings);
       detail::PdbAtomsAndHeader split =
         detail::read_pdb_atoms(buffer.data(), buffer.size(), pdb, parallel_for, path);
+      assemblies = detail::read_pdb_assemblies(split.remarks, warnings);
       pdb_models = std::move(split.models);
       const std::string& header = split.header;
       const std::optional<std::string> padded = pdb_text_for_gemmi(header.data(), header.size());

@@ -5,6 +5,8 @@
 #include "mesolens/molecules/atom_table.h"
 #include "mesolens/protein/assembly.h"
 
+#include "io/detail/text_fields.h"
+
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -25,8 +27,9 @@ namespace detail {
 /// serials outgrow their field (1m4x: from serial 100 on, the numbers are pushed right).
 /// An assembly with a malformed BIOMT line (not "serial m1 m2 m3 t", rows out of order, a
 /// serial that changes within an operator, an operator before any chain list) is left out with
-/// a warning; so are BIOMT lines before any BIOMOLECULE.
-std::vector<Assembly> read_pdb_assemblies(const char* text, std::size_t size,
+/// a warning; so are BIOMT lines before any BIOMOLECULE. `remarks` are the file's REMARK
+/// records in order (others are passed over).
+std::vector<Assembly> read_pdb_assemblies(const std::vector<NumberedLine>& remarks,
                                           std::vector<std::string>& warnings);
 
 /// The assemblies of an mmCIF block (`_pdbx_struct_assembly`, `_pdbx_struct_assembly_gen`,

@@ -4,6 +4,7 @@
 #include "io/detail/text_fields.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cstring>
 #include <string_view>
@@ -164,12 +165,14 @@ private:
       return;
     }
     const int row = content.size() > 5 ? content[5] - '1' : -1;
-    const std::vector<std::string_view> words =
-      split_words(content.size() > 6 ? content.substr(6) : std::string_view());
+    // Read for each of thousands of lines in a virus capsid's file: no allocation.
+    std::array<std::string_view, 5> words;
+    const std::size_t word_count = split_words(
+      content.size() > 6 ? content.substr(6) : std::string_view(), words.data(), words.size());
     double values[4];
     long long serial = 0;
     bool numbers = row >= 0 && row < 3 && (content.size() == 6 || content[6] == ' ') &&
-      words.size() == 5 && parse_integer(words[0], serial);
+      word_count == 5 && parse_integer(words[0], serial);
     for (std::size_t i = 0; numbers && i < 4; ++i)
     {
       numbers = parse_number(words[i + 1], values[i]);
@@ -224,23 +227,17 @@ private:
 
 } // namespace
 
-std::vector<Assembly> read_pdb_assemblies(const char* text, std::size_t size,
+std::vector<Assembly> read_pdb_assemblies(const std::vector<NumberedLine>& remarks,
                                           std::vector<std::string>& warnings)
 {
   Remark350Reader reader;
-  std::size_t line_number = 0;
-  for (std::size_t start = 0; start < size;)
+  for (const NumberedLine& line : remarks)
   {
-    const char* end_of_line =
-      static_cast<const char*>(std::memchr(text + start, '\n', size - start));
-    const std::size_t end = end_of_line ? std::size_t(end_of_line - text) : size;
-    ++line_number;
     std::string_view content;
-    if (remark_350(std::string_view(text + start, end - start), content))
+    if (remark_350(line.text, content))
     {
-      reader.read(content, line_number);
+      reader.read(content, line.number);
     }
-    start = end + 1;
   }
   std::vector<Assembly> assemblies = reader.finish(warnings);
   check_assemblies(assemblies, warnings);

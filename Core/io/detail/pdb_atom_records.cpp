@@ -74,7 +74,7 @@ struct ModelRecords
 /// correctly rounded division, so it equals what the general parser returns.
 double read_decimal_field(const char* field, int width)
 {
-  static constexpr double powers_of_ten[] = { 1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7,
+  static constexpr double powers_of_ten[] = { 1e0, 1e1, 1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
                                               1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15 };
   int i = 0;
   while (i < width && field[i] == ' ')
@@ -336,6 +336,11 @@ PdbAtomsAndHeader read_pdb_atoms(const char* text, std::size_t size, const PdbTe
     else if (is_record_type3(record, "END"))
     {
       break;
+    }
+    else if (is_record_type(record, "REMARK"))
+    {
+      const std::size_t text_length = std::size_t((newline ? newline : end) - line);
+      result.remarks.push_back({ line_number, std::string_view(line, text_length) });
     }
     else if (model == none || !(is_record_type(record, "data") || is_record_type(record, "{\"da")))
     {

@@ -4,6 +4,7 @@
 
 #include "io/detail/pdb_text_scan.h"
 #include "io/detail/residue_layout.h"
+#include "io/detail/text_fields.h"
 #include "mesolens/common/parallel_for.h"
 #include "mesolens/molecules/atom_table.h"
 
@@ -26,6 +27,9 @@ struct PdbAtomsAndHeader
 {
   std::vector<PdbModelAtoms> models; ///< in the file's order; a model may be empty
   std::string header;                ///< the other records, for gemmi to read
+  /// The REMARK records, views into the text: gemmi reads nothing from them that MesoLens
+  /// uses, and the REMARK 350 records of a virus capsid number thousands.
+  std::vector<NumberedLine> remarks;
 };
 
 /// Reads the ATOM/HETATM records of a PDB text that scan_pdb_text has been through (and found
@@ -36,7 +40,7 @@ struct PdbAtomsAndHeader
 /// 77-78 hold none, B 20 and occupancy 1 when the record is too short to give them); the
 /// serials, residue numbers and four-letter names come from `scan`. Records are parsed
 /// concurrently through `parallel_for`. The ANISOU, MODEL, ENDMDL and TER records are checked
-/// and left out of `header`, as are ATOM/HETATM. Throws FileError for what gemmi refuses
+/// and left out of `header`, as are ATOM/HETATM and REMARK. Throws FileError for what gemmi refuses
 /// (a record too short, atoms between models, a repeated MODEL number, a bad charge).
 PdbAtomsAndHeader read_pdb_atoms(const char* text, std::size_t size, const PdbTextScan& scan,
                                  const ParallelFor& parallel_for, const std::string& path);

@@ -13,11 +13,11 @@ bool is_blank(char c)
 {
   return c == ' ' || (c >= '\t' && c <= '\r');
 }
-} // namespace
 
-std::vector<std::string_view> split_words(std::string_view line)
+/// Calls visit(word) for each white-space separated word of the line, in order.
+template<typename Visit>
+void for_each_word(std::string_view line, Visit&& visit)
 {
-  std::vector<std::string_view> words;
   for (std::size_t i = 0; i < line.size();)
   {
     while (i < line.size() && is_blank(line[i]))
@@ -31,10 +31,30 @@ std::vector<std::string_view> split_words(std::string_view line)
     }
     if (i > start)
     {
-      words.push_back(line.substr(start, i - start));
+      visit(line.substr(start, i - start));
     }
   }
+}
+} // namespace
+
+std::vector<std::string_view> split_words(std::string_view line)
+{
+  std::vector<std::string_view> words;
+  for_each_word(line, [&words](std::string_view word) { words.push_back(word); });
   return words;
+}
+
+std::size_t split_words(std::string_view line, std::string_view* words, std::size_t capacity)
+{
+  std::size_t count = 0;
+  for_each_word(line, [&](std::string_view word) {
+    if (count < capacity)
+    {
+      words[count] = word;
+    }
+    ++count;
+  });
+  return count;
 }
 
 bool parse_number(std::string_view word, double& value)

@@ -10,8 +10,19 @@
 namespace mesolens {
 namespace detail {
 
+/// A line of a text file, without its line end, and its 1-based number.
+struct NumberedLine
+{
+  std::size_t number = 0;
+  std::string_view text;
+};
+
 /// The white-space separated words of one line.
 std::vector<std::string_view> split_words(std::string_view line);
+
+/// The first `capacity` words of one line into `words`, without allocating; returns the
+/// line's number of words, which may exceed `capacity`.
+std::size_t split_words(std::string_view line, std::string_view* words, std::size_t capacity);
 
 /// A whole word as a number (a leading '+' allowed; "nan" and "inf" parse: callers that need a
 /// finite value check). False when the word is not one number.

@@ -597,6 +597,35 @@ TEST(Assembly, PdbChainContinuationsAndShiftedSerials)
   expect_instances_match_expansion(file.models[0], two, parts);
 }
 
+TEST(Assembly, PdbRemarksAreReadWhereverTheyStandBeforeEnd)
+{
+  const std::string identity =
+    "REMARK 350   BIOMT1   1  1.000000  0.000000  0.000000        0.00000\r\n"
+    "REMARK 350   BIOMT2   1  0.000000  1.000000  0.000000        0.00000\r\n"
+    "REMARK 350   BIOMT3   1  0.000000  0.000000  1.000000        0.00000\r\n";
+  std::string atoms = pdb_atoms();
+  atoms.erase(atoms.size() - 4); // "END\n"
+  // The second assembly's records follow the atoms (CRLF lines, lower-case record names); a
+  // third one after END is not read, as gemmi reads nothing after END.
+  const std::string text = "REMARK 350 BIOMOLECULE: 1\r\n"
+                           "REMARK 350 APPLY THE FOLLOWING TO CHAINS: A\r\n" +
+    identity + atoms +
+    "remark 350 BIOMOLECULE: 2\r\n"
+    "remark 350 APPLY THE FOLLOWING TO CHAINS: B, C\r\n" +
+    identity +
+    "END\r\nREMARK 350 BIOMOLECULE: 3\r\nREMARK 350 APPLY THE FOLLOWING TO CHAINS: A\r\n" +
+    identity;
+  const std::string path = mesolens_test::write_bytes("assembly_remarks_after_atoms.pdb", text);
+  const mesolens::StructureFile file = mesolens::read_structure(path);
+  ASSERT_EQ(file.models.at(0).size(), 6u);
+  EXPECT_TRUE(file.warnings.empty()) << file.warnings.front();
+  ASSERT_EQ(file.assemblies.size(), 2u);
+  EXPECT_EQ(file.assemblies[1].name, "2");
+  ASSERT_EQ(file.assemblies[1].generators.size(), 1u);
+  EXPECT_EQ(file.assemblies[1].generators[0].chains, (std::vector<std::string>{ "B", "C" }));
+  EXPECT_EQ(file.assemblies[1].generators[0].operators.size(), 1u);
+}
+
 TEST(Assembly, MalformedPdbAssembliesAreLeftOutWithAWarning)
 {
   const std::string remarks =

@@ -308,7 +308,9 @@ bool is_atom_record(const char* line, std::size_t length)
   char word[4];
   for (int i = 0; i < 4; ++i)
   {
-    word[i] = char(std::toupper(static_cast<unsigned char>(line[i])));
+    // std::toupper in the "C" locale, without a call per character: this runs on every line.
+    const char c = line[i];
+    word[i] = c >= 'a' && c <= 'z' ? char(c - 'a' + 'A') : c;
   }
   return std::memcmp(word, "ATOM", 4) == 0 || std::memcmp(word, "HETA", 4) == 0;
 }

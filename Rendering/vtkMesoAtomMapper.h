@@ -67,7 +67,8 @@
  * into every tile: their boxes bounded through the warp in each tile's frame, their atoms warped on
  * the CPU only when tested, mesolens::WarpedCellAtoms). Each frame, per camera:
  * 1. the atoms that were visible in this camera's last frame are drawn (cells out of view are
- *    skipped; a first frame draws the nearest quarter of the cells);
+ *    skipped; a first frame draws the cells that make the nearest surface of what is in view,
+ *    mesolens::first_occluders);
  * 2. the depth buffer is read back and reduced to a pyramid of farthest depths, and every atom
  *    of the cells in view is tested against it on the CPU (whole cells first, by their boxes):
  *    the exact outline of its sphere and the depth of its nearest point against the pixels that

@@ -41,10 +41,28 @@ def press_and_release(viewer, x, y, drag=0):
 
 
 def press_key(viewer, name):
-    codes = {"plus": "+", "minus": "-", "space": " "}
+    codes = {"plus": "+", "minus": "-", "space": " ", "bracketleft": "[", "bracketright": "]"}
     viewer.interactor.SetKeySym(name)
     viewer.interactor.SetKeyCode(codes.get(name, name))
     viewer.interactor.InvokeEvent("CharEvent")
+
+
+def look_at_vertex_1000(viewer):
+    """Points the viewer's camera at the vertex 1000 side of the organelle from 2 µm outside,
+    the whole organelle in view; returns the vertex."""
+    lens = viewer.lens
+    surface = lens.surface.GetOutput()
+    target = surface.GetPoint(1000)
+    centre = surface.GetCenter()
+    outward = [target[d] - centre[d] for d in range(3)]
+    length = math.sqrt(sum(v * v for v in outward))
+    camera = lens.renderer.GetActiveCamera()
+    camera.SetFocalPoint(target)
+    camera.SetPosition([target[d] + 2.0 * outward[d] / length for d in range(3)])
+    camera.SetViewUp(0, 0, 1)
+    lens.renderer.ResetCameraClippingRange()
+    viewer.window.Render()
+    return target
 
 
 class Viewer(unittest.TestCase):
@@ -52,18 +70,7 @@ class Viewer(unittest.TestCase):
         self.lens = MembraneLens(MESH, PATCH)
         self.lens.set_tiles(2)
         self.viewer = LensViewer(self.lens, (400, 300), offscreen=True)
-        # Look at the vertex 1000 side of the organelle, from outside.
-        surface = self.lens.surface.GetOutput()
-        self.target = surface.GetPoint(1000)
-        centre = surface.GetCenter()
-        outward = [self.target[d] - centre[d] for d in range(3)]
-        length = math.sqrt(sum(v * v for v in outward))
-        camera = self.lens.renderer.GetActiveCamera()
-        camera.SetFocalPoint(self.target)
-        camera.SetPosition([self.target[d] + 2.0 * outward[d] / length for d in range(3)])
-        camera.SetViewUp(0, 0, 1)
-        self.lens.renderer.ResetCameraClippingRange()
-        self.viewer.window.Render()
+        self.target = look_at_vertex_1000(self.viewer)
 
     def test_click_places_the_membrane_where_the_click_was(self):
         x, y = display_point(self.lens.renderer, self.target)

@@ -4,14 +4,21 @@
     mesolens render --mesh CELL --membrane PATCH [--trajectory XTC] (--center X,Y,Z | --vertex I)
                     [--tiles K] [--method polynomial|instancing|displacement]
                     [--style space-filling|ball-and-stick] [--ssao] [--size WxH]
-                    [--camera FILE] [--frames N] [--cut FRACTION [--cut-order ORDER]] -o OUT.png
+                    [--camera FILE] [--frames N] [--cut FRACTION [--cut-order ORDER]]
+                    [--view close|both|inset] -o OUT.png
     mesolens view --mesh CELL --membrane PATCH [--trajectory XTC] [--center X,Y,Z | --vertex I]
+                  [--view close|inset]
     mesolens demo [-o mesolens-demo.png] [--size WxH] [--no-window]
 
 ``view`` opens the interactive magnifier (mesolens.viewer): click the surface to map the patch
-there; keys change the tiles, the method, the style, SSAO, play the trajectory, take screenshots,
-and cut the membrane open (o: a structured cutaway under a plane widget and a slider).
-``render`` draws offscreen (no window; under Xvfb without a display). With --frames N and a
+there, and the camera flies to it; f flies between the whole cell and the patch, the wheel
+moves toward what is under the cursor, b shows an inset with the other scale; keys change the
+tiles, the method, the style, SSAO, play the trajectory, take screenshots, and cut the membrane
+open (o: a structured cutaway under a plane widget and a slider). With --view inset it starts
+with the inset on. ``render`` draws offscreen (no window; under Xvfb without a display);
+--view close draws the patch close up, both the whole component on the left and the close-up
+on the right, inset the close-up with the whole component (the lens outlined) in its upper
+left. With --frames N and a
 trajectory it writes OUT_0000.png ... for N time steps. --cut F cuts the mapped membrane open
 as the viewer's o key does (the plane through the centre facing outward) and hides the share F
 of the molecules in the cut, in structured (a wireframe remains), inverted (patches remain) or
@@ -32,7 +39,10 @@ import os
 import sys
 import time
 
+from .camera import apply_pose, pose_of
 from .lens import METHODS, STYLES, LensError, MembraneLens, read_camera_file, write_png
+
+INSET_WIDTH = 0.35  # render --view inset: the inset's share of the window's width and height
 
 DEFAULT_DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "..",
                             "share", "mesolens", "Data")
@@ -81,6 +91,20 @@ def _window(lens, size, ssao, shadows, view):
         window.AddRenderer(whole)
         lens._whole = whole
         ssao = shadows = False
+    elif view == "inset":
+        # The close-up fills the window (and keeps its effects); the whole component, the lens
+        # outlined on it, in the upper left, over the close-up.
+        whole = lens.whole_view()
+        camera = whole.GetActiveCamera()
+        apply_pose(camera, lens.scale_poses(pose_of(camera), size[0] / size[1])[1])
+        whole.ResetCameraClippingRange()
+        whole.SetLayer(1)
+        whole.SetPreserveColorBuffer(False)  # its own background, over the close-up
+        whole.SetBackground(0.16, 0.17, 0.21)
+        whole.SetViewport(0.0, 1.0 - INSET_WIDTH, INSET_WIDTH, 1.0)
+        window.SetNumberOfLayers(2)
+        window.AddRenderer(whole)
+        lens._whole = whole
     if ssao or shadows:
         lens.set_effects(ssao=ssao, shadows=shadows)
     return window
@@ -125,10 +149,19 @@ def view(args):
     if not os.environ.get("DISPLAY"):
         raise LensError("view needs a display (an X server): run it on a desktop, or draw "
                         "pictures with 'mesolens render'")
-    from .viewer import LensViewer
-    lens = _lens(args, _progress(args.quiet))
-    LensViewer(lens, args.size).start()
+    _open_viewer(_lens(args, _progress(args.quiet)), args)
     return 0
+
+
+def _open_viewer(lens, args):
+    """The magnifier on `lens`, at its patch when one is placed, the inset on for --view inset."""
+    from .viewer import LensViewer
+    viewer = LensViewer(lens, args.size)
+    if lens.centre is not None:
+        viewer.place_camera_at_patch()
+    if args.view == "inset":
+        viewer.show_inset(True)
+    viewer.start()
 
 
 def _check_patch_visible(lens, window, camera_given):
@@ -156,6 +189,10 @@ def render(args, report=None):
         lens.renderer.ResetCameraClippingRange()
     else:
         lens.look_at_patch()
+        if args.view == "inset":  # the patch filling the window, as the viewer flies to it
+            camera = lens.renderer.GetActiveCamera()
+            apply_pose(camera, lens.scale_poses(pose_of(camera), args.size[0] / args.size[1])[0])
+            lens.renderer.ResetCameraClippingRange()
     window = _window(lens, args.size, args.ssao, args.shadows, args.view)
     if lens.atom_count() == 0:
         raise LensError("no atoms were mapped")
@@ -186,7 +223,7 @@ def _parser():
                                      formatter_class=argparse.RawDescriptionHelpFormatter)
     commands = parser.add_subparsers(dest="command", required=True)
 
-    def common(sub, default_view):
+    def common(sub, default_view, views=("close", "both", "inset")):
         sub.add_argument("--tiles", type=int, default=3, help="k x k tiles, k in 1..15 (3)")
         sub.add_argument("--method", choices=sorted(METHODS), default="polynomial")
         sub.add_argument("--style", choices=sorted(STYLES), default="space-filling")
@@ -194,8 +231,9 @@ def _parser():
         sub.add_argument("--shadows", action="store_true", help="shadows from a light above the patch")
         sub.add_argument("--size", type=_size, default=(1024, 768), help="WIDTHxHEIGHT (1024x768)")
         sub.add_argument("--quiet", action="store_true", help="no progress lines")
-        sub.add_argument("--view", choices=("close", "both"), default=default_view,
-                         help="the patch close up, or the whole component beside it")
+        sub.add_argument("--view", choices=views, default=default_view,
+                         help="the patch close up, the whole component beside it (both) or in "
+                              "an inset over it (inset)")
 
     def inputs(sub, placed):
         sub.add_argument("--mesh", required=True, help="cell-component surface")
@@ -209,7 +247,7 @@ def _parser():
 
     view_command = commands.add_parser("view", help="the interactive magnifier")
     inputs(view_command, False)
-    common(view_command, "close")
+    common(view_command, "close", ("close", "inset"))
 
     render_command = commands.add_parser("render", help="draw a mapped membrane to PNG")
     inputs(render_command, True)
@@ -249,9 +287,8 @@ def main(argv=None):
             args.frames = 0
             status = render(args, report)
             if os.environ.get("DISPLAY") and not args.no_window:
-                from .viewer import LensViewer
                 args.view = "close"
-                LensViewer(_lens(args, _progress(True)), args.size).start()
+                _open_viewer(_lens(args, _progress(True)), args)
             return status
         if args.command == "view":
             return view(args)

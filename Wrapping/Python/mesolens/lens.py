@@ -24,10 +24,12 @@ from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.util.vtkConstants import VTK_STRING
 from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkCommonDataModel import vtkPlane, vtkPolyData
-from vtkmodules.vtkFiltersCore import vtkPolyDataNormals
+from vtkmodules.vtkFiltersCore import vtkFeatureEdges, vtkPolyDataNormals
+from vtkmodules.vtkFiltersGeneral import vtkWarpVector
 from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper, vtkRenderer
 
 from . import array_names
+from .camera import patch_pose, whole_pose
 from .MesoLensFilters import (vtkMesoMembraneMapping, vtkMesoMeshReader,
                               vtkMesoStructureReader, vtkMesoStructuredCutaway,
                               vtkMesoTrajectoryReader, vtkMesoTrajectoryRefinement)
@@ -42,6 +44,9 @@ TRAJECTORY_SUFFIXES = (".xtc", ".trr")
 # Edge of the cutaway's structure triangles, Å: several lipids (about 0.65 nm² each) per
 # triangle and leaflet, so that a half-hidden cut shows the wireframe, not single molecules.
 CUT_STRUCTURE_EDGE = 40.0
+# The lens' outline is drawn this far outside the surface, Å: above a bilayer's outer leaflet
+# (about 25 Å from its midplane), so that the atoms do not hide it.
+OUTLINE_LIFT = 40.0
 
 
 class LensError(RuntimeError):
@@ -209,6 +214,29 @@ class MembraneLens:
         self.renderer.SetNearClippingPlaneTolerance(1e-4)
         self.renderer.AddActor(self.surface_actor)
         self.renderer.AddActor(self.atom_actor)
+        # The lens outlined on the cell: the boundary of the mapped disk, lifted off the surface
+        # along its normals. Shown once a patch is placed.
+        edges = vtkFeatureEdges()
+        edges.SetInputConnection(self.mapping.GetOutputPort(1))
+        edges.BoundaryEdgesOn()
+        edges.FeatureEdgesOff()
+        edges.NonManifoldEdgesOff()
+        edges.ManifoldEdgesOff()
+        lift = vtkWarpVector()
+        lift.SetInputConnection(edges.GetOutputPort())
+        lift.SetInputArrayToProcess(0, 0, 0, 0, "Normals")
+        lift.SetScaleFactor(OUTLINE_LIFT * self.scale)
+        outline_mapper = vtkPolyDataMapper()
+        outline_mapper.SetInputConnection(lift.GetOutputPort())
+        outline_mapper.ScalarVisibilityOff()
+        self.outline_actor = vtkActor()
+        self.outline_actor.SetMapper(outline_mapper)
+        outline_property = self.outline_actor.GetProperty()
+        outline_property.SetColor(1.0, 0.78, 0.2)
+        outline_property.SetLineWidth(3)
+        outline_property.LightingOff()
+        self.outline_actor.VisibilityOff()
+        self.renderer.AddActor(self.outline_actor)
         # The structured cutaway, off until set_cutaway(True): the mapped atoms (each tile's
         # molecules its own) against a lattice on the lens' disk; the mapper draws what stays.
         # The mapping keeps its atoms' MoleculeId and ResidueName arrays over the frames, so the
@@ -321,10 +349,12 @@ class MembraneLens:
         message = self._mapping_errors.take()
         if not ok or message:
             self.atom_actor.VisibilityOff()
+            self.outline_actor.VisibilityOff()
             raise LensError(f"the membrane cannot be mapped there: {message or 'no reason given'}")
         moved = self.centre is None or tuple(centre) != self.centre
         self.centre = tuple(centre)
         self.atom_actor.VisibilityOn()
+        self.outline_actor.VisibilityOn()
         if self.mapping_note():
             self._progress(self.mapping_note())
         if on_gpu and self.cut_to_disk():
@@ -552,9 +582,11 @@ class MembraneLens:
         length = float(np.linalg.norm(mean))
         return [float(v) / length for v in mean] if length > 0 else None
 
-    def patch_pixels(self, window):
-        """How many pixels of the close-up the mapped atoms change: rendered once without them
-        and once with them (0 when they are out of view or hidden behind the surface)."""
+    def patch_pixels(self, window, renderer=None):
+        """How many pixels of `renderer`'s viewport (default: the lens's) the mapped atoms
+        change: rendered once without them and once with them (0 when they are out of view or
+        hidden behind the surface)."""
+        renderer = renderer or self.renderer
         from vtkmodules.vtkRenderingCore import vtkWindowToImageFilter
 
         def grab():
@@ -566,7 +598,7 @@ class MembraneLens:
             image = grabber.GetOutput()
             width, height, _ = image.GetDimensions()
             pixels = vtk_to_numpy(image.GetPointData().GetScalars()).reshape(height, width, -1)
-            x0, y0, x1, y1 = self.renderer.GetViewport()
+            x0, y0, x1, y1 = renderer.GetViewport()
             return pixels[int(y0 * height):int(y1 * height), int(x0 * width):int(x1 * width)]
 
         shown = self.atom_actor.GetVisibility()
@@ -577,23 +609,39 @@ class MembraneLens:
         self.atom_actor.SetVisibility(shown)
         return int(np.count_nonzero(np.any(without != with_atoms, axis=-1)))
 
+    def patch_geometry(self):
+        """The mapped patch's centre (of its atoms' bounds), outward direction (the disk's mean
+        normal; before place(), away from the organelle's centre) and extent (the largest side of
+        its atoms' bounds), in world units."""
+        bounds = self.atoms.GetBounds()
+        centre = [(bounds[2 * d] + bounds[2 * d + 1]) / 2 for d in range(3)]
+        outward = self._seed_normal()
+        if outward is None:
+            organelle = self.surface.GetOutput().GetCenter()
+            outward = [centre[d] - organelle[d] for d in range(3)]
+        length = sum(v * v for v in outward) ** 0.5 or 1.0
+        extent = max(bounds[2 * d + 1] - bounds[2 * d] for d in range(3))
+        return centre, [v / length for v in outward], extent
+
+    def scale_poses(self, current, aspect=1.0):
+        """The camera poses (mesolens.camera.CameraPose) of the two scales for the placed patch:
+        the patch close up (filling the window, at a slant that shows the bilayer's thickness)
+        and the whole surface seen from the patch's side; with the up and view angle of the
+        `current` pose, for a window of `aspect` (width / height)."""
+        centre, outward, extent = self.patch_geometry()
+        surface = self.surface.GetOutput()
+        return (patch_pose(centre, outward, extent, current, aspect),
+                whole_pose(surface.GetBounds(), surface.GetCenter(), outward, current, aspect))
+
     def look_at_patch(self, renderer=None, distance_factor=3.0, elevation=25.0):
         """Points the camera of `renderer` (default: the lens's) at the mapped patch from
         outside the surface (along its normal there), the patch filling about 1/distance_factor
         of the view."""
         renderer = renderer or self.renderer
-        bounds = self.atoms.GetBounds()
-        centre = [(bounds[2 * d] + bounds[2 * d + 1]) / 2 for d in range(3)]
-        outward = self._seed_normal()
-        if outward is None:  # before place(): away from the organelle's centre
-            organelle = self.surface.GetOutput().GetCenter()
-            outward = [centre[d] - organelle[d] for d in range(3)]
-        length = sum(v * v for v in outward) ** 0.5 or 1.0
-        extent = max(bounds[2 * d + 1] - bounds[2 * d] for d in range(3))
+        centre, outward, extent = self.patch_geometry()
         camera = renderer.GetActiveCamera()
         camera.SetFocalPoint(centre)
-        camera.SetPosition([centre[d] + distance_factor * extent * outward[d] / length
-                            for d in range(3)])
+        camera.SetPosition([centre[d] + distance_factor * extent * outward[d] for d in range(3)])
         camera.SetViewUp(0, 0, 1)
         camera.OrthogonalizeViewUp()
         camera.Elevation(elevation)
@@ -607,6 +655,7 @@ class MembraneLens:
         renderer.SetBackground(*self.renderer.GetBackground())
         renderer.AddActor(self.surface_actor)
         renderer.AddActor(self.atom_actor)
+        renderer.AddActor(self.outline_actor)
         self.look_at_patch(renderer, distance_factor=1.0, elevation=0.0)
         camera = renderer.GetActiveCamera()
         bounds = self.surface.GetOutput().GetBounds()

@@ -3,8 +3,18 @@
 
 ``LensViewer`` puts a ``MembraneLens`` in a VTK window. A left click on the surface (a press and a
 release without dragging; dragging turns the camera as usual) maps the patch around the clicked
-point. Keys:
+point, and the camera flies to it: the patch then fills the window, seen from outside at a slant
+that shows the bilayer's thickness. Any press, wheel step or key stops a flight where it is.
+The mouse wheel moves toward what is under the cursor (an atom, the surface), keeping it under
+the cursor, by a constant share of the distance per step: from the whole cell to the atoms in
+about 30 steps, never through the surface. A scale bar at the lower right follows the zoom.
+Keys:
 
+    f       fly between the whole cell and the patch
+    b       inset on / off: a second view in the upper left that shows the other scale (the
+            patch close up while the window shows the cell, the cell while it shows the patch;
+            the lens is outlined on the cell)
+    x       swap the window's and the inset's views    [ / ]   smaller / larger inset
     + / -   more / fewer tiles (k x k, 1..15)     m   next mapping method
     s       space-filling / ball-and-stick        a   ambient occlusion (SSAO) on / off
     h       shadows on / off
@@ -15,6 +25,8 @@ point. Keys:
     n       cutaway: random / structured removal
     q       quit
 
+With the inset on, a click maps the new patch and the inset shows it; the window's view stays.
+
 The structured cutaway (o, once the membrane is placed) cuts the mapped membrane open with a plane
 through the lens point facing the camera: of the molecules on the camera's side of it (where its
 arrow points) the slider at the top right hides 0 to 100 % (50 % at first), those at the centres
@@ -24,25 +36,36 @@ plane's centre) to tilt the plane; Up / Down with the mouse over the plane push 
 arrow or back (Ctrl: half steps). Clicks and camera drags that start on the plane go to the
 plane: start them beside it.
 
-Two lines at the bottom show the atom count, the last frame time and the settings, then the
-cutaway's (off, or its mode and "hidden X of Y in cut", counted in molecules); messages (a click
-off the surface, a mapping that fails, with its reason) replace them until the next action.
+Three lines at the bottom show the atom count, the last frame time and the settings, the
+cutaway's (off, or its mode and "hidden X of Y in cut", counted in molecules), and the scale in
+view (whole cell, membrane or atoms, with the length of a pixel); messages (a click off the
+surface, a mapping that fails, with its reason) replace them until the next action.
 """
+import math
 import os
+import time
 
 from vtkmodules.vtkInteractionWidgets import (vtkImplicitPlaneRepresentation,
                                               vtkImplicitPlaneWidget2,
                                               vtkSliderRepresentation2D, vtkSliderWidget)
-from vtkmodules.vtkRenderingCore import vtkCellPicker, vtkRenderWindow, vtkRenderWindowInteractor
-from vtkmodules.vtkRenderingCore import vtkTextActor
+from vtkmodules.vtkRenderingCore import (vtkCellPicker, vtkRenderer, vtkRenderWindow,
+                                         vtkRenderWindowInteractor, vtkTextActor)
 from vtkmodules.vtkInteractionStyle import vtkInteractorStyleTrackballCamera
 import vtkmodules.vtkRenderingFreeType  # noqa: F401 (text)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL factory)
 
+from .camera import WHEEL_FACTOR, apply_pose, dolly_toward, interpolate, point_under, pose_of
 from .lens import METHODS, LensError, write_camera_file, write_png
+from .scale_bar import ScaleBar, length_label
 
 CLICK_TOLERANCE = 3  # pixels a click may move and still be a click
 CUT_SLIDER_ENDS = ((0.62, 0.93), (0.95, 0.93))  # the fraction slider, normalized display
+FLIGHT_SECONDS = 1.2  # a flight between the cell and the patch
+FLIGHT_TICK_MS = 15  # how often a flight asks for a frame (it renders as fast as it can)
+# The wheel stops this far from what is under the cursor, Å: about an atom's radius.
+NEAREST_APPROACH = 2.0
+INSET_SIZES = (0.2, 0.6)  # the inset's width as a share of the window's, smallest and largest
+INSET_STEP = 0.05  # [ and ] change the inset's width by this share of the window's
 
 
 class LensViewer:
@@ -77,14 +100,31 @@ class LensViewer:
         self.screenshots = 0
         self._press = None
         self._timer = None
+        # Above the three status lines.
+        self.scale_bar = ScaleBar(lens.renderer, lens.scale, bottom=80)
+        # Camera poses of the two scales: the patch close up (set when a patch is placed) and
+        # the whole cell; which of them the window shows, or flies to.
+        self.patch_pose = None
+        self.cell_pose = None
+        self.at_patch = False
+        self._flight = None  # (camera, start pose, end pose, start time, seconds)
+        self._flight_timer = None
+        self._running = False  # the interactor's event loop runs (start())
+        self.inset = None  # the inset's renderer while it is on
+        self.inset_bar = None
+        self.inset_width = 0.35
         # Observers on the style replace its own handling of these events (the style holds the
         # mouse focus between press and release): each calls the style's default itself.
         self.style.AddObserver("LeftButtonPressEvent", self._on_press)
         self.style.AddObserver("LeftButtonReleaseEvent", self._on_release)
+        self.style.AddObserver("MiddleButtonPressEvent", self._on_other_press)
+        self.style.AddObserver("RightButtonPressEvent", self._on_other_press)
+        self.style.AddObserver("MouseWheelForwardEvent", self._on_wheel)
+        self.style.AddObserver("MouseWheelBackwardEvent", self._on_wheel)
         self.style.AddObserver("CharEvent", self._on_char)
         self.interactor.AddObserver("TimerEvent", self._on_timer)
         self._make_cut_widgets()
-        lens.renderer.AddObserver("StartEvent", lambda *_: self._show_status())
+        lens.renderer.AddObserver("StartEvent", lambda *_: self._before_frame())
         lens.renderer.ResetCamera()
         self._show_status()
 
@@ -93,11 +133,20 @@ class LensViewer:
     def click(self, x, y):
         """What a click at display pixel (x, y) does: maps the patch there, or says why not.
         Returns True when the patch was placed."""
-        if not self.picker.Pick(x, y, 0, self.lens.renderer):
+        renderer = self._renderer_at(x, y)
+        if not self.picker.Pick(x, y, 0, renderer):
             self.message = "that click is off the surface: click on the cell"
             self.window.Render()
             return False
-        return self._place(self.picker.GetPickPosition())
+        if not self._place(self.picker.GetPickPosition()):
+            return False
+        self._frame_patch()
+        if self.inset is not None and not self.at_patch:
+            self._show_other_scale_in_inset()
+            self.window.Render()
+        else:
+            self.fly_to_patch()
+        return True
 
     def _place(self, point):
         moved = self.lens.centre is None or tuple(point) != self.lens.centre
@@ -116,7 +165,18 @@ class LensViewer:
         """What a key does (the names VTK gives: 'plus', 'minus', 'm', 's', 'a', 'space', 'c',
         'o', ...)."""
         lens = self.lens
-        if name in ("plus", "equal", "KP_Add", "minus", "KP_Subtract"):
+        if name != "f":
+            self._stop_flight()
+        if name == "f":
+            self.toggle_scale()
+        elif name == "b":
+            self.show_inset(self.inset is None)
+        elif name == "x":
+            self.swap_views()
+        elif name in ("bracketleft", "bracketright"):
+            step = INSET_STEP if name == "bracketright" else -INSET_STEP
+            self.resize_inset(self.inset_width + step)
+        elif name in ("plus", "equal", "KP_Add", "minus", "KP_Subtract"):
             step = 1 if name in ("plus", "equal", "KP_Add") else -1
             lens.set_tiles(min(15, max(1, lens.tiles + step)))
             self._replace()
@@ -151,6 +211,178 @@ class LensViewer:
         elif name == "n":
             lens.set_cut_random(not lens.cut_random)
             self._cut_setting_changed()
+
+    # The two scales ------------------------------------------------------------------------
+
+    def _aspect(self, renderer):
+        width, height = renderer.GetSize()
+        return width / height if width > 0 and height > 0 else 1.0
+
+    def _frame_patch(self):
+        """Works out the poses of the two scales for the placed patch: the patch close up (with
+        the window's present up) and the whole cell seen from the patch's side."""
+        renderer = self.lens.renderer
+        self.patch_pose, self.cell_pose = self.lens.scale_poses(pose_of(renderer.GetActiveCamera()),
+                                                                self._aspect(renderer))
+
+    def place_camera_at_patch(self):
+        """For a lens placed before the viewer opened: the poses of the two scales, and the
+        window at the patch."""
+        self._frame_patch()
+        self.fly_to_patch(animate=False)
+
+    def fly_to_patch(self, animate=None):
+        """Flies the window's camera to the patch close up (key f); says why not before a patch
+        is placed. `animate`: a flight of FLIGHT_SECONDS (default: while the event loop runs),
+        or a jump. Returns whether there is a patch to fly to."""
+        return self._fly(True, animate)
+
+    def fly_to_cell(self, animate=None):
+        """Flies the window's camera back to the whole cell (key f); see fly_to_patch."""
+        return self._fly(False, animate)
+
+    def toggle_scale(self, animate=None):
+        """Key f: to the whole cell from the patch, to the patch from anywhere else."""
+        return self._fly(not self.at_patch, animate)
+
+    def _fly(self, to_patch, animate):
+        self._stop_flight()
+        if self.patch_pose is None:
+            self.message = "no patch yet: click on the surface to map one"
+            self.window.Render()
+            return False
+        self.message = ""
+        self.at_patch = to_patch
+        target = self.patch_pose if to_patch else self.cell_pose
+        self._show_other_scale_in_inset()
+        camera = self.lens.renderer.GetActiveCamera()
+        if animate is None:
+            animate = self._running
+        if not animate:
+            apply_pose(camera, target)
+            self.lens.renderer.ResetCameraClippingRange()
+            self.window.Render()
+            return True
+        self._flight = (camera, pose_of(camera), target, time.monotonic(), FLIGHT_SECONDS)
+        if self._flight_timer is None:
+            self._flight_timer = self.interactor.CreateRepeatingTimer(FLIGHT_TICK_MS)
+        return True
+
+    def advance_flight(self, now=None):
+        """Moves a flight on to time `now` (time.monotonic(); the timer calls this) and draws
+        the frame. Returns whether a flight is still under way."""
+        if self._flight is None:
+            return False
+        camera, start, end, started, seconds = self._flight
+        fraction = min(1.0, ((time.monotonic() if now is None else now) - started) / seconds)
+        apply_pose(camera, end if fraction >= 1.0 else interpolate(start, end, fraction))
+        self.lens.renderer.ResetCameraClippingRange()
+        if fraction >= 1.0:
+            self._stop_flight()
+        self.window.Render()
+        return self._flight is not None
+
+    def _stop_flight(self):
+        """Ends a flight where it is (a press, a wheel step or a key interrupts it)."""
+        self._flight = None
+        if self._flight_timer is not None:
+            self.interactor.DestroyTimer(self._flight_timer)
+            self._flight_timer = None
+
+    def flying(self):
+        return self._flight is not None
+
+    def zoom_at(self, x, y, factor=WHEEL_FACTOR):
+        """One wheel step at display pixel (x, y): moves the camera of the view there toward
+        what is drawn under (x, y), keeping `factor` of the distance to it (> 1 moves away);
+        never nearer than NEAREST_APPROACH Å. Over the background, toward the focal point."""
+        self._stop_flight()
+        renderer = self._renderer_at(x, y)
+        camera = renderer.GetActiveCamera()
+        point = point_under(renderer, x, y)
+        if point is None:
+            camera.Dolly(1.0 / factor)
+        else:
+            dolly_toward(camera, point, factor, NEAREST_APPROACH * self.lens.scale)
+        renderer.ResetCameraClippingRange()
+        if renderer is self.lens.renderer:
+            self.at_patch = False  # f now flies to the patch
+        self.window.Render()
+
+    def show_inset(self, on=True):
+        """The inset (key b): a second view in the upper left of the window that shows the scale
+        the window does not (the patch close up, or the whole cell with the lens outlined).
+        Returns whether it is on."""
+        if on and self.inset is None:
+            inset = vtkRenderer()
+            inset.SetLayer(1)
+            inset.SetPreserveColorBuffer(False)  # its own background, over the window's view
+            inset.SetBackground(0.16, 0.17, 0.21)
+            inset.SetNearClippingPlaneTolerance(1e-4)
+            for actor in (self.lens.surface_actor, self.lens.atom_actor, self.lens.outline_actor):
+                inset.AddActor(actor)
+            self.window.SetNumberOfLayers(2)
+            self.window.AddRenderer(inset)
+            self.inset = inset
+            self.inset_bar = ScaleBar(inset, self.lens.scale)
+            inset.AddObserver("StartEvent", lambda *_: self.inset_bar.update())
+            self._place_inset()
+            self._show_other_scale_in_inset()
+        elif not on and self.inset is not None:
+            self.window.RemoveRenderer(self.inset)
+            self.window.SetNumberOfLayers(1)
+            self.inset = None
+            self.inset_bar = None
+        self.window.Render()
+        return self.inset is not None
+
+    def resize_inset(self, width):
+        """Sets the inset's width as a share of the window's (clamped to INSET_SIZES; its height
+        keeps the window's aspect)."""
+        self.inset_width = min(INSET_SIZES[1], max(INSET_SIZES[0], width))
+        if self.inset is not None:
+            self._place_inset()
+        self.window.Render()
+
+    def swap_views(self):
+        """Key x: the window takes the inset's scale and the inset the window's."""
+        if self.inset is None or self.patch_pose is None:
+            self.message = ("the inset is off: b shows it" if self.inset is None else
+                            "no patch yet: click on the surface to map one")
+            self.window.Render()
+            return
+        self._fly(not self.at_patch, False)
+
+    def _place_inset(self):
+        self.inset.SetViewport(0.0, 1.0 - self.inset_width, self.inset_width, 1.0)
+
+    def _show_other_scale_in_inset(self):
+        if self.inset is None or self.patch_pose is None:
+            return
+        other = self.cell_pose if self.at_patch else self.patch_pose
+        apply_pose(self.inset.GetActiveCamera(), other)
+        self.inset.ResetCameraClippingRange()
+
+    def _renderer_at(self, x, y):
+        """The renderer whose viewport holds display pixel (x, y): the inset over the window."""
+        if self.inset is not None:
+            width, height = self.window.GetSize()
+            x0, y0, x1, y1 = self.inset.GetViewport()
+            if x0 * width <= x < x1 * width and y0 * height <= y < y1 * height:
+                return self.inset
+        return self.lens.renderer
+
+    def scale_shown(self):
+        """What the window shows: 'atoms' (a pixel of 2 Å or less), 'whole cell' (a view at
+        least half the cell's size across) or 'membrane' between them, with the length of a
+        pixel (Å)."""
+        per_pixel = self.scale_bar.angstrom_per_pixel()
+        if per_pixel <= 2.0:
+            return "atoms", per_pixel
+        bounds = self.lens.surface.GetOutput().GetBounds()
+        cell = math.sqrt(sum((bounds[2 * d + 1] - bounds[2 * d]) ** 2 for d in range(3)))
+        view = per_pixel * self.lens.scale * min(self.lens.renderer.GetSize())
+        return ("whole cell" if view >= 0.5 * cell else "membrane"), per_pixel
 
     # The structured cutaway ----------------------------------------------------------------
 
@@ -319,8 +551,21 @@ class LensViewer:
     # Events --------------------------------------------------------------------------------
 
     def _on_press(self, _caller, _event):
+        self._stop_flight()
         self._press = self.interactor.GetEventPosition()
         self.style.OnLeftButtonDown()
+
+    def _on_other_press(self, _caller, event):
+        self._stop_flight()
+        if event == "MiddleButtonPressEvent":
+            self.style.OnMiddleButtonDown()
+        else:
+            self.style.OnRightButtonDown()
+
+    def _on_wheel(self, _caller, event):
+        x, y = self.interactor.GetEventPosition()
+        forward = event == "MouseWheelForwardEvent"
+        self.zoom_at(x, y, WHEEL_FACTOR if forward else 1.0 / WHEEL_FACTOR)
 
     def _on_release(self, _caller, _event):
         self.style.OnLeftButtonUp()
@@ -333,7 +578,7 @@ class LensViewer:
             self.click(x, y)
 
     KEYS = ("plus", "equal", "KP_Add", "minus", "KP_Subtract", "m", "s", "a", "h", "space", "c",
-            "l", "v", "o", "i", "n")
+            "l", "v", "o", "i", "n", "f", "b", "x", "bracketleft", "bracketright")
 
     def _on_char(self, _caller, _event):
         # Ours replace VTK's defaults for these keys (s: surface, a: actor mode, c: camera
@@ -345,8 +590,15 @@ class LensViewer:
             self.style.OnChar()
 
     def _on_timer(self, _caller, _event):
-        if self.playing:
+        timer = self.interactor.GetTimerEventId()
+        if timer == self._flight_timer:
+            self.advance_flight()
+        elif self.playing and timer == self._timer:
             self.step()
+
+    def _before_frame(self):
+        self.scale_bar.update()
+        self._show_status()
 
     def _show_status(self):
         lens = self.lens
@@ -376,6 +628,10 @@ class LensViewer:
                         f"structured (n), {'patches' if lens.cut_inverted else 'wireframe'} (i)")
                 text += (f"\ncutaway (o): {mode}, hidden {counts[0]:,} of {counts[1]:,} in cut "
                          f"({lens.cut_fraction:.0%}, slider)")
+            scale, per_pixel = self.scale_shown()
+            text += (f"\nshown: {scale}, 1 pixel = {length_label(per_pixel)} | f: "
+                     f"{'whole cell' if self.at_patch else 'the patch'} | b: inset "
+                     f"{'on' if self.inset is not None else 'off'}")
         if self.status.GetInput() != text:
             self.status.SetInput(text)
 
@@ -383,4 +639,8 @@ class LensViewer:
         """Shows the window and runs the interaction until it is closed."""
         self.window.Render()
         self.interactor.Initialize()
-        self.interactor.Start()
+        self._running = True
+        try:
+            self.interactor.Start()
+        finally:
+            self._running = False

@@ -22,6 +22,8 @@ DATA = os.environ.get("MESOLENS_DATA_DIR", "Data")
 MESH = os.path.join(DATA, "meshes", "mito5_outer_membrane.obj")
 PATCH = os.path.join(DATA, "membranes", "dppc128_slipids_323K.gro")
 YIIP = os.path.join(DATA, "membranes", "yiip_popepopg.gro")
+# A stem cell's membrane, about 20 µm across.
+COARSE_CELL = os.path.join(DATA, "meshes", "hipsc_cell_membrane_1.obj")
 YIIP_XTC = os.path.join(DATA, "membranes", "yiip_popepopg.xtc")
 
 

@@ -15,7 +15,7 @@ from mesolens.camera import (CameraPose, interpolate, distance, pose_of, poses_m
 from mesolens.lens import MembraneLens
 from mesolens.scale_bar import length_label, round_length
 from mesolens.viewer import FLIGHT_SECONDS, INSET_SIZES, LensViewer
-from test_viewer import (MESH, PATCH, display_point, look_at_vertex_1000, press_and_release,
+from test_viewer import (MESH, PATCH, COARSE_CELL, display_point, look_at_vertex_1000, press_and_release,
                          press_key)
 
 SIZE = (400, 300)
@@ -105,6 +105,21 @@ class Scales(unittest.TestCase):
         # Where it zoomed in, the wheel draws back: 30 steps back show the organelle's scale again.
         wheel(self.viewer, x, y, 30, forward=False)
         self.assertLess(self.atom_share(), 0.05)
+
+    def test_atoms_a_few_angstrom_away_are_drawn_in_a_cell_tens_of_micrometres_across(self):
+        # The stem cell's membrane: VTK would put the near plane 20 Å out at this scale.
+        lens = MembraneLens(COARSE_CELL, PATCH)
+        lens.set_tiles(1)
+        viewer = LensViewer(lens, SIZE, offscreen=True)
+        lens.place(lens.surface.GetOutput().GetPoint(0))
+        viewer.place_camera_at_patch()
+        x, y = display_point(lens.renderer, lens.centre)
+        wheel(viewer, x, y, 12)
+        camera = lens.renderer.GetActiveCamera()
+        self.assertGreater(camera.GetClippingRange()[1] * 1e-4, 20 * lens.scale)
+        self.assertLess(camera.GetClippingRange()[0], 5 * lens.scale)
+        self.lens, self.viewer = lens, viewer
+        self.assertGreaterEqual(self.atom_share(), 0.95)
 
     def test_the_inset_shows_the_atoms_while_the_window_shows_the_cell(self):
         self.click_target()

@@ -179,6 +179,17 @@ def dolly_toward(camera, point, factor, minimum_distance):
     return True
 
 
+def keep_near_things(camera, share=0.25, depth_range=1e7):
+    """Brings the near clipping plane to `share` of the focal distance where it lies beyond
+    that: VTK puts it at a fixed share of the far plane's distance when the camera is inside
+    the scene's bounds, which in a cell tens of µm across is farther than atoms a few Å in front
+    of the camera. The far plane stays; the near one keeps within `depth_range` of it."""
+    near, far = camera.GetClippingRange()
+    wanted = max(share * distance(pose_of(camera)), far / depth_range)
+    if wanted < near:
+        camera.SetClippingRange(wanted, far)
+
+
 def pixel_size(renderer):
     """World length of one pixel at the focal point's depth, in the renderer's viewport."""
     camera = renderer.GetActiveCamera()

@@ -54,7 +54,8 @@ from vtkmodules.vtkInteractionStyle import vtkInteractorStyleTrackballCamera
 import vtkmodules.vtkRenderingFreeType  # noqa: F401 (text)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the OpenGL factory)
 
-from .camera import WHEEL_FACTOR, apply_pose, dolly_toward, interpolate, point_under, pose_of
+from .camera import (WHEEL_FACTOR, apply_pose, dolly_toward, interpolate, keep_near_things,
+                     point_under, pose_of)
 from .lens import METHODS, LensError, write_camera_file, write_png
 from .scale_bar import ScaleBar, length_label
 
@@ -325,7 +326,7 @@ class LensViewer:
             self.window.AddRenderer(inset)
             self.inset = inset
             self.inset_bar = ScaleBar(inset, self.lens.scale)
-            inset.AddObserver("StartEvent", lambda *_: self.inset_bar.update())
+            inset.AddObserver("StartEvent", lambda *_: self._before_inset_frame())
             self._place_inset()
             self._show_other_scale_in_inset()
         elif not on and self.inset is not None:
@@ -352,6 +353,10 @@ class LensViewer:
             self.window.Render()
             return
         self._fly(not self.at_patch, False)
+
+    def _before_inset_frame(self):
+        keep_near_things(self.inset.GetActiveCamera())
+        self.inset_bar.update()
 
     def _place_inset(self):
         self.inset.SetViewport(0.0, 1.0 - self.inset_width, self.inset_width, 1.0)
@@ -597,6 +602,7 @@ class LensViewer:
             self.step()
 
     def _before_frame(self):
+        keep_near_things(self.lens.renderer.GetActiveCamera())
         self.scale_bar.update()
         self._show_status()
 

@@ -146,6 +146,19 @@ class Scales(unittest.TestCase):
         self.assertIsNone(self.viewer.inset)
         self.assertEqual(self.viewer.window.GetRenderers().GetNumberOfItems(), 1)
 
+    def test_the_wheel_over_the_background_and_keys_out_of_turn_say_or_do_what_vtk_does(self):
+        camera = self.lens.renderer.GetActiveCamera()
+        before = distance(pose_of(camera))
+        wheel(self.viewer, 2, 2, 1)  # the background: toward the focal point, as VTK does
+        self.assertAlmostEqual(distance(pose_of(camera)), before * 0.78, delta=1e-6 * before)
+        press_key(self.viewer, "x")
+        self.assertIn("the inset is off", self.viewer.status.GetInput())
+        press_key(self.viewer, "b")
+        press_key(self.viewer, "x")
+        self.assertIn("no patch yet", self.viewer.status.GetInput())
+        self.viewer.resize_inset(float("nan"))
+        self.assertTrue(INSET_SIZES[0] <= self.viewer.inset.GetViewport()[2] <= INSET_SIZES[1])
+
     def test_a_click_with_the_inset_on_keeps_the_window_at_the_cell(self):
         press_key(self.viewer, "b")
         before = pose_of(self.lens.renderer.GetActiveCamera())

@@ -339,8 +339,9 @@ class LensViewer:
 
     def resize_inset(self, width):
         """Sets the inset's width as a share of the window's (clamped to INSET_SIZES; its height
-        keeps the window's aspect)."""
-        self.inset_width = min(INSET_SIZES[1], max(INSET_SIZES[0], width))
+        keeps the window's aspect); a width that is no number is ignored."""
+        if math.isfinite(width):
+            self.inset_width = min(INSET_SIZES[1], max(INSET_SIZES[0], width))
         if self.inset is not None:
             self._place_inset()
         self.window.Render()

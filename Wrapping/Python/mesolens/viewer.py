@@ -132,7 +132,8 @@ class LensViewer:
     # Actions -------------------------------------------------------------------------------
 
     def click(self, x, y):
-        """What a click at display pixel (x, y) does: maps the patch there, or says why not.
+        """What a click at display pixel (x, y) does: maps the patch there and flies to it (with
+        the inset on and the window at the cell, the inset shows it instead), or says why not.
         Returns True when the patch was placed."""
         renderer = self._renderer_at(x, y)
         if not self.picker.Pick(x, y, 0, renderer):

@@ -15,8 +15,8 @@ from mesolens.camera import (CameraPose, interpolate, distance, pose_of, poses_m
 from mesolens.lens import MembraneLens
 from mesolens.scale_bar import length_label, round_length
 from mesolens.viewer import FLIGHT_SECONDS, INSET_SIZES, LensViewer
-from test_viewer import (MESH, PATCH, COARSE_CELL, display_point, look_at_vertex_1000, press_and_release,
-                         press_key)
+from test_viewer import (COARSE_CELL, MESH, PATCH, display_point, look_at_vertex_1000,
+                         press_and_release, press_key)
 
 SIZE = (400, 300)
 

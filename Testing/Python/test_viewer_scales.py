@@ -4,11 +4,14 @@
 flies to the patch until its atoms fill the window; f flies to the whole cell and back to the same
 view; 30 wheel steps over the patch reach the atoms from the whole cell without passing through
 the surface; the inset shows the atoms while the window shows the cell (x swaps them, [ and ]
-resize the inset); a flight moves by equal factors of distance and stops at a press; the scale bar
-and the status line say which scale is shown."""
+resize the inset); a flight moves by equal factors of distance, stops at a press and, in VTK's
+event loop, runs to its end frame by frame; the scale bar and the status line say which scale is
+shown."""
 import math
 import unittest
 
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.vtkConstants import VTK_INT
 from vtkmodules.vtkFiltersCore import vtkImplicitPolyDataDistance
 
 from mesolens.camera import (CameraPose, interpolate, distance, pose_of, poses_match)
@@ -187,6 +190,42 @@ class Scales(unittest.TestCase):
         press_and_release(self.viewer, 5, SIZE[1] - 5, drag=20)
         self.assertFalse(self.viewer.flying())
         self.assertFalse(poses_match(stopped, at_patch))
+
+
+class EventLoop(unittest.TestCase):
+    def test_f_flies_in_the_event_loop_and_ends_at_the_cell(self):
+        # A window on the (virtual) display and VTK's own event loop: the flight's timers,
+        # one per frame, run it to its end, and the loop is left by a timer of the test's.
+        lens = MembraneLens(MESH, PATCH)
+        lens.set_tiles(1)
+        lens.place(lens.surface.GetOutput().GetPoint(1000))
+        viewer = LensViewer(lens, (200, 150))
+        viewer.place_camera_at_patch()
+        frames = []
+        lens.renderer.AddObserver("EndEvent", lambda *_: frames.append(1))
+        ticks = []
+
+        @calldata_type(VTK_INT)
+        def watch(_caller, _event, timer):
+            if timer != watcher:
+                return
+            ticks.append(1)
+            if len(ticks) == 1:
+                viewer.key("f")
+                frames.clear()
+            elif not viewer.flying() or len(ticks) > 100:
+                viewer.interactor.TerminateApp()
+
+        viewer.interactor.AddObserver("TimerEvent", watch)
+        viewer.window.Render()
+        viewer.interactor.Initialize()
+        watcher = viewer.interactor.CreateRepeatingTimer(100)
+        viewer._running = True  # as start() sets it
+        viewer.interactor.Start()
+        self.assertFalse(viewer.flying())
+        self.assertLessEqual(len(ticks), 100)
+        self.assertGreater(len(frames), 2)  # drawn on the way, not in one jump
+        self.assertTrue(poses_match(pose_of(lens.renderer.GetActiveCamera()), viewer.cell_pose))
 
 
 class CameraMoves(unittest.TestCase):

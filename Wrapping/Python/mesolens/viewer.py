@@ -45,6 +45,8 @@ import math
 import os
 import time
 
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.vtkConstants import VTK_INT
 from vtkmodules.vtkInteractionWidgets import (vtkImplicitPlaneRepresentation,
                                               vtkImplicitPlaneWidget2,
                                               vtkSliderRepresentation2D, vtkSliderWidget)
@@ -266,9 +268,13 @@ class LensViewer:
             self.window.Render()
             return True
         self._flight = (camera, pose_of(camera), target, time.monotonic(), FLIGHT_SECONDS)
-        if self._flight_timer is None:
-            self._flight_timer = self.interactor.CreateRepeatingTimer(FLIGHT_TICK_MS)
+        self._next_flight_tick()
         return True
+
+    def _next_flight_tick(self):
+        # One one-shot timer per frame: VTK 9.2's X interactor crashes when a timer is destroyed
+        # from its own event, so a flight never destroys its timer; it just asks for no more.
+        self._flight_timer = self.interactor.CreateOneShotTimer(FLIGHT_TICK_MS)
 
     def advance_flight(self, now=None):
         """Moves a flight on to time `now` (time.monotonic(); the timer calls this) and draws
@@ -284,12 +290,15 @@ class LensViewer:
         self.window.Render()
         return self._flight is not None
 
+    def _on_flight_tick(self):
+        if self.advance_flight():
+            self._next_flight_tick()
+
     def _stop_flight(self):
-        """Ends a flight where it is (a press, a wheel step or a key interrupts it)."""
+        """Ends a flight where it is (a press, a wheel step or a key interrupts it); its last
+        timer then fires to no effect."""
         self._flight = None
-        if self._flight_timer is not None:
-            self.interactor.DestroyTimer(self._flight_timer)
-            self._flight_timer = None
+        self._flight_timer = None
 
     def flying(self):
         return self._flight is not None
@@ -596,10 +605,11 @@ class LensViewer:
         else:
             self.style.OnChar()
 
-    def _on_timer(self, _caller, _event):
-        timer = self.interactor.GetTimerEventId()
+    @calldata_type(VTK_INT)
+    def _on_timer(self, _caller, _event, timer):
+        # The timer's id comes as the event's data (the X interactor's GetTimerEventId is 0).
         if timer == self._flight_timer:
-            self.advance_flight()
+            self._on_flight_tick()
         elif self.playing and timer == self._timer:
             self.step()
 

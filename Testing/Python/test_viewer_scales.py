@@ -18,8 +18,8 @@ from mesolens.camera import (CameraPose, interpolate, distance, pose_of, poses_m
 from mesolens.lens import MembraneLens
 from mesolens.scale_bar import length_label, round_length
 from mesolens.viewer import FLIGHT_SECONDS, INSET_SIZES, LensViewer
-from test_viewer import (COARSE_CELL, MESH, PATCH, display_point, look_at_vertex_1000,
-                         press_and_release, press_key)
+from test_viewer import (COARSE_CELL, MESH, PATCH, YIIP, YIIP_XTC, display_point,
+                         look_at_vertex_1000, press_and_release, press_key)
 
 SIZE = (400, 300)
 
@@ -226,6 +226,33 @@ class EventLoop(unittest.TestCase):
         self.assertLessEqual(len(ticks), 100)
         self.assertGreater(len(frames), 2)  # drawn on the way, not in one jump
         self.assertTrue(poses_match(pose_of(lens.renderer.GetActiveCamera()), viewer.cell_pose))
+
+
+    def test_space_plays_the_trajectory_in_the_event_loop(self):
+        lens = MembraneLens(MESH, YIIP, YIIP_XTC)
+        lens.set_tiles(1)
+        lens.place(lens.surface.GetOutput().GetPoint(1000))
+        viewer = LensViewer(lens, (200, 150))
+        ticks = []
+
+        @calldata_type(VTK_INT)
+        def watch(_caller, _event, timer):
+            if timer != watcher:
+                return
+            ticks.append(1)
+            if len(ticks) == 1:
+                viewer.key("space")
+            elif viewer.time_index >= 2 or len(ticks) > 50:
+                viewer.key("space")
+                viewer.interactor.TerminateApp()
+
+        viewer.interactor.AddObserver("TimerEvent", watch)
+        viewer.window.Render()
+        viewer.interactor.Initialize()
+        watcher = viewer.interactor.CreateRepeatingTimer(150)
+        viewer.interactor.Start()
+        self.assertGreaterEqual(viewer.time_index, 2)
+        self.assertFalse(viewer.playing)
 
 
 class CameraMoves(unittest.TestCase):

@@ -23,6 +23,7 @@ transposed matrices): the comparison must fail.
 import argparse
 import math
 import os
+import tempfile
 
 import numpy as np
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
@@ -71,8 +72,11 @@ def ring_file(two_chains=False):
             records.append(line)
     name = "assembly_glyphs_ring_two_chains.pdb" if two_chains else "assembly_glyphs_ring.pdb"
     path = os.path.join(OUTPUT, name)
-    with open(path, "w") as ring:
+    # Tests of this script run in parallel and write the same file: each writes its own copy
+    # and moves it into place, so that none reads another's half-written file.
+    with tempfile.NamedTemporaryFile("w", dir=OUTPUT, suffix=".pdb", delete=False) as ring:
         ring.write("\n".join(remarks + records) + "\n")
+    os.replace(ring.name, path)
     return path
 
 

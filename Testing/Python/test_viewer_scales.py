@@ -92,6 +92,13 @@ class Scales(unittest.TestCase):
         self.assertIn("shown: atoms", self.viewer.status.GetInput())
         self.assertLessEqual(self.viewer.scale_bar.angstrom, 50.0)
 
+    def test_more_tiles_are_framed_by_the_next_flight(self):
+        self.click_target()
+        two_tiles = distance(self.viewer.patch_pose)
+        press_key(self.viewer, "plus")
+        self.assertEqual(self.lens.tiles, 3)
+        self.assertGreater(distance(self.viewer.patch_pose), 1.3 * two_tiles)
+
     def test_thirty_wheel_steps_over_the_patch_reach_the_atoms_from_the_cell(self):
         self.click_target()
         press_key(self.viewer, "f")

@@ -512,7 +512,9 @@ class LensViewer:
 
     def _replace(self):
         if self.lens.centre is not None:
-            self._place(self.lens.centre)
+            # Other tiles or another method: f frames the patch as it is now.
+            if self._place(self.lens.centre):
+                self._frame_patch()
         else:
             self.window.Render()
 

@@ -106,7 +106,7 @@ class Scales(unittest.TestCase):
         x, y = display_point(self.lens.renderer, self.lens.centre)
         wheel(self.viewer, x, y, 30)
         self.assertGreaterEqual(self.atom_share(), 0.95)
-        # Outside the surface, and no nearer to the patch's atoms than they reach out of it.
+        # Outside the surface.
         outside = vtkImplicitPolyDataDistance()
         outside.SetInput(self.lens.surface.GetOutput())
         camera = self.lens.renderer.GetActiveCamera().GetPosition()
@@ -190,19 +190,41 @@ class Scales(unittest.TestCase):
         self.assertFalse(self.viewer.advance_flight(started + FLIGHT_SECONDS + 0.01))
         self.assertTrue(poses_match(pose_of(self.lens.renderer.GetActiveCamera()),
                                     self.viewer.cell_pose))
-        # A press stops a flight where it is.
+        # A press stops a flight where it is: a later tick moves the camera no more.
         self.viewer.fly_to_patch(animate=True)
-        self.viewer.advance_flight(self.viewer._flight[3] + FLIGHT_SECONDS / 4)
+        started = self.viewer._flight[3]
+        self.viewer.advance_flight(started + FLIGHT_SECONDS / 4)
         stopped = pose_of(self.lens.renderer.GetActiveCamera())
+        self.assertFalse(poses_match(stopped, at_patch))
         press_and_release(self.viewer, 5, SIZE[1] - 5, drag=20)
         self.assertFalse(self.viewer.flying())
-        self.assertFalse(poses_match(stopped, at_patch))
+        self.assertFalse(self.viewer.advance_flight(started + FLIGHT_SECONDS))
+        self.assertTrue(poses_match(pose_of(self.lens.renderer.GetActiveCamera()), stopped))
+
+
+def run_event_loop(viewer, on_tick, period_ms, most_ticks):
+    """Runs the viewer through start(), in a window on the (virtual) display and VTK's own event
+    loop, calling on_tick(n) (n = 1, 2, ...) every `period_ms` from a timer of its own until it
+    returns True or `most_ticks` have passed; returns the number of ticks."""
+    ticks = []
+
+    @calldata_type(VTK_INT)
+    def watch(_caller, _event, timer):
+        if timer != watcher:
+            return
+        ticks.append(1)
+        if on_tick(len(ticks)) or len(ticks) >= most_ticks:
+            viewer.interactor.TerminateApp()
+
+    viewer.interactor.AddObserver("TimerEvent", watch)
+    watcher = viewer.interactor.CreateRepeatingTimer(period_ms)
+    viewer.start()
+    return len(ticks)
 
 
 class EventLoop(unittest.TestCase):
     def test_f_flies_in_the_event_loop_and_ends_at_the_cell(self):
-        # A window on the (virtual) display and VTK's own event loop: the flight's timers,
-        # one per frame, run it to its end, and the loop is left by a timer of the test's.
+        # The flight's timers, one per frame, run it to its end.
         lens = MembraneLens(MESH, PATCH)
         lens.set_tiles(1)
         lens.place(lens.surface.GetOutput().GetPoint(1000))
@@ -210,54 +232,31 @@ class EventLoop(unittest.TestCase):
         viewer.place_camera_at_patch()
         frames = []
         lens.renderer.AddObserver("EndEvent", lambda *_: frames.append(1))
-        ticks = []
 
-        @calldata_type(VTK_INT)
-        def watch(_caller, _event, timer):
-            if timer != watcher:
-                return
-            ticks.append(1)
-            if len(ticks) == 1:
+        def on_tick(tick):
+            if tick == 1:
                 viewer.key("f")
                 frames.clear()
-            elif not viewer.flying() or len(ticks) > 100:
-                viewer.interactor.TerminateApp()
+                return False
+            return not viewer.flying()
 
-        viewer.interactor.AddObserver("TimerEvent", watch)
-        viewer.window.Render()
-        viewer.interactor.Initialize()
-        watcher = viewer.interactor.CreateRepeatingTimer(100)
-        viewer._running = True  # as start() sets it
-        viewer.interactor.Start()
+        self.assertLess(run_event_loop(viewer, on_tick, 100, 100), 100)
         self.assertFalse(viewer.flying())
-        self.assertLessEqual(len(ticks), 100)
         self.assertGreater(len(frames), 2)  # drawn on the way, not in one jump
         self.assertTrue(poses_match(pose_of(lens.renderer.GetActiveCamera()), viewer.cell_pose))
-
 
     def test_space_plays_the_trajectory_in_the_event_loop(self):
         lens = MembraneLens(MESH, YIIP, YIIP_XTC)
         lens.set_tiles(1)
         lens.place(lens.surface.GetOutput().GetPoint(1000))
         viewer = LensViewer(lens, (200, 150))
-        ticks = []
 
-        @calldata_type(VTK_INT)
-        def watch(_caller, _event, timer):
-            if timer != watcher:
-                return
-            ticks.append(1)
-            if len(ticks) == 1:
-                viewer.key("space")
-            elif viewer.time_index >= 2 or len(ticks) > 50:
-                viewer.key("space")
-                viewer.interactor.TerminateApp()
+        def on_tick(tick):
+            if tick == 1 or viewer.time_index >= 2:
+                viewer.key("space")  # play, then pause
+            return viewer.time_index >= 2
 
-        viewer.interactor.AddObserver("TimerEvent", watch)
-        viewer.window.Render()
-        viewer.interactor.Initialize()
-        watcher = viewer.interactor.CreateRepeatingTimer(150)
-        viewer.interactor.Start()
+        run_event_loop(viewer, on_tick, 150, 50)
         self.assertGreaterEqual(viewer.time_index, 2)
         self.assertFalse(viewer.playing)
 

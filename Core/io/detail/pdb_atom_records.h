@@ -40,8 +40,9 @@ struct PdbAtomsAndHeader
 /// 77-78 hold none, B 20 and occupancy 1 when the record is too short to give them); the
 /// serials, residue numbers and four-letter names come from `scan`. Records are parsed
 /// concurrently through `parallel_for`. The ANISOU, MODEL, ENDMDL and TER records are checked
-/// and left out of `header`, as are ATOM/HETATM and REMARK. Throws FileError for what gemmi refuses
-/// (a record too short, atoms between models, a repeated MODEL number, a bad charge).
+/// and left out of `header`, as are ATOM/HETATM and REMARK (which go to `remarks`). Throws
+/// FileError for what gemmi refuses (a record too short, atoms between models, a repeated MODEL
+/// number, a bad charge).
 PdbAtomsAndHeader read_pdb_atoms(const char* text, std::size_t size, const PdbTextScan& scan,
                                  const ParallelFor& parallel_for, const std::string& path);
 

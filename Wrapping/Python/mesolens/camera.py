@@ -64,13 +64,16 @@ def pose_of(camera):
                       tuple(camera.GetViewUp()), camera.GetViewAngle())
 
 
-def apply_pose(camera, pose):
-    """Gives a vtkCamera the pose (its view-up made orthogonal to the view direction)."""
+def apply_pose(renderer, pose):
+    """Gives the renderer's camera the pose (its view-up made orthogonal to the view direction)
+    and fits its clipping range to what the renderer shows from there."""
+    camera = renderer.GetActiveCamera()
     camera.SetPosition(*pose.position)
     camera.SetFocalPoint(*pose.focal_point)
     camera.SetViewUp(*pose.view_up)
     camera.SetViewAngle(pose.view_angle)
     camera.OrthogonalizeViewUp()
+    renderer.ResetCameraClippingRange()
 
 
 def distance(pose):

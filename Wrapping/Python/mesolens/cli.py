@@ -42,8 +42,6 @@ import time
 from .camera import apply_pose, pose_of
 from .lens import METHODS, STYLES, LensError, MembraneLens, read_camera_file, write_png
 
-INSET_WIDTH = 0.35  # render --view inset: the inset's share of the window's width and height
-
 DEFAULT_DATA = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "..", "..",
                             "share", "mesolens", "Data")
 
@@ -95,12 +93,12 @@ def _window(lens, size, ssao, shadows, view):
         # The close-up fills the window (and keeps its effects); the whole component, the lens
         # outlined on it, in the upper left, over the close-up.
         whole = lens.whole_view()
-        camera = whole.GetActiveCamera()
-        apply_pose(camera, lens.scale_poses(pose_of(camera), size[0] / size[1])[1])
-        whole.ResetCameraClippingRange()
+        current = pose_of(whole.GetActiveCamera())
+        apply_pose(whole, lens.scale_poses(current, size[0] / size[1])[1])
         whole.SetLayer(1)
         whole.SetPreserveColorBuffer(False)  # its own background, over the close-up
         whole.SetBackground(0.16, 0.17, 0.21)
+        from .viewer import INSET_WIDTH  # the magnifier's inset, as it first opens
         whole.SetViewport(0.0, 1.0 - INSET_WIDTH, INSET_WIDTH, 1.0)
         window.SetNumberOfLayers(2)
         window.AddRenderer(whole)
@@ -190,9 +188,8 @@ def render(args, report=None):
     else:
         lens.look_at_patch()
         if args.view == "inset":  # the patch filling the window, as the viewer flies to it
-            camera = lens.renderer.GetActiveCamera()
-            apply_pose(camera, lens.scale_poses(pose_of(camera), args.size[0] / args.size[1])[0])
-            lens.renderer.ResetCameraClippingRange()
+            current = pose_of(lens.renderer.GetActiveCamera())
+            apply_pose(lens.renderer, lens.scale_poses(current, args.size[0] / args.size[1])[0])
     window = _window(lens, args.size, args.ssao, args.shadows, args.view)
     if lens.atom_count() == 0:
         raise LensError("no atoms were mapped")

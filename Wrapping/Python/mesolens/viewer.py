@@ -67,6 +67,7 @@ FLIGHT_SECONDS = 1.2  # a flight between the cell and the patch
 FLIGHT_TICK_MS = 15  # how often a flight asks for a frame (it renders as fast as it can)
 # The wheel stops this far from what is under the cursor, Å: about an atom's radius.
 NEAREST_APPROACH = 2.0
+INSET_WIDTH = 0.35  # the inset's width and height as shares of the window's, at first
 INSET_SIZES = (0.2, 0.6)  # the inset's width as a share of the window's, smallest and largest
 INSET_STEP = 0.05  # [ and ] change the inset's width by this share of the window's
 
@@ -110,12 +111,12 @@ class LensViewer:
         self.patch_pose = None
         self.cell_pose = None
         self.at_patch = False
-        self._flight = None  # (camera, start pose, end pose, start time, seconds)
+        self._flight = None  # (renderer, start pose, end pose, start time, seconds)
         self._flight_timer = None
         self._running = False  # the interactor's event loop runs (start())
         self.inset = None  # the inset's renderer while it is on
         self.inset_bar = None
-        self.inset_width = 0.35
+        self.inset_width = INSET_WIDTH
         # Observers on the style replace its own handling of these events (the style holds the
         # mouse focus between press and release): each calls the style's default itself.
         self.style.AddObserver("LeftButtonPressEvent", self._on_press)
@@ -259,15 +260,15 @@ class LensViewer:
         self.at_patch = to_patch
         target = self.patch_pose if to_patch else self.cell_pose
         self._show_other_scale_in_inset()
-        camera = self.lens.renderer.GetActiveCamera()
+        renderer = self.lens.renderer
         if animate is None:
             animate = self._running
         if not animate:
-            apply_pose(camera, target)
-            self.lens.renderer.ResetCameraClippingRange()
+            apply_pose(renderer, target)
             self.window.Render()
             return True
-        self._flight = (camera, pose_of(camera), target, time.monotonic(), FLIGHT_SECONDS)
+        start = pose_of(renderer.GetActiveCamera())
+        self._flight = (renderer, start, target, time.monotonic(), FLIGHT_SECONDS)
         self._next_flight_tick()
         return True
 
@@ -281,10 +282,9 @@ class LensViewer:
         the frame. Returns whether a flight is still under way."""
         if self._flight is None:
             return False
-        camera, start, end, started, seconds = self._flight
+        renderer, start, end, started, seconds = self._flight
         fraction = min(1.0, ((time.monotonic() if now is None else now) - started) / seconds)
-        apply_pose(camera, end if fraction >= 1.0 else interpolate(start, end, fraction))
-        self.lens.renderer.ResetCameraClippingRange()
+        apply_pose(renderer, end if fraction >= 1.0 else interpolate(start, end, fraction))
         if fraction >= 1.0:
             self._stop_flight()
         self.window.Render()
@@ -376,8 +376,7 @@ class LensViewer:
         if self.inset is None or self.patch_pose is None:
             return
         other = self.cell_pose if self.at_patch else self.patch_pose
-        apply_pose(self.inset.GetActiveCamera(), other)
-        self.inset.ResetCameraClippingRange()
+        apply_pose(self.inset, other)
 
     def _renderer_at(self, x, y):
         """The renderer whose viewport holds display pixel (x, y): the inset over the window."""
